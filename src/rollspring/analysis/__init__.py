@@ -1,0 +1,21 @@
+"""Analysis: linearisation, normal modes, the stationary point, the linear response."""
+
+from rollspring.analysis.linear import (
+    ZERO_MODE_TOLERANCE,
+    Equilibrium,
+    LinearAnalysis,
+    Mode,
+    analyze,
+    find_equilibrium,
+    normal_modes,
+)
+
+__all__ = [
+    "ZERO_MODE_TOLERANCE",
+    "Equilibrium",
+    "LinearAnalysis",
+    "Mode",
+    "analyze",
+    "find_equilibrium",
+    "normal_modes",
+]

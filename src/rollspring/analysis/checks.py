@@ -1,0 +1,166 @@
+"""Physics checks on a linear analysis: slipping, lift-off, and where the paper's claims fail.
+
+Each check returns plain sentences for ``LinearAnalysis.warnings``; they are reported by
+``rollspring analyze`` (on stderr with ``--json``, and in the JSON's ``"warnings"``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rollspring.physics import end_kinematics
+
+if TYPE_CHECKING:
+    from rollspring.analysis.linear import LinearAnalysis
+
+__all__ = ["is_exactly_linear", "percussion_attachments", "physics_warnings"]
+
+
+def physics_warnings(analysis: LinearAnalysis) -> list[str]:
+    """All warnings about the physics of an analysed system (see the module docstring)."""
+    out: list[str] = []
+    out += _contact_warnings(analysis)
+    out += _percussion_warnings(analysis)
+    out += _geometry_warnings(analysis)
+    out += _amplitude_warnings(analysis)
+    return out
+
+
+def _contact_warnings(analysis: LinearAnalysis) -> list[str]:
+    arrays = analysis.arrays
+    out = []
+    for i, body in enumerate(arrays.ids):
+        if arrays.rolls[i] == 0:
+            continue
+        mu = float(arrays.mu_static[i])
+        f_eq, n_eq = analysis.equilibrium_friction[i], analysis.equilibrium_normal[i]
+        if n_eq <= 0:
+            out.append(f"'{body}' cannot rest on its track: its normal force at equilibrium is "
+                       f"{n_eq:.6g} N")
+        elif abs(f_eq) > mu * n_eq:
+            out.append(f"'{body}' cannot rest at the equilibrium without slipping: it needs "
+                       f"mu_s >= {abs(f_eq) / n_eq:.6g}, it has {mu:g}")
+        if analysis.required_mu is None or analysis.normal_force_range is None:
+            continue
+        needed = float(analysis.required_mu[i])
+        if math.isinf(needed):
+            low = float(analysis.normal_force_range[i][0])
+            out.append(f"'{body}' would lift off: in the linear motion its normal force reaches "
+                       f"{low:.6g} N")
+        elif needed > mu:
+            out.append(f"'{body}' slips: the motion needs mu_s >= {needed:.6g}, it has {mu:g}")
+    return out
+
+
+def percussion_attachments(analysis: LinearAnalysis) -> list[tuple[int, int, int]]:
+    """Spring ends fixed at their body's percussion point at equilibrium: (spring, end, body).
+
+    The percussion point lies on the vertical through the centre at height (1 + gamma) R above
+    the contact: a force through it needs no static friction, PHYSICS.md (M10); the paper's
+    y1 = 2R (hoop) and y2 = 1.5R (cylinder).
+    """
+    arrays = analysis.arrays
+    position, _, _ = end_kinematics(arrays, analysis.equilibrium.q)
+    x_centre = arrays.x0 + arrays.scale * analysis.equilibrium.q
+    found = []
+    for s in range(arrays.n_springs):
+        for j in range(2):
+            i = int(arrays.end_body[s, j])
+            if i < 0 or arrays.rolls[i] == 0:
+                continue
+            height = (1.0 + arrays.gamma[i]) * arrays.radius[i]
+            px, py = position[s, j]
+            tol = 1e-9 * arrays.radius[i]
+            if abs(px - x_centre[i]) < tol and abs(py - arrays.track[i] - height) < tol:
+                found.append((s, j, i))
+    return found
+
+
+def _percussion_warnings(analysis: LinearAnalysis) -> list[str]:
+    arrays = analysis.arrays
+    out = []
+    ends = percussion_attachments(analysis)
+    oscillating = analysis.oscillating
+    spring_force_scale = max(
+        (float(np.max(np.abs(arrays.stiffness * m.spring_extension))) for m in oscillating),
+        default=0.0,
+    )
+    for s, _j, i in ends:
+        body = arrays.ids[i]
+        per_mode = [abs(float(m.friction[i])) for m in oscillating]
+        if spring_force_scale > 0 and max(per_mode, default=0.0) > 1e-9 * spring_force_scale:
+            out.append(
+                f"spring '{arrays.spring_names[s]}' is attached at the percussion height of "
+                f"'{body}' ({(1 + arrays.gamma[i]) * arrays.radius[i]:.6g} m above its track), "
+                f"yet '{body}' still needs friction in the motion: other forces act on it"
+            )
+    # both ends of one spring at percussion points: the paper's Fig. 3 idea
+    by_spring: dict[int, list[int]] = {}
+    for s, _j, i in ends:
+        by_spring.setdefault(s, []).append(i)
+    for s, bodies in by_spring.items():
+        if len(bodies) != 2:
+            continue
+        tilt = float(analysis.spring_tilt_deg[s])
+        if abs(tilt) < 1e-9:
+            continue
+        i1, i2 = bodies
+        name1, name2 = arrays.ids[i1], arrays.ids[i2]
+        h1 = arrays.track[i1] + (1 + arrays.gamma[i1]) * arrays.radius[i1]
+        h2 = arrays.track[i2] + (1 + arrays.gamma[i2]) * arrays.radius[i2]
+        cos2 = math.cos(math.radians(tilt)) ** 2
+        hint = ""
+        if arrays.track[i1] == arrays.track[i2]:
+            ratio = (1 + arrays.gamma[i2]) / (1 + arrays.gamma[i1])
+            hint = (f"; on one floor it is horizontal only if R_{name1}/R_{name2} = "
+                    f"{ratio:.6g} (the paper's Fig. 3 text says R1 = R2/2, which tilts it)")
+        out.append(
+            f"spring '{arrays.spring_names[s]}' joins the percussion points of '{name1}' and "
+            f"'{name2}' but is tilted {tilt:.4g}° (heights {h1:.6g} m and {h2:.6g} m): friction "
+            f"vanishes only to first order, Omega^2 is scaled by cos^2(tilt) = {cos2:.6g}, and "
+            f"the normal forces oscillate{hint}"
+        )
+    return out
+
+
+def _geometry_warnings(analysis: LinearAnalysis) -> list[str]:
+    arrays = analysis.arrays
+    out = []
+    for s in range(arrays.n_springs):
+        for j in range(2):
+            i = int(arrays.end_body[s, j])
+            if i >= 0 and arrays.end_r[s, j] > arrays.radius[i] * (1 + 1e-12):
+                out.append(
+                    f"spring '{arrays.spring_names[s]}' is attached to '{arrays.ids[i]}' "
+                    f"{arrays.end_r[s, j]:.6g} m from its centre, outside its radius "
+                    f"{arrays.radius[i]:.6g} m (a rigid arm is assumed)"
+                )
+    return out
+
+
+def is_exactly_linear(analysis: LinearAnalysis) -> bool:
+    """True when the equations of motion are linear at any amplitude (PHYSICS.md section 8):
+    every spring attached at centres (or anchors) and horizontal, external forces at centres."""
+    arrays = analysis.arrays
+    centres = bool(np.all(arrays.end_r == 0)) and bool(np.all(arrays.force_r == 0))
+    return centres and bool(np.all(analysis.spring_tilt_deg == 0))
+
+
+def _amplitude_warnings(analysis: LinearAnalysis) -> list[str]:
+    arrays = analysis.arrays
+    if analysis.amplitude is None or is_exactly_linear(analysis):
+        return []
+    out = []
+    for i, body in enumerate(arrays.ids):
+        if arrays.rolls[i] == 0:
+            continue
+        angle = float(analysis.amplitude[i] / arrays.radius[i])
+        if angle > 0.2:
+            out.append(
+                f"'{body}' turns by up to {angle:.3g} rad: the linear results are only "
+                f"approximate at this amplitude (the springs tilt as the bodies turn)"
+            )
+    return out

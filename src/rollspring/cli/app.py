@@ -1,0 +1,144 @@
+"""``rollspring`` commands (Typer). A thin layer: parse, call the library, format.
+
+Every error rollspring raises on purpose is printed as one line on stderr, with exit code 2;
+with ``--json``, stdout holds exactly one JSON object and everything else goes to stderr.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import os
+import sys
+from collections.abc import Callable
+from typing import Annotated, Any, TypeVar
+
+import typer
+from rich.console import Console
+
+from rollspring.analysis import analyze as run_analysis
+from rollspring.errors import RollspringError
+from rollspring.model import (
+    DEFAULT_PRESET,
+    load_system,
+    preset_names,
+    preset_path,
+    system_json_schema,
+)
+
+__all__ = ["app", "main"]
+
+app = typer.Typer(
+    name="rollspring",
+    help="Coupled rolling oscillators: exact rolling physics, normal modes, friction and "
+    "normal forces.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+SystemArg = Annotated[
+    str,
+    typer.Argument(
+        help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
+        show_default=False,
+    ),
+]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object on stdout.")]
+
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def friendly_errors(command: F) -> F:
+    """Turn rollspring's errors into one line on stderr and exit code 2 (never a traceback).
+
+    An unexpected exception (a bug) is reported in one line with exit code 1; set
+    ``ROLLSPRING_DEBUG=1`` to see its traceback.
+    """
+
+    @functools.wraps(command)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return command(*args, **kwargs)
+        except RollspringError as exc:
+            _stderr().print(f"error: {exc}", markup=False)
+            raise typer.Exit(2) from None
+        except (typer.Exit, typer.Abort, KeyboardInterrupt):
+            raise
+        except Exception as exc:
+            if os.environ.get("ROLLSPRING_DEBUG"):
+                raise
+            _stderr().print(
+                f"internal error: {type(exc).__name__}: {exc} (please report it; "
+                "ROLLSPRING_DEBUG=1 shows the traceback)",
+                markup=False,
+            )
+            raise typer.Exit(1) from None
+
+    return wrapper  # type: ignore[return-value]
+
+
+def _stdout() -> Console:
+    return Console(highlight=False, soft_wrap=False)
+
+
+def _stderr() -> Console:
+    return Console(stderr=True, highlight=False)
+
+
+def _print_json(data: Any) -> None:
+    sys.stdout.write(json.dumps(data, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
+    sys.stdout.flush()
+
+
+@app.command()
+@friendly_errors
+def analyze(
+    system: SystemArg = DEFAULT_PRESET,
+    as_json: JsonOpt = False,
+) -> None:
+    """Linear analysis: equilibrium, M and K, normal modes, stationary point, friction needed."""
+    result = run_analysis(load_system(system))
+    if as_json:
+        for warning in result.warnings:
+            _stderr().print(f"warning: {warning}", markup=False)
+        _print_json(result.to_dict())
+        return
+    from rollspring.cli.tables import print_analysis
+
+    print_analysis(_stdout(), result)
+
+
+@app.command()
+@friendly_errors
+def schema() -> None:
+    """Print the JSON Schema of a system file (TOML files have the same structure)."""
+    _print_json(system_json_schema())
+
+
+@app.command()
+@friendly_errors
+def presets(as_json: JsonOpt = False) -> None:
+    """List the built-in systems (each is also a file in examples/)."""
+    rows = []
+    for name in preset_names():
+        system = load_system(name)
+        rows.append({"name": name, "title": system.name, "file": str(preset_path(name)),
+                     "default": name == DEFAULT_PRESET})
+    if as_json:
+        _print_json(rows)
+        return
+    from rich.table import Table
+
+    table = Table(title="rollspring presets", title_justify="left")
+    table.add_column("name", style="bold")
+    table.add_column("system")
+    for row in rows:
+        table.add_row(row["name"] + (" (default)" if row["default"] else ""), row["title"])
+    _stdout().print(table)
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Entry point of the ``rollspring`` console command."""
+    app(args=argv)

@@ -1,0 +1,119 @@
+"""Rich tables for ``rollspring analyze``."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from rich.console import Console
+from rich.table import Table
+
+from rollspring.analysis import LinearAnalysis
+from rollspring.analysis.report import CONVENTIONS
+
+__all__ = ["print_analysis"]
+
+
+def _g(value: float, digits: int = 6) -> str:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "-"
+    if math.isinf(value):
+        return "∞"
+    if value == 0:
+        return "0"
+    return f"{value:.{digits}g}"
+
+
+def print_analysis(console: Console, result: LinearAnalysis) -> None:
+    """Print the whole analysis as a few readable tables."""
+    arrays = result.arrays
+    system = result.system
+    ids = arrays.ids
+    console.print(f"[bold]{system.name or 'system'}[/bold]")
+    if system.description:
+        console.print(system.description, markup=False)
+    console.print()
+
+    bodies = Table(title="Bodies at equilibrium", title_justify="left")
+    for col in ("body", "shape", "m (kg)", "R (m)", "J (kg m²)", "μs", "x (m)", "f (N)",
+                "N (N)"):
+        bodies.add_column(col, justify="right" if col != "body" else "left")
+    x_eq = arrays.x0 + arrays.scale * result.equilibrium.q
+    for i, body in enumerate(system.bodies):
+        bodies.add_row(body.id, body.shape, _g(body.mass, 4), _g(body.radius, 4),
+                       _g(float(arrays.inertia[i]), 4),
+                       _g(body.mu_static, 3) if body.rolls else "-",
+                       _g(float(x_eq[i]), 5), _g(float(result.equilibrium_friction[i]), 4),
+                       _g(float(result.equilibrium_normal[i]), 5))
+    console.print(bodies)
+
+    modes = Table(title="Normal modes", title_justify="left")
+    for col in ("mode", "ω (rad/s)", "f (Hz)", "period (s)", "ω² (1/s²)"):
+        modes.add_column(col, justify="right" if col != "mode" else "left")
+    labels = []
+    for n, mode in enumerate(result.modes, 1):
+        label = {"zero": f"{n} (zero)", "unstable": f"{n} UNSTABLE"}.get(mode.kind, str(n))
+        labels.append(str(n))
+        modes.add_row(label, _g(mode.omega, 8), _g(mode.frequency), _g(mode.period),
+                      _g(mode.eigenvalue, 8))
+    console.print(modes)
+    shapes = Table(title="Mode shapes: centre displacement x (largest = 1) and friction f (N) "
+                   "along it", title_justify="left")
+    shapes.add_column("body")
+    for label in labels:
+        shapes.add_column(f"x{label}", justify="right")
+        shapes.add_column(f"f{label}", justify="right")
+    for i, body in enumerate(ids):
+        cells = []
+        for mode in result.modes:
+            cells += [_g(float(mode.shape_x[i]), 4), _g(float(mode.friction[i]), 4)]
+        shapes.add_row(body, *cells)
+    console.print(shapes)
+
+    if result.stationary_weights is not None:
+        weights = ", ".join(f"{w:.6g}·x_{b}" for b, w in zip(ids, result.stationary_weights,
+                                                            strict=True))
+        is_cm = np.allclose(result.stationary_weights, arrays.mass / arrays.mass.sum())
+        console.print(f"Stationary point X̂ = {weights} = {_g(result.stationary_position or 0.0)} m"
+                      + (" (the centre of mass)" if is_cm else " (not the centre of mass)"),
+                      markup=False)
+    else:
+        console.print("Stationary point: none (no single zero mode)")
+    console.print()
+
+    if result.amplitude is not None:
+        resp = Table(title="Response to the initial conditions (linear, exact modal superposition)",
+                     title_justify="left")
+        for col in ("body", "amplitude (m)", "|f| max (N)", "N range (N)", "μ needed", "μs"):
+            resp.add_column(col, justify="right" if col != "body" else "left")
+        assert result.friction_amplitude is not None and result.normal_force_range is not None
+        assert result.required_mu is not None
+        for i, body in enumerate(system.bodies):
+            lo, hi = result.normal_force_range[i]
+            resp.add_row(body.id, _g(float(result.amplitude[i])),
+                         _g(float(result.friction_amplitude[i])), f"{_g(lo, 5)} … {_g(hi, 5)}",
+                         _g(float(result.required_mu[i]), 4) if body.rolls else "-",
+                         _g(body.mu_static) if body.rolls else "-")
+        console.print(resp)
+        line = f"CM amplitude: {_g(result.cm_amplitude or 0.0)} m"
+        if result.stationary_amplitude is not None:
+            line += f";  X̂ amplitude: {_g(result.stationary_amplitude)} m"
+        console.print(line, markup=False)
+    if result.spring_split is not None:
+        split = result.spring_split
+        parts = ", ".join(f"k_{b} = {_g(float(k))} N/m" for b, k in zip(ids, split["k"],
+                                                                           strict=True))
+        console.print(f"Spring split about X̂ (paper's k1, k2): {parts}", markup=False)
+    if arrays.n_springs:
+        springs = Table(title="Springs at equilibrium", title_justify="left")
+        for col in ("spring", "length (m)", "rest (m)", "tension (N)", "tilt (°)"):
+            springs.add_column(col, justify="right" if col != "spring" else "left")
+        for s, name in enumerate(arrays.spring_names):
+            springs.add_row(name, _g(float(result.spring_length[s])),
+                            _g(float(arrays.rest_length[s])), _g(float(result.spring_tension[s])),
+                            _g(float(result.spring_tilt_deg[s]), 4))
+        console.print(springs)
+    console.print(f"[dim]Signs: φ {CONVENTIONS['phi']}; friction: "
+                  f"{CONVENTIONS['friction']}.[/dim]")
+    for warning in result.warnings:
+        console.print(f"[yellow]warning:[/yellow] {warning}", highlight=False)

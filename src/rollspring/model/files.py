@@ -1,0 +1,185 @@
+"""System files (TOML or JSON, the same structure), presets, and one-line validation errors."""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from pydantic import ValidationError
+
+from rollspring.errors import ModelError
+from rollspring.model.schema import System
+
+__all__ = [
+    "DEFAULT_PRESET",
+    "load_system",
+    "preset_names",
+    "preset_path",
+    "system_from_dict",
+    "system_json_schema",
+]
+
+#: The built-in default system: the paper's hoop and cylinder joined at their centres (Fig. 2).
+DEFAULT_PRESET = "hoop-cylinder"
+
+_PRESET_DIR = "presets"
+
+
+def preset_names() -> list[str]:
+    """Names of the built-in presets (each is also a file in ``examples/``)."""
+    folder = resources.files("rollspring.model") / _PRESET_DIR
+    return sorted(p.name.removesuffix(".toml") for p in folder.iterdir() if p.name.endswith(".toml"))
+
+
+def preset_path(name: str) -> Path:
+    """Path of a preset's TOML file inside the installed package."""
+    if name not in preset_names():
+        raise ModelError(
+            f"unknown preset '{name}' (presets: {', '.join(preset_names())}; or give a file path)"
+        )
+    return Path(str(resources.files("rollspring.model") / _PRESET_DIR / f"{name}.toml"))
+
+
+def load_system(source: str | Path) -> System:
+    """Load a system from a ``.toml`` or ``.json`` file, or by preset name.
+
+    Raises :class:`~rollspring.errors.ModelError` with a one-line message naming the file, the
+    field and the reason for a missing file, a syntax error or an invalid value.
+    """
+    path = Path(source)
+    if not path.exists():
+        if isinstance(source, str) and source in preset_names():
+            path = preset_path(source)
+        elif isinstance(source, str) and not path.suffix and "/" not in source:
+            raise ModelError(
+                f"'{source}' is neither a file nor a preset "
+                f"(presets: {', '.join(preset_names())})"
+            )
+        else:
+            raise ModelError(f"{source}: file not found")
+    if path.is_dir():
+        raise ModelError(f"{path}: is a folder, not a system file")
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise ModelError(f"{path}: cannot read ({exc.strerror})") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise ModelError(f"{path}: not a text file (not valid UTF-8)") from None
+    data = _parse(text, path)
+    return system_from_dict(data, source=str(path))
+
+
+def _parse(text: str, path: Path) -> dict[str, Any]:
+    suffix = path.suffix.lower()
+    if suffix == ".json":
+        try:
+            data = json.loads(text, parse_constant=_json_constant)
+        except json.JSONDecodeError as exc:
+            raise ModelError(
+                f"{path}: JSON syntax error: {exc.msg} (line {exc.lineno}, column {exc.colno})"
+            ) from None
+        if not isinstance(data, dict):
+            raise ModelError(f"{path}: the top level must be a JSON object")
+        return data
+    if suffix in (".toml", ""):
+        try:
+            return tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise ModelError(f"{path}: TOML syntax error: {exc}") from None
+    raise ModelError(f"{path}: unknown file type '{suffix}' (use .toml or .json)")
+
+
+def _json_constant(name: str) -> float:
+    # JSON has no NaN or infinity; Python's parser accepts them, and so do we, so that
+    # ``mu_static: Infinity`` works and NaN is rejected by validation with a clear message.
+    return {"Infinity": math.inf, "-Infinity": -math.inf, "NaN": math.nan}[name]
+
+
+def system_from_dict(data: dict[str, Any], *, source: str = "system") -> System:
+    """Validate a dictionary (the parsed file) into a :class:`System`."""
+    try:
+        return System.model_validate(data)
+    except ValidationError as exc:
+        raise ModelError(f"{source}: {_one_line(exc, data)}") from None
+
+
+def _one_line(exc: ValidationError, data: Any) -> str:
+    errors = exc.errors(include_url=False)
+    first = errors[0]
+    message = _describe(first, data)
+    if len(errors) > 1:
+        message += f" (and {len(errors) - 1} more problem{'s' if len(errors) > 2 else ''})"
+    return message
+
+
+def _describe(error: dict[str, Any], data: Any) -> str:
+    loc = [p for p in error["loc"] if not (isinstance(p, str) and p.startswith("function-"))]
+    kind = error["type"]
+    msg: str = error["msg"]
+    if msg.startswith("Value error, "):
+        msg = msg.removeprefix("Value error, ")
+    if kind == "extra_forbidden":
+        key = loc[-1] if loc else "?"
+        where = _path(loc[:-1])
+        return f"{where + ': ' if where else ''}unknown key '{key}'"
+    if kind == "missing":
+        return f"{_path(loc)}: missing (required)"
+    if kind in ("finite_number",):
+        msg = "must be a finite number (no NaN or infinity)"
+    elif kind in ("greater_than", "greater_than_equal", "less_than_equal", "less_than"):
+        bound = error.get("ctx", {})
+        op = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<",
+              "less_than_equal": "<="}[kind]
+        limit = next(iter(bound.values()), "?")
+        msg = f"must be {op} {limit}"
+    elif kind == "literal_error":
+        expected = error.get("ctx", {}).get("expected", "")
+        msg = f"unknown value {error.get('input')!r} (expected one of {expected})"
+    elif kind in ("float_type", "int_type", "string_type", "bool_type", "list_type",
+                  "tuple_type", "dict_type", "model_type", "model_attributes_type"):
+        expected = kind.removesuffix("_type").replace("model_attributes", "table").replace(
+            "model", "table").replace("dict", "table")
+        msg = f"must be a {'number' if expected in ('float', 'int') else expected}"
+    elif kind == "string_pattern_mismatch":
+        msg = "must start with a letter or '_' and hold only letters, digits, '_' or '-'"
+    elif kind in ("too_short", "too_long") and loc and loc[-1] == "ends":
+        msg = "must name exactly two ends"
+    value = error.get("input")
+    if kind not in ("literal_error", "missing") and _is_scalar(value) and loc:
+        msg += f" (got {_show(value)})"
+    where = _path(loc)
+    return f"{where}: {msg}" if where else msg
+
+
+def _is_scalar(value: Any) -> bool:
+    return isinstance(value, (int, float, str, bool)) and not isinstance(value, dict)
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, float):
+        return repr(value) if math.isfinite(value) else str(value)
+    return repr(value)
+
+
+def _path(loc: list[Any]) -> str:
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        else:
+            out += f".{part}" if out else str(part)
+    return out
+
+
+def system_json_schema() -> dict[str, Any]:
+    """The JSON Schema of a system file (TOML files have the same structure)."""
+    schema = System.model_json_schema()
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["title"] = "rollspring system"
+    return schema

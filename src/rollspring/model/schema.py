@@ -1,0 +1,325 @@
+"""What a system is: bodies, anchors, springs and external forces (validated with pydantic).
+
+Conventions (SI units everywhere): ``x`` to the right, ``y`` up, gravity downward. A body's
+initial placement is its *reference configuration*: rotation angles are measured from it,
+clockwise positive (a body rolling to the right has ``phi > 0``). Attachment points are fixed in
+the body; they are given in the initial placement.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+__all__ = [
+    "INERTIA_FACTORS",
+    "Anchor",
+    "Attachment",
+    "Body",
+    "ExternalForce",
+    "Shape",
+    "Spring",
+    "System",
+]
+
+#: Central moment of inertia I = gamma m R^2 for each built-in shape (PHYSICS.md section 1).
+INERTIA_FACTORS: dict[str, float] = {
+    "hoop": 1.0,
+    "cylinder": 0.5,
+    "sphere": 0.4,
+    "shell": 2.0 / 3.0,
+}
+
+Shape = Literal["hoop", "cylinder", "sphere", "shell", "custom", "slider"]
+
+Identifier = Annotated[
+    str,
+    Field(
+        min_length=1,
+        max_length=64,
+        pattern=r"^[A-Za-z_][A-Za-z0-9_\-]*$",
+        description="A name: a letter or '_' first, then letters, digits, '_' or '-'.",
+    ),
+]
+Finite = Annotated[float, Field(allow_inf_nan=False)]
+Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
+NonNegative = Annotated[float, Field(ge=0, allow_inf_nan=False)]
+
+
+class _Strict(BaseModel):
+    """Base of every file section: unknown keys are errors, numbers must be numbers."""
+
+    model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False)
+
+
+class Attachment(_Strict):
+    """A point fixed in a body, given in the initial placement.
+
+    Either ``{}`` (the centre), ``{height = h}`` (on the vertical through the centre, ``h``
+    above the body's track) or ``{radius = r, angle = deg}`` (distance ``r`` from the centre,
+    ``angle`` degrees clockwise from straight up: 0 top, 90 front/right, 180 bottom).
+    """
+
+    height: NonNegative | None = Field(
+        default=None, description="Height above the body's track (m), on the centre vertical."
+    )
+    radius: NonNegative | None = Field(default=None, description="Distance from the centre (m).")
+    angle: Finite | None = Field(
+        default=None, description="Degrees clockwise from straight up (needs `radius`)."
+    )
+
+    @model_validator(mode="after")
+    def _one_form(self) -> Attachment:
+        if self.height is not None and (self.radius is not None or self.angle is not None):
+            raise ValueError("give either `height` or `radius` and `angle`, not both")
+        if self.angle is not None and self.radius is None:
+            raise ValueError("`angle` needs `radius`")
+        return self
+
+    @property
+    def is_centre_form(self) -> bool:
+        """True for ``{}``."""
+        return self.height is None and self.radius is None
+
+    def polar(self, body: Body) -> tuple[float, float]:
+        """Distance ``r`` (m) from the centre and angle ``alpha`` (rad, clockwise from up)."""
+        if self.height is not None:
+            dy = self.height - body.radius
+            return abs(dy), (0.0 if dy >= 0 else math.pi)
+        if self.radius is not None:
+            return self.radius, math.radians(self.angle or 0.0)
+        return 0.0, 0.0
+
+
+CENTRE = Attachment()
+
+
+class Body(_Strict):
+    """A round body rolling without slipping on a horizontal track, or a frictionless slider."""
+
+    id: Identifier
+    shape: Shape = Field(
+        description="hoop (I = mR^2), cylinder (mR^2/2), sphere (2mR^2/5), shell (2mR^2/3), "
+        "custom (inertia_factor mR^2) or slider (a point mass sliding without friction)."
+    )
+    mass: Positive = Field(description="kg")
+    radius: Positive = Field(
+        description="m; for a slider, the height of its centre above the track (drawing size)."
+    )
+    inertia_factor: Annotated[float, Field(gt=0, le=1, allow_inf_nan=False)] | None = Field(
+        default=None, description="gamma in I = gamma m R^2; only for shape = 'custom', in (0, 1]."
+    )
+    track_height: Finite = Field(default=0.0, description="Height of the floor under the body (m).")
+    x: Finite = Field(description="Initial horizontal position of the centre (m).")
+    v: Finite = Field(default=0.0, description="Initial velocity of the centre (m/s).")
+    mu_static: Annotated[float, Field(ge=0, allow_inf_nan=True)] = Field(
+        default=1.0,
+        description="Static friction coefficient; inf enforces rolling (rack and pinion). "
+        "Ignored for sliders.",
+    )
+    mu_kinetic: NonNegative | None = Field(
+        default=None,
+        description="Kinetic friction coefficient, at most mu_static; default mu_static "
+        "(0 when mu_static is inf).",
+    )
+
+    @field_validator("mu_static")
+    @classmethod
+    def _not_nan(cls, value: float) -> float:
+        if math.isnan(value):
+            raise ValueError("must be a number, not NaN")
+        return value
+
+    @model_validator(mode="after")
+    def _consistent(self) -> Body:
+        if self.shape == "custom" and self.inertia_factor is None:
+            raise ValueError("shape 'custom' needs `inertia_factor` in (0, 1]")
+        if self.shape != "custom" and self.inertia_factor is not None:
+            raise ValueError(
+                f"`inertia_factor` is only for shape 'custom' (a {self.shape} has its own)"
+            )
+        if self.mu_kinetic is not None and self.mu_kinetic > self.mu_static:
+            raise ValueError(
+                f"mu_kinetic ({self.mu_kinetic:g}) must not exceed mu_static ({self.mu_static:g})"
+            )
+        return self
+
+    @property
+    def rolls(self) -> bool:
+        """False for a slider (no rotation), True for every round body."""
+        return self.shape != "slider"
+
+    @property
+    def gamma(self) -> float:
+        """Inertia factor: I = gamma m R^2 (0 for a slider, which does not rotate)."""
+        if self.shape == "slider":
+            return 0.0
+        if self.shape == "custom":
+            assert self.inertia_factor is not None
+            return self.inertia_factor
+        return INERTIA_FACTORS[self.shape]
+
+    @property
+    def central_inertia(self) -> float:
+        r"""Moment of inertia about the centre, :math:`I = \gamma m R^2` (kg m^2)."""
+        return self.gamma * self.mass * self.radius**2
+
+    @property
+    def contact_inertia(self) -> float:
+        r"""Inertia of the coordinate: :math:`J = I + m R^2` about the contact line (PHYSICS.md
+        (M4), the paper's :math:`I'` by Steiner's theorem); a slider's coordinate is x, J = m."""
+        if not self.rolls:
+            return self.mass
+        return (1.0 + self.gamma) * self.mass * self.radius**2
+
+    @property
+    def percussion_height(self) -> float:
+        """Height above the track where a force needs no friction: (1 + gamma) R (M10)."""
+        return (1.0 + self.gamma) * self.radius
+
+    @property
+    def mu_kinetic_value(self) -> float:
+        """The kinetic friction coefficient in force (default: mu_static, 0 if that is inf)."""
+        if self.mu_kinetic is not None:
+            return self.mu_kinetic
+        return self.mu_static if math.isfinite(self.mu_static) else 0.0
+
+    def point_at_rest(self, at: Attachment) -> tuple[float, float]:
+        """Position (x, y) of an attachment point in the initial placement, (M1) at phi = 0."""
+        r, alpha = at.polar(self)
+        return (
+            self.x + r * math.sin(alpha),
+            self.track_height + self.radius + r * math.cos(alpha),
+        )
+
+
+class Anchor(_Strict):
+    """A fixed point (a wall hook)."""
+
+    id: Identifier
+    x: Finite = Field(description="m")
+    y: Finite = Field(description="m")
+
+
+class Spring(_Strict):
+    """An ideal massless spring between two ends, each a body (at an attachment) or an anchor."""
+
+    ends: list[Identifier] = Field(min_length=2, max_length=2, description="Ids of the two ends.")
+    stiffness: Positive = Field(description="N/m")
+    rest_length: NonNegative | None = Field(
+        default=None, description="m; default: the length in the initial placement."
+    )
+    damping: NonNegative = Field(default=0.0, description="N s/m, along the spring.")
+    at: list[Attachment] | None = Field(
+        default=None,
+        min_length=2,
+        max_length=2,
+        description="Attachment per end ({} = a body's centre; an anchor end takes {}).",
+    )
+
+    @property
+    def attachments(self) -> tuple[Attachment, Attachment]:
+        """The two attachments, centres where none is given."""
+        return (self.at[0], self.at[1]) if self.at is not None else (CENTRE, CENTRE)
+
+
+class ExternalForce(_Strict):
+    """A constant force applied at a point fixed in a body (the paper's Appendix A pull)."""
+
+    body: Identifier
+    at: Attachment = Field(default=CENTRE, description="Point of application.")
+    fx: Finite = Field(default=0.0, description="N")
+    fy: Finite = Field(default=0.0, description="N")
+
+
+class System(_Strict):
+    """A complete system: bodies on tracks, fixed anchors, springs, constant forces, gravity."""
+
+    name: str = ""
+    description: str = ""
+    gravity: NonNegative = Field(default=9.81, description="m/s^2, downward.")
+    bodies: list[Body] = Field(min_length=1)
+    anchors: list[Anchor] = Field(default_factory=list)
+    springs: list[Spring] = Field(default_factory=list)
+    forces: list[ExternalForce] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _references(self) -> System:
+        seen: dict[str, str] = {}
+        for kind, items in (("bodies", self.bodies), ("anchors", self.anchors)):
+            for i, item in enumerate(items):
+                if item.id in seen:
+                    raise ValueError(
+                        f"{kind}[{i}].id: duplicate id '{item.id}' (already used in {seen[item.id]})"
+                    )
+                seen[item.id] = f"{kind}[{i}]"
+        bodies = self.body_map
+        anchors = {a.id for a in self.anchors}
+        for s, spring in enumerate(self.springs):
+            where = f"springs[{s}]"
+            a, b = spring.ends
+            for end in (a, b):
+                if end not in bodies and end not in anchors:
+                    raise ValueError(f"{where}.ends: unknown id '{end}'")
+            if a == b:
+                raise ValueError(f"{where}.ends: a spring cannot join '{a}' to itself")
+            if a in anchors and b in anchors:
+                raise ValueError(f"{where}.ends: both ends are anchors ('{a}', '{b}')")
+            for j, (end, at) in enumerate(zip(spring.ends, spring.attachments, strict=True)):
+                if end in anchors and not at.is_centre_form:
+                    raise ValueError(f"{where}.at[{j}]: '{end}' is an anchor; its entry must be {{}}")
+                if end in bodies:
+                    _check_attachment(bodies[end], at, f"{where}.at[{j}]")
+            length = self._initial_length(spring)
+            if length == 0.0:
+                raise ValueError(
+                    f"{where}: its two ends coincide in the initial placement (length 0)"
+                )
+        for f, force in enumerate(self.forces):
+            if force.body not in bodies:
+                raise ValueError(f"forces[{f}].body: unknown body '{force.body}'")
+            _check_attachment(bodies[force.body], force.at, f"forces[{f}].at")
+        return self
+
+    @property
+    def body_map(self) -> dict[str, Body]:
+        """Bodies by id."""
+        return {b.id: b for b in self.bodies}
+
+    @property
+    def anchor_map(self) -> dict[str, Anchor]:
+        """Anchors by id."""
+        return {a.id: a for a in self.anchors}
+
+    def end_point_at_rest(self, end: str, at: Attachment) -> tuple[float, float]:
+        """Position of a spring end (body attachment or anchor) in the initial placement."""
+        bodies = self.body_map
+        if end in bodies:
+            return bodies[end].point_at_rest(at)
+        anchor = self.anchor_map[end]
+        return anchor.x, anchor.y
+
+    def _initial_length(self, spring: Spring) -> float:
+        (xa, ya), (xb, yb) = (
+            self.end_point_at_rest(end, at)
+            for end, at in zip(spring.ends, spring.attachments, strict=True)
+        )
+        return math.hypot(xb - xa, yb - ya)
+
+    @property
+    def rest_lengths(self) -> list[float]:
+        """Rest length of every spring (m); the initial length where none is given."""
+        return [
+            s.rest_length if s.rest_length is not None else self._initial_length(s)
+            for s in self.springs
+        ]
+
+
+def _check_attachment(body: Body, at: Attachment, where: str) -> None:
+    r, _ = at.polar(body)
+    if not body.rolls and r > 0.0:
+        raise ValueError(
+            f"{where}: '{body.id}' is a slider (it does not rotate); attach at its centre, {{}}"
+        )

@@ -1,0 +1,351 @@
+r"""Exact rolling mechanics: pure, vectorised functions of a system and a state.
+
+The state is ``q`` (shape ``(..., n)``; rotation angles of rolling bodies, displacements of
+sliders, see :mod:`rollspring.physics.arrays`) and, where velocities matter, ``qdot``. Nothing
+here uses a small-angle approximation. Equation tags (M1)... refer to ``PHYSICS.md``; "paper"
+is G. Nyitray, *On the edge of complexity* (arXiv 2508.01379).
+
+Sign conventions: ``x`` right, ``y`` up; rotations clockwise positive; the static friction ``f``
+on a body is positive along +x; a spring's tension is positive when it is stretched.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rollspring.physics.arrays import FloatArray, SystemArrays
+
+__all__ = [
+    "SpringState",
+    "accelerations",
+    "body_forces",
+    "body_forces_jacobian",
+    "centre_of_mass",
+    "centre_positions",
+    "contact_forces",
+    "contact_forces_jacobian",
+    "end_kinematics",
+    "force_point_kinematics",
+    "generalized_forces",
+    "kinetic_energy",
+    "mass_matrix",
+    "potential_energy",
+    "spring_state",
+    "stiffness_matrix",
+    "total_energy",
+]
+
+
+def _as_state(system: SystemArrays, q: FloatArray | float) -> FloatArray:
+    q = np.asarray(q, dtype=np.float64)
+    if q.ndim == 0:
+        q = np.full(system.n_bodies, float(q))
+    if q.shape[-1] != system.n_bodies:
+        raise ValueError(f"q has {q.shape[-1]} coordinates; the system has {system.n_bodies} bodies")
+    return q
+
+
+def _point_kinematics(
+    system: SystemArrays, body: FloatArray, r: FloatArray, alpha: FloatArray, q: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Position, first and second derivative (w.r.t. the body's coordinate) of body points."""
+    body = np.asarray(body, dtype=np.int64)
+    qb = q[..., body]
+    s, rho = system.scale[body], system.rolls[body]
+    theta = alpha + rho * qb
+    sin, cos = np.sin(theta), np.cos(theta)
+    x = system.x0[body] + s * qb + r * sin
+    y = system.track[body] + system.radius[body] + r * cos
+    position = np.stack([x, y], axis=-1)
+    first = np.stack([s + rho * r * cos, -rho * r * sin], axis=-1)
+    second = np.stack([-(rho**2) * r * sin, -(rho**2) * r * cos], axis=-1)
+    return position, first, second
+
+
+def end_kinematics(
+    system: SystemArrays, q: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r"""Positions of the spring ends and their derivatives with respect to their body's coordinate.
+
+    .. math::
+        P = \bigl(x_{i0} + s_i q_i + r\sin\theta,\; h_i + R_i + r\cos\theta\bigr),\quad
+        \theta = \alpha + \rho_i q_i                                                    \\
+        \frac{dP}{dq_i} = (s_i + \rho_i r\cos\theta,\; -\rho_i r\sin\theta),\quad
+        \frac{d^2P}{dq_i^2} = -\rho_i^2 (r\sin\theta,\; r\cos\theta)
+
+    PHYSICS.md (M1)-(M3). An anchor end is fixed: its derivatives are zero.
+    Shapes: ``q`` (..., n) -> three arrays (..., S, 2 ends, 2 components).
+    """
+    q = _as_state(system, q)
+    body = np.where(system.end_body >= 0, system.end_body, 0)
+    position, first, second = _point_kinematics(system, body, system.end_r, system.end_alpha, q)
+    is_anchor = (system.end_body < 0)[..., None]
+    position = np.where(is_anchor, system.end_anchor, position)
+    first = np.where(is_anchor, 0.0, first)
+    second = np.where(is_anchor, 0.0, second)
+    return position, first, second
+
+
+def force_point_kinematics(
+    system: SystemArrays, q: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Points of application of the external forces, and derivatives, as :func:`end_kinematics`.
+
+    Shapes: ``q`` (..., n) -> three arrays (..., F, 2).
+    """
+    q = _as_state(system, q)
+    return _point_kinematics(system, system.force_body, system.force_r, system.force_alpha, q)
+
+
+@dataclass(frozen=True)
+class SpringState:
+    r"""Every spring's geometry and force in one configuration (arrays of shape (..., S)).
+
+    ``vector`` :math:`d = P_b - P_a`, ``length`` :math:`l = |d|`, ``direction``
+    :math:`e = d/l`, ``tension`` :math:`T = k(l - L_0) + c\,\dot l` (positive when stretched),
+    ``lever`` :math:`b_i = \partial l/\partial q_i` (..., S, n).
+    """
+
+    vector: FloatArray
+    length: FloatArray
+    direction: FloatArray
+    tension: FloatArray
+    lever: FloatArray
+
+
+def _relative_derivatives(system: SystemArrays, first: FloatArray) -> FloatArray:
+    r""":math:`\Delta_i = \partial(P_b - P_a)/\partial q_i`, shape (..., S, n, 2)."""
+    sign = np.array([-1.0, 1.0])
+    return np.einsum("j,sji,...sjc->...sic", sign, system.incidence, first)
+
+
+def spring_state(
+    system: SystemArrays, q: FloatArray, qdot: FloatArray | None = None
+) -> SpringState:
+    r"""Lengths, directions, tensions and lever arms of every spring.
+
+    .. math:: T_s = k_s (l_s - L_{0s}) + c_s \dot l_s, \qquad
+              b_{si} = \frac{\partial l_s}{\partial q_i} = e_s\cdot\Delta_{si}
+
+    PHYSICS.md section 2 and (M7): :math:`b_{si}` is the signed lever arm of spring s about the
+    contact point of body i (for a slider, the x-component of ``e``). The damping term needs
+    ``qdot``; without it the tension is the elastic one.
+    """
+    q = _as_state(system, q)
+    position, first, _ = end_kinematics(system, q)
+    vector = position[..., 1, :] - position[..., 0, :]
+    length = np.sqrt(np.sum(vector**2, axis=-1))
+    direction = vector / length[..., None]
+    delta = _relative_derivatives(system, first)
+    lever = np.einsum("...sc,...sic->...si", direction, delta)
+    tension = system.stiffness * (length - system.rest_length)
+    if qdot is not None:
+        qdot = _as_state(system, qdot)
+        length_rate = np.einsum("...si,...i->...s", lever, qdot)
+        tension = tension + system.damping * length_rate
+    return SpringState(vector, length, direction, tension, lever)
+
+
+def generalized_forces(
+    system: SystemArrays, q: FloatArray, qdot: FloatArray | None = None
+) -> FloatArray:
+    r"""Generalised forces :math:`Q_i = -\partial U/\partial q_i` (+ damping), shape (..., n).
+
+    .. math:: Q_i = -\sum_s T_s b_{si} + \sum_{\text{forces on } i} F\cdot\frac{dP}{dq_i}
+
+    For a rolling body :math:`Q_i` is the clockwise torque of the applied forces about its contact
+    point :math:`K_i` (N m), PHYSICS.md (M7); for a slider the horizontal force (N). The paper's
+    eqs. (e), (f) and (a), (b) are special cases.
+    """
+    q = _as_state(system, q)
+    springs = spring_state(system, q, qdot)
+    torque = -np.einsum("...s,...si->...i", springs.tension, springs.lever)
+    if system.force.shape[0]:
+        _, first, _ = force_point_kinematics(system, q)
+        torque = torque + np.einsum(
+            "fc,...fc,fi->...i", system.force, first, system.force_incidence
+        )
+    return torque
+
+
+def mass_matrix(system: SystemArrays) -> FloatArray:
+    r"""The constant diagonal mass matrix :math:`M = \mathrm{diag}(J_i)`, PHYSICS.md (M4), (M12).
+
+    :math:`J_i = (1+\gamma_i) m_i R_i^2` (kg m^2) for a rolling body (the paper's :math:`I'`,
+    e.g. :math:`2m_1R^2` for the hoop and :math:`\tfrac32 m_2R^2` for the cylinder), ``m`` (kg)
+    for a slider.
+    """
+    return np.diag(system.inertia)
+
+
+def accelerations(
+    system: SystemArrays, q: FloatArray, qdot: FloatArray | None = None
+) -> FloatArray:
+    r"""Exact equations of motion while every body rolls: :math:`\ddot q_i = Q_i / J_i`.
+
+    PHYSICS.md (M7), from the Lagrangian (M5): :math:`J_i\ddot\varphi_i = -\partial U/\partial
+    \varphi_i`.
+    """
+    return generalized_forces(system, q, qdot) / system.inertia
+
+
+def body_forces(
+    system: SystemArrays, q: FloatArray, qdot: FloatArray | None = None
+) -> FloatArray:
+    r"""Resultant applied force :math:`F_i = (F_{ix}, F_{iy})` on every body (springs and external
+    forces; not gravity, friction or the normal force). Shape (..., n, 2), newtons.
+
+    A spring pulls its end a with :math:`+T e` and its end b with :math:`-T e` (PHYSICS.md
+    section 2).
+    """
+    q = _as_state(system, q)
+    springs = spring_state(system, q, qdot)
+    pull = springs.tension[..., None] * springs.direction  # force on end a
+    end_force = np.stack([pull, -pull], axis=-2)  # (..., S, 2, 2)
+    total = np.einsum("...sjc,sji->...ic", end_force, system.incidence)
+    if system.force.shape[0]:
+        total = total + np.einsum("fc,fi->ic", system.force, system.force_incidence)
+    return total
+
+
+def contact_forces(
+    system: SystemArrays, q: FloatArray, qdot: FloatArray | None = None
+) -> tuple[FloatArray, FloatArray]:
+    r"""Static friction and normal force each body needs in configuration ``q``.
+
+    .. math:: f_i = m_i R_i \ddot\varphi_i - F_{ix} = \frac{Q_i}{(1+\gamma_i)R_i} - F_{ix},
+              \qquad N_i = m_i g - F_{iy}
+
+    PHYSICS.md (M8), (M9); reproduces the paper's eq. (fric), :math:`f = F(1 - mRy/(I+mR^2))`
+    (the paper counts f opposite to F; here ``f`` is positive along +x). A slider is on a
+    frictionless floor: its ``f`` is 0. Velocities enter only through spring damping.
+    Shapes: ``q`` (..., n) -> two arrays (..., n), newtons.
+    """
+    q = _as_state(system, q)
+    force = body_forces(system, q, qdot)
+    qddot = accelerations(system, q, qdot)
+    friction = system.mass * system.scale * qddot - force[..., 0]
+    friction = np.where(system.rolls > 0, friction, 0.0)
+    normal = system.mass * system.gravity - force[..., 1]
+    return friction, normal
+
+
+def stiffness_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
+    r"""Hessian of the potential, :math:`K = \partial^2 U/\partial q^2`, exact at ``q``.
+
+    .. math::
+        K = \sum_s \bigl[k_s b_s b_s^T + T_s H_s\bigr] - \sum_f \mathrm{diag}\bigl(F_f\cdot
+        \tfrac{d^2P_f}{dq^2}\bigr),\qquad
+        (H_s)_{ij} = \frac{\Delta_i\cdot\Delta_j - (e\cdot\Delta_i)(e\cdot\Delta_j)}{l}
+                     + \delta_{ij}\, e\cdot DD_i
+
+    PHYSICS.md (M12), (M13): :math:`T_s H_s` is the geometric stiffness of a pre-tensioned
+    spring. For the paper's Fig. 2 it is :math:`kR^2\begin{pmatrix}1&-1\\-1&1\end{pmatrix}`.
+    Shape: ``q`` (n,) -> (n, n), in N m/rad (rolling) or N/m (sliders).
+    """
+    q = _as_state(system, q)
+    if q.ndim != 1:
+        raise ValueError("stiffness_matrix takes one state q of shape (n,)")
+    position, first, second = end_kinematics(system, q)
+    springs = spring_state(system, q)
+    delta = _relative_derivatives(system, first)  # (S, n, 2)
+    sign = np.array([-1.0, 1.0])
+    curvature = np.einsum("j,sji,sjc->sic", sign, system.incidence, second)  # DD_i
+    e, length, b = springs.direction, springs.length, springs.lever
+    elastic_tension = system.stiffness * (length - system.rest_length)
+    transverse = (np.einsum("sic,sjc->sij", delta, delta) - b[:, :, None] * b[:, None, :])
+    transverse /= length[:, None, None]
+    path = np.einsum("sc,sic->si", e, curvature)
+    hess_l = transverse + np.einsum("si,ij->sij", path, np.eye(system.n_bodies))
+    k_matrix = np.einsum("s,si,sj->ij", system.stiffness, b, b)
+    k_matrix += np.einsum("s,sij->ij", elastic_tension, hess_l)
+    if system.force.shape[0]:
+        _, _, force_second = force_point_kinematics(system, q)
+        diag = -np.einsum("fc,fc,fi->i", system.force, force_second, system.force_incidence)
+        k_matrix += np.diag(diag)
+    return 0.5 * (k_matrix + k_matrix.T)
+
+
+def body_forces_jacobian(system: SystemArrays, q: FloatArray) -> FloatArray:
+    r"""Derivative of the applied forces with respect to the coordinates, shape (n, 2, n).
+
+    For a displacement ``v``, the force on end a of a spring changes by
+    :math:`\delta F_a = k\,\delta l\, e + T(\delta d - e(e\cdot\delta d))/l` with
+    :math:`\delta d = \sum_i\Delta_i v_i`, :math:`\delta l = b\cdot v`
+    (PHYSICS.md section 7), and :math:`\delta F_b = -\delta F_a`. Constant external forces do
+    not change.
+    """
+    q = _as_state(system, q)
+    _, first, _ = end_kinematics(system, q)
+    springs = spring_state(system, q)
+    delta = _relative_derivatives(system, first)  # (S, n, 2): d(d)/dq_i
+    e, length, b = springs.direction, springs.length, springs.lever
+    tension = system.stiffness * (length - system.rest_length)
+    along = np.einsum("s,si,sc->sic", system.stiffness, b, e)
+    across = (delta - b[:, :, None] * e[:, None, :]) * (tension / length)[:, None, None]
+    d_pull = along + across  # (S, n_coord, 2): d(force on end a)/dq
+    d_end = np.stack([d_pull, -d_pull], axis=1)  # (S, 2, n_coord, 2)
+    return np.einsum("sjkc,sji->ick", d_end, system.incidence)
+
+
+def contact_forces_jacobian(system: SystemArrays, q: FloatArray) -> tuple[FloatArray, FloatArray]:
+    r"""Linear change of friction and normal forces with the coordinates, two (n, n) arrays.
+
+    .. math:: \frac{\partial f_i}{\partial q_j} = -\frac{m_i s_i}{J_i} K_{ij}
+              - \frac{\partial F_{ix}}{\partial q_j},\qquad
+              \frac{\partial N_i}{\partial q_j} = -\frac{\partial F_{iy}}{\partial q_j}
+
+    Differentiates (M8), (M9) with :math:`\ddot q = -M^{-1}K\,\delta q` (PHYSICS.md section 7,
+    "linear forces along a displacement").
+    """
+    k_matrix = stiffness_matrix(system, q)
+    d_force = body_forces_jacobian(system, q)
+    d_friction = -(system.mass * system.scale / system.inertia)[:, None] * k_matrix
+    d_friction -= d_force[:, 0, :]
+    d_friction[system.rolls == 0] = 0.0
+    d_normal = -d_force[:, 1, :]
+    return d_friction, d_normal
+
+
+def potential_energy(system: SystemArrays, q: FloatArray) -> FloatArray:
+    r"""Potential energy, zero in the initial placement's external-force level (J), (M5):
+
+    .. math:: U = \sum_s \tfrac12 k_s (l_s - L_{0s})^2 - \sum_f F_f\cdot(P_f(q) - P_f(0))
+
+    Gravity is a constant while the bodies roll (centre heights do not change) and is left out.
+    """
+    q = _as_state(system, q)
+    springs = spring_state(system, q)
+    energy = 0.5 * np.sum(system.stiffness * (springs.length - system.rest_length) ** 2, axis=-1)
+    if system.force.shape[0]:
+        position, _, _ = force_point_kinematics(system, q)
+        rest, _, _ = force_point_kinematics(system, np.zeros(system.n_bodies))
+        energy = energy - np.einsum("fc,...fc->...", system.force, position - rest)
+    return energy
+
+
+def kinetic_energy(system: SystemArrays, qdot: FloatArray) -> FloatArray:
+    r"""Kinetic energy :math:`T = \sum_i \tfrac12 J_i \dot q_i^2` (J), König's theorem with
+    rolling, PHYSICS.md (M4)-(M5); the paper's :math:`\tfrac12 I'_1\dot\varphi_1^2 + \dots`."""
+    qdot = _as_state(system, qdot)
+    return 0.5 * np.sum(system.inertia * qdot**2, axis=-1)
+
+
+def total_energy(system: SystemArrays, q: FloatArray, qdot: FloatArray) -> FloatArray:
+    """Mechanical energy H = T + U (J), conserved while every body rolls, PHYSICS.md (M6)."""
+    return kinetic_energy(system, qdot) + potential_energy(system, q)
+
+
+def centre_positions(system: SystemArrays, q: FloatArray) -> FloatArray:
+    r"""Horizontal centre positions :math:`x_i = x_{i0} + s_i q_i` (m); the rolling constraint
+    :math:`x = R\varphi` of the paper's eq. (g1, g2)."""
+    q = _as_state(system, q)
+    return system.x0 + system.scale * q
+
+
+def centre_of_mass(system: SystemArrays, q: FloatArray) -> FloatArray:
+    r"""Horizontal position of the centre of mass :math:`X = \sum m_i x_i/\sum m_i` (m)."""
+    x = centre_positions(system, q)
+    return np.sum(system.mass * x, axis=-1) / np.sum(system.mass)

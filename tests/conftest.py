@@ -1,0 +1,35 @@
+"""Shared helpers: build systems from small dictionaries, strict numerics."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+import numpy as np
+import pytest
+
+from rollspring.model import System, system_from_dict
+
+
+@pytest.fixture(autouse=True)
+def strict_numerics() -> Iterator[None]:
+    """Every test runs with floating-point errors raised, not silently turned into NaN/inf."""
+    with np.errstate(all="raise"):
+        yield
+
+
+def body(id: str, shape: str = "hoop", *, mass: float = 1.0, radius: float = 0.1,
+         x: float = 0.0, **extra: Any) -> dict[str, Any]:
+    """A body entry of a system file."""
+    return {"id": id, "shape": shape, "mass": mass, "radius": radius, "x": x, **extra}
+
+
+def spring(a: str, b: str, *, stiffness: float = 100.0, **extra: Any) -> dict[str, Any]:
+    """A spring entry of a system file."""
+    return {"ends": [a, b], "stiffness": stiffness, **extra}
+
+
+def make_system(bodies: list[dict[str, Any]], springs: list[dict[str, Any]] | None = None,
+                **extra: Any) -> System:
+    """Validate a system from entries."""
+    return system_from_dict({"bodies": bodies, "springs": springs or [], **extra})

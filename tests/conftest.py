@@ -14,7 +14,7 @@ from rollspring.model import System, system_from_dict
 @pytest.fixture(autouse=True)
 def strict_numerics() -> Iterator[None]:
     """Every test runs with floating-point errors raised, not silently turned into NaN/inf."""
-    with np.errstate(all="raise"):
+    with np.errstate(divide="raise", over="raise", invalid="raise", under="ignore"):
         yield
 
 

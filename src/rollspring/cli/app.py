@@ -62,18 +62,15 @@ def friendly_errors(command: F) -> F:
         try:
             return command(*args, **kwargs)
         except RollspringError as exc:
-            _stderr().print(f"error: {exc}", markup=False)
+            _say(f"error: {exc}")
             raise typer.Exit(2) from None
         except (typer.Exit, typer.Abort, KeyboardInterrupt):
             raise
         except Exception as exc:
             if os.environ.get("ROLLSPRING_DEBUG"):
                 raise
-            _stderr().print(
-                f"internal error: {type(exc).__name__}: {exc} (please report it; "
-                "ROLLSPRING_DEBUG=1 shows the traceback)",
-                markup=False,
-            )
+            _say(f"internal error: {type(exc).__name__}: {exc} (please report it; "
+                 "ROLLSPRING_DEBUG=1 shows the traceback)")
             raise typer.Exit(1) from None
 
     return wrapper  # type: ignore[return-value]
@@ -83,8 +80,9 @@ def _stdout() -> Console:
     return Console(highlight=False, soft_wrap=False)
 
 
-def _stderr() -> Console:
-    return Console(stderr=True, highlight=False)
+def _say(line: str) -> None:
+    """One unwrapped line on stderr (errors, warnings): never mixed into stdout."""
+    typer.echo(" ".join(line.split()), err=True)
 
 
 def _print_json(data: Any) -> None:
@@ -102,7 +100,7 @@ def analyze(
     result = run_analysis(load_system(system))
     if as_json:
         for warning in result.warnings:
-            _stderr().print(f"warning: {warning}", markup=False)
+            _say(f"warning: {warning}")
         _print_json(result.to_dict())
         return
     from rollspring.cli.tables import print_analysis

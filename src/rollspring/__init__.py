@@ -1,0 +1,76 @@
+"""rollspring: coupled rolling oscillators with exact rolling physics.
+
+Hoops, cylinders, spheres and shells rolling without slipping on horizontal tracks, linked by
+springs to each other and to walls. Quick start::
+
+    import rollspring
+    system = rollspring.load_system("hoop-cylinder")      # a preset, or a .toml/.json file
+    result = rollspring.analyze(system)                   # equilibrium, modes, X-hat, friction
+    result.modes[1].omega, result.stationary_weights, result.required_mu
+"""
+
+from rollspring.analysis import LinearAnalysis, Mode, analyze, find_equilibrium, normal_modes
+from rollspring.errors import AnalysisError, ModelError, RollspringError
+from rollspring.model import (
+    Anchor,
+    Attachment,
+    Body,
+    ExternalForce,
+    Spring,
+    System,
+    load_system,
+    preset_names,
+    system_from_dict,
+    system_json_schema,
+)
+from rollspring.physics import (
+    SystemArrays,
+    accelerations,
+    centre_of_mass,
+    centre_positions,
+    contact_forces,
+    generalized_forces,
+    kinetic_energy,
+    mass_matrix,
+    potential_energy,
+    spring_state,
+    stiffness_matrix,
+    system_arrays,
+    total_energy,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "AnalysisError",
+    "Anchor",
+    "Attachment",
+    "Body",
+    "ExternalForce",
+    "LinearAnalysis",
+    "Mode",
+    "ModelError",
+    "RollspringError",
+    "Spring",
+    "System",
+    "SystemArrays",
+    "accelerations",
+    "analyze",
+    "centre_of_mass",
+    "centre_positions",
+    "contact_forces",
+    "find_equilibrium",
+    "generalized_forces",
+    "kinetic_energy",
+    "load_system",
+    "mass_matrix",
+    "normal_modes",
+    "potential_energy",
+    "preset_names",
+    "spring_state",
+    "stiffness_matrix",
+    "system_arrays",
+    "system_from_dict",
+    "system_json_schema",
+    "total_energy",
+]

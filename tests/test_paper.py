@@ -15,7 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rollspring.analysis import analyze
-from rollspring.model import INERTIA_FACTORS
+from rollspring.model import INERTIA_FACTORS, load_system
 from rollspring.physics import contact_forces, system_arrays
 from tests.conftest import body, make_system, spring
 
@@ -52,6 +52,10 @@ def test_fig2_frequency_positions_and_stationary_point(m1, m2, radius, k, a) -> 
         result.amplitude, [a * 3 * m2 / (4 * m1 + 3 * m2), a * 4 * m1 / (4 * m1 + 3 * m2)],
         rtol=1e-9,
     )
+    # eqs. (om), (pi): maximal centre velocities v1 = A sqrt(3 k m2/(2 m1 (4 m1 + 3 m2))), ...
+    v1 = a * math.sqrt(3 * k * m2 / (2 * m1 * (4 * m1 + 3 * m2)))
+    v2 = a * math.sqrt(8 * k * m1 / (3 * m2 * (4 * m1 + 3 * m2)))
+    np.testing.assert_allclose(result.velocity_amplitude, [v1, v2], rtol=1e-9)
     # the CM is not stationary: amplitude m1 m2 A / ((m1 + m2)(4 m1 + 3 m2)) (PHYSICS.md 7.1)
     assert result.cm_amplitude == pytest.approx(m1 * m2 * a / ((m1 + m2) * (4 * m1 + 3 * m2)),
                                                 rel=1e-9)
@@ -199,3 +203,12 @@ def test_two_sliders_fig1_cm_stays_at_rest() -> None:
                                rtol=1e-12)
     assert result.cm_amplitude == pytest.approx(0.0, abs=1e-15)
     np.testing.assert_array_equal(result.friction_amplitude, [0.0, 0.0])
+
+
+def test_frictionless_preset_is_the_fig3_idea_done_right() -> None:
+    result = analyze(load_system("frictionless"))
+    assert result.oscillating[0].eigenvalue == pytest.approx(2 * 100 / 1 + 3 * 100 / 2, rel=1e-12)
+    np.testing.assert_array_equal(result.friction_amplitude, [0.0, 0.0])
+    assert result.cm_amplitude == 0.0
+    assert result.spring_tilt_deg[0] == 0.0
+    assert np.max(result.amplitude) + np.min(result.amplitude) == pytest.approx(0.01, rel=1e-6)

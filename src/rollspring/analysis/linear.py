@@ -222,6 +222,7 @@ class LinearAnalysis:
     stationary_position: float | None
     stationary_velocity: float | None
     amplitude: FloatArray | None
+    velocity_amplitude: FloatArray | None
     cm_amplitude: float | None
     stationary_amplitude: float | None
     friction_amplitude: FloatArray | None
@@ -286,8 +287,8 @@ def analyze(system: System) -> LinearAnalysis:
             weights = raw / total
             weights[np.abs(weights) < 1e-15] = 0.0
             position = float(weights @ arrays.x0)
-            velocity = float(weights @ arrays.v0)
-            if abs(velocity) > 0:
+            velocity = float(_clean(weights @ arrays.v0, float(np.max(np.abs(arrays.v0)))))
+            if velocity != 0.0:
                 warnings.append(
                     f"the initial velocities move the stationary point X̂ uniformly at "
                     f"{velocity:.6g} m/s"
@@ -331,6 +332,7 @@ def analyze(system: System) -> LinearAnalysis:
         stationary_position=position,
         stationary_velocity=velocity,
         amplitude=response.get("amplitude"),
+        velocity_amplitude=response.get("velocity_amplitude"),
         cm_amplitude=response.get("cm_amplitude"),
         stationary_amplitude=response.get("stationary_amplitude"),
         friction_amplitude=response.get("friction_amplitude"),
@@ -432,14 +434,26 @@ def _response(
     friction = component(d_friction @ vectors, friction_eq)
     normal = component(d_normal @ vectors, normal_eq)
     length_scale = float(np.max(position.amplitude, initial=0.0))
+    # rounding noise of an exact zero: relative to the largest force change the motion brings
+    extension = np.abs(lever @ vectors[:, oscillating]) @ np.abs(complex_amp)  # per spring
+    force_scale = float(np.max(arrays.stiffness * extension, initial=0.0))
+    friction_amplitude = _clean(friction.amplitude, force_scale)
+    friction = _Component(_clean(friction.centre, force_scale), friction.amplitudes,
+                          friction.drift)
+    required = _required_mu(arrays, friction, normal)
+    required[(friction_amplitude == 0.0) & (friction.centre == 0.0)] = 0.0
     result: dict[str, Any] = {
         "amplitude": position.amplitude,
+        # d/dt multiplies each frequency group's complex amplitude by i omega
+        "velocity_amplitude": np.sum(
+            np.abs(position.amplitudes) * omegas[[g[0] for g in groups]][:, None], axis=0
+        ) if groups else np.zeros(arrays.n_bodies),
         "cm_amplitude": float(_clean(cm.amplitude, length_scale)),
-        "friction_amplitude": friction.amplitude,
+        "friction_amplitude": friction_amplitude,
         "normal_force_range": np.stack(
             [normal.centre - normal.amplitude, normal.centre + normal.amplitude], axis=-1
         ),
-        "required_mu": _required_mu(arrays, friction, normal),
+        "required_mu": required,
         "stationary_amplitude": None,
     }
     if weights is not None:

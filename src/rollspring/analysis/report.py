@@ -77,6 +77,7 @@ def analysis_to_dict(analysis: LinearAnalysis) -> dict[str, Any]:
         assert analysis.normal_force_range is not None and analysis.required_mu is not None
         response = {
             "amplitude": _by_id(ids, analysis.amplitude),
+            "velocity_amplitude": _by_id(ids, analysis.velocity_amplitude),
             "cm_amplitude": _num(analysis.cm_amplitude or 0.0),
             "stationary_point_amplitude": (
                 None if analysis.stationary_amplitude is None

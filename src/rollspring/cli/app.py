@@ -77,7 +77,9 @@ def friendly_errors(command: F) -> F:
 
 
 def _stdout() -> Console:
-    return Console(highlight=False, soft_wrap=False)
+    # a terminal's own width; 110 columns when piped to a file or a pager
+    width = None if sys.stdout.isatty() else 110
+    return Console(highlight=False, soft_wrap=False, width=width)
 
 
 def _say(line: str) -> None:

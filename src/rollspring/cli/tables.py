@@ -84,13 +84,16 @@ def print_analysis(console: Console, result: LinearAnalysis) -> None:
     if result.amplitude is not None:
         resp = Table(title="Response to the initial conditions (linear, exact modal superposition)",
                      title_justify="left")
-        for col in ("body", "amplitude (m)", "|f| max (N)", "N range (N)", "μ needed", "μs"):
+        for col in ("body", "amplitude (m)", "max speed (m/s)", "|f| max (N)", "N range (N)",
+                    "μ needed", "μs"):
             resp.add_column(col, justify="right" if col != "body" else "left")
         assert result.friction_amplitude is not None and result.normal_force_range is not None
         assert result.required_mu is not None
         for i, body in enumerate(system.bodies):
             lo, hi = result.normal_force_range[i]
+            assert result.velocity_amplitude is not None
             resp.add_row(body.id, _g(float(result.amplitude[i])),
+                         _g(float(result.velocity_amplitude[i])),
                          _g(float(result.friction_amplitude[i])), f"{_g(lo, 5)} … {_g(hi, 5)}",
                          _g(float(result.required_mu[i]), 4) if body.rolls else "-",
                          _g(body.mu_static) if body.rolls else "-")

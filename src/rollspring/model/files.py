@@ -137,7 +137,7 @@ def _describe(error: dict[str, Any], data: Any) -> str:
         op = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<",
               "less_than_equal": "<="}[kind]
         limit = next(iter(bound.values()), "?")
-        msg = f"must be {op} {limit}"
+        msg = f"must be {op} {limit:g}" if isinstance(limit, (int, float)) else f"must be {op} {limit}"
     elif kind == "literal_error":
         expected = error.get("ctx", {}).get("expected", "")
         msg = f"unknown value {error.get('input')!r} (expected one of {expected})"

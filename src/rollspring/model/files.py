@@ -56,43 +56,72 @@ def load_system(source: str | Path) -> System:
             path = preset_path(source)
         elif isinstance(source, str) and not path.suffix and "/" not in source:
             raise ModelError(
-                f"'{source}' is neither a file nor a preset "
+                f"'{_shown(source)}' is neither a file nor a preset "
                 f"(presets: {', '.join(preset_names())})"
             )
         else:
-            raise ModelError(f"{source}: file not found")
+            raise ModelError(f"{_shown(source)}: file not found")
     if path.is_dir():
-        raise ModelError(f"{path}: is a folder, not a system file")
+        raise ModelError(f"{_shown(path)}: is a folder, not a system file")
     try:
         raw = path.read_bytes()
     except OSError as exc:
-        raise ModelError(f"{path}: cannot read ({exc.strerror})") from None
+        raise ModelError(f"{_shown(path)}: cannot read ({exc.strerror})") from None
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")  # a leading byte-order mark is allowed
     except UnicodeDecodeError:
-        raise ModelError(f"{path}: not a text file (not valid UTF-8)") from None
-    data = _parse(text, path)
-    return system_from_dict(data, source=str(path))
+        raise ModelError(f"{_shown(path)}: not a text file (not valid UTF-8)") from None
+    try:
+        data = _parse(text, path)
+    except RecursionError:
+        raise ModelError(f"{_shown(path)}: nested too deeply to be a system file") from None
+    except ValueError as exc:  # e.g. an integer with more digits than Python converts
+        if isinstance(exc, ModelError):
+            raise
+        raise ModelError(f"{_shown(path)}: a number has too many digits ({_oneline(exc)})") from None
+    return system_from_dict(data, source=_shown(path))
+
+
+def _oneline(value: object) -> str:
+    """Text on one line: line breaks shown as \\n, runs of spaces kept."""
+    return str(value).replace("\r", "\\r").replace("\n", "\\n")
+
+
+def _shown(path: Path | str) -> str:
+    return _oneline(path)
 
 
 def _parse(text: str, path: Path) -> dict[str, Any]:
     suffix = path.suffix.lower()
     if suffix == ".json":
         try:
-            data = json.loads(text, parse_constant=_json_constant)
+            data = json.loads(text, parse_constant=_json_constant,
+                              object_pairs_hook=_no_duplicate_keys)
+        except ModelError as exc:  # a duplicate key
+            raise ModelError(f"{_shown(path)}: {exc}") from None
         except json.JSONDecodeError as exc:
             raise ModelError(
-                f"{path}: JSON syntax error: {exc.msg} (line {exc.lineno}, column {exc.colno})"
+                f"{_shown(path)}: JSON syntax error: {exc.msg} (line {exc.lineno}, "
+                f"column {exc.colno})"
             ) from None
         if not isinstance(data, dict):
-            raise ModelError(f"{path}: the top level must be a JSON object")
+            raise ModelError(f"{_shown(path)}: the top level must be a JSON object")
         return data
     if suffix in (".toml", ""):
         try:
             return tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
-            raise ModelError(f"{path}: TOML syntax error: {exc}") from None
-    raise ModelError(f"{path}: unknown file type '{suffix}' (use .toml or .json)")
+            raise ModelError(f"{_shown(path)}: TOML syntax error: {_oneline(exc)}") from None
+    raise ModelError(f"{_shown(path)}: unknown file type {suffix!r} (use .toml or .json)")
+
+
+def _no_duplicate_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in out:
+            raise ModelError(f"duplicate key {_oneline(repr(key))} in a JSON object")
+        out[key] = value
+    return out
 
 
 def _json_constant(name: str) -> float:
@@ -106,7 +135,7 @@ def system_from_dict(data: dict[str, Any], *, source: str = "system") -> System:
     try:
         return System.model_validate(data)
     except ValidationError as exc:
-        raise ModelError(f"{source}: {_one_line(exc, data)}") from None
+        raise ModelError(f"{source}: {_oneline(_one_line(exc, data))}") from None
 
 
 def _one_line(exc: ValidationError, data: Any) -> str:
@@ -127,7 +156,7 @@ def _describe(error: dict[str, Any], data: Any) -> str:
     if kind == "extra_forbidden":
         key = loc[-1] if loc else "?"
         where = _path(loc[:-1])
-        return f"{where + ': ' if where else ''}unknown key '{key}'"
+        return f"{where + ': ' if where else ''}unknown key {_oneline(repr(str(key)))}"
     if kind == "missing":
         return f"{_path(loc)}: missing (required)"
     if kind in ("finite_number",):
@@ -148,8 +177,12 @@ def _describe(error: dict[str, Any], data: Any) -> str:
         msg = f"must be a {'number' if expected in ('float', 'int') else expected}"
     elif kind == "string_pattern_mismatch":
         msg = "must start with a letter or '_' and hold only letters, digits, '_' or '-'"
-    elif kind in ("too_short", "too_long") and loc and loc[-1] == "ends":
-        msg = "must name exactly two ends"
+    elif kind in ("too_short", "too_long") and loc and loc[-1] in ("ends", "at"):
+        msg = "must name exactly two ends" if loc[-1] == "ends" else "needs one entry per end (two)"
+    elif kind == "too_short" and loc and loc[-1] == "bodies":
+        msg = "at least one body is needed"
+    elif kind == "string_too_short":
+        msg = "must not be empty"
     value = error.get("input")
     if kind not in ("literal_error", "missing") and _is_scalar(value) and loc:
         msg += f" (got {_show(value)})"
@@ -162,6 +195,10 @@ def _is_scalar(value: Any) -> bool:
 
 
 def _show(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int) and abs(value) >= 10**20:
+        return f"an integer of {len(str(abs(value)))} digits"
     if isinstance(value, float):
         return repr(value) if math.isfinite(value) else str(value)
     return repr(value)

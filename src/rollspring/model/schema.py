@@ -125,11 +125,11 @@ class Body(_Strict):
         "(0 when mu_static is inf).",
     )
 
-    @field_validator("mu_static")
+    @field_validator("mu_static", mode="before")
     @classmethod
-    def _not_nan(cls, value: float) -> float:
-        if math.isnan(value):
-            raise ValueError("must be a number, not NaN")
+    def _not_nan(cls, value: object) -> object:
+        if isinstance(value, float) and math.isnan(value):
+            raise ValueError("must be a finite number or inf, not NaN")
         return value
 
     @model_validator(mode="after")
@@ -273,6 +273,10 @@ class System(_Strict):
                 if end in bodies:
                     _check_attachment(bodies[end], at, f"{where}.at[{j}]")
             length = self._initial_length(spring)
+            if not math.isfinite(length):
+                raise ValueError(
+                    f"{where}: its initial length is not finite (coordinates too large)"
+                )
             if length == 0.0:
                 raise ValueError(
                     f"{where}: its two ends coincide in the initial placement (length 0)"

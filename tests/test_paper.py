@@ -138,7 +138,24 @@ def test_fig3_percussion_points_remove_friction_and_fix_the_cm(m1, m2, r2, k, v)
     assert result.cm_amplitude == pytest.approx(0.0, abs=1e-12)
 
 
-def test_fig3_papers_r1_equal_r2_over_2_tilts_the_spring_and_says_so() -> None:
+@pytest.mark.parametrize("r2", [0.1, 0.37])
+def test_fig3_r1_equal_r2_over_2_is_right_with_level_centres(r2: float) -> None:
+    """Sec. 3: "the spring must be horizontal and the centres are at the same height,
+    R1 = R2/2": true when the hoop's track is raised by R1 so that the centres are level."""
+    r1 = r2 / 2
+    system = make_system(
+        [body("hoop", "hoop", radius=r1, x=0.0, track_height=r2 - r1, v=0.01),
+         body("cylinder", "cylinder", radius=r2, x=0.5)],
+        [spring("hoop", "cylinder", at=[{"height": 2 * r1}, {"height": 1.5 * r2}])],
+    )
+    result = analyze(system)
+    assert result.spring_tilt_deg[0] == 0.0
+    assert result.oscillating[0].eigenvalue == pytest.approx(2 * 100 / 1 + 3 * 100 / 2, rel=1e-12)
+    np.testing.assert_array_equal(result.friction_amplitude, [0.0, 0.0])
+    assert not any("tilted" in w or "friction" in w for w in result.warnings)
+
+
+def test_fig3_r1_equal_r2_over_2_on_one_floor_tilts_the_spring_and_says_so() -> None:
     r2 = 0.1
     system = make_system(
         [body("hoop", "hoop", radius=r2 / 2, x=0.0),
@@ -153,7 +170,7 @@ def test_fig3_papers_r1_equal_r2_over_2_tilts_the_spring_and_says_so() -> None:
     # ... but Omega^2 is scaled by cos^2(tilt) (PHYSICS.md 7.1) and the analysis warns
     cos2 = math.cos(math.radians(tilt)) ** 2
     assert result.oscillating[0].eigenvalue == pytest.approx(cos2 * (2 * 100 / 1 + 150), rel=1e-12)
-    assert any("R1 = R2/2" in w and "tilted" in w for w in result.warnings)
+    assert any("R1 = R2/2" in w and "tilted" in w and "level" in w for w in result.warnings)
 
 
 @paper
@@ -211,4 +228,8 @@ def test_frictionless_preset_is_the_fig3_idea_done_right() -> None:
     np.testing.assert_array_equal(result.friction_amplitude, [0.0, 0.0])
     assert result.cm_amplitude == 0.0
     assert result.spring_tilt_deg[0] == 0.0
-    assert np.max(result.amplitude) + np.min(result.amplitude) == pytest.approx(0.01, rel=1e-6)
+    # one mode, shape normalised to a largest centre displacement of 1: the spring's
+    # deformation amplitude is |spring_extension| x the largest body amplitude
+    (mode,) = result.oscillating
+    deformation = abs(mode.spring_extension[0]) * np.max(result.amplitude)
+    assert deformation == pytest.approx(0.01, rel=1e-9)

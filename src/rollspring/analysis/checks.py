@@ -30,51 +30,69 @@ def physics_warnings(analysis: LinearAnalysis) -> list[str]:
 
 
 def _contact_warnings(analysis: LinearAnalysis) -> list[str]:
+    """Slipping and lift-off, at equilibrium and in the linear motion (PHYSICS.md section 9)."""
     arrays = analysis.arrays
     out = []
     for i, body in enumerate(arrays.ids):
-        if arrays.rolls[i] == 0:
-            continue
         mu = float(arrays.mu_static[i])
         f_eq, n_eq = analysis.equilibrium_friction[i], analysis.equilibrium_normal[i]
-        if n_eq <= 0:
-            out.append(f"'{body}' cannot rest on its track: its normal force at equilibrium is "
-                       f"{n_eq:.6g} N")
-        elif abs(f_eq) > mu * n_eq:
+        rolls = arrays.rolls[i] > 0
+        if n_eq < 0:
+            out.append(f"'{body}' cannot rest on its track: the springs pull it up harder than "
+                       f"gravity holds it (N = {n_eq:.6g} N at equilibrium)")
+        elif rolls and f_eq != 0 and not math.isinf(mu) and abs(f_eq) > mu * n_eq:
+            needed = "unbounded friction (N = 0)" if n_eq == 0 else f"mu_s >= {abs(f_eq) / n_eq:.6g}"
             out.append(f"'{body}' cannot rest at the equilibrium without slipping: it needs "
-                       f"mu_s >= {abs(f_eq) / n_eq:.6g}, it has {mu:g}")
+                       f"{needed}, it has {mu:g}")
         if analysis.required_mu is None or analysis.normal_force_range is None:
             continue
-        needed = float(analysis.required_mu[i])
-        if math.isinf(needed):
-            low = float(analysis.normal_force_range[i][0])
+        low = float(analysis.normal_force_range[i][0])
+        if low < 0 <= n_eq:
             out.append(f"'{body}' would lift off: in the linear motion its normal force reaches "
                        f"{low:.6g} N")
+            continue
+        if not rolls:
+            continue
+        needed = float(analysis.required_mu[i])
+        if math.isinf(mu):
+            continue  # rolling enforced (rack and pinion): it never slips
+        if math.isinf(needed) and n_eq >= 0:
+            out.append(f"'{body}' needs unbounded friction: its normal force reaches 0 while "
+                       f"friction is needed, so it slips unless rolling is enforced (mu_s = inf)")
         elif needed > mu:
             out.append(f"'{body}' slips: the motion needs mu_s >= {needed:.6g}, it has {mu:g}")
+    drift = analysis.drift_velocity
+    if drift is not None and np.any(drift != 0) and analysis.stationary_weights is None:
+        moving = ", ".join(f"'{b}' {v:.6g} m/s" for b, v in zip(arrays.ids, drift, strict=True)
+                           if v != 0)
+        out.append(f"parts of the system drift freely (zero modes set moving by the initial "
+                   f"velocities): {moving}; amplitudes are about the drifting equilibrium")
     return out
 
 
 def percussion_attachments(analysis: LinearAnalysis) -> list[tuple[int, int, int]]:
-    """Spring ends fixed at their body's percussion point at equilibrium: (spring, end, body).
+    """Spring ends whose spring line passes through their body's percussion point, at
+    equilibrium: (spring, end, body).
 
-    The percussion point lies on the vertical through the centre at height (1 + gamma) R above
-    the contact: a force through it needs no static friction, PHYSICS.md (M10); the paper's
-    y1 = 2R (hoop) and y2 = 1.5R (cylinder).
+    The percussion point S lies on the vertical through the centre at height (1 + gamma) R above
+    the contact; a force whose line passes through it needs no static friction, whatever its
+    direction (lambda = 1, PHYSICS.md (M10)); the paper's y1 = 2R (hoop) and y2 = 1.5R (cylinder).
     """
     arrays = analysis.arrays
     position, _, _ = end_kinematics(arrays, analysis.equilibrium.q)
     x_centre = arrays.x0 + arrays.scale * analysis.equilibrium.q
     found = []
     for s in range(arrays.n_springs):
+        d = position[s, 1] - position[s, 0]
+        e = d / np.hypot(*d)
         for j in range(2):
             i = int(arrays.end_body[s, j])
             if i < 0 or arrays.rolls[i] == 0:
                 continue
-            height = (1.0 + arrays.gamma[i]) * arrays.radius[i]
-            px, py = position[s, j]
-            tol = 1e-9 * arrays.radius[i]
-            if abs(px - x_centre[i]) < tol and abs(py - arrays.track[i] - height) < tol:
+            percussion = np.array([x_centre[i], arrays.track[i] + (1 + arrays.gamma[i])
+                                   * arrays.radius[i]])
+            offset = percussion - position[s, j]
+            if abs(e[0] * offset[1] - e[1] * offset[0]) < 1e-9 * arrays.radius[i]:
                 found.append((s, j, i))
     return found
 
@@ -112,11 +130,13 @@ def _percussion_warnings(analysis: LinearAnalysis) -> list[str]:
         h1 = arrays.track[i1] + (1 + arrays.gamma[i1]) * arrays.radius[i1]
         h2 = arrays.track[i2] + (1 + arrays.gamma[i2]) * arrays.radius[i2]
         cos2 = math.cos(math.radians(tilt)) ** 2
-        hint = ""
-        if arrays.track[i1] == arrays.track[i2]:
-            ratio = (1 + arrays.gamma[i2]) / (1 + arrays.gamma[i1])
-            hint = (f"; on one floor it is horizontal only if R_{name1}/R_{name2} = "
-                    f"{ratio:.6g} (the paper's Fig. 3 text says R1 = R2/2, which tilts it)")
+        ratio = (1 + arrays.gamma[i2]) / (1 + arrays.gamma[i1])
+        hint = (f"; a horizontal spring needs equal percussion heights "
+                f"h + (1 + gamma) R: on one floor R_{name1}/R_{name2} = {ratio:.6g}")
+        shapes = {analysis.system.bodies[i1].shape, analysis.system.bodies[i2].shape}
+        if shapes == {"hoop", "cylinder"}:
+            hint += (" (the paper's Fig. 3 condition R1 = R2/2 holds only with the centres level,"
+                     " the hoop's track raised by R1)")
         out.append(
             f"spring '{arrays.spring_names[s]}' joins the percussion points of '{name1}' and "
             f"'{name2}' but is tilted {tilt:.4g}° (heights {h1:.6g} m and {h2:.6g} m): friction "

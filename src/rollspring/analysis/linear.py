@@ -11,7 +11,7 @@ a constant plus a sum of sinusoids, whose amplitudes are reported here.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -24,6 +24,7 @@ from rollspring.physics import (
     SystemArrays,
     contact_forces,
     contact_forces_jacobian,
+    damping_matrix,
     end_kinematics,
     generalized_forces,
     mass_matrix,
@@ -68,61 +69,126 @@ def find_equilibrium(
 ) -> Equilibrium:
     r"""The equilibrium nearest the initial placement, with the zero modes held.
 
-    Newton's method on :math:`Q(q) = 0` restricted to the non-zero modes: each step is
-    :math:`\delta q = \sum_{\lambda_n \ne 0} v_n (v_n^T Q)/\lambda_n` with
-    :math:`K v_n = \lambda_n M v_n`, :math:`v_n^T M v_m = \delta_{nm}`. A step never moves
-    along a zero mode, so the equilibrium keeps the initial value of every conserved
-    combination :math:`v_0^T M q` (PHYSICS.md (M14)): it is the point the motion from the
-    initial placement oscillates about. Steps are damped so that the residual
-    :math:`Q^T M^{-1} Q` decreases.
+    1. Damped Newton on :math:`Q(q) = 0` restricted to the non-zero modes of the current
+       iterate: :math:`\delta q = \sum_{\lambda_n \ne 0} v_n (v_n^T Q)/\lambda_n` with
+       :math:`K v_n = \lambda_n M v_n`, :math:`v_n^T M v_m = \delta_{nm}`; each step at most
+       0.5 rad, halved until the residual :math:`Q^T M^{-1} Q` decreases.
+    2. Where the equilibrium has zero modes :math:`V_0` (a valley of equilibria), Newton on the
+       bordered system :math:`Q(q) + M V_0\mu = 0,\; V_0^T M q = 0`: the point of the valley
+       whose zero-mode coordinates equal those of the initial placement. The motion released
+       from the initial placement conserves :math:`V_0^T M \dot q` (PHYSICS.md (M14)), so it
+       oscillates about this point.
     """
     n = system.n_bodies
-    q = np.zeros(n)
+    mass = mass_matrix(system)
     inv_mass = 1.0 / system.inertia
 
     def residual_of(state: FloatArray) -> float:
         force = generalized_forces(system, state)
         return float(np.sqrt(np.sum(force**2 * inv_mass)))
 
-    initial = residual_of(q)
+    initial = residual_of(np.zeros(n))
     scale = max(initial, _force_scale(system))
-    residual = initial
-    if residual <= tolerance * scale:
-        return Equilibrium(q, True, residual)
-    for _ in range(max_iterations):
-        force = generalized_forces(system, q)
-        eigenvalues, vectors = scipy.linalg.eigh(stiffness_matrix(system, q), mass_matrix(system))
-        largest = float(np.max(np.abs(eigenvalues)))
-        nonzero = np.abs(eigenvalues) > ZERO_MODE_TOLERANCE * largest if largest > 0 else (
-            np.zeros(n, dtype=bool)
+    target = tolerance * scale
+
+    root_mass = np.sqrt(system.inertia)
+
+    def descend(start: FloatArray) -> tuple[FloatArray, float]:
+        """Trust-region Newton on :math:`M^{-1/2} Q = 0` in the mass-weighted coordinates
+        :math:`p = M^{1/2} q`, starting with steps of 0.1 rad: small regularised steps reach
+        the nearest root, and near a valley of roots the step is the M-orthogonal projection
+        onto it."""
+        if residual_of(start) <= target:
+            return start, residual_of(start)
+        solution = scipy.optimize.least_squares(
+            lambda p: generalized_forces(system, p / root_mass) / root_mass,
+            start * root_mass,
+            jac=lambda p: -stiffness_matrix(system, p / root_mass)
+            / np.outer(root_mass, root_mass),
+            method="trf",
+            x_scale=0.1 * root_mass,  # trust region starts at 0.1 rad (0.1 m for sliders)
+            xtol=1e-15,
+            ftol=1e-15,
+            gtol=1e-15,
+            max_nfev=100 * max_iterations,
         )
-        if not np.any(nonzero):
+        state = solution.x / root_mass
+        return state, residual_of(state)
+
+    q, residual = descend(np.zeros(n))
+    if residual > 1e-9 * scale:
+        return Equilibrium(
+            np.zeros(n),
+            False,
+            initial,
+            "no equilibrium near the initial placement: a net force acts along a direction "
+            "with no restoring stiffness (the system accelerates away), or the nearest "
+            "equilibrium is too far away to be found",
+        )
+    _, _, kinds = normal_modes(mass, stiffness_matrix(system, q))
+    n_zero = int(np.sum(kinds == "zero"))
+    if n_zero:
+        q = _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations)
+    residual = residual_of(q)
+    found = residual <= 1e-9 * scale
+    return Equilibrium(q, found, residual, "" if found else "the equilibrium search did not converge")
+
+
+def _valley_directions(system: SystemArrays, mass: FloatArray, q: FloatArray, n_zero: int):
+    """The ``n_zero`` softest M-normalised modes at ``q``: the directions along the valley."""
+    eigenvalues, vectors = scipy.linalg.eigh(stiffness_matrix(system, q), mass)
+    return vectors[:, np.argsort(np.abs(eigenvalues))[:n_zero]]
+
+
+def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations):
+    r"""Phase 2: the point of the valley of equilibria M-nearest to the initial placement.
+
+    On the valley the tangent directions are the zero modes :math:`V_0(q)`; the M-nearest point
+    has :math:`g(q) = V_0^T M q = 0` (PHYSICS.md (M14): the released motion conserves
+    :math:`V_0^T M \dot q`, so it oscillates about this point). Newton in the valley's own
+    coordinates: move along :math:`V_0` by :math:`\alpha`, re-descend onto the valley, with the
+    Jacobian :math:`\partial g/\partial\alpha` from finite differences (a straight valley, e.g.
+    centre-attached springs on one floor, converges in one step).
+    """
+    basis = _valley_directions(system, mass, q, n_zero)
+
+    def held(state: FloatArray) -> FloatArray:
+        tangent = _valley_directions(system, mass, state, n_zero)
+        return basis.T @ mass @ tangent @ (tangent.T @ (mass @ state))
+
+    size = max(1.0, float(np.max(np.abs(q))))
+    for _ in range(max_iterations):
+        basis = _valley_directions(system, mass, q, n_zero)
+        g = basis.T @ (mass @ q)
+        if float(np.max(np.abs(g))) <= 1e-15 * size * float(np.max(np.abs(basis.T @ mass))):
             break
-        along = vectors[:, nonzero].T @ force
-        step = vectors[:, nonzero] @ (along / eigenvalues[nonzero])
-        biggest = float(np.max(np.abs(step)))
-        if biggest > 0.5:  # at most half a radian (or 0.5 m) per step
-            step *= 0.5 / biggest
-        for _halving in range(40):
-            trial = q + step
-            trial_residual = residual_of(trial)
-            if trial_residual < residual or trial_residual <= tolerance * scale:
-                break
-            step *= 0.5
-        else:
+        h = 1e-6 * size
+        jacobian = np.empty((n_zero, n_zero))
+        for j in range(n_zero):
+            moved, _ = descend(q + h * basis[:, j])
+            jacobian[:, j] = (held(moved) - g) / h
+        alpha = np.linalg.lstsq(jacobian, -g, rcond=None)[0]
+        biggest = float(np.max(np.abs(basis @ alpha)))
+        if biggest > 0.5:  # at most half a radian per step along the valley
+            alpha *= 0.5 / biggest
+        q, _ = descend(q + basis @ alpha)
+        if biggest < 1e-15 * size:
             break
-        q, residual = trial, trial_residual
-        if residual <= tolerance * scale or float(np.max(np.abs(step))) < 1e-15:
-            break
-    if residual <= 1e-9 * scale:
-        return Equilibrium(q, True, residual)
-    return Equilibrium(
-        np.zeros(n),
-        False,
-        initial,
-        "no equilibrium near the initial placement: a net force acts along a direction with no "
-        "restoring stiffness (the system accelerates away)",
-    )
+    return q
+
+
+def _damped_step(q, step, residual, residual_of, target):
+    """One Newton step, at most 0.5 per coordinate, halved until the residual decreases."""
+    biggest = float(np.max(np.abs(step)))
+    if biggest > 0.5:  # at most half a radian (or 0.5 m) per step
+        step = step * (0.5 / biggest)
+    for _halving in range(40):
+        trial = q + step
+        trial_residual = residual_of(trial)
+        if trial_residual < residual or trial_residual <= target:
+            return trial, trial_residual, float(np.max(np.abs(step))) >= 1e-15
+        step = step * 0.5
+    return q, residual, False
 
 
 def _force_scale(system: SystemArrays) -> float:
@@ -142,6 +208,8 @@ class Mode:
     sliders), ``shape_x`` (m), ``spring_extension`` (m), ``friction`` and ``normal_force`` (N).
     ``kind`` is ``"oscillating"``, ``"zero"`` (omega = 0: a free, conserved motion) or
     ``"unstable"`` (negative eigenvalue; ``omega`` is then the growth rate).
+    ``damping_ratio`` is :math:`\zeta = v^T C v/(2\omega)` (M-normalised ``v``, spring damping
+    :math:`C = \sum_s c_s b_s b_s^T`): exact for modally damped systems, a projection otherwise.
     """
 
     eigenvalue: float
@@ -152,6 +220,7 @@ class Mode:
     spring_extension: FloatArray
     friction: FloatArray
     normal_force: FloatArray
+    damping_ratio: float = 0.0
 
     @property
     def frequency(self) -> float:
@@ -223,6 +292,7 @@ class LinearAnalysis:
     stationary_velocity: float | None
     amplitude: FloatArray | None
     velocity_amplitude: FloatArray | None
+    drift_velocity: FloatArray | None
     cm_amplitude: float | None
     stationary_amplitude: float | None
     friction_amplitude: FloatArray | None
@@ -263,7 +333,8 @@ def analyze(system: System) -> LinearAnalysis:
     warnings: list[str] = []
     equilibrium = find_equilibrium(arrays)
     if not equilibrium.found:
-        warnings.append(equilibrium.reason + "; the linearisation is about the initial placement")
+        warnings.append(equilibrium.reason + "; modes are those at the initial placement, and no "
+                        "response is computed")
     q_eq = equilibrium.q
     mass = mass_matrix(arrays)
     stiffness = stiffness_matrix(arrays, q_eq)
@@ -302,7 +373,9 @@ def analyze(system: System) -> LinearAnalysis:
 
     unstable = [m for m in modes if m.kind == "unstable"]
     response: dict[str, Any] = {}
-    if unstable:
+    if not equilibrium.found:
+        pass
+    elif unstable:
         warnings.append(
             f"the equilibrium is unstable ({len(unstable)} mode(s) with negative stiffness, "
             f"growth rate {unstable[0].omega:.6g} 1/s): no bounded linear response"
@@ -314,7 +387,20 @@ def analyze(system: System) -> LinearAnalysis:
         )
 
     tilt = _tilt_deg(springs.vector)
-    split = _spring_split(arrays, springs.lever, eigenvalues, kinds)
+    split = _spring_split(arrays, springs.lever, eigenvalues, kinds) if equilibrium.found else None
+    damping = damping_matrix(arrays, q_eq)
+    if np.any(arrays.damping > 0):
+        ratios = []
+        for k, mode in enumerate(modes):
+            if mode.kind == "oscillating":
+                ratio = float(vectors[:, k] @ damping @ vectors[:, k]) / (2 * mode.omega)
+                modes[k] = replace(mode, damping_ratio=ratio)
+                ratios.append(f"{ratio:.4g}")
+        warnings.append(
+            "springs have damping: the modes are the undamped ones, with modal damping ratios "
+            f"({', '.join(ratios)}) from the modal projection of C; the response amplitudes are "
+            "those of the undamped motion (the first swing)"
+        )
     analysis = LinearAnalysis(
         system=system,
         arrays=arrays,
@@ -333,6 +419,7 @@ def analyze(system: System) -> LinearAnalysis:
         stationary_velocity=velocity,
         amplitude=response.get("amplitude"),
         velocity_amplitude=response.get("velocity_amplitude"),
+        drift_velocity=response.get("drift_velocity"),
         cm_amplitude=response.get("cm_amplitude"),
         stationary_amplitude=response.get("stationary_amplitude"),
         friction_amplitude=response.get("friction_amplitude"),
@@ -448,6 +535,7 @@ def _response(
         "velocity_amplitude": np.sum(
             np.abs(position.amplitudes) * omegas[[g[0] for g in groups]][:, None], axis=0
         ) if groups else np.zeros(arrays.n_bodies),
+        "drift_velocity": _clean(position.drift, float(np.max(np.abs(arrays.v0), initial=0.0))),
         "cm_amplitude": float(_clean(cm.amplitude, length_scale)),
         "friction_amplitude": friction_amplitude,
         "normal_force_range": np.stack(

@@ -25,6 +25,10 @@ CONVENTIONS = {
     "horizontal, in (-90, 90]",
     "mode_normalisation": "largest centre displacement = +1 m; friction, normal_force and "
     "spring_extension are the first-order changes along that shape",
+    "response": "exact linear motion from the initial placement, about the equilibrium (which "
+    "moves at drift_velocity when a zero mode is set moving); with several frequencies an "
+    "amplitude is the supremum over all phases: reached when the frequencies are "
+    "incommensurate, an upper bound otherwise",
 }
 
 
@@ -54,6 +58,7 @@ def analysis_to_dict(analysis: LinearAnalysis) -> dict[str, Any]:
                 "growth_rate": _num(mode.omega) if mode.kind == "unstable" else None,
                 "frequency_hz": _num(mode.frequency),
                 "period": _num(mode.period),
+                "damping_ratio": _num(mode.damping_ratio),
                 "shape": _by_id(ids, mode.shape_x),
                 "shape_phi": _by_id(ids, arrays.rolls * mode.shape_q),
                 "spring_extension": [_num(v) for v in mode.spring_extension],
@@ -78,6 +83,7 @@ def analysis_to_dict(analysis: LinearAnalysis) -> dict[str, Any]:
         response = {
             "amplitude": _by_id(ids, analysis.amplitude),
             "velocity_amplitude": _by_id(ids, analysis.velocity_amplitude),
+            "drift_velocity": _by_id(ids, analysis.drift_velocity),
             "cm_amplitude": _num(analysis.cm_amplitude or 0.0),
             "stationary_point_amplitude": (
                 None if analysis.stationary_amplitude is None

@@ -26,6 +26,7 @@ __all__ = [
     "centre_positions",
     "contact_forces",
     "contact_forces_jacobian",
+    "damping_matrix",
     "end_kinematics",
     "force_point_kinematics",
     "generalized_forces",
@@ -266,6 +267,17 @@ def stiffness_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
         diag = -np.einsum("fc,fc,fi->i", system.force, force_second, system.force_incidence)
         k_matrix += np.diag(diag)
     return 0.5 * (k_matrix + k_matrix.T)
+
+
+def damping_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
+    r"""Linear damping matrix of the spring dampers, :math:`C = \sum_s c_s b_s b_s^T`.
+
+    The damping force :math:`c_s \dot l_s` along spring s, with :math:`\dot l_s = b_s\cdot\dot q`,
+    gives the generalised force :math:`-C\dot q` (:func:`generalized_forces` with ``qdot``).
+    Shape: ``q`` (n,) -> (n, n).
+    """
+    springs = spring_state(system, q)
+    return np.einsum("s,si,sj->ij", system.damping, springs.lever, springs.lever)
 
 
 def body_forces_jacobian(system: SystemArrays, q: FloatArray) -> FloatArray:

@@ -1,0 +1,136 @@
+"""The linear analysis beyond the paper: equilibria, zero modes, damping, warnings."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import scipy.linalg
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from rollspring.analysis import analyze, find_equilibrium, normal_modes
+from rollspring.physics import generalized_forces, mass_matrix, stiffness_matrix, system_arrays
+from tests.conftest import body, make_system, spring
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.floats(0.0, 0.1), st.floats(-180, 180), st.floats(0.0, 0.1), st.floats(-180, 180),
+       st.floats(0.4, 0.6), st.sampled_from(["hoop", "cylinder", "sphere"]))
+def test_equilibrium_holds_the_zero_mode_of_an_off_centre_pair(r1, a1, r2, a2, rest, shape):
+    """Q(q*) = 0 and the zero-mode coordinate of the initial placement is kept:
+    V0(q*)^T M (q* - 0) = 0, so the motion oscillates about q* (PHYSICS.md (M14)).
+    Springs up to 0.1 m from their rest length on 0.1 m bodies: rolls of up to ~1 rad."""
+    system = make_system(
+        [body("a", "hoop", x=0.0), body("b", shape, x=0.5)],
+        [spring("a", "b", rest_length=rest, at=[{"radius": r1, "angle": a1},
+                                                 {"radius": r2, "angle": a2}])],
+    )
+    arrays = system_arrays(system)
+    equilibrium = find_equilibrium(arrays)
+    assert equilibrium.found
+    q = equilibrium.q
+    mass = mass_matrix(arrays)
+    assert np.max(np.abs(generalized_forces(arrays, q))) < 1e-9
+    _, vectors, kinds = normal_modes(mass, stiffness_matrix(arrays, q))
+    zero = vectors[:, kinds == "zero"]
+    assert zero.shape[1] == 1  # a free pair at rest length: one valley of equilibria
+    assert abs(float(zero[:, 0] @ mass @ q)) < 1e-9
+
+
+def test_no_equilibrium_gives_no_response_and_says_why() -> None:
+    system = make_system([body("h", "hoop", x=0.0), body("c", "cylinder", x=0.5)],
+                         [spring("h", "c")], forces=[{"body": "h", "fx": 1.0}])
+    result = analyze(system)
+    assert not result.equilibrium.found
+    assert result.amplitude is None and result.required_mu is None
+    assert result.spring_split is None
+    assert any("no equilibrium" in w for w in result.warnings)
+    assert result.to_dict()["response"] is None
+
+
+def test_modal_damping_ratio_of_a_damped_wall_spring() -> None:
+    """One body on a wall spring at centre height: K = k R^2, C = c R^2, zeta = c R/(2 sqrt(k J))."""
+    k, c, m, radius = 80.0, 1.5, 0.9, 0.2
+    system = make_system([body("c", "cylinder", mass=m, radius=radius, x=0.0)],
+                         [spring("wall", "c", stiffness=k, damping=c)],
+                         anchors=[{"id": "wall", "x": -0.5, "y": radius}])
+    result = analyze(system)
+    inertia = 1.5 * m * radius**2
+    (mode,) = result.modes
+    assert mode.damping_ratio == pytest.approx(c * radius / (2 * math.sqrt(k * inertia)), rel=1e-12)
+    assert any("damping" in w for w in result.warnings)
+    assert result.to_dict()["modes"][0]["damping_ratio"] == pytest.approx(mode.damping_ratio)
+
+
+def test_zero_gravity_with_enforced_rolling_is_quiet() -> None:
+    system = make_system(
+        [body("h", "hoop", x=0.0, mu_static=math.inf), body("c", "cylinder", x=0.49,
+                                                             mu_static=math.inf)],
+        [spring("h", "c", rest_length=0.5)], gravity=0.0)
+    result = analyze(system)
+    assert result.warnings == []
+    assert np.all(np.isinf(result.required_mu))  # N = 0 while friction is needed
+
+
+def test_zero_gravity_without_enforced_rolling_slips() -> None:
+    system = make_system([body("h", "hoop", x=0.0), body("c", "cylinder", x=0.49)],
+                         [spring("h", "c", rest_length=0.5)], gravity=0.0)
+    warnings = analyze(system).warnings
+    assert any("unbounded friction" in w for w in warnings)
+    assert not any("lift off" in w for w in warnings)
+
+
+def test_a_slider_pulled_up_harder_than_its_weight_cannot_rest() -> None:
+    system = make_system([body("s", "slider", mass=0.1, radius=0.05, x=0.0, v=2.0)],
+                         [spring("hook", "s", stiffness=50.0, rest_length=0.2)],
+                         anchors=[{"id": "hook", "x": 0.0, "y": 0.6}])
+    result = analyze(system)
+    tension = 50.0 * (0.55 - 0.2)
+    assert result.equilibrium_normal[0] == pytest.approx(0.1 * 9.81 - tension, rel=1e-12)
+    assert any("'s' cannot rest on its track" in w for w in result.warnings)
+
+
+@pytest.mark.parametrize(("speed", "lifts"), [(2.0, False), (5.0, True)])
+def test_a_slider_under_a_slanted_spring_lifts_off_when_pushed_hard(speed, lifts) -> None:
+    """N = mg - T_y(x) changes to first order when the hook is off to one side; the linear
+    response predicts N < 0 at the larger speed (N range = N* -/+ |dN/dx| A)."""
+    system = make_system(
+        [body("s", "slider", mass=0.1, radius=0.05, x=0.0, v=speed)],
+        [spring("hook", "s", stiffness=5.0, rest_length=0.5),
+         spring("wall", "s", stiffness=20.0, rest_length=0.4849)],
+        anchors=[{"id": "hook", "x": 0.3, "y": 0.6}, {"id": "wall", "x": -0.5, "y": 0.05}])
+    result = analyze(system)
+    low, high = result.normal_force_range[0]
+    assert low < result.equilibrium_normal[0] < high
+    assert (low < 0) == lifts
+    assert any("'s' would lift off" in w for w in result.warnings) == lifts
+
+
+def test_a_body_far_too_light_for_its_spring_slips() -> None:
+    system = make_system([body("h", "hoop", x=0.0, mass=0.01, mu_static=0.3),
+                          body("c", "cylinder", x=0.4)], [spring("h", "c", rest_length=0.5)])
+    result = analyze(system)
+    assert any("'h' slips: the motion needs mu_s >=" in w for w in result.warnings)
+
+
+def test_drift_of_free_parts_is_reported() -> None:
+    system = make_system([body("h", "hoop", x=0.0), body("c", "cylinder", x=0.49),
+                          body("loner", "sphere", x=2.0, v=0.3)],
+                         [spring("h", "c", rest_length=0.5)])
+    result = analyze(system)
+    assert result.stationary_weights is None  # two zero modes
+    assert result.drift_velocity[2] == pytest.approx(0.3, rel=1e-12)
+    assert result.drift_velocity[0] == 0.0
+    assert any("drift" in w and "'loner' 0.3 m/s" in w for w in result.warnings)
+
+
+def test_modes_agree_with_a_direct_eigensolution_of_the_presets() -> None:
+    for name in ("wall-hoop-cylinder", "three-bodies"):
+        from rollspring.model import load_system
+
+        result = analyze(load_system(name))
+        direct = scipy.linalg.eigvalsh(result.stiffness, result.mass)
+        np.testing.assert_allclose([max(m.eigenvalue, 0) for m in result.modes],
+                                   np.clip(direct, 0, None), atol=1e-9 * direct.max())

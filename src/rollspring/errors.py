@@ -12,7 +12,7 @@ argument and the reason. The command-line interface prints it and exits with cod
 
 from __future__ import annotations
 
-__all__ = ["AnalysisError", "ModelError", "RollspringError"]
+__all__ = ["AnalysisError", "ModelError", "RollspringError", "SimulationError"]
 
 
 class RollspringError(Exception):
@@ -25,3 +25,7 @@ class ModelError(RollspringError, ValueError):
 
 class AnalysisError(RollspringError):
     """An analysis cannot be carried out for this system."""
+
+
+class SimulationError(RollspringError, ValueError):
+    """A simulation was requested with invalid arguments (duration, tolerance, integrator)."""

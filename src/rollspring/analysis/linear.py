@@ -98,11 +98,26 @@ def find_equilibrium(
         :math:`p = M^{1/2} q`, starting with steps of 0.1 rad: small regularised steps reach
         the nearest root, and near a valley of roots the step is the M-orthogonal projection
         onto it."""
-        if residual_of(start) <= target:
-            return start, residual_of(start)
+        state, residual = start, residual_of(start)
+        for _ in range(10):  # plain Newton while its steps are small and the residual falls
+            if residual <= target:
+                return state, residual
+            eigenvalues, vectors, kinds = normal_modes(mass, stiffness_matrix(system, state))
+            nonzero = kinds != "zero"
+            along = vectors[:, nonzero].T @ generalized_forces(system, state)
+            step = vectors[:, nonzero] @ (along / eigenvalues[nonzero])
+            if not np.any(nonzero) or float(np.max(np.abs(step))) > 0.1:
+                break
+            trial = state + step
+            trial_residual = residual_of(trial)
+            if not trial_residual < residual:
+                break
+            state, residual = trial, trial_residual
+        if residual <= target:
+            return state, residual
         solution = scipy.optimize.least_squares(
             lambda p: generalized_forces(system, p / root_mass) / root_mass,
-            start * root_mass,
+            state * root_mass,
             jac=lambda p: -stiffness_matrix(system, p / root_mass)
             / np.outer(root_mass, root_mass),
             method="trf",

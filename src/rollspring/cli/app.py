@@ -139,6 +139,84 @@ def presets(as_json: JsonOpt = False) -> None:
     _stdout().print(table)
 
 
+@app.command()
+@friendly_errors
+def simulate(
+    system: SystemArg = DEFAULT_PRESET,
+    duration: Annotated[float, typer.Option("--duration", "-T", help="Simulated time, s.")] = 10.0,
+    rtol: Annotated[float, typer.Option(help="Relative accuracy of the motion over the run.")]
+    = 1e-8,
+    integrator: Annotated[str, typer.Option(
+        help="auto, verlet, yoshida4, yoshida6, kahanli8 (symplectic, compiled) or dop853.")]
+    = "auto",
+    on_slip: Annotated[str, typer.Option(
+        "--on-slip", help="stop: end the run when a body starts to slip; continue: run on "
+        "with kinetic friction (stick-slip).")] = "stop",
+    outputs: Annotated[int, typer.Option("--outputs", help="Number of output times.")] = 2001,
+    out: Annotated[str | None, typer.Option(
+        "--out", "-o", help="Write trajectory.csv, trajectory.npz and summary.json here.")]
+    = None,
+    as_json: JsonOpt = False,
+) -> None:
+    """Integrate the exact nonlinear motion; report energy, period, friction, slip, lift-off."""
+    from rollspring.simulate import simulate as run_simulation
+
+    model = load_system(system)
+    with _progress_after_a_second("simulating") as progress:
+        trajectory = run_simulation(model, duration, rtol=rtol, integrator=integrator,
+                                    n_output=outputs, on_slip=on_slip, progress=progress)
+    written = []
+    if out is not None:
+        from rollspring.outputs import write_trajectory
+
+        written = write_trajectory(trajectory, out)
+    if trajectory.status != "finished":
+        _say(f"note: {trajectory.message}")
+    if as_json:
+        from rollspring.outputs import summary_json
+
+        for path in written:
+            _say(f"wrote {path}")
+        _print_json(summary_json(trajectory))
+        return
+    from rollspring.cli.tables import print_simulation
+
+    print_simulation(_stdout(), trajectory, written)
+
+
+class _progress_after_a_second:  # noqa: N801 - used as a context manager
+    """A Rich progress bar on stderr that appears only once a run has taken a second."""
+
+    def __init__(self, label: str) -> None:
+        self.label = label
+        self.bar = None
+        self.task = None
+        self.started = 0.0
+
+    def __enter__(self):
+        import time
+
+        self.started = time.perf_counter()
+        return self
+
+    def __call__(self, fraction: float) -> None:
+        import time
+
+        if self.bar is None:
+            if time.perf_counter() - self.started < 1.0:
+                return
+            from rich.progress import Progress
+
+            self.bar = Progress(console=Console(stderr=True), transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task(self.label, total=1.0)
+        self.bar.update(self.task, completed=fraction)
+
+    def __exit__(self, *exc_info) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+
+
 def main(argv: list[str] | None = None) -> None:
     """Entry point of the ``rollspring`` console command."""
     app(args=argv)

@@ -120,3 +120,42 @@ def print_analysis(console: Console, result: LinearAnalysis) -> None:
                   f"{CONVENTIONS['friction']}.[/dim]")
     for warning in result.warnings:
         console.print(f"[yellow]warning:[/yellow] {warning}", highlight=False)
+
+
+def print_simulation(console: Console, trajectory, written) -> None:
+    """The summary of a run as Rich tables."""
+    from rich.table import Table
+
+    summary = trajectory.summary
+    head = Table(title=f"{trajectory.system.name}: simulated {summary['duration']:g} s",
+                 title_justify="left", show_header=False)
+    head.add_column("quantity", style="bold")
+    head.add_column("value")
+    head.add_row("status", summary["status"] + (f" ({summary['message']})"
+                                                 if summary["message"] else ""))
+    step = summary["step"]
+    head.add_row("integrator", f"{summary['integrator']}, {summary['steps']} steps"
+                 + (f" of {_g(step)} s" if step else ""))
+    head.add_row("energy (J)", f"{_g(summary['energy'])}, error {summary['energy_error']:.2e}")
+    if summary["period_linear"] is not None:
+        measured = summary["period_measured"]
+        head.add_row("period (s)", f"measured {_g(measured, 12) if measured else '-'}, "
+                     f"linear {_g(summary['period_linear'], 12)}")
+    for kind in ("first_slip", "first_liftoff"):
+        event = summary[kind]
+        head.add_row(kind.replace("_", " "), "none" if event is None else
+                     f"'{event['body']}' at t = {_g(event['time'], 12)} s")
+    console.print(head)
+    bodies = Table(title="bodies", title_justify="left")
+    for column in ("body", "max |f|/N", "min N (N)", "final x (m)", "final v (m/s)",
+                   "final phi (rad)"):
+        bodies.add_column(column, justify="right" if column != "body" else "left")
+    final = summary["final"]["bodies"]
+    for name in trajectory.ids:
+        ratio = summary["max_friction_ratio"].get(name)
+        bodies.add_row(name, "-" if ratio is None else _g(ratio),
+                       _g(summary["min_normal_force"][name]), _g(final[name]["x"]),
+                       _g(final[name]["v"]), _g(final[name]["phi"]))
+    console.print(bodies)
+    for path in written:
+        console.print(f"wrote {path}")

@@ -1,0 +1,382 @@
+r"""Compiled (Numba) kernels: the exact rolling equations and explicit symplectic integrators.
+
+While every body rolls the Hamiltonian is separable, :math:`H = \sum p_i^2/(2J_i) + U(q)` with a
+constant diagonal mass matrix (PHYSICS.md (M6)), so compositions of the kick-drift-kick leapfrog
+
+.. math:: v \mathrel{+}= \tfrac{h_k}{2} Q(q)/J,\quad q \mathrel{+}= h_k v,\quad
+          v \mathrel{+}= \tfrac{h_k}{2} Q(q)/J, \qquad h_k = w_k h
+
+are explicit and symplectic; the weights :math:`w_k` (Yoshida 1990; Kahan and Li 1997) give
+orders 2, 4, 6 and 8. The force at the end of a stage is reused at the start of the next.
+
+The general state (any body may slip) is per body the centre position :math:`x_i`, the rotation
+:math:`\varphi_i` from the initial placement, the centre velocity :math:`u_i` and the angular
+velocity :math:`\omega_i` (clockwise positive). An attachment at distance :math:`r` and angle
+:math:`\alpha` (clockwise from up) is at (M1)
+
+.. math:: P = (x_i + r\sin\theta,\; h_i + R_i + r\cos\theta), \qquad \theta = \alpha + \rho_i\varphi_i
+
+and the loads :func:`body_loads` are the resultant force :math:`(F_{ix}, F_{iy})` and the
+clockwise torque :math:`\tau_i` about the centre of the springs (tension
+:math:`T = k(l - L_0) + c\,\dot l`) and constant forces. For a rolling body the generalised force
+is :math:`Q_i = R_i F_{ix} + \tau_i` (the torque about the contact point, (M7)), and (M8), (M9)
+give the friction it needs and its normal force. The model is a tuple of flat arrays
+(:func:`kernel_model`); tests check the kernels against :mod:`rollspring.physics` to rounding.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rollspring.physics import SystemArrays
+
+__all__ = [
+    "SCHEMES",
+    "STATUS_FINISHED",
+    "STATUS_LIFTOFF",
+    "STATUS_NONFINITE",
+    "STATUS_SLIP",
+    "advance",
+    "body_loads",
+    "kernel_model",
+    "observe",
+    "rolling_forces",
+    "run_fixed_step",
+    "slipping_derivatives",
+]
+
+STATUS_FINISHED = 0
+STATUS_NONFINITE = 1
+STATUS_SLIP = 2
+STATUS_LIFTOFF = 3
+
+_Y4 = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))
+_Y6 = (0.784513610477560, 0.235573213359357, -1.17767998417887)
+_KL8 = (0.74167036435061295345, -0.40910082580003159400, 0.19075471029623837995,
+        -0.57386247111608226666, 0.29906418130365592384, 0.33462491824529818378,
+        0.31529309239676659663)
+
+
+def _symmetric(outer: tuple[float, ...]) -> np.ndarray:
+    """Weights w_1..w_m, w_0 = 1 - 2 sum w, w_m..w_1 of a symmetric composition."""
+    return np.array([*outer, 1.0 - 2.0 * sum(outer), *outer[::-1]])
+
+
+#: name -> (order p, stage weights, C_p): the relative frequency error is C_p (omega h)^p
+#: (measured on the harmonic oscillator; Verlet's 1/24 is exact).
+SCHEMES: dict[str, tuple[int, np.ndarray, float]] = {
+    "verlet": (2, np.array([1.0]), 1.0 / 24.0),
+    "yoshida4": (4, _symmetric((_Y4,)), 0.0662),
+    "yoshida6": (6, _symmetric(_Y6), 0.00377),
+    "kahanli8": (8, _symmetric(_KL8), 4.8e-6),
+}
+
+
+# columns of the packed per-body, per-spring and per-force arrays of the kernel model
+X0, SCALE, ROLLS, CY, INERTIA, MASS, MU_S, CENTRAL, MU_K, RADIUS = range(10)
+RA, ALPHA_A, RB, ALPHA_B, AAX, AAY, ABX, ABY, STIFF, REST, DAMP = range(11)
+FR, FALPHA, FX, FY = range(4)
+
+
+def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple:
+    """The model the kernels take: ``(bodies (n, 10), springs (S, 11), spring_ends (S, 2) int,
+    forces (F, 4), force_body (F,) int, gravity)`` (columns named by the module constants).
+    ``x0`` overrides the reference centre positions (after a body re-sticks:
+    ``x_i - R_i phi_i``). Few packed arrays keep the compiled calls cheap."""
+    a = arrays
+    bodies = np.column_stack([
+        a.x0 if x0 is None else x0, a.scale, a.rolls, a.track + a.radius, a.inertia, a.mass,
+        a.mu_static, a.gamma * a.mass * a.radius**2, a.mu_kinetic, a.radius,
+    ]).astype(np.float64)
+    springs = np.column_stack([
+        a.end_r[:, 0], a.end_alpha[:, 0], a.end_r[:, 1], a.end_alpha[:, 1],
+        a.end_anchor[:, 0, 0], a.end_anchor[:, 0, 1], a.end_anchor[:, 1, 0],
+        a.end_anchor[:, 1, 1], a.stiffness, a.rest_length, a.damping,
+    ]).reshape(-1, 11).astype(np.float64)
+    forces = np.column_stack([a.force_r, a.force_alpha, a.force[:, 0], a.force[:, 1]]
+                             ).reshape(-1, 4).astype(np.float64)
+    return (np.ascontiguousarray(bodies), np.ascontiguousarray(springs),
+            np.ascontiguousarray(a.end_body, dtype=np.int64), np.ascontiguousarray(forces),
+            np.ascontiguousarray(a.force_body, dtype=np.int64), float(a.gravity))
+
+
+@njit(cache=True, inline="always")
+def _point(bodies, i, r, alpha, x, phi):
+    """Attachment position (M1) and its velocity per unit angular velocity at fixed centre."""
+    if r == 0.0:
+        return x[i], bodies[i, CY], 0.0, 0.0
+    rolls = bodies[i, ROLLS]
+    theta = alpha + rolls * phi[i]
+    s = math.sin(theta)
+    c = math.cos(theta)
+    return x[i] + r * s, bodies[i, CY] + r * c, rolls * r * c, -rolls * r * s
+
+
+@njit(cache=True, inline="always")
+def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
+    r"""Resultant force and clockwise torque about each centre of springs and constant forces;
+    each spring's length and tension :math:`T = k(l - L_0) + c\,\dot l` (``damped``: include
+    :math:`c\,\dot l`). Force on end a: :math:`+T e`, on end b: :math:`-T e` (PHYSICS.md §2)."""
+    bodies, springs, ends, forces, force_body = model[0], model[1], model[2], model[3], model[4]
+    for i in range(x.shape[0]):
+        fx[i] = 0.0
+        fy[i] = 0.0
+        tau[i] = 0.0
+    for s in range(springs.shape[0]):
+        ia = ends[s, 0]
+        ib = ends[s, 1]
+        oax = 0.0
+        oay = 0.0
+        obx = 0.0
+        oby = 0.0
+        if ia >= 0:
+            pax, pay, oax, oay = _point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], x, phi)
+        else:
+            pax = springs[s, AAX]
+            pay = springs[s, AAY]
+        if ib >= 0:
+            pbx, pby, obx, oby = _point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], x, phi)
+        else:
+            pbx = springs[s, ABX]
+            pby = springs[s, ABY]
+        dx = pbx - pax
+        dy = pby - pay
+        dist = math.sqrt(dx * dx + dy * dy)
+        t = springs[s, STIFF] * (dist - springs[s, REST])
+        if damped and springs[s, DAMP] != 0.0:
+            vax = 0.0
+            vay = 0.0
+            vbx = 0.0
+            vby = 0.0
+            if ia >= 0:
+                vax = u[ia] + oax * w[ia]
+                vay = oay * w[ia]
+            if ib >= 0:
+                vbx = u[ib] + obx * w[ib]
+                vby = oby * w[ib]
+            t += springs[s, DAMP] * (dx * (vbx - vax) + dy * (vby - vay)) / dist
+        length[s] = dist
+        tension[s] = t
+        tx = t * dx / dist
+        ty = t * dy / dist
+        if ia >= 0:
+            fx[ia] += tx
+            fy[ia] += ty
+            tau[ia] += oax * tx + oay * ty
+        if ib >= 0:
+            fx[ib] -= tx
+            fy[ib] -= ty
+            tau[ib] -= obx * tx + oby * ty
+    for j in range(forces.shape[0]):
+        i = force_body[j]
+        _, _, ox, oy = _point(bodies, i, forces[j, FR], forces[j, FALPHA], x, phi)
+        fx[i] += forces[j, FX]
+        fy[i] += forces[j, FY]
+        tau[i] += ox * forces[j, FX] + oy * forces[j, FY]
+
+
+@njit(cache=True, inline="always")
+def rolling_forces(model, q, scratch, gen, fx, fy):
+    r"""Generalised forces :math:`Q_i = s_i F_{ix} + \tau_i` (M7) of the all-rolling state
+    ``q`` (no damping), into ``gen``; resultant forces into ``fx``, ``fy``. ``scratch`` is a
+    tuple of work arrays (x, zeros, tau, length, tension)."""
+    bodies = model[0]
+    x, zeros, tau, length, tension = scratch
+    for i in range(q.shape[0]):
+        x[i] = bodies[i, X0] + bodies[i, SCALE] * q[i]
+    body_loads(model, x, q, zeros, zeros, False, fx, fy, tau, length, tension)
+    for i in range(q.shape[0]):
+        gen[i] = bodies[i, SCALE] * fx[i] + tau[i]
+
+
+@njit(cache=True)
+def _scratch(n, n_springs):
+    return (np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n_springs), np.zeros(n_springs))
+
+
+@njit(cache=True, inline="always")
+def _contact(model, i, gen_i, fx_i, fy_i):
+    """(M8), (M9): friction needed to roll and the normal force."""
+    b = model[0]
+    friction = (b[i, MASS] * b[i, SCALE] * gen_i / b[i, INERTIA] - fx_i
+                if b[i, ROLLS] > 0.0 else 0.0)
+    return friction, b[i, MASS] * model[5] - fy_i
+
+
+@njit(cache=True, inline="always")
+def _stages(model, coeffs, h, q, v, scratch, gen, fx, fy):
+    bodies = model[0]
+    n = q.shape[0]
+    for w in coeffs:
+        hw = h * w
+        for i in range(n):
+            v[i] += 0.5 * hw * gen[i] / bodies[i, INERTIA]
+        for i in range(n):
+            q[i] += hw * v[i]
+        rolling_forces(model, q, scratch, gen, fx, fy)
+        for i in range(n):
+            v[i] += 0.5 * hw * gen[i] / bodies[i, INERTIA]
+
+
+@njit(cache=True)
+def advance(model, coeffs, q, v, duration, n_steps):
+    """Integrate ``n_steps`` equal steps over ``duration`` (may be 0) from (q, v); returns new
+    arrays (q, v, friction, normal) at the end."""
+    q = q.copy()
+    v = v.copy()
+    n = q.shape[0]
+    scratch = _scratch(n, model[1].shape[0])
+    gen = np.empty(n)
+    fx = np.empty(n)
+    fy = np.empty(n)
+    friction = np.empty(n)
+    normal = np.empty(n)
+    rolling_forces(model, q, scratch, gen, fx, fy)
+    h = duration / max(n_steps, 1)
+    for _ in range(n_steps):
+        _stages(model, coeffs, h, q, v, scratch, gen, fx, fy)
+    for i in range(n):
+        friction[i], normal[i] = _contact(model, i, gen[i], fx[i], fy[i])
+    return q, v, friction, normal
+
+
+@njit(cache=True)
+def run_fixed_step(model, coeffs, q, v, h, n_steps, stride, check_contacts, out_q, out_v,
+                   extremes, before):
+    """Integrate ``n_steps`` steps of size ``h`` from (q, v) (updated in place), recording
+    (q, v) every ``stride`` steps into rows 1, 2, ... of ``out_q``/``out_v`` (row 0 is left to
+    the caller) and checking rolling validity after every step.
+
+    ``extremes`` (4, n) is updated per body: max |f|/N over the steps, the step where it occurs,
+    min N, and its step (steps counted from 1 in this call; the caller seeds row 0).
+    ``before`` (2, n) receives the state at the start of the last step taken. Returns
+    (status, step, body): for an event the step in which it happened and the body.
+    """
+    bodies = model[0]
+    n = q.shape[0]
+    scratch = _scratch(n, model[1].shape[0])
+    gen = np.empty(n)
+    fx = np.empty(n)
+    fy = np.empty(n)
+    rolling_forces(model, q, scratch, gen, fx, fy)
+    for step in range(1, n_steps + 1):
+        for i in range(n):
+            before[0, i] = q[i]
+            before[1, i] = v[i]
+        _stages(model, coeffs, h, q, v, scratch, gen, fx, fy)
+        event = -1
+        event_body = -1
+        for i in range(n):
+            if not (math.isfinite(q[i]) and math.isfinite(v[i])):
+                return STATUS_NONFINITE, step, i
+            if not check_contacts:
+                continue
+            friction, normal = _contact(model, i, gen[i], fx[i], fy[i])
+            if normal < 0.0:
+                event = STATUS_LIFTOFF
+                event_body = i
+                break
+            if bodies[i, ROLLS] > 0.0 and abs(friction) >= bodies[i, MU_S] * normal:
+                event = STATUS_SLIP
+                event_body = i
+                break
+        if event >= 0:  # the state after this step is past the event: not an extreme
+            return event, step, event_body
+        for i in range(n):
+            friction, normal = _contact(model, i, gen[i], fx[i], fy[i])
+            if normal < extremes[2, i]:
+                extremes[2, i] = normal
+                extremes[3, i] = step
+            # |f|/N > best  <=>  |f| > best N (N > 0): no division in the common case
+            if bodies[i, ROLLS] > 0.0 and normal > 0.0 and abs(friction) > extremes[0, i] * normal:
+                extremes[0, i] = abs(friction) / normal
+                extremes[1, i] = step
+        if step % stride == 0:
+            row = step // stride
+            for i in range(n):
+                out_q[row, i] = q[i]
+                out_v[row, i] = v[i]
+    return STATUS_FINISHED, n_steps, -1
+
+
+@njit(cache=True)
+def slipping_derivatives(model, state, slipping, sign, damped, out):
+    r"""Time derivative of the general state ``[x, phi, u, omega]`` (4n), PHYSICS.md (M19).
+
+    Rolling body: :math:`J\dot\omega = R F_x + \tau`, :math:`\dot u = R\dot\omega`; slider:
+    :math:`m\dot u = F_x`; slipping body (``slipping[i]``, slip direction ``sign[i]`` = sign of
+    the contact-point velocity :math:`v_s = u - R\omega`): :math:`f = -\mu_k N\,\mathrm{sign}`,
+    :math:`m\dot u = F_x + f`, :math:`I\dot\omega = \tau - R f`.
+    """
+    n = slipping.shape[0]
+    b, g = model[0], model[5]
+    x = state[:n]
+    phi = state[n:2 * n]
+    u = state[2 * n:3 * n]
+    w = state[3 * n:]
+    ns = model[1].shape[0]
+    fx = np.empty(n)
+    fy = np.empty(n)
+    tau = np.empty(n)
+    length = np.empty(ns)
+    tension = np.empty(ns)
+    body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension)
+    for i in range(n):
+        out[i] = u[i]
+        out[n + i] = w[i]
+        if b[i, ROLLS] == 0.0:
+            out[2 * n + i] = fx[i] / b[i, MASS]
+            out[3 * n + i] = 0.0
+        elif slipping[i]:
+            friction = -b[i, MU_K] * (b[i, MASS] * g - fy[i]) * sign[i]
+            out[2 * n + i] = (fx[i] + friction) / b[i, MASS]
+            out[3 * n + i] = (tau[i] - b[i, RADIUS] * friction) / b[i, CENTRAL]
+        else:
+            alpha = (b[i, SCALE] * fx[i] + tau[i]) / b[i, INERTIA]
+            out[2 * n + i] = b[i, SCALE] * alpha
+            out[3 * n + i] = alpha
+
+
+@njit(cache=True)
+def observe(model, states, slipping, sign, damped, friction, normal, length, tension,
+            potential):
+    r"""Per row of ``states`` (rows of ``[x, phi, u, omega]``): friction (the static friction
+    a rolling body needs, (M8), or the kinetic friction of a slipping body, (M19)), normal force
+    (M9), spring lengths and tensions, and the potential energy
+    :math:`U = \sum \tfrac12 k(l - L_0)^2 - \sum F\cdot(P - P_0)` (gravity left out; P_0 at the
+    model's reference positions, so pass the model of the initial placement).
+    ``slipping``/``sign`` are per row."""
+    n = states.shape[1] // 4
+    b, springs, forces, force_body, g = model[0], model[1], model[3], model[4], model[5]
+    fx = np.empty(n)
+    fy = np.empty(n)
+    tau = np.empty(n)
+    zero_x = b[:, X0].copy()
+    zero_phi = np.zeros(n)
+    for row in range(states.shape[0]):
+        state = states[row]
+        x = state[:n]
+        phi = state[n:2 * n]
+        body_loads(model, x, phi, state[2 * n:3 * n], state[3 * n:], damped, fx, fy, tau,
+                   length[row], tension[row])
+        energy = 0.0
+        for s in range(springs.shape[0]):
+            energy += 0.5 * springs[s, STIFF] * (length[row, s] - springs[s, REST]) ** 2
+        for j in range(forces.shape[0]):
+            i = force_body[j]
+            px, py, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)
+            p0x, p0y, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], zero_x, zero_phi)
+            energy -= forces[j, FX] * (px - p0x) + forces[j, FY] * (py - p0y)
+        potential[row] = energy
+        for i in range(n):
+            normal[row, i] = b[i, MASS] * g - fy[i]
+            if b[i, ROLLS] == 0.0:
+                friction[row, i] = 0.0
+            elif slipping[row, i]:
+                friction[row, i] = -b[i, MU_K] * normal[row, i] * sign[row, i]
+            else:
+                friction[row, i] = (b[i, MASS] * b[i, SCALE] * (b[i, SCALE] * fx[i] + tau[i])
+                                    / b[i, INERTIA] - fx[i])

@@ -1,0 +1,829 @@
+r"""``simulate``: the exact nonlinear motion, with every force, slip and lift-off to the instant.
+
+While every body rolls and no spring is damped, the motion is integrated by an explicit
+symplectic composition (:data:`~rollspring.simulate.kernels.SCHEMES`) compiled with Numba, with
+a fixed step chosen from the highest linear frequency :math:`\omega` and ``rtol``: the relative
+frequency error of an order-p scheme is :math:`C_p(\omega h)^p`, so over the run the phase
+error is :math:`\omega T C_p (\omega h)^p \le \mathrm{rtol}`. Damped springs, a slipping body
+(PHYSICS.md (M19)) or ``integrator="dop853"`` use SciPy's adaptive DOP853 on the general state
+:math:`[x, \varphi, u, \omega]`.
+
+Events are found to the instant: after every step the friction each body needs and its normal
+force are checked (:math:`|f_i| \ge \mu_s N_i` slip, :math:`N_i < 0` lift-off) and the crossing
+is located by root-finding on the step itself (the integrator run with a shorter step is the
+step's interpolant). Extremes of :math:`|f|/N` and :math:`N` are refined the same way, so they are
+the continuous extremes over :math:`[0, T]`, not values at steps.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.integrate
+import scipy.optimize
+
+from rollspring.analysis import find_equilibrium, normal_modes
+from rollspring.errors import SimulationError
+from rollspring.model import System
+from rollspring.physics import SystemArrays, mass_matrix, stiffness_matrix, system_arrays
+from rollspring.physics.arrays import FloatArray
+from rollspring.simulate import kernels
+from rollspring.simulate.kernels import SCHEMES
+
+__all__ = ["INTEGRATORS", "Trajectory", "simulate"]
+
+#: Accepted values of ``integrator``.
+INTEGRATORS = ("auto", *SCHEMES, "dop853")
+ON_SLIP = ("stop", "continue")
+#: Largest omega*h allowed for any scheme (well inside every scheme's stability interval).
+_MAX_OMEGA_STEP = 0.5
+_DEFAULT_OUTPUTS = 2001
+
+
+@dataclass
+class Trajectory:
+    """The simulated motion at output times ``t`` (s), SI units throughout.
+
+    Per body (columns in the order of ``ids``): ``x`` centre position (m), ``phi`` rotation from
+    the initial placement (rad, clockwise positive), ``v`` centre velocity (m/s), ``omega``
+    angular velocity (rad/s), ``friction`` (N, positive along +x: the static friction needed to
+    roll, or the kinetic friction while slipping), ``normal`` (N), ``friction_ratio``
+    :math:`|f|/(\\mu_s N)` (slip when it reaches 1), ``slipping`` (bool). Per spring:
+    ``spring_length`` (m), ``spring_tension`` (N). Energies (J; gravity, a constant while
+    rolling, left out): ``kinetic``, ``potential``, ``energy``. ``cm_x`` and ``stationary_x``
+    (X̂, when the system has a single zero mode). ``summary`` is the JSON summary.
+    """
+
+    system: System
+    ids: tuple[str, ...]
+    spring_names: tuple[str, ...]
+    t: FloatArray
+    x: FloatArray
+    phi: FloatArray
+    v: FloatArray
+    omega: FloatArray
+    friction: FloatArray
+    normal: FloatArray
+    friction_ratio: FloatArray
+    slipping: np.ndarray
+    spring_length: FloatArray
+    spring_tension: FloatArray
+    kinetic: FloatArray
+    potential: FloatArray
+    energy: FloatArray
+    cm_x: FloatArray
+    stationary_x: FloatArray | None
+    status: str
+    message: str
+    integrator: str
+    step: float | None
+    n_steps: int
+    events: list[dict[str, Any]] = field(default_factory=list)
+    summary: dict[str, Any] = field(default_factory=dict)
+    timings: dict[str, float] = field(default_factory=dict)
+
+    def columns(self) -> dict[str, tuple[str, FloatArray]]:
+        """Every output as ``name -> (unit, values)``, named ``<body>.<quantity>``,
+        ``<spring>.<quantity>`` or the quantity alone (the CSV columns)."""
+        out: dict[str, tuple[str, FloatArray]] = {"t": ("s", self.t)}
+        per_body = [("x", "m", self.x), ("phi", "rad", self.phi), ("v", "m/s", self.v),
+                    ("omega", "rad/s", self.omega), ("friction", "N", self.friction),
+                    ("normal_force", "N", self.normal), ("friction_ratio", "1", self.friction_ratio),
+                    ("slipping", "1", self.slipping.astype(float))]
+        for i, name in enumerate(self.ids):
+            for quantity, unit, values in per_body:
+                out[f"{name}.{quantity}"] = (unit, values[:, i])
+        for s, name in enumerate(self.spring_names):
+            out[f"{name}.length"] = ("m", self.spring_length[:, s])
+            out[f"{name}.tension"] = ("N", self.spring_tension[:, s])
+        out["kinetic_energy"] = ("J", self.kinetic)
+        out["potential_energy"] = ("J", self.potential)
+        out["energy"] = ("J", self.energy)
+        out["cm_x"] = ("m", self.cm_x)
+        if self.stationary_x is not None:
+            out["stationary_x"] = ("m", self.stationary_x)
+        return out
+
+
+@dataclass
+class _Segment:
+    """A piece of the run with one integrator; ``evaluate(t)`` gives the general state."""
+
+    t0: float
+    t1: float
+    slipping: np.ndarray
+    sign: np.ndarray
+    evaluate: Callable[[float], FloatArray]
+    samples: FloatArray  # times inside the segment at which to look for extremes
+
+
+def _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_tolerance) -> None:
+    def bad(name: str, reason: str) -> SimulationError:
+        return SimulationError(f"{name}: {reason}")
+
+    if not isinstance(duration, int | float) or not math.isfinite(duration) or duration <= 0:
+        raise bad("duration", f"must be a positive number of seconds, got {duration!r}")
+    if not isinstance(rtol, int | float) or not math.isfinite(rtol) or not 0 < rtol < 1:
+        raise bad("rtol", f"must be a number in (0, 1), got {rtol!r}")
+    if integrator not in INTEGRATORS:
+        raise bad("integrator", f"unknown integrator {integrator!r}; choose one of "
+                  f"{', '.join(INTEGRATORS)}")
+    if on_slip not in ON_SLIP:
+        raise bad("on_slip", f"must be 'stop' or 'continue', got {on_slip!r}")
+    if n_output is not None and (not isinstance(n_output, int) or n_output < 2):
+        raise bad("n_output", f"must be an integer >= 2, got {n_output!r}")
+    if energy_tolerance is not None and not (
+        isinstance(energy_tolerance, int | float) and energy_tolerance > 0
+    ):
+        raise bad("energy_tolerance", f"must be a positive number, got {energy_tolerance!r}")
+
+
+def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = "auto"):
+    r"""The scheme and step for a run: :math:`\omega h = (\mathrm{rtol}/(C_p\,\omega T))^{1/p}`
+    (at most 0.5), the phase error over the run after :math:`\omega T` radians; ``auto`` takes
+    the scheme with the fewest force evaluations. Returns ``(name, h)``."""
+    names = list(SCHEMES) if integrator == "auto" else [integrator]
+    best = None
+    for name in names:
+        order, weights, constant = SCHEMES[name]
+        if omega <= 0:
+            step = duration
+        else:
+            radians = max(omega * duration, 2 * math.pi)
+            omega_step = min((rtol / (constant * radians)) ** (1.0 / order), _MAX_OMEGA_STEP)
+            step = omega_step / omega
+        cost = len(weights) * duration / step
+        if best is None or cost < best[2]:
+            best = (name, step, cost)
+    return best[0], best[1]
+
+
+def simulate(
+    system: System,
+    duration: float,
+    *,
+    rtol: float = 1e-8,
+    integrator: str = "auto",
+    n_output: int | None = None,
+    step: float | None = None,
+    on_slip: str = "stop",
+    energy_tolerance: float | None = None,
+    progress: Callable[[float], None] | None = None,
+) -> Trajectory:
+    r"""Integrate the exact nonlinear equations of ``system`` for ``duration`` seconds.
+
+    :math:`J_i\ddot\varphi_i = Q_i(\varphi)` while every body rolls (PHYSICS.md (M7)); a body
+    whose needed friction reaches :math:`\mu_s N` slips ((M19), with ``on_slip="continue"``;
+    ``"stop"`` ends the run at that instant); lift-off (:math:`N < 0`) ends the run.
+    ``rtol`` bounds the relative phase (hence position) error over the run; the energy error is
+    checked against ``energy_tolerance`` (default ``100 rtol + 1e-12``) and a run that exceeds
+    it, or goes non-finite, stops with that status. ``n_output`` output times, evenly spaced
+    (default 2001); ``step`` fixes the step of a symplectic scheme (``auto`` then means
+    Yoshida-4); ``progress`` is called with the fraction done.
+    """
+    _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_tolerance)
+    if step is not None and not (isinstance(step, int | float) and math.isfinite(step)
+                                 and 0 < step <= duration):
+        raise SimulationError(f"step: must be a positive number of seconds up to the duration, "
+                              f"got {step!r}")
+    clock = time.perf_counter()
+    duration = float(duration)
+    arrays = system_arrays(system)
+    n = arrays.n_bodies
+    mass = mass_matrix(arrays)
+    equilibrium = find_equilibrium(arrays)
+    omegas_eq, vectors_eq, kinds_eq = normal_modes(mass, stiffness_matrix(arrays, equilibrium.q))
+    omegas_0, _, _ = normal_modes(mass, stiffness_matrix(arrays, np.zeros(n)))
+    omega_max = float(np.sqrt(max(np.max(np.abs(omegas_eq)), np.max(np.abs(omegas_0)), 0.0)))
+    oscillating = np.flatnonzero(kinds_eq == "oscillating")
+    period_linear = (2 * math.pi / math.sqrt(omegas_eq[oscillating[0]])
+                     if equilibrium.found and oscillating.size else None)
+    damped = bool(np.any(arrays.damping > 0))
+    if damped or integrator == "dop853":
+        name, step = "dop853", None
+    elif step is not None:
+        name = "yoshida4" if integrator == "auto" else integrator
+    else:
+        name, step = choose_scheme(omega_max, duration, rtol, integrator)
+    n_output = n_output or _DEFAULT_OUTPUTS
+    grid = np.linspace(0.0, duration, n_output)
+    tolerance = energy_tolerance if energy_tolerance is not None else 100 * rtol + 1e-12
+
+    run = _Run(arrays, grid, name, step, rtol, on_slip, damped, tolerance, progress)
+    run.execute()
+    timings = {"setup": run.started - clock, "integrate": run.integrate_time}
+    trajectory = run.trajectory(system)
+    lowest = vectors_eq[:, oscillating[0]] if oscillating.size else None
+    trajectory.summary = _summary(trajectory, run, arrays, equilibrium.q, lowest, mass,
+                                  period_linear)
+    timings["total"] = time.perf_counter() - clock
+    trajectory.timings = timings
+    return trajectory
+
+
+class _Run:
+    """The state machine of one run: rolling (symplectic) and general (DOP853) segments."""
+
+    def __init__(self, arrays: SystemArrays, grid, scheme, step, rtol, on_slip, damped,
+                 tolerance, progress) -> None:
+        self.arrays = arrays
+        self.model = kernels.kernel_model(arrays)
+        self.grid = grid
+        self.scheme = scheme
+        self.rtol = rtol
+        self.on_slip = on_slip
+        self.damped = damped
+        self.tolerance = tolerance
+        self.progress = progress
+        n = arrays.n_bodies
+        self.n = n
+        dt = grid[1] - grid[0]
+        if step is None:
+            self.stride, self.h = 1, None
+        else:
+            self.stride = max(1, math.ceil(dt / step * (1 - 1e-12)))
+            self.h = dt / self.stride
+        self.coeffs = SCHEMES[scheme][1] if scheme in SCHEMES else SCHEMES["kahanli8"][1]
+        self.rows: list[FloatArray] = []  # general states at output times
+        self.row_slipping: list[np.ndarray] = []
+        self.row_sign: list[np.ndarray] = []
+        self.times: list[float] = []
+        self.segments: list[_Segment] = []
+        self.events: list[dict[str, Any]] = []
+        self.status = "finished"
+        self.message = ""
+        self.n_steps = 0
+        self.integrate_time = 0.0
+        self.started = time.perf_counter()
+        self.rolls = arrays.rolls > 0
+        self.e0 = None
+        #: (kind, body) -> (value, time, width): the kernel's extremes over its steps
+        self.step_extremes: dict[tuple[str, int], tuple[float, float, float]] = {}
+
+    # -- state conversions ---------------------------------------------------------------
+    def general_state(self, q, v, x0) -> FloatArray:
+        """[x, phi, u, omega] of an all-rolling state (q, qdot) with reference positions x0."""
+        a = self.arrays
+        return np.concatenate([x0 + a.scale * q, a.rolls * q, a.scale * v, a.rolls * v],
+                              axis=-1)
+
+    def rolling_state(self, state):
+        """(q, qdot, x0) of a general state in which every body rolls."""
+        a, n = self.arrays, self.n
+        x, phi, u = state[:n], state[n:2 * n], state[2 * n:3 * n]
+        q = np.where(self.rolls, phi, x - a.x0)
+        qdot = np.where(self.rolls, state[3 * n:], u)
+        x0 = np.where(self.rolls, x - a.scale * phi, a.x0)
+        return q, qdot, x0
+
+    # -- the run ---------------------------------------------------------------------------
+    def execute(self) -> None:
+        a = self.arrays
+        state = self.general_state(np.zeros(self.n), a.v0 / a.scale, a.x0)
+        slipping = np.zeros(self.n, dtype=bool)
+        sign = np.zeros(self.n)
+        self._record(0.0, state, slipping, sign)
+        self.e0 = self._energy(state[None, :], slipping[None], sign[None])[0]
+        t = 0.0
+        # a body already beyond its friction limit at release slips from the start
+        verdict = self._contact_verdict(state, slipping)
+        if verdict is not None:
+            kind, body = verdict
+            done = self._event(kind, body, 0.0, state, slipping, sign)
+            if done:
+                return
+        while t < self.grid[-1] and self.status == "finished":
+            if not slipping.any() and not self.damped and self.scheme != "dop853":
+                t, state, slipping, sign = self._rolling_segment(t, state)
+            else:
+                t, state, slipping, sign = self._general_segment(t, state, slipping, sign)
+
+    def _record(self, t, state, slipping, sign) -> None:
+        self._record_block(np.array([t]), np.asarray(state, dtype=float)[None, :], slipping,
+                           sign)
+
+    def _record_block(self, times, states, slipping, sign) -> None:
+        self.times.append(np.asarray(times, dtype=float).copy())
+        self.rows.append(np.asarray(states, dtype=float).copy())
+        self.row_slipping.append(np.broadcast_to(slipping, (len(times), self.n)).copy())
+        self.row_sign.append(np.broadcast_to(sign, (len(times), self.n)).copy())
+
+    def _energy(self, states, slipping, sign) -> FloatArray:
+        *_, potential = self._observe(states, slipping, sign)
+        n, a = self.n, self.arrays
+        u, w = states[:, 2 * n:3 * n], states[:, 3 * n:]
+        central = a.gamma * a.mass * a.radius**2
+        return potential + 0.5 * np.sum(a.mass * u**2 + central * w**2, axis=1)
+
+    def _observe(self, states, slipping, sign):
+        rows = states.shape[0]
+        ns = self.arrays.n_springs
+        friction = np.empty((rows, self.n))
+        normal = np.empty((rows, self.n))
+        length = np.empty((rows, ns))
+        tension = np.empty((rows, ns))
+        potential = np.empty(rows)
+        kernels.observe(self.model, np.ascontiguousarray(states), np.asarray(slipping),
+                        np.asarray(sign, dtype=float), self.damped, friction, normal, length,
+                        tension, potential)
+        return friction, normal, length, tension, potential
+
+    def _contact_verdict(self, state, slipping):
+        """('liftoff' | 'slip', body) if a rolling body violates its contact now, else None."""
+        friction, normal, *_ = self._observe(state[None, :], slipping[None],
+                                             np.zeros((1, self.n)))
+        mu = self.arrays.mu_static
+        for i in range(self.n):
+            if normal[0, i] < 0:
+                return "liftoff", i
+        for i in range(self.n):
+            if self.rolls[i] and not slipping[i] and abs(friction[0, i]) >= mu[i] * normal[0, i] \
+                    and friction[0, i] != 0.0:
+                return "slip", i
+        return None
+
+    def _event(self, kind, body, t, state, slipping, sign) -> bool:
+        """Record an event; returns True when the run ends here."""
+        name = self.arrays.ids[body]
+        self.events.append({"kind": kind, "time": t, "body": name})
+        if kind == "liftoff":
+            self.status = "liftoff"
+            self.message = (f"'{name}' leaves its track at t = {t:.12g} s (N = 0); flight is "
+                            f"not modelled, the run ends here")
+            return True
+        if kind == "slip" and self.on_slip == "stop":
+            self.status = "slip"
+            self.message = (f"'{name}' starts to slip at t = {t:.12g} s (|f| = mu_s N); "
+                            f"the run ends here (on_slip='continue' runs on with kinetic "
+                            f"friction)")
+            return True
+        if kind == "slip":
+            friction, *_ = self._observe(state[None, :], slipping[None], sign[None])
+            slipping[body] = True
+            # the kinetic friction takes the sign of the static friction that was needed
+            sign[body] = -np.sign(friction[0, body]) or 1.0
+        return False
+
+    def _finish_rows_to(self, t_end, state, slipping, sign) -> None:
+        if self.times[-1][-1] < t_end:
+            self._record(t_end, state, slipping, sign)
+
+    def _report(self, t) -> None:
+        if self.progress is not None:
+            self.progress(min(1.0, t / self.grid[-1]))
+
+    # -- symplectic (all rolling, undamped) -------------------------------------------------
+    def _rolling_segment(self, t, state):
+        q, qdot, x0 = self.rolling_state(state)
+        # energy is conserved from here on: the reference is its value now (slip lost some)
+        self.e_segment = self._energy(state[None, :], np.zeros((1, self.n), dtype=bool),
+                                      np.zeros((1, self.n)))[0]
+        model = kernels.kernel_model(self.arrays, x0)
+        slipping = np.zeros(self.n, dtype=bool)
+        sign = np.zeros(self.n)
+        grid, h = self.grid, self.h
+        # first reach the next output time (after an event the segment starts between them)
+        index = int(np.searchsorted(grid, t, side="left"))
+        if index < grid.size and abs(grid[index] - t) <= 1e-12 * grid[-1]:
+            t = float(grid[index])
+        else:
+            target = float(grid[index])
+            pieces = max(1, math.ceil((target - t) / h * (1 - 1e-12)))
+            seg_q, seg_v = q.copy(), qdot.copy()
+            start_t = t
+            q_new, v_new, friction, normal = kernels.advance(model, self.coeffs, q, qdot,
+                                                             target - t, pieces)
+            self.n_steps += pieces
+            violation = self._violation(friction, normal)
+            if violation is not None or not np.all(np.isfinite(q_new)):
+                return self._locate(model, start_t, seg_q, seg_v, target - start_t, pieces,
+                                    x0)
+            self.segments.append(self._rolling_evaluator(model, [start_t, target],
+                                                         [seg_q, q_new], [seg_v, v_new],
+                                                         (target - t) / pieces, x0))
+            q, qdot, t = q_new, v_new, target
+            self._record(t, self.general_state(q, qdot, x0), slipping, sign)
+        first = int(np.searchsorted(grid, t - 1e-12 * grid[-1], side="left"))
+        rows_left = grid.size - 1 - first
+        if rows_left <= 0:
+            return grid[-1], self.general_state(q, qdot, x0), slipping, sign
+        chunk = max(1, rows_left // 50)
+        row_times = [t]
+        row_q = [q.copy()]
+        row_v = [qdot.copy()]
+        extremes = np.empty((4, self.n))
+        before = np.empty((2, self.n))
+        while first < grid.size - 1:
+            rows = min(chunk, grid.size - 1 - first)
+            out_q = np.empty((rows + 1, self.n))
+            out_v = np.empty((rows + 1, self.n))
+            extremes[0] = -np.inf
+            extremes[2] = np.inf
+            began = time.perf_counter()
+            status, steps, body = kernels.run_fixed_step(
+                model, self.coeffs, q, qdot, h, rows * self.stride, self.stride, True, out_q,
+                out_v, extremes, before)
+            self.integrate_time += time.perf_counter() - began
+            self.n_steps += steps
+            self._offer_steps(extremes, float(grid[first]), h)
+            done_rows = steps // self.stride if status == kernels.STATUS_FINISHED else (
+                (steps - 1) // self.stride)
+            for r in range(1, done_rows + 1):
+                row_times.append(float(grid[first + r]))
+                row_q.append(out_q[r].copy())
+                row_v.append(out_v[r].copy())
+            states = self.general_state(out_q[1:done_rows + 1], out_v[1:done_rows + 1], x0)
+            if done_rows:
+                self._record_block(grid[first + 1:first + done_rows + 1], states, slipping,
+                                   sign)
+            if done_rows and not self._energy_ok(states):
+                self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h,
+                                                             x0))
+                return float(self.times[-1][-1]), self.rows[-1][-1], slipping, sign
+            if status != kernels.STATUS_FINISHED:
+                self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h,
+                                                             x0))
+                t_before = float(grid[first]) + (steps - 1) * h
+                if status == kernels.STATUS_NONFINITE:
+                    self.status = "nonfinite"
+                    self.message = (f"the state became non-finite at t = {t_before + h:.6g} s "
+                                    f"('{self.arrays.ids[body]}'); the step cannot resolve the "
+                                    f"motion")
+                    return t_before, self.rows[-1][-1], slipping, sign
+                return self._locate(model, t_before, before[0].copy(), before[1].copy(), h, 1,
+                                    x0)
+            q, qdot = out_q[rows].copy(), out_v[rows].copy()
+            first += rows
+            self._report(grid[first])
+        self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
+        return float(grid[-1]), self.rows[-1][-1], slipping, sign
+
+    def _offer_steps(self, extremes, t_start, h) -> None:
+        for i in range(self.n):
+            for kind, row, better in (("ratio", 0, np.greater), ("normal", 2, np.less)):
+                value = float(extremes[row, i])
+                if not np.isfinite(value) or (kind == "ratio" and not self.rolls[i]):
+                    continue
+                old = self.step_extremes.get((kind, i))
+                if old is None or better(value, old[0]):
+                    self.step_extremes[(kind, i)] = (value, t_start + extremes[row + 1, i] * h,
+                                                     h)
+
+    def _violation(self, friction, normal):
+        mu = self.arrays.mu_static
+        for i in range(self.n):
+            if normal[i] < 0:
+                return "liftoff", i
+            if self.rolls[i] and abs(friction[i]) >= mu[i] * normal[i]:
+                return "slip", i
+        return None
+
+    def _energy_ok(self, states) -> bool:
+        energy = self._energy(states, np.zeros((len(states), self.n), dtype=bool),
+                              np.zeros((len(states), self.n)))
+        scale = max(abs(self.e0), 1e-300)
+        error = float(np.max(np.abs(energy - self.e_segment))) / scale
+        if not np.isfinite(error):
+            self.status = "nonfinite"
+            self.message = "the energy became non-finite; the step cannot resolve the motion"
+            return False
+        if error > self.tolerance and abs(self.e0) > 0:
+            self.status = "energy_error"
+            self.message = (f"the energy error {error:.3g} exceeds its tolerance "
+                            f"{self.tolerance:.3g} (at t = {float(self.times[-1][-1]):.6g} s): the step "
+                            f"does not resolve the motion; lower rtol or use a higher-order "
+                            f"integrator")
+            return False
+        return True
+
+    def _rolling_evaluator(self, model, times, qs, vs, h, x0) -> _Segment:
+        times = np.asarray(times, dtype=float)
+        qs = [np.asarray(x, dtype=float) for x in qs]
+        vs = [np.asarray(x, dtype=float) for x in vs]
+        coeffs = self.coeffs
+
+        def evaluate(t: float) -> FloatArray:
+            r = max(0, min(int(np.searchsorted(times, t, side="right")) - 1, len(times) - 1))
+            span = t - times[r]
+            pieces = max(1, math.ceil(span / h * (1 - 1e-12))) if span > 0 else 0
+            q, v, _, _ = kernels.advance(model, coeffs, qs[r], vs[r], span, pieces)
+            return self.general_state(q, v, x0)
+
+        # extremes: every step boundary is a candidate; sample at output rows and midpoints
+        samples = np.empty(0)  # the output rows and the kernel extremes cover it
+        return _Segment(float(times[0]), float(times[-1]), np.zeros(self.n, dtype=bool),
+                        np.zeros(self.n), evaluate, samples)
+
+    def _locate(self, model, t_before, q, v, span, pieces, x0):
+        """An event happened within ``span`` after ``t_before``: find its instant."""
+        slipping = np.zeros(self.n, dtype=bool)
+        sign = np.zeros(self.n)
+        h = span / pieces
+        # find the piece, then the instant inside it
+        for _ in range(pieces):
+            q1, v1, f1, n1 = kernels.advance(model, self.coeffs, q, v, h, 1)
+            if self._violation(f1, n1) is not None or not np.all(np.isfinite(q1)):
+                break
+            q, v, t_before = q1, v1, t_before + h
+        mu = self.arrays.mu_static
+
+        def margins(tau: float) -> FloatArray:
+            _, _, f, nn = kernels.advance(model, self.coeffs, q, v, tau, 1 if tau > 0 else 0)
+            slip = np.where(self.rolls, mu * nn - np.abs(f), np.inf)
+            slip = np.where(np.isinf(mu), np.inf, slip)
+            return np.concatenate([slip, nn])
+
+        end = margins(h)
+        start = margins(0.0)
+        best = None
+        for j in np.flatnonzero((end < 0) | ((end == 0) & (start > 0))):
+            if not np.isfinite(start[j]) or start[j] <= 0:
+                root = 0.0
+            else:
+                root = scipy.optimize.brentq(lambda tau, j=j: margins(tau)[j], 0.0, h,
+                                             xtol=1e-15, rtol=4 * np.finfo(float).eps)
+            if best is None or root < best[0]:
+                best = (root, j)
+        if best is None:  # non-finite state
+            self.status = "nonfinite"
+            self.message = f"the state became non-finite near t = {t_before:.6g} s"
+            return t_before, self.general_state(q, v, x0), slipping, sign
+        root, j = best
+        kind = "slip" if j < self.n else "liftoff"
+        body = j % self.n
+        q_e, v_e, _, _ = kernels.advance(model, self.coeffs, q, v, root, 1 if root > 0 else 0)
+        t_event = t_before + root
+        state = self.general_state(q_e, v_e, x0)
+        self.segments.append(self._rolling_evaluator(model, [t_before, t_event], [q, q_e],
+                                                     [v, v_e], max(root, 1e-300), x0))
+        if self._event(kind, body, t_event, state, slipping, sign):
+            self._record(t_event, state, slipping, sign)
+            return t_event, state, slipping, sign
+        return t_event, state, slipping, sign
+
+    # -- general (DOP853): damping, slipping ------------------------------------------------
+    def _general_segment(self, t, state, slipping, sign):
+        n, a, model = self.n, self.arrays, self.model
+        slipping = slipping.copy()
+        sign = sign.copy()
+        mu_s = a.mu_static
+
+        def rhs(_t, y):
+            out = np.empty(4 * n)
+            kernels.slipping_derivatives(model, y, slipping, sign, self.damped, out)
+            return out
+
+        def contacts(y):
+            friction, normal, *_ = self._observe(y[None, :], slipping[None], sign[None])
+            return friction[0], normal[0]
+
+        events = []
+        labels = []
+        for i in range(n):
+            if self.rolls[i] and not slipping[i] and np.isfinite(mu_s[i]):
+                events.append(lambda _t, y, i=i: (lambda f, nn: mu_s[i] * nn[i] - abs(f[i]))(
+                    *contacts(y)))
+                labels.append(("slip", i))
+            if self.rolls[i] and slipping[i]:
+                events.append(lambda _t, y, i=i: y[2 * n + i] - a.radius[i] * y[3 * n + i])
+                labels.append(("stick", i))
+            events.append(lambda _t, y, i=i: contacts(y)[1][i])
+            labels.append(("liftoff", i))
+        for event, (kind, i) in zip(events, labels, strict=True):
+            event.terminal = True
+            event.direction = (sign[i] * -1.0) if kind == "stick" else -1.0
+        t_eval = self.grid[(self.grid > t + 1e-12 * self.grid[-1])]
+        scale = max(float(np.max(np.abs(state))), float(np.max(a.radius)))
+        began = time.perf_counter()
+        solution = scipy.integrate.solve_ivp(
+            rhs, (t, self.grid[-1]), state, method="DOP853", t_eval=t_eval,
+            rtol=max(self.rtol, 1e-13), atol=max(self.rtol, 1e-13) * scale * 1e-2,
+            events=events, dense_output=True)
+        self.integrate_time += time.perf_counter() - began
+        self.n_steps += int(solution.t_events is not None and 0) + len(solution.sol.ts) - 1 \
+            if solution.sol is not None else 0
+        if solution.status == -1:
+            self.status = "nonfinite"
+            self.message = f"the adaptive integrator failed: {solution.message}"
+            return self.grid[-1], state, slipping, sign
+        if solution.t.size:
+            self._record_block(solution.t, solution.y.T, slipping, sign)
+        dense = solution.sol
+        t_end = float(solution.t_events and max(
+            (float(te[0]) for te in solution.t_events if len(te)), default=self.grid[-1])
+            if solution.status == 1 else self.grid[-1])
+        self.segments.append(_Segment(t, t_end, slipping.copy(), sign.copy(),
+                                      lambda tt, d=dense: d(tt), np.asarray(dense.ts)))
+        self._report(t_end)
+        if solution.status != 1:
+            return self.grid[-1], solution.y[:, -1] if solution.y.size else state, slipping, sign
+        which = next(j for j, te in enumerate(solution.t_events) if len(te))
+        kind, body = labels[which]
+        y_event = np.asarray(solution.y_events[which][0], dtype=float)
+        if kind == "stick":
+            y_event[2 * n + body] = a.radius[body] * y_event[3 * n + body]  # v_s = 0 exactly
+            trial = slipping.copy()
+            trial[body] = False
+            friction, normal, *_ = self._observe(y_event[None, :], trial[None], sign[None])
+            if abs(friction[0, body]) <= mu_s[body] * normal[0, body]:
+                slipping[body] = False
+                sign[body] = 0.0
+                self.events.append({"kind": "stick", "time": t_end, "body": a.ids[body]})
+            else:
+                sign[body] = -sign[body]
+                self.events.append({"kind": "reverse", "time": t_end, "body": a.ids[body]})
+            return t_end, y_event, slipping, sign
+        if self._event(kind, body, t_end, y_event, slipping, sign):
+            self._record(t_end, y_event, slipping, sign)
+        return t_end, y_event, slipping, sign
+
+    # -- results ----------------------------------------------------------------------------
+    def trajectory(self, system: System) -> Trajectory:
+        a, n = self.arrays, self.n
+        all_times = np.concatenate(self.times)
+        order = np.argsort(all_times, kind="stable")
+        times = all_times[order]
+        keep = np.concatenate([[True], np.diff(times) > 0])
+        order = order[keep]
+        times = times[keep]
+        states = np.concatenate(self.rows)[order]
+        slipping = np.concatenate(self.row_slipping)[order]
+        sign = np.concatenate(self.row_sign)[order]
+        friction, normal, length, tension, potential = self._observe(states, slipping, sign)
+        u, w = states[:, 2 * n:3 * n], states[:, 3 * n:]
+        central = a.gamma * a.mass * a.radius**2
+        kinetic = 0.5 * np.sum(a.mass * u**2 + central * w**2, axis=1)
+        x = states[:, :n]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(self.rolls & (normal > 0), np.abs(friction)
+                             / (a.mu_static * normal), np.where(self.rolls, np.inf, 0.0))
+        ratio = np.where(np.isinf(a.mu_static) & (normal > 0), 0.0, ratio)
+        return Trajectory(
+            system=system, ids=a.ids, spring_names=a.spring_names, t=times, x=x,
+            phi=states[:, n:2 * n], v=u, omega=w, friction=friction, normal=normal,
+            friction_ratio=ratio, slipping=slipping, spring_length=length,
+            spring_tension=tension, kinetic=kinetic, potential=potential,
+            energy=kinetic + potential, cm_x=x @ a.mass / np.sum(a.mass), stationary_x=None,
+            status=self.status, message=self.message, integrator=self.scheme, step=self.h,
+            n_steps=self.n_steps, events=list(self.events))
+
+
+def _summary(trajectory: Trajectory, run: _Run, arrays: SystemArrays, q_eq, lowest, mass,
+             period_linear) -> dict[str, Any]:
+    """The JSON summary (see the README): status, energies, periods, extremes, events."""
+    n = arrays.n_bodies
+    ids = arrays.ids
+    extremes = _continuous_extremes(run, trajectory)
+    conservative = not run.damped and not any(e["kind"] == "slip" for e in run.events)
+    energy = trajectory.energy
+    e0 = float(energy[0])
+    scale = max(abs(e0), float(np.max(np.abs(energy))), 1e-300)
+    if conservative:
+        energy_error = float(np.max(np.abs(energy - e0))) / scale
+    else:  # spurious growth above the running minimum
+        energy_error = float(np.max(energy - np.minimum.accumulate(energy))) / scale
+    # weights of the stationary point (M14) at equilibrium
+    eigenvalues, vectors, kinds = normal_modes(mass, stiffness_matrix(arrays, q_eq))
+    zero = np.flatnonzero(kinds == "zero")
+    if zero.size == 1:
+        raw = arrays.inertia * vectors[:, zero[0]] / arrays.scale
+        if abs(raw.sum()) > 1e-9 * np.sum(np.abs(raw)):
+            weights = raw / raw.sum()
+            trajectory.stationary_x = trajectory.x @ weights
+    period = _measured_period(run, trajectory, lowest, mass, q_eq) if lowest is not None else None
+    first = {kind: next(({"time": e["time"], "body": e["body"]} for e in run.events
+                         if e["kind"] == kind), None) for kind in ("slip", "liftoff")}
+    final = {"time": float(trajectory.t[-1]), "cm_x": float(trajectory.cm_x[-1]),
+             "bodies": {name: {"x": float(trajectory.x[-1, i]),
+                               "phi": float(trajectory.phi[-1, i]),
+                               "v": float(trajectory.v[-1, i]),
+                               "omega": float(trajectory.omega[-1, i])}
+                        for i, name in enumerate(ids)}}
+    return {
+        "status": trajectory.status,
+        "message": trajectory.message,
+        "duration": float(run.grid[-1]),
+        "integrator": run.scheme,
+        "step": run.h,
+        "steps": int(run.n_steps),
+        "energy": e0,
+        "energy_error": energy_error,
+        "period_measured": period,
+        "period_linear": period_linear,
+        "max_friction_ratio": {ids[i]: extremes["ratio"][i] for i in range(n)
+                               if arrays.rolls[i] > 0},
+        "min_normal_force": {ids[i]: extremes["normal"][i] for i in range(n)},
+        "first_slip": first["slip"],
+        "first_liftoff": first["liftoff"],
+        "events": trajectory.events,
+        "final": final,
+    }
+
+
+def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[float]]:
+    r"""max |f|/N (while rolling) and min N per body over the whole run.
+
+    Candidates are the output rows, the compiled kernel's extremes over every step, and the
+    adaptive integrator's steps; the best candidate is refined by bounded Brent minimisation on
+    the integrator's own interpolant over the neighbouring interval (about 1e-9 relative)."""
+    n = run.n
+    spacing = float(run.grid[1] - run.grid[0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(trajectory.normal > 0, np.abs(trajectory.friction) / trajectory.normal,
+                         np.inf)
+    ratio = np.where(trajectory.slipping, -np.inf, ratio)
+    best: dict[tuple[str, int], tuple[float, float, float]] = {}
+
+    def offer(kind: str, i: int, value: float, t: float, width: float) -> None:
+        old = best.get((kind, i))
+        better = old is None or (value > old[0] if kind == "ratio" else value < old[0])
+        if better:
+            best[(kind, i)] = (value, t, width)
+
+    for i in range(n):
+        if run.rolls[i]:
+            k = int(np.argmax(ratio[:, i]))
+            offer("ratio", i, float(ratio[k, i]), float(trajectory.t[k]), spacing)
+        k = int(np.argmin(trajectory.normal[:, i]))
+        offer("normal", i, float(trajectory.normal[k, i]), float(trajectory.t[k]), spacing)
+    for (kind, i), (value, t, width) in run.step_extremes.items():
+        offer(kind, i, value, t, width)
+    for segment in run.segments:
+        if segment.samples.size < 2 or segment.slipping.all():
+            continue
+        states = np.stack([segment.evaluate(float(tt)) for tt in segment.samples])
+        slip = np.broadcast_to(segment.slipping, states[:, :n].shape)
+        sign = np.broadcast_to(segment.sign, states[:, :n].shape)
+        friction, normal, *_ = run._observe(states, slip, sign)
+        width = float(np.max(np.diff(segment.samples)))
+        for i in range(n):
+            if run.rolls[i] and not segment.slipping[i]:
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    r = np.where(normal[:, i] > 0, np.abs(friction[:, i]) / normal[:, i], np.inf)
+                k = int(np.argmax(r))
+                offer("ratio", i, float(r[k]), float(segment.samples[k]), width)
+            k = int(np.argmin(normal[:, i]))
+            offer("normal", i, float(normal[k, i]), float(segment.samples[k]), width)
+
+    result = {"ratio": [0.0] * n, "normal": [math.inf] * n}
+    for (kind, i), (value, t, width) in best.items():
+        if np.isfinite(value):
+            value = _refine(run, kind, i, value, t, width)
+        result[kind][i] = float(value)
+    return result
+
+
+def _refine(run: _Run, kind: str, i: int, value: float, t: float, width: float) -> float:
+    """The extreme near ``t`` (within ``width``), on the segment's interpolant."""
+    segment = next((s for s in run.segments if s.t0 <= t <= s.t1), None)
+    if segment is None or segment.slipping[i] and kind == "ratio":
+        return value
+    lo, hi = max(segment.t0, t - width), min(segment.t1, t + width)
+    if not hi > lo:
+        return value
+
+    def objective(tt: float) -> float:
+        state = segment.evaluate(tt)[None, :]
+        f, nn, *_ = run._observe(state, segment.slipping[None], segment.sign[None])
+        if kind == "ratio":
+            return -(abs(f[0, i]) / nn[0, i]) if nn[0, i] > 0 else -1e300
+        return float(nn[0, i])
+
+    found = scipy.optimize.minimize_scalar(objective, bounds=(lo, hi), method="bounded",
+                                           options={"xatol": 1e-10 * max(width, 1e-300)})
+    refined = -found.fun if kind == "ratio" else found.fun
+    return max(value, refined) if kind == "ratio" else min(value, refined)
+
+
+def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> float | None:
+    r"""Mean period of the lowest mode's coordinate :math:`s = v_1^T M (q - q^*)`, from its
+    upward crossings of its mean, each located by root-finding on the integrator's interpolant."""
+    arrays = run.arrays
+    weights = mode @ mass
+
+    def signal_of(states):
+        n = run.n
+        q = np.where(run.rolls, states[..., n:2 * n], states[..., :n] - arrays.x0)
+        return (q - q_eq) @ weights
+
+    signal = signal_of(np.concatenate([trajectory.x, trajectory.phi, trajectory.v,
+                                       trajectory.omega], axis=1))
+    level = 0.5 * (float(np.max(signal)) + float(np.min(signal)))
+    values = signal - level
+    crossings = []
+    for k in np.flatnonzero((values[:-1] < 0) & (values[1:] >= 0)):
+        lo, hi = float(trajectory.t[k]), float(trajectory.t[k + 1])
+        segment = next((s for s in run.segments if s.t0 <= lo and hi <= s.t1 + 1e-15), None)
+        if segment is None:
+            continue
+        crossings.append(scipy.optimize.brentq(
+            lambda tt, seg=segment: float(signal_of(seg.evaluate(tt))) - level, lo, hi,
+            xtol=1e-15, rtol=4 * np.finfo(float).eps))
+    if len(crossings) < 2:
+        return None
+    return (crossings[-1] - crossings[0]) / (len(crossings) - 1)

@@ -1,0 +1,347 @@
+"""The nonlinear simulation against exact solutions: modal motion, convergence orders, energy,
+slip and lift-off instants, stick-slip, damping, and the kernels against the NumPy physics."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from rollspring.analysis import analyze
+from rollspring.errors import SimulationError
+from rollspring.physics import (
+    contact_forces,
+    generalized_forces,
+    potential_energy,
+    system_arrays,
+)
+from rollspring.simulate import kernels, simulate
+from tests.conftest import body, make_system, spring
+
+G = 9.81
+
+
+def centre_pair(m1: float, m2: float, k: float, compression: float = 0.01, **extra):
+    """The paper's Fig. 2: hoop and cylinder joined at their centres (exactly linear)."""
+    return make_system([body("hoop", "hoop", mass=m1, x=0.0, **extra),
+                        body("cyl", "cylinder", mass=m2, x=0.5 - compression, **extra)],
+                       [spring("hoop", "cyl", stiffness=k, rest_length=0.5)])
+
+
+def exact_pair(m1, m2, k, compression, t):
+    """x1, x2 of the centre pair released from rest: X-hat = (2 m1 x1 + 1.5 m2 x2)/(2m1+1.5m2)
+    stays put, the separation oscillates at Omega^2 = k/(2m1) + 2k/(3m2)."""
+    omega = math.sqrt(k / (2 * m1) + 2 * k / (3 * m2))
+    w1, w2 = 2 * m1 / (2 * m1 + 1.5 * m2), 1.5 * m2 / (2 * m1 + 1.5 * m2)
+    x_hat = w2 * (0.5 - compression)
+    separation = 0.5 - compression * np.cos(omega * t)
+    return x_hat - w2 * separation, x_hat + w1 * separation, omega
+
+
+@settings(max_examples=6, deadline=None)
+@given(st.floats(0.2, 5.0), st.floats(0.2, 5.0), st.floats(10.0, 1000.0))
+def test_centre_pair_matches_the_exact_modal_solution_over_100_periods(m1, m2, k):
+    compression = 0.01
+    _, _, omega = exact_pair(m1, m2, k, compression, 0.0)
+    period = 2 * math.pi / omega
+    trajectory = simulate(centre_pair(m1, m2, k, compression, mu_static=math.inf), 100 * period,
+                          rtol=1e-10)
+    assert trajectory.status == "finished"
+    x1, x2, _ = exact_pair(m1, m2, k, compression, trajectory.t)
+    amplitude = compression * max(abs(x1 - x1[0]).max(), abs(x2 - x2[0]).max()) / compression
+    error = max(np.max(np.abs(trajectory.x[:, 0] - x1)), np.max(np.abs(trajectory.x[:, 1] - x2)))
+    assert error <= 1e-9 * amplitude
+    assert trajectory.summary["period_measured"] == pytest.approx(period, rel=1e-9)
+    assert trajectory.summary["period_linear"] == pytest.approx(period, rel=1e-12)
+    # X-hat is stationary (M11) and the friction ratio peaks at the paper's F/2 on the hoop
+    assert np.ptp(trajectory.stationary_x) <= 1e-9 * amplitude
+    force = k * compression
+    assert trajectory.summary["max_friction_ratio"]["hoop"] == pytest.approx(
+        force / 2 / (m1 * G), rel=1e-9)
+    assert trajectory.summary["max_friction_ratio"]["cyl"] == pytest.approx(
+        force / 3 / (m2 * G), rel=1e-9)
+
+
+@pytest.mark.parametrize(("integrator", "order"), [("verlet", 2), ("yoshida4", 4),
+                                                    ("yoshida6", 6), ("kahanli8", 8)])
+def test_fitted_order_of_each_integrator(integrator, order):
+    m1, m2, k, compression = 1.0, 1.3, 100.0, 0.01
+    _, _, omega = exact_pair(m1, m2, k, compression, 0.0)
+    # a quarter period past a whole number of periods, where a phase error shows to first order
+    duration = 4.25 * 2 * math.pi / omega
+    system = centre_pair(m1, m2, k, compression)
+    # steps large enough that rounding stays far below the error of the scheme
+    base = {2: 0.1, 4: 0.2, 6: 0.4, 8: 0.6}[order] / omega
+    errors, steps = [], []
+    for factor in (1, 2, 4):
+        h = base / factor
+        trajectory = simulate(system, duration, integrator=integrator, step=h, n_output=2)
+        x1, _, _ = exact_pair(m1, m2, k, compression, trajectory.t[-1])
+        errors.append(abs(trajectory.x[-1, 0] - x1))
+        steps.append(trajectory.step)
+    fitted = np.polyfit(np.log(steps), np.log(errors), 1)[0]
+    assert abs(fitted - order) <= 0.3
+
+
+def off_centre_pair():
+    """Hoop and sphere joined off-centre: the spring tilts and the motion is nonlinear."""
+    return make_system(
+        [body("hoop", "hoop", x=0.0, mu_static=math.inf),
+         body("ball", "sphere", x=0.46, v=0.3, mu_static=math.inf)],
+        [spring("hoop", "ball", at=[{"radius": 0.07, "angle": 40.0},
+                                                     {"radius": 0.05, "angle": -120.0}])])
+
+
+def test_energy_stays_bounded_over_a_million_steps_of_a_nonlinear_run():
+    system = off_centre_pair()
+    analysis = analyze(system)
+    omega = max(m.omega for m in analysis.modes)
+    h = 0.15 / omega
+    trajectory = simulate(system, 1_000_000 * h, integrator="yoshida4", step=h,
+                          n_output=4001, energy_tolerance=1e-3)
+    assert trajectory.status == "finished"
+    assert trajectory.n_steps == 1_000_000
+    error = np.abs(trajectory.energy - trajectory.energy[0]) / trajectory.energy[0]
+    early, late = error[:400].max(), error[-400:].max()
+    assert error.max() < 1e-4
+    assert late < 3 * early  # no secular growth: a symplectic scheme's error oscillates
+    # really nonlinear: the bodies turn by many radians and the spring length varies by cm
+    assert np.ptp(trajectory.phi[:, 0]) > 100
+    assert np.ptp(trajectory.spring_length) > 0.02
+
+
+def test_adaptive_dop853_and_symplectic_agree_on_the_nonlinear_run():
+    system = off_centre_pair()
+    symplectic = simulate(system, 3.0, rtol=1e-11, n_output=61)
+    adaptive = simulate(system, 3.0, rtol=1e-11, n_output=61, integrator="dop853")
+    assert adaptive.integrator == "dop853"
+    np.testing.assert_allclose(adaptive.x, symplectic.x, atol=1e-8)
+    np.testing.assert_allclose(adaptive.friction, symplectic.friction, atol=1e-6)
+
+
+def moving_pair(mu_hoop: float):
+    """Centre pair at rest length, pushed apart with X-hat at rest: the deformation is
+    A sin(Omega t), so |f|/N peaks first at Omega t = pi/2."""
+    w1, w2 = 2.0 / 3.5, 1.5 / 3.5  # X-hat weights of equal masses
+    speed = 0.05
+    return make_system([body("hoop", "hoop", x=0.0, v=-w2 * speed, mu_static=mu_hoop),
+                        body("cyl", "cylinder", x=0.5, v=w1 * speed, mu_static=5.0)],
+                       [spring("hoop", "cyl", rest_length=0.5)])
+
+
+@pytest.mark.parametrize("fraction", [0.999, 0.9])
+def test_slip_starts_when_the_needed_friction_first_reaches_mu(fraction):
+    needed = float(analyze(moving_pair(1.0)).required_mu[0])
+    system = moving_pair(fraction * needed)
+    omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)
+    trajectory = simulate(system, 10.0, rtol=1e-10)
+    assert trajectory.status == "slip"
+    slip = trajectory.summary["first_slip"]
+    assert slip["body"] == "hoop"
+    # f(t) = f_max sin(Omega t): the first instant with |f| = mu N
+    assert slip["time"] == pytest.approx(math.asin(fraction) / omega, abs=1e-9)
+    assert trajectory.t[-1] == slip["time"]
+    assert trajectory.friction_ratio[-1, 0] == pytest.approx(1.0, abs=1e-9)
+
+
+def test_no_slip_just_above_the_needed_friction():
+    needed = float(analyze(moving_pair(1.0)).required_mu[0])
+    omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)
+    trajectory = simulate(moving_pair(1.001 * needed), 100 * 2 * math.pi / omega, rtol=1e-10)
+    assert trajectory.status == "finished"
+    assert trajectory.summary["first_slip"] is None
+    assert trajectory.summary["max_friction_ratio"]["hoop"] == pytest.approx(needed, rel=1e-9)
+
+
+def wall_cylinder(stretch: float, mu_s: float, mu_k: float):
+    return make_system([body("c", "cylinder", mass=1.0, radius=0.1, x=0.5 + stretch,
+                             mu_static=mu_s, mu_kinetic=mu_k)],
+                       [spring("wall", "c", stiffness=100.0, rest_length=0.5)],
+                       anchors=[{"id": "wall", "x": 0.0, "y": 0.1}])
+
+
+def slipping_from_release(stretch, mu_k, t):
+    """PHYSICS.md section 9: a cylinder on a wall spring slipping from release:
+    x = x_e + (x0 - x_e) cos(w0 t), phi = -mu_k g t^2/R, x_e = x_rest + mu_k m g/k (m = 1 kg,
+    k = 100 N/m, R = 0.1 m), and the contact point's velocity x' - R phi'."""
+    w0 = 10.0
+    x_e, x0 = 0.5 + mu_k * G / 100.0, 0.5 + stretch
+    x = x_e + (x0 - x_e) * np.cos(w0 * t)
+    phi = -mu_k * G * t**2 / 0.1
+    slip_velocity = -(x0 - x_e) * w0 * np.sin(w0 * t) + 2 * mu_k * G * t
+    return x, phi, slip_velocity
+
+
+def first_zero_of_slip_velocity(stretch, mu_k):
+    from scipy.optimize import brentq
+
+    return brentq(lambda t: slipping_from_release(stretch, mu_k, t)[2], 1e-6, math.pi / 10.0)
+
+
+def test_stick_slip_follows_the_exact_slipping_solution_then_sticks():
+    stretch, mu_s, mu_k = 0.1, 0.3, 0.25
+    trajectory = simulate(wall_cylinder(stretch, mu_s, mu_k), 2.0, rtol=1e-12,
+                          on_slip="continue", n_output=2001)
+    assert trajectory.status == "finished"
+    assert trajectory.events[0] == {"kind": "slip", "time": 0.0, "body": "c"}
+    t_stick = first_zero_of_slip_velocity(stretch, mu_k)
+    # at each stop of the contact point the friction needed, -F/3, is within mu_s N: it
+    # rolls again, until the spring pulls hard enough to make it slip again; the slips die out
+    kinds = [e["kind"] for e in trajectory.events]
+    assert kinds == ["slip", "stick"] * (len(kinds) // 2) and len(kinds) >= 2
+    times = [e["time"] for e in trajectory.events] + [2.0]
+    assert times[1] == pytest.approx(t_stick, abs=1e-9)
+    during = trajectory.t < t_stick
+    x, phi, _ = slipping_from_release(stretch, mu_k, trajectory.t[during])
+    np.testing.assert_allclose(trajectory.x[during, 0], x, atol=1e-8)
+    np.testing.assert_allclose(trajectory.phi[during, 0], phi, atol=1e-8)
+    # (the row at t = 0 shows the instant before the slip: the static friction needed)
+    assert trajectory.slipping[during, 0][1:].all() and not trajectory.slipping[0, 0]
+    # energy is lost while slipping (at the rate mu_k N |v_s|) and only then
+    assert np.all(np.diff(trajectory.energy) <= 1e-12 * trajectory.energy[0])
+    assert trajectory.energy[-1] < 0.9 * trajectory.energy[0]
+    for start, end in zip(times[1::2], times[2::2], strict=True):
+        rolling = (trajectory.t > start) & (trajectory.t < end)
+        assert not trajectory.slipping[rolling, 0].any()
+        assert np.ptp(trajectory.energy[rolling]) <= 1e-9 * trajectory.energy[0]
+        # rolling: x - R phi is constant
+        assert np.ptp(trajectory.x[rolling, 0] - 0.1 * trajectory.phi[rolling, 0]) <= 1e-9
+
+
+def test_slip_reverses_when_the_friction_needed_at_rest_is_too_large():
+    """Stretched further, the contact point stops while the spring still pulls hard: the
+    friction needed to roll, |F|/3, exceeds mu_s N, so the slip reverses instead."""
+    stretch, mu_s, mu_k = 0.2, 0.3, 0.2
+    trajectory = simulate(wall_cylinder(stretch, mu_s, mu_k), 1.0, rtol=1e-12,
+                          on_slip="continue")
+    kinds = [e["kind"] for e in trajectory.events]
+    assert kinds[:2] == ["slip", "reverse"]
+    assert trajectory.events[1]["time"] == pytest.approx(
+        first_zero_of_slip_velocity(stretch, mu_k), abs=1e-9)
+    assert np.all(np.diff(trajectory.energy) <= 1e-12 * trajectory.energy[0])
+
+
+def test_stop_on_slip_ends_the_run_at_release_when_friction_is_too_small():
+    trajectory = simulate(wall_cylinder(0.2, 0.3, 0.2), 2.0)
+    assert trajectory.status == "slip"
+    assert trajectory.summary["first_slip"] == {"time": 0.0, "body": "c"}
+    assert "starts to slip" in trajectory.message
+
+
+def test_lift_off_is_found_to_the_instant():
+    system = make_system(
+        [body("s", "slider", mass=0.1, radius=0.05, x=0.0, v=5.0)],
+        [spring("hook", "s", stiffness=5.0, rest_length=0.5),
+         spring("wall", "s", stiffness=20.0, rest_length=0.4849)],
+        anchors=[{"id": "hook", "x": 0.3, "y": 0.6}, {"id": "wall", "x": -0.5, "y": 0.05}])
+    trajectory = simulate(system, 5.0, rtol=1e-10)
+    assert trajectory.status == "liftoff"
+    assert trajectory.summary["first_liftoff"]["body"] == "s"
+    assert abs(trajectory.normal[-1, 0]) <= 1e-9 * 0.1 * G
+    assert trajectory.normal[:-1, 0].min() > 0
+    assert trajectory.summary["min_normal_force"]["s"] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_damped_wall_cylinder_matches_the_exact_damped_oscillator():
+    """Wall spring at centre height: 1.5 m x'' = -k (x - x_r) - c x' exactly."""
+    k, c, m = 100.0, 2.0, 1.0
+    system = make_system([body("c", "cylinder", mass=m, x=0.52, mu_static=math.inf)],
+                         [spring("wall", "c", stiffness=k, rest_length=0.5, damping=c)],
+                         anchors=[{"id": "wall", "x": 0.0, "y": 0.1}])
+    trajectory = simulate(system, 3.0, rtol=1e-11, n_output=301)
+    assert trajectory.integrator == "dop853"
+    mass = 1.5 * m
+    gamma = c / (2 * mass)
+    wd = math.sqrt(k / mass - gamma**2)
+    t = trajectory.t
+    exact = 0.5 + 0.02 * np.exp(-gamma * t) * (np.cos(wd * t) + gamma / wd * np.sin(wd * t))
+    np.testing.assert_allclose(trajectory.x[:, 0], exact, atol=1e-9)
+    assert np.all(np.diff(trajectory.energy) <= 1e-12)
+    assert trajectory.summary["energy_error"] <= 1e-9
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(0.0, 0.1), st.floats(-180, 180), st.floats(0.0, 0.1), st.floats(-180, 180),
+       st.floats(-3, 3), st.floats(-3, 3))
+def test_kernels_agree_with_the_numpy_physics(r1, a1, r2, a2, q1, q2):
+    system = make_system(
+        [body("a", "hoop", x=0.0), body("b", "cylinder", x=0.5, track_height=0.03)],
+        [spring("a", "b", rest_length=0.45, at=[{"radius": r1, "angle": a1},
+                                                 {"radius": r2, "angle": a2}]),
+         spring("w", "b", stiffness=30.0)],
+        anchors=[{"id": "w", "x": 1.0, "y": 0.2}],
+        forces=[{"body": "a", "at": {"radius": 0.05, "angle": 30.0}, "fx": 0.7, "fy": -0.3}])
+    arrays = system_arrays(system)
+    model = kernels.kernel_model(arrays)
+    q = np.array([q1, q2])
+    _, _, friction, normal = kernels.advance(model, kernels.SCHEMES["verlet"][1], q,
+                                             np.zeros(2), 0.0, 0)
+    f_ref, n_ref = contact_forces(arrays, q)
+    np.testing.assert_allclose(friction, f_ref, atol=1e-12)
+    np.testing.assert_allclose(normal, n_ref, atol=1e-12)
+    state = np.concatenate([arrays.x0 + arrays.scale * q, q, [0.0, 0.0], [0.0, 0.0]])
+    derivative = np.empty(8)
+    kernels.slipping_derivatives(model, state, np.zeros(2, dtype=bool), np.zeros(2), False,
+                                 derivative)
+    np.testing.assert_allclose(derivative[6:] * arrays.inertia, generalized_forces(arrays, q),
+                               atol=1e-12)
+    out = [np.empty((1, 2)), np.empty((1, 2)), np.empty((1, 2)), np.empty((1, 2)), np.empty(1)]
+    kernels.observe(model, state[None, :], np.zeros((1, 2), dtype=bool), np.zeros((1, 2)),
+                    False, *out)
+    assert out[4][0] == pytest.approx(float(potential_energy(arrays, q)), abs=1e-12)
+
+
+@pytest.mark.parametrize(("kwargs", "field"), [
+    ({"duration": -1.0}, "duration"), ({"duration": math.nan}, "duration"),
+    ({"rtol": 0.0}, "rtol"), ({"rtol": -1e-3}, "rtol"), ({"integrator": "rk45"}, "integrator"),
+    ({"on_slip": "ignore"}, "on_slip"), ({"n_output": 1}, "n_output"),
+    ({"step": 0.0}, "step"), ({"energy_tolerance": -1.0}, "energy_tolerance"),
+])
+def test_invalid_arguments_name_the_argument(kwargs, field):
+    arguments = {"duration": 1.0, **kwargs}
+    with pytest.raises(SimulationError, match=f"^{field}: "):
+        simulate(centre_pair(1.0, 1.0, 100.0), **arguments)
+
+
+def test_a_step_that_cannot_resolve_the_motion_is_reported_not_printed():
+    trajectory = simulate(centre_pair(1.0, 1.0, 100.0), 20.0, integrator="verlet", step=0.3)
+    assert trajectory.status in ("nonfinite", "energy_error")
+    assert trajectory.message
+    assert np.all(np.isfinite(trajectory.x))
+    assert trajectory.t[-1] < 20.0
+
+
+def test_a_slipping_hoop_matches_an_independent_solve_ivp_of_the_slipping_equations():
+    """Hoop slipping, cylinder rolling, centre spring (PHYSICS.md (M19)), written out by hand:
+    m1 x1'' = F1 + f, I1 phi1'' = -R f, f = -mu_k m1 g sign(v_s); 1.5 m2 x2'' = -F1."""
+    from scipy.integrate import solve_ivp
+
+    m1, m2, k, radius, mu_k = 1.0, 1.0, 100.0, 0.1, 0.15
+    system = make_system([body("hoop", "hoop", x=0.0, mu_static=0.2, mu_kinetic=mu_k),
+                          body("cyl", "cylinder", x=0.45, mu_static=5.0)],
+                         [spring("hoop", "cyl", stiffness=k, rest_length=0.5)])
+    trajectory = simulate(system, 1.0, rtol=1e-12, on_slip="continue", n_output=1001)
+    assert trajectory.events[0] == {"kind": "slip", "time": 0.0, "body": "hoop"}
+    end = trajectory.events[1]["time"]
+    assert trajectory.events[1]["kind"] in ("stick", "reverse")
+
+    def rhs(_t, y):
+        x1, phi1, x2, u1, w1, u2 = y
+        force_on_hoop = k * (x2 - x1 - 0.5)
+        friction = mu_k * m1 * G  # the slip velocity is negative: friction along +x
+        return [u1, w1, u2, (force_on_hoop + friction) / m1,
+                -radius * friction / (m1 * radius**2), -force_on_hoop / (1.5 * m2)]
+
+    reference = solve_ivp(rhs, (0.0, end), [0.0, 0.0, 0.45, 0.0, 0.0, 0.0], method="DOP853",
+                          rtol=1e-13, atol=1e-15, dense_output=True)
+    during = trajectory.t < end
+    expected = reference.sol(trajectory.t[during])
+    np.testing.assert_allclose(trajectory.x[during, 0], expected[0], atol=1e-8)
+    np.testing.assert_allclose(trajectory.phi[during, 0], expected[1], atol=1e-8)
+    np.testing.assert_allclose(trajectory.x[during, 1], expected[2], atol=1e-8)
+    # the slip velocity reaches zero exactly at the event
+    u1, w1 = reference.sol(end)[3:5]
+    assert abs(u1 - radius * w1) <= 1e-9

@@ -1,0 +1,125 @@
+"""``rollspring simulate``: files, JSON summary, errors, and atomic writing."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from rollspring.cli import app
+from rollspring.model import load_system
+from rollspring.outputs import files as output_files
+from rollspring.outputs import write_trajectory
+from rollspring.simulate import simulate
+
+runner = CliRunner()
+SUMMARY_KEYS = {"status", "energy", "energy_error", "period_measured", "period_linear",
+                "max_friction_ratio", "min_normal_force", "first_slip", "first_liftoff", "final"}
+
+
+def run(*args: str):
+    return runner.invoke(app, list(args))
+
+
+def test_json_summary_is_the_only_thing_on_stdout(tmp_path) -> None:
+    result = run("simulate", "hoop-cylinder", "--duration", "3", "--json", "--out",
+                 str(tmp_path))
+    assert result.exit_code == 0, result.output
+    summary = json.loads(result.stdout)
+    assert SUMMARY_KEYS <= set(summary)
+    assert summary["status"] == "finished"
+    omega = math.sqrt(100 / 2 + 2 * 100 / 3)
+    assert summary["period_linear"] == pytest.approx(2 * math.pi / omega, rel=1e-12)
+    assert summary["period_measured"] == pytest.approx(2 * math.pi / omega, rel=1e-8)
+    assert summary["final"]["time"] == 3.0
+    assert set(summary["final"]["bodies"]["hoop"]) == {"x", "phi", "v", "omega"}
+    assert "wrote" in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["summary.json", "trajectory.csv",
+                                                          "trajectory.npz"]
+
+
+def test_files_hold_the_same_numbers(tmp_path) -> None:
+    trajectory = simulate(load_system("two-cylinders"), 1.0, n_output=101)
+    write_trajectory(trajectory, tmp_path)
+    with open(tmp_path / "trajectory.csv", newline="") as handle:
+        rows = list(csv.reader(handle))
+    header = rows[0]
+    assert header[0] == "t"
+    assert [h for h in header if h.endswith(".x")] == [f"{i}.x" for i in trajectory.ids]
+    table = np.array(rows[1:], dtype=float)
+    assert table.shape == (101, len(header))
+    npz = np.load(tmp_path / "trajectory.npz")
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert set(summary["columns"]) == set(header) == set(npz.files)
+    first_x = next(h for h in header if h.endswith(".x"))
+    np.testing.assert_array_equal(table[:, header.index(first_x)], npz[first_x])
+    np.testing.assert_array_equal(npz[first_x], trajectory.x[:, 0])
+    assert summary["columns"][first_x] == "m" and summary["columns"]["t"] == "s"
+
+
+def test_without_out_no_files_are_written(tmp_path, monkeypatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    result = run("simulate", "two-hoops", "-T", "1")
+    assert result.exit_code == 0, result.output
+    assert "finished" in result.stdout
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(("args", "field"), [
+    (["--duration", "-1"], "duration"), (["--rtol", "0"], "rtol"),
+    (["--integrator", "euler"], "integrator"), (["--on-slip", "skid"], "on_slip"),
+    (["--outputs", "1"], "n_output"),
+])
+def test_invalid_arguments_are_one_line_errors_with_exit_2(args, field) -> None:
+    result = run("simulate", "hoop-cylinder", *args)
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"error: {field}: ")
+
+
+def test_a_slip_is_reported_on_stderr_and_in_the_summary(tmp_path) -> None:
+    system = tmp_path / "slippy.toml"
+    system.write_text(load_system_text().replace("mu_static = 1.0", "mu_static = 0.01", 1))
+    result = run("simulate", str(system), "-T", "2", "--json")
+    assert result.exit_code == 0, result.output
+    summary = json.loads(result.stdout)
+    assert summary["status"] == "slip"
+    assert summary["first_slip"]["time"] == 0.0
+    assert "starts to slip" in result.stderr
+
+
+def load_system_text() -> str:
+    from rollspring.model import preset_path
+
+    return preset_path("hoop-cylinder").read_text()
+
+
+def test_a_write_that_fails_midway_leaves_no_partial_file(tmp_path, monkeypatch) -> None:
+    trajectory = simulate(load_system("hoop-cylinder"), 0.5, n_output=11)
+    write_trajectory(trajectory, tmp_path)
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+
+    real_replace = output_files.os.replace
+    calls = []
+
+    def failing_replace(source, target):
+        calls.append(target)
+        if len(calls) == 2:  # the second file: killed between writing and renaming
+            raise KeyboardInterrupt
+        real_replace(source, target)
+
+    monkeypatch.setattr(output_files.os, "replace", failing_replace)
+    longer = simulate(load_system("hoop-cylinder"), 1.0, n_output=21)
+    with pytest.raises(KeyboardInterrupt):
+        write_trajectory(longer, tmp_path)
+    after = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    assert set(after) == set(before)  # no temporary files left behind
+    # each file is either the old complete one or the new complete one
+    assert after["trajectory.npz"] == before["trajectory.npz"]
+    assert after["trajectory.csv"] != before["trajectory.csv"]
+    assert len(after["trajectory.csv"].decode().splitlines()) == 22

@@ -40,6 +40,7 @@ __all__ = [
     "STATUS_NONFINITE",
     "STATUS_SLIP",
     "advance",
+    "advance_many",
     "body_loads",
     "kernel_model",
     "observe",
@@ -76,20 +77,20 @@ SCHEMES: dict[str, tuple[int, np.ndarray, float]] = {
 
 
 # columns of the packed per-body, per-spring and per-force arrays of the kernel model
-X0, SCALE, ROLLS, CY, INERTIA, MASS, MU_S, CENTRAL, MU_K, RADIUS = range(10)
+X0, SCALE, ROLLS, CY, INERTIA, MASS, MU_S, CENTRAL, MU_K, RADIUS, INV_INERTIA = range(11)
 RA, ALPHA_A, RB, ALPHA_B, AAX, AAY, ABX, ABY, STIFF, REST, DAMP = range(11)
 FR, FALPHA, FX, FY = range(4)
 
 
 def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple:
-    """The model the kernels take: ``(bodies (n, 10), springs (S, 11), spring_ends (S, 2) int,
+    """The model the kernels take: ``(bodies (n, 11), springs (S, 11), spring_ends (S, 2) int,
     forces (F, 4), force_body (F,) int, gravity)`` (columns named by the module constants).
     ``x0`` overrides the reference centre positions (after a body re-sticks:
     ``x_i - R_i phi_i``). Few packed arrays keep the compiled calls cheap."""
     a = arrays
     bodies = np.column_stack([
         a.x0 if x0 is None else x0, a.scale, a.rolls, a.track + a.radius, a.inertia, a.mass,
-        a.mu_static, a.gamma * a.mass * a.radius**2, a.mu_kinetic, a.radius,
+        a.mu_static, a.gamma * a.mass * a.radius**2, a.mu_kinetic, a.radius, 1.0 / a.inertia,
     ]).astype(np.float64)
     springs = np.column_stack([
         a.end_r[:, 0], a.end_alpha[:, 0], a.end_r[:, 1], a.end_alpha[:, 1],
@@ -103,7 +104,7 @@ def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple:
             np.ascontiguousarray(a.force_body, dtype=np.int64), float(a.gravity))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _point(bodies, i, r, alpha, x, phi):
     """Attachment position (M1) and its velocity per unit angular velocity at fixed centre."""
     if r == 0.0:
@@ -115,7 +116,7 @@ def _point(bodies, i, r, alpha, x, phi):
     return x[i] + r * s, bodies[i, CY] + r * c, rolls * r * c, -rolls * r * s
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
     r"""Resultant force and clockwise torque about each centre of springs and constant forces;
     each spring's length and tension :math:`T = k(l - L_0) + c\,\dot l` (``damped``: include
@@ -160,8 +161,9 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
             t += springs[s, DAMP] * (dx * (vbx - vax) + dy * (vby - vay)) / dist
         length[s] = dist
         tension[s] = t
-        tx = t * dx / dist
-        ty = t * dy / dist
+        per_length = t / dist
+        tx = per_length * dx
+        ty = per_length * dy
         if ia >= 0:
             fx[ia] += tx
             fy[ia] += ty
@@ -178,7 +180,7 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
         tau[i] += ox * forces[j, FX] + oy * forces[j, FY]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def rolling_forces(model, q, scratch, gen, fx, fy):
     r"""Generalised forces :math:`Q_i = s_i F_{ix} + \tau_i` (M7) of the all-rolling state
     ``q`` (no damping), into ``gen``; resultant forces into ``fx``, ``fy``. ``scratch`` is a
@@ -192,12 +194,12 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
         gen[i] = bodies[i, SCALE] * fx[i] + tau[i]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _scratch(n, n_springs):
     return (np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n_springs), np.zeros(n_springs))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _contact(model, i, gen_i, fx_i, fy_i):
     """(M8), (M9): friction needed to roll and the normal force."""
     b = model[0]
@@ -206,22 +208,27 @@ def _contact(model, i, gen_i, fx_i, fy_i):
     return friction, b[i, MASS] * model[5] - fy_i
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _stages(model, coeffs, h, q, v, scratch, gen, fx, fy):
+    """One step: the stages of the composition, the closing half-kick of each stage merged
+    with the opening half-kick of the next (they use the same force)."""
     bodies = model[0]
     n = q.shape[0]
-    for w in coeffs:
-        hw = h * w
-        for i in range(n):
-            v[i] += 0.5 * hw * gen[i] / bodies[i, INERTIA]
+    m = coeffs.shape[0]
+    kick = 0.5 * h * coeffs[0]
+    for i in range(n):
+        v[i] += kick * gen[i] * bodies[i, INV_INERTIA]
+    for k in range(m):
+        hw = h * coeffs[k]
         for i in range(n):
             q[i] += hw * v[i]
         rolling_forces(model, q, scratch, gen, fx, fy)
+        kick = 0.5 * h * (coeffs[k] + coeffs[k + 1]) if k + 1 < m else 0.5 * hw
         for i in range(n):
-            v[i] += 0.5 * hw * gen[i] / bodies[i, INERTIA]
+            v[i] += kick * gen[i] * bodies[i, INV_INERTIA]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def advance(model, coeffs, q, v, duration, n_steps):
     """Integrate ``n_steps`` equal steps over ``duration`` (may be 0) from (q, v); returns new
     arrays (q, v, friction, normal) at the end."""
@@ -243,7 +250,20 @@ def advance(model, coeffs, q, v, duration, n_steps):
     return q, v, friction, normal
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
+def advance_many(model, coeffs, q_rows, v_rows, spans, pieces):
+    """``advance`` from row j of (q_rows, v_rows) over spans[j] in pieces[j] equal steps, for
+    every j at once; returns the arrays (q, v)."""
+    q_out = np.empty_like(q_rows)
+    v_out = np.empty_like(v_rows)
+    for j in range(q_rows.shape[0]):
+        q, v, _, _ = advance(model, coeffs, q_rows[j], v_rows[j], spans[j], pieces[j])
+        q_out[j] = q
+        v_out[j] = v
+    return q_out, v_out
+
+
+@njit(cache=True, error_model="numpy")
 def run_fixed_step(model, coeffs, q, v, h, n_steps, stride, check_contacts, out_q, out_v,
                    extremes, before):
     """Integrate ``n_steps`` steps of size ``h`` from (q, v) (updated in place), recording
@@ -302,7 +322,7 @@ def run_fixed_step(model, coeffs, q, v, h, n_steps, stride, check_contacts, out_
     return STATUS_FINISHED, n_steps, -1
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def slipping_derivatives(model, state, slipping, sign, damped, out):
     r"""Time derivative of the general state ``[x, phi, u, omega]`` (4n), PHYSICS.md (M19).
 
@@ -340,7 +360,7 @@ def slipping_derivatives(model, state, slipping, sign, damped, out):
             out[3 * n + i] = alpha
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def observe(model, states, slipping, sign, damped, friction, normal, length, tension,
             potential):
     r"""Per row of ``states`` (rows of ``[x, phi, u, omega]``): friction (the static friction

@@ -1,5 +1,5 @@
 # rollspring: two commands.
-#   make demo   set up .venv and analyse the default system (the paper's hoop and cylinder)
+#   make demo   set up .venv, analyse and simulate the default system (the paper's hoop and cylinder)
 #   make test   set up .venv and run the whole test suite
 PYTHON ?= python3
 VENV   := .venv
@@ -16,6 +16,7 @@ $(STAMP): pyproject.toml constraints.txt
 
 demo: $(STAMP)
 	$(BIN)/rollspring analyze hoop-cylinder
+	$(BIN)/rollspring simulate hoop-cylinder --duration 10 --rtol 1e-10
 
 test: $(STAMP)
 	$(BIN)/python -m pytest

@@ -37,11 +37,18 @@ def test_results_table_numbers_come_from_the_software() -> None:
 
 
 def test_cli_tour_lines_are_real_output() -> None:
-    out = CliRunner().invoke(app, ["analyze"]).stdout
-    for line in README.splitlines():
-        if line.startswith(("│ 2        │", "│ hoop     │", "│ cylinder │", "CM amplitude",
-                            "Stationary point X̂", "Spring split")):
-            assert line in out, line
+    analysed = CliRunner().invoke(app, ["analyze"]).stdout
+    simulated = CliRunner().invoke(app, ["simulate", "-T", "10", "--rtol", "1e-10"]).stdout
+    analyze_part, simulate_part = README.split("## Simulation", 1)
+    checked = 0
+    for part, out in ((analyze_part, analysed), (simulate_part.split("```", 2)[1], simulated)):
+        for line in part.splitlines():
+            if line.startswith(("│ 2        │", "│ hoop     │", "│ cylinder │", "CM amplitude",
+                                "Stationary point X̂", "Spring split", "│ status", "│ period",
+                                "│ integrator", "│ energy")):
+                assert line in out, line
+                checked += 1
+    assert checked >= 12
 
 
 def test_error_example_is_real(tmp_path: Path) -> None:

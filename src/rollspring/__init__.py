@@ -7,10 +7,11 @@ springs to each other and to walls. Quick start::
     system = rollspring.load_system("hoop-cylinder")      # a preset, or a .toml/.json file
     result = rollspring.analyze(system)                   # equilibrium, modes, X-hat, friction
     result.modes[1].omega, result.stationary_weights, result.required_mu
+    run = rollspring.simulate(system, 10.0)               # the exact nonlinear motion
 """
 
 from rollspring.analysis import LinearAnalysis, Mode, analyze, find_equilibrium, normal_modes
-from rollspring.errors import AnalysisError, ModelError, RollspringError
+from rollspring.errors import AnalysisError, ModelError, RollspringError, SimulationError
 from rollspring.model import (
     Anchor,
     Attachment,
@@ -39,6 +40,10 @@ from rollspring.physics import (
     total_energy,
 )
 
+# rollspring.simulate is the subpackage, and callable: rollspring.simulate(system, duration)
+from rollspring import simulate  # noqa: E402
+from rollspring.simulate import Trajectory  # noqa: E402
+
 __version__ = "0.1.0"
 
 __all__ = [
@@ -51,7 +56,9 @@ __all__ = [
     "Mode",
     "ModelError",
     "RollspringError",
+    "SimulationError",
     "Spring",
+    "Trajectory",
     "System",
     "SystemArrays",
     "accelerations",
@@ -67,6 +74,7 @@ __all__ = [
     "normal_modes",
     "potential_energy",
     "preset_names",
+    "simulate",
     "spring_state",
     "stiffness_matrix",
     "system_arrays",

@@ -1,6 +1,24 @@
 """Simulation: the exact nonlinear motion (symplectic, compiled), slip and lift-off to the
-instant, stick-slip with kinetic friction, and batches of runs."""
+instant, stick-slip with kinetic friction, and batches of runs.
+
+The package itself is callable: ``rollspring.simulate(system, duration, ...)`` is
+:func:`rollspring.simulate.run.simulate`, while ``rollspring.simulate.kernels`` and friends stay
+importable as usual.
+"""
+
+import sys
+import types
 
 from rollspring.simulate.run import INTEGRATORS, Trajectory, choose_scheme, simulate
 
 __all__ = ["INTEGRATORS", "Trajectory", "choose_scheme", "simulate"]
+
+
+class _CallableModule(types.ModuleType):
+    """This package, callable as :func:`simulate`."""
+
+    def __call__(self, *args, **kwargs):
+        return simulate(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CallableModule

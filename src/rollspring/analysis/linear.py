@@ -165,7 +165,7 @@ def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations):
     Jacobian :math:`\partial g/\partial\alpha` from finite differences (a straight valley, e.g.
     centre-attached springs on one floor, converges in one step).
     """
-    basis = _valley_directions(system, mass, q, n_zero)
+    basis = np.empty((q.size, n_zero))  # the valley directions of the current iterate
 
     def held(state: FloatArray) -> FloatArray:
         tangent = _valley_directions(system, mass, state, n_zero)

@@ -20,6 +20,7 @@ from typer.testing import CliRunner
 from rollspring.cli import app
 from rollspring.errors import ModelError
 from rollspring.model import load_system
+from tests.test_model import ISSUE_EXAMPLE
 
 INVALID = Path(__file__).parent / "invalid"
 EXAMPLES = Path(__file__).parent.parent / "examples"
@@ -185,32 +186,9 @@ def test_every_fixture_is_a_case_and_every_case_is_distinct() -> None:
 
 # --- what must still be accepted ----------------------------------------------------------------
 
-HOOP_CYLINDER_WITH_COMMENTED_AT = """\
-name = "Hoop and cylinder joined at their centres"
-gravity = 9.81
-
-[[bodies]]
-id = "hoop"
-shape = "hoop"
-mass = 1.0
-radius = 0.1
-x = 0.0
-mu_static = 1.0
-
-[[bodies]]
-id = "cylinder"
-shape = "cylinder"
-mass = 1.0
-radius = 0.1
-x = 0.49          # the 0.5 m spring starts compressed by 0.01 m
-mu_static = 1.0
-
-[[springs]]
-ends = ["hoop", "cylinder"]
-stiffness = 100.0
-rest_length = 0.5
-# at = [{ height = 0.1 }, { height = 0.15 }]
-"""
+HOOP_CYLINDER_WITH_COMMENTED_AT = ISSUE_EXAMPLE.replace(
+    "# at = [{ height = 0.2 }, { radius = 0.05, angle = 0.0 }]   # one entry per end",
+    "# at = [{ height = 0.1 }, { height = 0.15 }]")
 
 
 def test_the_issues_example_with_a_commented_out_at_line_loads(tmp_path: Path) -> None:

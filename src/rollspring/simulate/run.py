@@ -225,7 +225,7 @@ def simulate(
     trajectory = run.trajectory(system)
     lowest = vectors_eq[:, oscillating[0]] if oscillating.size else None
     trajectory.summary = _summary(trajectory, run, arrays, equilibrium.q, lowest, mass,
-                                  period_linear)
+                                  period_linear, (vectors_eq, kinds_eq))
     timings["total"] = time.perf_counter() - clock
     trajectory.timings = timings
     return trajectory
@@ -686,7 +686,7 @@ class _Run:
 
 
 def _summary(trajectory: Trajectory, run: _Run, arrays: SystemArrays, q_eq, lowest, mass,
-             period_linear) -> dict[str, Any]:
+             period_linear, modes) -> dict[str, Any]:
     """The JSON summary (see the README): status, energies, periods, extremes, events."""
     n = arrays.n_bodies
     ids = arrays.ids
@@ -700,7 +700,7 @@ def _summary(trajectory: Trajectory, run: _Run, arrays: SystemArrays, q_eq, lowe
     else:  # spurious growth above the running minimum
         energy_error = float(np.max(energy - np.minimum.accumulate(energy))) / scale
     # weights of the stationary point (M14) at equilibrium
-    eigenvalues, vectors, kinds = normal_modes(mass, stiffness_matrix(arrays, q_eq))
+    vectors, kinds = modes  # the normal modes at equilibrium
     zero = np.flatnonzero(kinds == "zero")
     if zero.size == 1:
         raw = arrays.inertia * vectors[:, zero[0]] / arrays.scale

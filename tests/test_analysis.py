@@ -11,21 +11,32 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rollspring.analysis import analyze, find_equilibrium, normal_modes
-from rollspring.physics import generalized_forces, mass_matrix, stiffness_matrix, system_arrays
+from rollspring.physics import (
+    generalized_forces,
+    mass_matrix,
+    spring_state,
+    stiffness_matrix,
+    system_arrays,
+)
 from tests.conftest import body, make_system, spring
 
 
 @settings(max_examples=40, deadline=None)
 @given(st.floats(0.0, 0.1), st.floats(-180, 180), st.floats(0.0, 0.1), st.floats(-180, 180),
-       st.floats(0.4, 0.6), st.sampled_from(["hoop", "cylinder", "sphere"]))
-def test_equilibrium_holds_the_zero_mode_of_an_off_centre_pair(r1, a1, r2, a2, rest, shape):
+       st.floats(-0.05, 0.05), st.sampled_from(["hoop", "cylinder", "sphere"]))
+def test_equilibrium_holds_the_zero_mode_of_an_off_centre_pair(r1, a1, r2, a2, strain, shape):
     """Q(q*) = 0 and the zero-mode coordinate of the initial placement is kept:
     V0(q*)^T M (q* - 0) = 0, so the motion oscillates about q* (PHYSICS.md (M14)).
-    Springs up to 0.1 m from their rest length on 0.1 m bodies: rolls of up to ~1 rad."""
+    Springs up to 5 cm from their rest length on 0.1 m bodies (rolls of up to ~1 rad); far
+    larger deformations can have the nearest equilibrium several radians away, where "nearest"
+    stops being well defined."""
+    ends = [{"radius": r1, "angle": a1}, {"radius": r2, "angle": a2}]
+    placed = make_system([body("a", "hoop", x=0.0), body("b", shape, x=0.5)],
+                         [spring("a", "b", at=ends)])
+    length = float(spring_state(system_arrays(placed), np.zeros(2)).length[0])
     system = make_system(
         [body("a", "hoop", x=0.0), body("b", shape, x=0.5)],
-        [spring("a", "b", rest_length=rest, at=[{"radius": r1, "angle": a1},
-                                                 {"radius": r2, "angle": a2}])],
+        [spring("a", "b", rest_length=length + strain, at=ends)],
     )
     arrays = system_arrays(system)
     equilibrium = find_equilibrium(arrays)

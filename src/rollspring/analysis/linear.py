@@ -104,9 +104,11 @@ def find_equilibrium(
                 return state, residual
             eigenvalues, vectors, kinds = normal_modes(mass, stiffness_matrix(system, state))
             nonzero = kinds != "zero"
+            if not np.any(nonzero) or np.any(kinds == "unstable"):
+                break  # Newton heads for saddles: leave it to the trust region
             along = vectors[:, nonzero].T @ generalized_forces(system, state)
             step = vectors[:, nonzero] @ (along / eigenvalues[nonzero])
-            if not np.any(nonzero) or float(np.max(np.abs(step))) > 0.1:
+            if float(np.max(np.abs(step))) > 0.1:
                 break
             trial = state + step
             trial_residual = residual_of(trial)

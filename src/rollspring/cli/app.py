@@ -220,3 +220,12 @@ class _progress_after_a_second:  # noqa: N801 - used as a context manager
 def main(argv: list[str] | None = None) -> None:
     """Entry point of the ``rollspring`` console command."""
     app(args=argv)
+
+
+def _register_subcommands() -> None:
+    from rollspring.cli.export import register as register_export
+
+    register_export(app)
+
+
+_register_subcommands()

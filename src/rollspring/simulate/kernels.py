@@ -264,14 +264,21 @@ def advance_many(model, coeffs, q_rows, v_rows, spans, pieces):
 
 
 @njit(cache=True, error_model="numpy")
-def run_fixed_step(model, coeffs, q, v, h, n_steps, stride, check_contacts, out_q, out_v,
-                   extremes, before):
-    """Integrate ``n_steps`` steps of size ``h`` from (q, v) (updated in place), recording
-    (q, v) every ``stride`` steps into rows 1, 2, ... of ``out_q``/``out_v`` (row 0 is left to
-    the caller) and checking rolling validity after every step.
+def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, stride, check_contacts, out_q, out_v,
+                   extremes, extreme_states, weights, q_ref, crossing, crossing_states, before):
+    """Integrate ``n_steps`` steps of size ``h`` from (q, v) at time ``t0`` (updated in place),
+    recording (q, v) every ``stride`` steps into rows 1, 2, ... of ``out_q``/``out_v`` (row 0 is
+    left to the caller) and checking rolling validity after every step.
 
-    ``extremes`` (4, n) is updated per body: max |f|/N over the steps, the step where it occurs,
-    min N, and its step (steps counted from 1 in this call; the caller seeds row 0).
+    Kept across calls (the caller seeds them):
+
+    * ``extremes`` (4, n): per body max |f|/N over the step ends and the start time of that
+      step, min N and the start time of its step; ``extreme_states`` (2, n, 2, n) the state
+      (q, v) at the start of those steps, from which the extreme can be refined.
+    * ``crossing`` (4,): upward zero crossings of the signal s = weights . (q - q_ref): their
+      count, the start times of the steps holding the first and the last, and the last value of
+      s; ``crossing_states`` (2, 2, n) the states at the start of those two steps.
+
     ``before`` (2, n) receives the state at the start of the last step taken. Returns
     (status, step, body): for an event the step in which it happened and the body.
     """
@@ -305,15 +312,38 @@ def run_fixed_step(model, coeffs, q, v, h, n_steps, stride, check_contacts, out_
                 break
         if event >= 0:  # the state after this step is past the event: not an extreme
             return event, step, event_body
+        t_start = t0 + (step - 1) * h
         for i in range(n):
             friction, normal = _contact(model, i, gen[i], fx[i], fy[i])
             if normal < extremes[2, i]:
                 extremes[2, i] = normal
-                extremes[3, i] = step
+                extremes[3, i] = t_start
+                for j in range(n):
+                    extreme_states[1, i, 0, j] = before[0, j]
+                    extreme_states[1, i, 1, j] = before[1, j]
             # |f|/N > best  <=>  |f| > best N (N > 0): no division in the common case
             if bodies[i, ROLLS] > 0.0 and normal > 0.0 and abs(friction) > extremes[0, i] * normal:
                 extremes[0, i] = abs(friction) / normal
-                extremes[1, i] = step
+                extremes[1, i] = t_start
+                for j in range(n):
+                    extreme_states[0, i, 0, j] = before[0, j]
+                    extreme_states[0, i, 1, j] = before[1, j]
+        signal = 0.0
+        for i in range(n):
+            signal += weights[i] * (q[i] - q_ref[i])
+        if crossing[3] < 0.0 <= signal:
+            slot = 0 if crossing[0] == 0 else 1
+            crossing[0] += 1
+            crossing[1 + slot] = t_start
+            if slot == 0:
+                crossing[2] = t_start
+            for j in range(n):
+                crossing_states[slot, 0, j] = before[0, j]
+                crossing_states[slot, 1, j] = before[1, j]
+                if slot == 0:
+                    crossing_states[1, 0, j] = before[0, j]
+                    crossing_states[1, 1, j] = before[1, j]
+        crossing[3] = signal
         if step % stride == 0:
             row = step // stride
             for i in range(n):

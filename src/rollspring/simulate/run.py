@@ -220,6 +220,9 @@ def simulate(
     tolerance = energy_tolerance if energy_tolerance is not None else 100 * rtol + 1e-12
 
     run = _Run(arrays, grid, name, step, rtol, on_slip, damped, tolerance, progress)
+    if oscillating.size and equilibrium.found:  # the lowest mode's coordinate, for its period
+        run.mode_weights = np.ascontiguousarray(mass @ vectors_eq[:, oscillating[0]])
+        run.q_ref = np.ascontiguousarray(equilibrium.q, dtype=float)
     run.execute()
     timings = {"setup": run.started - clock, "integrate": run.integrate_time}
     trajectory = run.trajectory(system)
@@ -267,8 +270,13 @@ class _Run:
         self.started = time.perf_counter()
         self.rolls = arrays.rolls > 0
         self.e0 = None
-        #: (kind, body) -> (value, time, width): the kernel's extremes over its steps
-        self.step_extremes: dict[tuple[str, int], tuple[float, float, float]] = {}
+        #: (kind, body) -> (value, time, width, segment): the kernel's extremes over its steps,
+        #: each with a two-step segment around it to refine it on
+        self.step_extremes: dict[tuple[str, int], tuple] = {}
+        #: per rolling segment: (upward crossings of the mode signal, [first, last] segments)
+        self.crossings: list[tuple[int, list[_Segment]]] = []
+        self.mode_weights = np.zeros(self.n)
+        self.q_ref = np.zeros(self.n)
 
     # -- state conversions ---------------------------------------------------------------
     def general_state(self, q, v, x0) -> FloatArray:
@@ -422,21 +430,23 @@ class _Run:
         row_times = [np.array([t])]
         row_q = [q[None, :].copy()]
         row_v = [qdot[None, :].copy()]
-        extremes = np.empty((4, self.n))
-        before = np.empty((2, self.n))
+        n = self.n
+        extremes = np.array([[-np.inf] * n, [0.0] * n, [np.inf] * n, [0.0] * n])
+        extreme_states = np.zeros((2, n, 2, n))
+        crossing = np.array([0.0, 0.0, 0.0, float(self.mode_weights @ (q - self.q_ref))])
+        crossing_states = np.zeros((2, 2, n))
+        before = np.empty((2, n))
         while first < grid.size - 1:
             rows = min(chunk, grid.size - 1 - first)
-            out_q = np.empty((rows + 1, self.n))
-            out_v = np.empty((rows + 1, self.n))
-            extremes[0] = -np.inf
-            extremes[2] = np.inf
+            out_q = np.empty((rows + 1, n))
+            out_v = np.empty((rows + 1, n))
             began = time.perf_counter()
             status, steps, body = kernels.run_fixed_step(
-                model, self.coeffs, q, qdot, h, rows * self.stride, self.stride, True, out_q,
-                out_v, extremes, before)
+                model, self.coeffs, q, qdot, float(grid[first]), h, rows * self.stride,
+                self.stride, True, out_q, out_v, extremes, extreme_states, self.mode_weights,
+                self.q_ref, crossing, crossing_states, before)
             self.integrate_time += time.perf_counter() - began
             self.n_steps += steps
-            self._offer_steps(extremes, float(grid[first]), h)
             done_rows = steps // self.stride if status == kernels.STATUS_FINISHED else (
                 (steps - 1) // self.stride)
             row_times.append(grid[first + 1:first + done_rows + 1])
@@ -449,10 +459,14 @@ class _Run:
             if done_rows and not self._energy_ok(states):
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h,
                                                              x0))
+                self._offer_steps(model, x0, extremes, extreme_states, crossing,
+                                  crossing_states, h)
                 return float(self.times[-1][-1]), self.rows[-1][-1], slipping, sign
             if status != kernels.STATUS_FINISHED:
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h,
                                                              x0))
+                self._offer_steps(model, x0, extremes, extreme_states, crossing,
+                                  crossing_states, h)
                 t_before = float(grid[first]) + (steps - 1) * h
                 if status == kernels.STATUS_NONFINITE:
                     self.status = "nonfinite"
@@ -466,9 +480,17 @@ class _Run:
             first += rows
             self._report(grid[first])
         self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
+        self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
         return float(grid[-1]), self.rows[-1][-1], slipping, sign
 
-    def _offer_steps(self, extremes, t_start, h) -> None:
+    def _local(self, model, x0, t_start, q, v, h) -> _Segment:
+        """A segment of two steps from the state (q, v) at ``t_start``."""
+        return self._rolling_evaluator(model, [t_start], [q.copy()], [v.copy()], h, x0,
+                                       t_end=t_start + 2 * h)
+
+    def _offer_steps(self, model, x0, extremes, extreme_states, crossing, crossing_states,
+                     h) -> None:
+        """Hand the kernel's extremes and crossings over, each with the state it starts from."""
         for i in range(self.n):
             for kind, row, better in (("ratio", 0, np.greater), ("normal", 2, np.less)):
                 value = float(extremes[row, i])
@@ -476,8 +498,14 @@ class _Run:
                     continue
                 old = self.step_extremes.get((kind, i))
                 if old is None or better(value, old[0]):
-                    self.step_extremes[(kind, i)] = (value, t_start + extremes[row + 1, i] * h,
-                                                     h)
+                    k = 0 if kind == "ratio" else 1
+                    t_start = float(extremes[row + 1, i])
+                    local = self._local(model, x0, t_start, extreme_states[k, i, 0],
+                                        extreme_states[k, i, 1], h)
+                    self.step_extremes[(kind, i)] = (value, t_start + h, h, local)
+        self.crossings.append((int(crossing[0]), [
+            self._local(model, x0, float(crossing[1 + j]), crossing_states[j, 0],
+                        crossing_states[j, 1], h) for j in range(2)]))
 
     def _violation(self, friction, normal):
         mu = self.arrays.mu_static
@@ -506,7 +534,7 @@ class _Run:
             return False
         return True
 
-    def _rolling_evaluator(self, model, times, qs, vs, h, x0) -> _Segment:
+    def _rolling_evaluator(self, model, times, qs, vs, h, x0, t_end=None) -> _Segment:
         """A segment whose state at any t is the integrator run on from the row before t.
         ``times``/``qs``/``vs`` are lists of rows or of blocks of rows."""
         times = np.concatenate([np.atleast_1d(np.asarray(x, dtype=float)) for x in times])
@@ -527,7 +555,8 @@ class _Run:
 
         # extremes: every step boundary is a candidate; sample at output rows and midpoints
         samples = np.empty(0)  # the output rows and the kernel extremes cover it
-        return _Segment(float(times[0]), float(times[-1]), np.zeros(self.n, dtype=bool),
+        return _Segment(float(times[0]), float(times[-1] if t_end is None else t_end),
+                        np.zeros(self.n, dtype=bool),
                         np.zeros(self.n), evaluate, samples)
 
     def _locate(self, model, t_before, q, v, span, pieces, x0):
@@ -753,11 +782,11 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     ratio = np.where(trajectory.slipping, -np.inf, ratio)
     best: dict[tuple[str, int], tuple[float, float, float]] = {}
 
-    def offer(kind: str, i: int, value: float, t: float, width: float) -> None:
+    def offer(kind: str, i: int, value: float, t: float, width: float, local=None) -> None:
         old = best.get((kind, i))
         better = old is None or (value > old[0] if kind == "ratio" else value < old[0])
         if better:
-            best[(kind, i)] = (value, t, width)
+            best[(kind, i)] = (value, t, width, local)
 
     for i in range(n):
         if run.rolls[i]:
@@ -765,8 +794,8 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
             offer("ratio", i, float(ratio[k, i]), float(trajectory.t[k]), spacing)
         k = int(np.argmin(trajectory.normal[:, i]))
         offer("normal", i, float(trajectory.normal[k, i]), float(trajectory.t[k]), spacing)
-    for (kind, i), (value, t, width) in run.step_extremes.items():
-        offer(kind, i, value, t, width)
+    for (kind, i), (value, t, width, local) in run.step_extremes.items():
+        offer(kind, i, value, t, width, local)
     for segment in run.segments:
         if segment.samples.size < 2 or segment.slipping.all():
             continue
@@ -785,16 +814,19 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
             offer("normal", i, float(normal[k, i]), float(segment.samples[k]), width)
 
     result = {"ratio": [0.0] * n, "normal": [math.inf] * n}
-    for (kind, i), (value, t, width) in best.items():
+    for (kind, i), (value, t, width, local) in best.items():
         if np.isfinite(value):
-            value = _refine(run, kind, i, value, t, width)
+            value = _refine(run, kind, i, value, t, width, local)
         result[kind][i] = float(value)
     return result
 
 
-def _refine(run: _Run, kind: str, i: int, value: float, t: float, width: float) -> float:
-    """The extreme near ``t`` (within ``width``), on the segment's interpolant."""
-    segment = next((s for s in run.segments if s.t0 <= t <= s.t1), None)
+def _refine(run: _Run, kind: str, i: int, value: float, t: float, width: float,
+            segment: _Segment | None = None) -> float:
+    """The extreme near ``t`` (within ``width``), on the interpolant of ``segment`` (by default
+    the segment holding ``t``)."""
+    if segment is None:
+        segment = next((s for s in run.segments if s.t0 <= t <= s.t1), None)
     if segment is None or segment.slipping[i] and kind == "ratio":
         return value
     lo, hi = max(segment.t0, t - width), min(segment.t1, t + width)
@@ -845,6 +877,15 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
                                        trajectory.omega], axis=1))
     level = 0.5 * (float(np.max(signal)) + float(np.min(signal)))
     values = signal - level
+    if len(run.crossings) == 1 and len(run.segments) == 1 and run.crossings[0][0] >= 2:
+        # one rolling segment: the kernel counted the upward zero crossings of the signal at
+        # every step and kept the states before the first and the last
+        count, (first, last) = run.crossings[0]
+        times = [scipy.optimize.brentq(
+            lambda tt, seg=seg: float(signal_of(seg.evaluate(tt))), seg.t0, seg.t0 + 0.5 * (
+                seg.t1 - seg.t0), xtol=1e-15, rtol=4 * np.finfo(float).eps)
+            for seg in (first, last)]
+        return (times[1] - times[0]) / (count - 1)
     upward = np.flatnonzero((values[:-1] < 0) & (values[1:] >= 0))
     if upward.size < 2:
         return None

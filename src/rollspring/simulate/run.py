@@ -843,12 +843,13 @@ def _refine(run: _Run, kind: str, i: int, value: float, t: float, width: float,
                 return np.where(nn[:, i] > 0, np.abs(f[:, i]) / nn[:, i], np.inf)
         return -nn[:, i]  # maximise -N
 
-    # zoom twice by 1/16 on a grid of 33 points, then the vertex of the parabola through the
-    # best point and its neighbours: the extreme to about 1e-12 relative
+    # three grids of 9 points, each spanning the best point's neighbours on the last (spacing
+    # width/256 at the end, omega * spacing < 0.004), then the vertex of the parabola through
+    # the best point and its neighbours: the extreme to about 1e-10 relative
     for _ in range(3):
-        times = np.linspace(lo, hi, 33)
+        times = np.linspace(lo, hi, 9)
         values = values_at(times)
-        k = int(np.clip(np.argmax(values), 1, 31))
+        k = int(np.clip(np.argmax(values), 1, 7))
         if not np.all(np.isfinite(values[k - 1:k + 2])):
             best = float(np.max(values))
             break

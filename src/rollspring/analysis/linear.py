@@ -62,6 +62,8 @@ class Equilibrium:
     found: bool
     residual: float
     reason: str = ""
+    #: the stiffness matrix K(q*) (None when no equilibrium was found)
+    stiffness: FloatArray | None = None
 
 
 def find_equilibrium(
@@ -142,13 +144,18 @@ def find_equilibrium(
             "with no restoring stiffness (the system accelerates away), or the nearest "
             "equilibrium is too far away to be found",
         )
-    _, _, kinds = normal_modes(mass, stiffness_matrix(system, q))
+    stiffness = stiffness_matrix(system, q)
+    _, _, kinds = normal_modes(mass, stiffness)
     n_zero = int(np.sum(kinds == "zero"))
     if n_zero:
-        q = _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations)
+        held = _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations)
+        if not np.array_equal(held, q):
+            q, stiffness = held, stiffness_matrix(system, held)
     residual = residual_of(q)
     found = residual <= 1e-9 * scale
-    return Equilibrium(q, found, residual, "" if found else "the equilibrium search did not converge")
+    return Equilibrium(q, found, residual,
+                       "" if found else "the equilibrium search did not converge",
+                       stiffness if found else None)
 
 
 def _valley_directions(system: SystemArrays, mass: FloatArray, q: FloatArray, n_zero: int):

@@ -199,7 +199,9 @@ def simulate(
     n = arrays.n_bodies
     mass = mass_matrix(arrays)
     equilibrium = find_equilibrium(arrays)
-    omegas_eq, vectors_eq, kinds_eq = normal_modes(mass, stiffness_matrix(arrays, equilibrium.q))
+    stiffness_eq = (equilibrium.stiffness if equilibrium.stiffness is not None
+                    else stiffness_matrix(arrays, equilibrium.q))
+    omegas_eq, vectors_eq, kinds_eq = normal_modes(mass, stiffness_eq)
     omegas_0, _, _ = normal_modes(mass, stiffness_matrix(arrays, np.zeros(n)))
     omega_max = float(np.sqrt(max(np.max(np.abs(omegas_eq)), np.max(np.abs(omegas_0)), 0.0)))
     oscillating = np.flatnonzero(kinds_eq == "oscillating")

@@ -345,3 +345,12 @@ def test_a_slipping_hoop_matches_an_independent_solve_ivp_of_the_slipping_equati
     # the slip velocity reaches zero exactly at the event
     u1, w1 = reference.sol(end)[3:5]
     assert abs(u1 - radius * w1) <= 1e-9
+
+
+def test_progress_is_reported_in_order_up_to_the_end():
+    fractions = []
+    # progress comes once per chunk of about 2e5 steps
+    simulate(centre_pair(1.0, 1.0, 100.0, mu_static=math.inf), 60.0, rtol=1e-12,
+             n_output=600_001, progress=fractions.append)
+    assert fractions and fractions == sorted(fractions)
+    assert fractions[-1] == 1.0 and len(fractions) >= 3

@@ -120,6 +120,8 @@ class _Segment:
     sign: np.ndarray
     evaluate: Callable[[float], FloatArray]
     samples: FloatArray  # times inside the segment at which to look for extremes
+    #: for a two-step segment around a kernel extreme: (t0, q, v, -, model, coeffs, h, x0)
+    start: tuple | None = None
 
 
 def _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_tolerance) -> None:
@@ -487,8 +489,10 @@ class _Run:
 
     def _local(self, model, x0, t_start, q, v, h) -> _Segment:
         """A segment of two steps from the state (q, v) at ``t_start``."""
-        return self._rolling_evaluator(model, [t_start], [q.copy()], [v.copy()], h, x0,
-                                       t_end=t_start + 2 * h)
+        segment = self._rolling_evaluator(model, [t_start], [q.copy()], [v.copy()], h, x0,
+                                          t_end=t_start + 2 * h)
+        segment.start = (t_start, q.copy(), v.copy(), None, model, self.coeffs, h, x0)
+        return segment
 
     def _offer_steps(self, model, x0, extremes, extreme_states, crossing, crossing_states,
                      h) -> None:
@@ -547,7 +551,10 @@ class _Run:
         def evaluate(t):
             """The state at time(s) ``t``: (4n,) for a number, (m, 4n) for an array."""
             at = np.atleast_1d(np.asarray(t, dtype=float))
-            rows = np.clip(np.searchsorted(times, at, side="right") - 1, 0, len(times) - 1)
+            if len(times) == 1:
+                rows = np.zeros(at.size, dtype=np.int64)
+            else:
+                rows = np.clip(np.searchsorted(times, at, side="right") - 1, 0, len(times) - 1)
             spans = at - times[rows]
             pieces = np.where(spans > 0, np.maximum(1, np.ceil(spans / h * (1 - 1e-12))), 0)
             q, v = kernels.advance_many(model, coeffs, qs[rows], vs[rows], spans,
@@ -816,11 +823,63 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
             offer("normal", i, float(normal[k, i]), float(segment.samples[k]), width)
 
     result = {"ratio": [0.0] * n, "normal": [math.inf] * n}
+    batched = {key: entry for key, entry in best.items()
+               if entry[3] is not None and getattr(entry[3], "start", None) is not None
+               and np.isfinite(entry[0])}
+    groups: dict[int, dict] = {}  # one group per rolling segment (its model)
+    for key, entry in batched.items():
+        groups.setdefault(id(entry[3].start[4]), {})[key] = entry
+    for group in groups.values():
+        for (kind, i), value in _refine_together(run, group).items():
+            result[kind][i] = value
     for (kind, i), (value, t, width, local) in best.items():
+        if (kind, i) in batched:
+            continue
         if np.isfinite(value):
             value = _refine(run, kind, i, value, t, width, local)
         result[kind][i] = float(value)
     return result
+
+
+def _refine_together(run: _Run, entries: dict) -> dict[tuple[str, int], float]:
+    """:func:`_refine` for many extremes at once, each on its own two-step segment from the
+    state the kernel kept (one compiled call per zoom level for all of them)."""
+    keys = list(entries)
+    model, coeffs, h, x0 = entries[keys[0]][3].start[4:8]
+    q0 = np.stack([entries[k][3].start[1] for k in keys])
+    v0 = np.stack([entries[k][3].start[2] for k in keys])
+    t0 = np.array([entries[k][3].start[0] for k in keys])
+    lo, hi = t0.copy(), t0 + 2 * h
+    sign = np.array([1.0 if kind == "ratio" else -1.0 for kind, _ in keys])
+    bodies = np.array([i for _, i in keys])
+    best = np.array([entries[k][0] for k in keys]) * sign
+    points = 9
+    rows = np.arange(len(keys))
+    for _ in range(3):
+        times = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, points)[None, :]
+        spans = (times - t0[:, None]).ravel()
+        pieces = np.where(spans > 0, np.maximum(1, np.ceil(spans / h * (1 - 1e-12))), 0)
+        q, v = kernels.advance_many(model, coeffs, np.repeat(q0, points, axis=0),
+                                    np.repeat(v0, points, axis=0), spans,
+                                    pieces.astype(np.int64))
+        states = run.general_state(q, v, x0)
+        zeros = np.zeros((len(spans), run.n))
+        friction, normal, *_ = run._observe(states, zeros.astype(bool), zeros)
+        f = friction.reshape(len(keys), points, run.n)[rows, :, bodies]
+        nn = normal.reshape(len(keys), points, run.n)[rows, :, bodies]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(nn > 0, np.abs(f) / nn, np.inf)
+        values = np.where(sign[:, None] > 0, ratio, -nn)
+        k = np.clip(np.argmax(values, axis=1), 1, points - 2)
+        a, b, c = values[rows, k - 1], values[rows, k], values[rows, k + 1]
+        best = np.maximum(best, np.max(values, axis=1))
+        curvature = a - 2 * b + c
+        with np.errstate(divide="ignore", invalid="ignore"):
+            vertex = b - (c - a) ** 2 / (8 * curvature)
+        inside = np.isfinite(a + b + c) & (curvature < 0) & (np.abs(a - c) <= -2 * curvature)
+        best = np.where(inside, np.maximum(best, vertex), best)
+        lo, hi = times[rows, k - 1], times[rows, k + 1]
+    return {key: float(best[j] * sign[j]) for j, key in enumerate(keys)}
 
 
 def _refine(run: _Run, kind: str, i: int, value: float, t: float, width: float,
@@ -876,6 +935,10 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
         q = np.where(run.rolls, states[..., n:2 * n], states[..., :n] - arrays.x0)
         return (q - q_eq) @ weights
 
+    def rate_of(states):
+        n = run.n
+        return np.where(run.rolls, states[..., 3 * n:], states[..., 2 * n:3 * n]) @ weights
+
     signal = signal_of(np.concatenate([trajectory.x, trajectory.phi, trajectory.v,
                                        trajectory.omega], axis=1))
     level = 0.5 * (float(np.max(signal)) + float(np.min(signal)))
@@ -884,10 +947,7 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
         # one rolling segment: the kernel counted the upward zero crossings of the signal at
         # every step and kept the states before the first and the last
         count, (first, last) = run.crossings[0]
-        times = [scipy.optimize.brentq(
-            lambda tt, seg=seg: float(signal_of(seg.evaluate(tt))), seg.t0, seg.t0 + 0.5 * (
-                seg.t1 - seg.t0), xtol=1e-15, rtol=4 * np.finfo(float).eps)
-            for seg in (first, last)]
+        times = [_signal_zero(seg, signal_of, rate_of) for seg in (first, last)]
         return (times[1] - times[0]) / (count - 1)
     upward = np.flatnonzero((values[:-1] < 0) & (values[1:] >= 0))
     if upward.size < 2:
@@ -902,3 +962,29 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
             lambda tt, seg=segment: float(signal_of(seg.evaluate(tt))) - level, lo, hi,
             xtol=1e-15, rtol=4 * np.finfo(float).eps))
     return (crossings[-1] - crossings[0]) / (upward.size - 1)
+
+
+def _signal_zero(segment: _Segment, signal_of, rate_of) -> float:
+    """The upward zero of the signal in the first step of ``segment`` (it is negative at its
+    start and not negative one step later): Newton with the exact rate, safeguarded by
+    bisection, to rounding."""
+    lo, hi = segment.t0, segment.t0 + 0.5 * (segment.t1 - segment.t0)
+    s_lo, s_hi = (float(v) for v in signal_of(segment.evaluate(np.array([lo, hi]))))
+    t = lo - s_lo * (hi - lo) / (s_hi - s_lo) if s_hi != s_lo else hi
+    for _ in range(50):
+        state = segment.evaluate(t)
+        value, rate = float(signal_of(state)), float(rate_of(state))
+        if value < 0:
+            lo = t
+        else:
+            hi = t
+        step = value / rate if rate != 0 else math.inf
+        if abs(step) <= 1e-12 * (segment.t1 - segment.t0):
+            return t - step
+        candidate = t - step
+        if not lo < candidate < hi:
+            candidate = 0.5 * (lo + hi)
+        if hi - lo <= 1e-15:
+            return candidate
+        t = candidate
+    return t

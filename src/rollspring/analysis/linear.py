@@ -148,23 +148,26 @@ def find_equilibrium(
     _, _, kinds = normal_modes(mass, stiffness)
     n_zero = int(np.sum(kinds == "zero"))
     if n_zero:
-        held = _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations)
+        held = _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness)
         if not np.array_equal(held, q):
             q, stiffness = held, stiffness_matrix(system, held)
-    residual = residual_of(q)
+            residual = residual_of(q)
     found = residual <= 1e-9 * scale
     return Equilibrium(q, found, residual,
                        "" if found else "the equilibrium search did not converge",
                        stiffness if found else None)
 
 
-def _valley_directions(system: SystemArrays, mass: FloatArray, q: FloatArray, n_zero: int):
+def _valley_directions(system: SystemArrays, mass: FloatArray, q: FloatArray, n_zero: int,
+                       stiffness: FloatArray | None = None):
     """The ``n_zero`` softest M-normalised modes at ``q``: the directions along the valley."""
-    eigenvalues, vectors = scipy.linalg.eigh(stiffness_matrix(system, q), mass)
+    if stiffness is None:
+        stiffness = stiffness_matrix(system, q)
+    eigenvalues, vectors = scipy.linalg.eigh(stiffness, mass)
     return vectors[:, np.argsort(np.abs(eigenvalues))[:n_zero]]
 
 
-def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations):
+def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness=None):
     r"""Phase 2: the point of the valley of equilibria M-nearest to the initial placement.
 
     On the valley the tangent directions are the zero modes :math:`V_0(q)`; the M-nearest point
@@ -181,8 +184,10 @@ def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations):
         return basis.T @ mass @ tangent @ (tangent.T @ (mass @ state))
 
     size = max(1.0, float(np.max(np.abs(q))))
+    known = stiffness  # K at the starting point, if the caller has it
     for _ in range(max_iterations):
-        basis = _valley_directions(system, mass, q, n_zero)
+        basis = _valley_directions(system, mass, q, n_zero, known)
+        known = None
         g = basis.T @ (mass @ q)
         if float(np.max(np.abs(g))) <= 1e-15 * size * float(np.max(np.abs(basis.T @ mass))):
             break

@@ -435,8 +435,14 @@ class _Run:
         row_q = [q[None, :].copy()]
         row_v = [qdot[None, :].copy()]
         n = self.n
-        extremes = np.array([[-np.inf] * n, [0.0] * n, [np.inf] * n, [0.0] * n])
-        extreme_states = np.zeros((2, n, 2, n))
+        # seeded with the segment's first state: the extremes include its start
+        _, _, friction0, normal0 = kernels.advance(model, self.coeffs, q, qdot, 0.0, 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio0 = np.where(normal0 > 0, np.abs(friction0) / normal0, np.inf)
+        extremes = np.array([np.where(self.rolls, ratio0, -np.inf), [t] * n, normal0, [t] * n])
+        extreme_states = np.empty((2, n, 2, n))
+        extreme_states[:, :, 0, :] = q
+        extreme_states[:, :, 1, :] = qdot
         crossing = np.array([0.0, 0.0, 0.0, float(self.mode_weights @ (q - self.q_ref))])
         crossing_states = np.zeros((2, 2, n))
         before = np.empty((2, n))
@@ -797,14 +803,15 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
         if better:
             best[(kind, i)] = (value, t, width, local)
 
+    # the kernel's extremes first: on a tie they win, as they carry their state
+    for (kind, i), (value, t, width, local) in run.step_extremes.items():
+        offer(kind, i, value, t, width, local)
     for i in range(n):
         if run.rolls[i]:
             k = int(np.argmax(ratio[:, i]))
             offer("ratio", i, float(ratio[k, i]), float(trajectory.t[k]), spacing)
         k = int(np.argmin(trajectory.normal[:, i]))
         offer("normal", i, float(trajectory.normal[k, i]), float(trajectory.t[k]), spacing)
-    for (kind, i), (value, t, width, local) in run.step_extremes.items():
-        offer(kind, i, value, t, width, local)
     for segment in run.segments:
         if segment.samples.size < 2 or segment.slipping.all():
             continue

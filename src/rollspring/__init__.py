@@ -42,12 +42,13 @@ from rollspring.physics import (
 
 # rollspring.simulate is the subpackage, and callable: rollspring.simulate(system, duration)
 from rollspring import simulate  # noqa: E402
-from rollspring.simulate import Trajectory  # noqa: E402
+from rollspring.simulate import BatchResult, Trajectory, simulate_batch  # noqa: E402
 
 __version__ = "0.1.0"
 
 __all__ = [
     "AnalysisError",
+    "BatchResult",
     "Anchor",
     "Attachment",
     "Body",
@@ -75,6 +76,7 @@ __all__ = [
     "potential_energy",
     "preset_names",
     "simulate",
+    "simulate_batch",
     "spring_state",
     "stiffness_matrix",
     "system_arrays",

@@ -189,7 +189,7 @@ def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness
         basis = _valley_directions(system, mass, q, n_zero, known)
         known = None
         g = basis.T @ (mass @ q)
-        if float(np.max(np.abs(g))) <= 1e-15 * size * float(np.max(np.abs(basis.T @ mass))):
+        if float(np.max(np.abs(g))) <= 1e-13 * size * float(np.max(np.abs(basis.T @ mass))):
             break
         h = 1e-6 * size
         jacobian = np.empty((n_zero, n_zero))

@@ -9,9 +9,11 @@ importable as usual.
 import sys
 import types
 
+from rollspring.simulate.batch import BatchResult, simulate_batch
 from rollspring.simulate.run import INTEGRATORS, Trajectory, choose_scheme, simulate
 
-__all__ = ["INTEGRATORS", "Trajectory", "choose_scheme", "simulate"]
+__all__ = ["INTEGRATORS", "BatchResult", "Trajectory", "choose_scheme", "simulate",
+           "simulate_batch"]
 
 
 class _CallableModule(types.ModuleType):

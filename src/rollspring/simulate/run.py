@@ -93,7 +93,8 @@ class Trajectory:
         out: dict[str, tuple[str, FloatArray]] = {"t": ("s", self.t)}
         per_body = [("x", "m", self.x), ("phi", "rad", self.phi), ("v", "m/s", self.v),
                     ("omega", "rad/s", self.omega), ("friction", "N", self.friction),
-                    ("normal_force", "N", self.normal), ("friction_ratio", "1", self.friction_ratio),
+                    ("normal_force", "N", self.normal),
+                    ("friction_ratio", "1", self.friction_ratio),
                     ("slipping", "1", self.slipping.astype(float))]
         for i, name in enumerate(self.ids):
             for quantity, unit, values in per_body:
@@ -540,7 +541,8 @@ class _Run:
         if error > self.tolerance and abs(self.e0) > 0:
             self.status = "energy_error"
             self.message = (f"the energy error {error:.3g} exceeds its tolerance "
-                            f"{self.tolerance:.3g} (at t = {float(self.times[-1][-1]):.6g} s): the step "
+                            f"{self.tolerance:.3g} (at t = {float(self.times[-1][-1]):.6g} s): "
+                            f"the step "
                             f"does not resolve the motion; lower rtol or use a higher-order "
                             f"integrator")
             return False
@@ -660,8 +662,8 @@ class _Run:
             rtol=max(self.rtol, 1e-13), atol=max(self.rtol, 1e-13) * scale * 1e-2,
             events=events, dense_output=True)
         self.integrate_time += time.perf_counter() - began
-        self.n_steps += int(solution.t_events is not None and 0) + len(solution.sol.ts) - 1 \
-            if solution.sol is not None else 0
+        if solution.sol is not None:  # the adaptive steps taken
+            self.n_steps += len(solution.sol.ts) - 1
         if solution.status == -1:
             self.status = "nonfinite"
             self.message = f"the adaptive integrator failed: {solution.message}"

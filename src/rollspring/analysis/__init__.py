@@ -8,6 +8,7 @@ from rollspring.analysis.linear import (
     analyze,
     find_equilibrium,
     normal_modes,
+    stationary_weights,
 )
 
 __all__ = [
@@ -18,4 +19,5 @@ __all__ = [
     "analyze",
     "find_equilibrium",
     "normal_modes",
+    "stationary_weights",
 ]

@@ -42,6 +42,7 @@ __all__ = [
     "analyze",
     "find_equilibrium",
     "normal_modes",
+    "stationary_weights",
 ]
 
 #: An eigenvalue with |lambda| < ZERO_MODE_TOLERANCE * max|lambda| is a zero mode (omega = 0).
@@ -286,6 +287,24 @@ def normal_modes(
     return eigenvalues[order], vectors[:, order], kinds[order]
 
 
+def stationary_weights(system: SystemArrays, vectors: FloatArray,
+                       kinds: np.ndarray) -> FloatArray | None:
+    r"""Weights of the generalised stationary point (PHYSICS.md (M14)),
+    :math:`w_i = J_i v_{0i}/s_i` normalised to :math:`\sum w = 1`, from the single zero mode
+    :math:`v_0` among ``vectors`` (columns, kinds from :func:`normal_modes`); None when there is
+    no zero mode, more than one, or its weights sum to zero (no point is stationary)."""
+    zero = np.flatnonzero(np.asarray(kinds) == "zero")
+    if zero.size != 1:
+        return None
+    raw = system.inertia * vectors[:, zero[0]] / system.scale
+    total = float(np.sum(raw))
+    if not abs(total) > 1e-9 * float(np.sum(np.abs(raw))):
+        return None
+    weights = raw / total
+    weights[np.abs(weights) < 1e-15] = 0.0
+    return weights
+
+
 @dataclass(frozen=True)
 class _Component:
     """A quantity g(t) = centre + sum_groups Re(amplitude_g exp(i omega_g t)) (+ drift t)."""
@@ -379,22 +398,18 @@ def analyze(system: System) -> LinearAnalysis:
 
     # zero modes and the stationary point (M14)
     zero = [k for k, kind in enumerate(kinds) if kind == "zero"]
-    weights = position = velocity = None
-    if len(zero) == 1:
-        raw = arrays.inertia * vectors[:, zero[0]] / arrays.scale
-        total = float(np.sum(raw))
-        if abs(total) > 1e-9 * float(np.sum(np.abs(raw))):
-            weights = raw / total
-            weights[np.abs(weights) < 1e-15] = 0.0
-            position = float(weights @ arrays.x0)
-            velocity = float(_clean(weights @ arrays.v0, float(np.max(np.abs(arrays.v0)))))
-            if velocity != 0.0:
-                warnings.append(
-                    f"the initial velocities move the stationary point X̂ uniformly at "
-                    f"{velocity:.6g} m/s"
-                )
-        else:
-            warnings.append("the conserved combination has zero total weight: no stationary point")
+    weights = stationary_weights(arrays, vectors, kinds)
+    position = velocity = None
+    if weights is not None:
+        position = float(weights @ arrays.x0)
+        velocity = float(_clean(weights @ arrays.v0, float(np.max(np.abs(arrays.v0)))))
+        if velocity != 0.0:
+            warnings.append(
+                f"the initial velocities move the stationary point X̂ uniformly at "
+                f"{velocity:.6g} m/s"
+            )
+    elif len(zero) == 1:
+        warnings.append("the conserved combination has zero total weight: no stationary point")
     elif len(zero) > 1:
         warnings.append(
             f"{len(zero)} zero modes (parts of the system move freely): no single stationary point"

@@ -27,7 +27,7 @@ import numpy as np
 import scipy.integrate
 import scipy.optimize
 
-from rollspring.analysis import find_equilibrium, normal_modes
+from rollspring.analysis import find_equilibrium, normal_modes, stationary_weights
 from rollspring.errors import SimulationError
 from rollspring.model import System
 from rollspring.physics import SystemArrays, mass_matrix, stiffness_matrix, system_arrays
@@ -111,6 +111,19 @@ class Trajectory:
         return out
 
 
+@dataclass(frozen=True)
+class _Start:
+    """A rolling state (q, v) at time t with what the kernel needs to step on from it."""
+
+    t: float
+    q: FloatArray
+    v: FloatArray
+    model: tuple
+    coeffs: FloatArray
+    h: float
+    x0: FloatArray
+
+
 @dataclass
 class _Segment:
     """A piece of the run with one integrator; ``evaluate(t)`` gives the general state."""
@@ -121,8 +134,8 @@ class _Segment:
     sign: np.ndarray
     evaluate: Callable[[float], FloatArray]
     samples: FloatArray  # times inside the segment at which to look for extremes
-    #: for a two-step segment around a kernel extreme: (t0, q, v, -, model, coeffs, h, x0)
-    start: tuple | None = None
+    #: for a two-step segment around a kernel extreme: the state it starts from
+    start: _Start | None = None
 
 
 def _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_tolerance) -> None:
@@ -498,7 +511,7 @@ class _Run:
         """A segment of two steps from the state (q, v) at ``t_start``."""
         segment = self._rolling_evaluator(model, [t_start], [q.copy()], [v.copy()], h, x0,
                                           t_end=t_start + 2 * h)
-        segment.start = (t_start, q.copy(), v.copy(), None, model, self.coeffs, h, x0)
+        segment.start = _Start(t_start, q.copy(), v.copy(), model, self.coeffs, h, x0)
         return segment
 
     def _offer_steps(self, model, x0, extremes, extreme_states, crossing, crossing_states,
@@ -746,13 +759,9 @@ def _summary(trajectory: Trajectory, run: _Run, arrays: SystemArrays, q_eq, lowe
     else:  # spurious growth above the running minimum
         energy_error = float(np.max(energy - np.minimum.accumulate(energy))) / scale
     # weights of the stationary point (M14) at equilibrium
-    vectors, kinds = modes  # the normal modes at equilibrium
-    zero = np.flatnonzero(kinds == "zero")
-    if zero.size == 1:
-        raw = arrays.inertia * vectors[:, zero[0]] / arrays.scale
-        if abs(raw.sum()) > 1e-9 * np.sum(np.abs(raw)):
-            weights = raw / raw.sum()
-            trajectory.stationary_x = trajectory.x @ weights
+    weights = stationary_weights(arrays, *modes)  # from the normal modes at equilibrium
+    if weights is not None:
+        trajectory.stationary_x = trajectory.x @ weights
     period = _measured_period(run, trajectory, lowest, mass, q_eq) if lowest is not None else None
     first = {kind: next(({"time": e["time"], "body": e["body"]} for e in run.events
                          if e["kind"] == kind), None) for kind in ("slip", "liftoff")}
@@ -837,7 +846,7 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
                and np.isfinite(entry[0])}
     groups: dict[int, dict] = {}  # one group per rolling segment (its model)
     for key, entry in batched.items():
-        groups.setdefault(id(entry[3].start[4]), {})[key] = entry
+        groups.setdefault(id(entry[3].start.model), {})[key] = entry
     for group in groups.values():
         for (kind, i), value in _refine_together(run, group).items():
             result[kind][i] = value
@@ -854,10 +863,11 @@ def _refine_together(run: _Run, entries: dict) -> dict[tuple[str, int], float]:
     """:func:`_refine` for many extremes at once, each on its own two-step segment from the
     state the kernel kept (one compiled call per zoom level for all of them)."""
     keys = list(entries)
-    model, coeffs, h, x0 = entries[keys[0]][3].start[4:8]
-    q0 = np.stack([entries[k][3].start[1] for k in keys])
-    v0 = np.stack([entries[k][3].start[2] for k in keys])
-    t0 = np.array([entries[k][3].start[0] for k in keys])
+    first = entries[keys[0]][3].start
+    model, coeffs, h, x0 = first.model, first.coeffs, first.h, first.x0
+    q0 = np.stack([entries[k][3].start.q for k in keys])
+    v0 = np.stack([entries[k][3].start.v for k in keys])
+    t0 = np.array([entries[k][3].start.t for k in keys])
     lo, hi = t0.copy(), t0 + 2 * h
     sign = np.array([1.0 if kind == "ratio" else -1.0 for kind, _ in keys])
     bodies = np.array([i for _, i in keys])

@@ -6,7 +6,17 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: demo test bench clean
+.PHONY: demo test bench clean system-packages
+
+# Debian packages the tests drive: Chromium (report/browser tests, PDF) and a LaTeX engine
+# (the derivations' LaTeX documents are compiled). Installed only when missing.
+SYSTEM_PACKAGES := chromium texlive-latex-base
+system-packages:
+	@if command -v chromium >/dev/null && command -v pdflatex >/dev/null; then :; \
+	elif command -v apt-get >/dev/null && [ "$$(id -u)" = 0 ]; then \
+		echo "installing Debian packages: $(SYSTEM_PACKAGES)"; \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $(SYSTEM_PACKAGES) >/dev/null; \
+	else echo "missing: $(SYSTEM_PACKAGES) (install them with your package manager)" >&2; exit 1; fi
 
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
@@ -18,7 +28,7 @@ demo: $(STAMP)
 	$(BIN)/rollspring analyze hoop-cylinder
 	$(BIN)/rollspring simulate hoop-cylinder --duration 10 --rtol 1e-10
 
-test: $(STAMP)
+test: $(STAMP) system-packages
 	$(BIN)/python -m pytest
 
 # benchmarks (bench/README.md): installs the bench extra (MuJoCo, pymunk), runs every bench/bench_*.py

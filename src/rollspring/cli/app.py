@@ -222,10 +222,22 @@ def main(argv: list[str] | None = None) -> None:
     app(args=argv)
 
 
-def _register_subcommands() -> None:
-    from rollspring.cli.export import register as register_export
+#: Modules of further commands; each has ``register(app)``. (Work in progress: a module that
+#: is not written yet is skipped; the list becomes plain imports once all exist.)
+_COMMAND_MODULES = ("export", "derive", "paper_check", "worksheet", "animate", "report")
 
-    register_export(app)
+
+def _register_subcommands() -> None:
+    import importlib
+
+    for name in _COMMAND_MODULES:
+        try:
+            module = importlib.import_module(f"rollspring.cli.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"rollspring.cli.{name}":
+                raise
+            continue
+        module.register(app)
 
 
 _register_subcommands()

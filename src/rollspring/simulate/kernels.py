@@ -263,12 +263,45 @@ def advance_many(model, coeffs, q_rows, v_rows, spans, pieces):
     return q_out, v_out
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _hermite(model, theta, h, q0, v0, g0, q1, v1, g1, row, out_q, out_v):
+    r"""The quintic Hermite interpolant of one step at :math:`\theta = s/h \in [0, 1]`, from
+    positions, velocities and accelerations :math:`a = Q/J` at both ends:
+    :math:`q(\theta) = H_0 q_0 + H_1 h\dot q_0 + H_2 h^2 a_0 + H_3 q_1 + H_4 h\dot q_1
+    + H_5 h^2 a_1`, error :math:`\le h^6 \max|q^{(6)}|/46080` (and its derivative for
+    :math:`\dot q`). Written into row ``row`` of ``out_q``/``out_v``."""
+    bodies = model[0]
+    t2 = theta * theta
+    t3 = t2 * theta
+    t4 = t3 * theta
+    t5 = t4 * theta
+    h0 = 1.0 - 10.0 * t3 + 15.0 * t4 - 6.0 * t5
+    h1 = theta - 6.0 * t3 + 8.0 * t4 - 3.0 * t5
+    h2 = 0.5 * t2 - 1.5 * t3 + 1.5 * t4 - 0.5 * t5
+    h3 = 1.0 - h0
+    h4 = -4.0 * t3 + 7.0 * t4 - 3.0 * t5
+    h5 = 0.5 * t3 - t4 + 0.5 * t5
+    d0 = -30.0 * t2 + 60.0 * t3 - 30.0 * t4
+    d1 = 1.0 - 18.0 * t2 + 32.0 * t3 - 15.0 * t4
+    d2 = theta - 4.5 * t2 + 6.0 * t3 - 2.5 * t4
+    d4 = -12.0 * t2 + 28.0 * t3 - 15.0 * t4
+    d5 = 1.5 * t2 - 4.0 * t3 + 2.5 * t4
+    for i in range(q0.shape[0]):
+        a0 = g0[i] * bodies[i, INV_INERTIA]
+        a1 = g1[i] * bodies[i, INV_INERTIA]
+        out_q[row, i] = (h0 * q0[i] + h3 * q1[i] + h * (h1 * v0[i] + h4 * v1[i])
+                         + h * h * (h2 * a0 + h5 * a1))
+        out_v[row, i] = (d0 * (q0[i] - q1[i]) / h + d1 * v0[i] + d4 * v1[i]
+                         + h * (d2 * a0 + d5 * a1))
+
+
 @njit(cache=True, error_model="numpy")
-def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, stride, check_contacts, out_q, out_v,
+def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, check_contacts, out_times, out_q, out_v,
                    extremes, extreme_states, weights, q_ref, crossing, crossing_states, before):
     """Integrate ``n_steps`` steps of size ``h`` from (q, v) at time ``t0`` (updated in place),
-    recording (q, v) every ``stride`` steps into rows 1, 2, ... of ``out_q``/``out_v`` (row 0 is
-    left to the caller) and checking rolling validity after every step.
+    checking rolling validity after every step. The state at each of the sorted ``out_times``
+    (within (t0, t0 + n_steps h]) is interpolated from the step holding it (``_hermite``) into
+    the rows of ``out_q``/``out_v``: the output spacing never limits the step.
 
     Kept across calls (the caller seeds them):
 
@@ -280,25 +313,30 @@ def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, stride, check_contacts, 
       s; ``crossing_states`` (2, 2, n) the states at the start of those two steps.
 
     ``before`` (2, n) receives the state at the start of the last step taken. Returns
-    (status, step, body): for an event the step in which it happened and the body.
+    (status, step, body, rows): for an event the step in which it happened and the body; the
+    number of output rows written (those before the event).
     """
     bodies = model[0]
     n = q.shape[0]
     scratch = _scratch(n, model[1].shape[0])
     gen = np.empty(n)
+    gen_before = np.empty(n)
     fx = np.empty(n)
     fy = np.empty(n)
     rolling_forces(model, q, scratch, gen, fx, fy)
+    rows = 0
+    n_out = out_times.shape[0]
     for step in range(1, n_steps + 1):
         for i in range(n):
             before[0, i] = q[i]
             before[1, i] = v[i]
+            gen_before[i] = gen[i]
         _stages(model, coeffs, h, q, v, scratch, gen, fx, fy)
         event = -1
         event_body = -1
         for i in range(n):
             if not (math.isfinite(q[i]) and math.isfinite(v[i])):
-                return STATUS_NONFINITE, step, i
+                return STATUS_NONFINITE, step, i, rows
             if not check_contacts:
                 continue
             friction, normal = _contact(model, i, gen[i], fx[i], fy[i])
@@ -311,8 +349,15 @@ def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, stride, check_contacts, 
                 event_body = i
                 break
         if event >= 0:  # the state after this step is past the event: not an extreme
-            return event, step, event_body
+            return event, step, event_body, rows
         t_start = t0 + (step - 1) * h
+        # outputs inside this step; the last step also takes any left by rounding
+        t_end = t_start + h if step < n_steps else np.inf
+        while rows < n_out and out_times[rows] <= t_end:
+            theta = min(max((out_times[rows] - t_start) / h, 0.0), 1.0)
+            _hermite(model, theta, h, before[0], before[1], gen_before, q, v, gen, rows,
+                     out_q, out_v)
+            rows += 1
         for i in range(n):
             friction, normal = _contact(model, i, gen[i], fx[i], fy[i])
             if normal < extremes[2, i]:
@@ -344,12 +389,7 @@ def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, stride, check_contacts, 
                     crossing_states[1, 0, j] = before[0, j]
                     crossing_states[1, 1, j] = before[1, j]
         crossing[3] = signal
-        if step % stride == 0:
-            row = step // stride
-            for i in range(n):
-                out_q[row, i] = q[i]
-                out_v[row, i] = v[i]
-    return STATUS_FINISHED, n_steps, -1
+    return STATUS_FINISHED, n_steps, -1, rows
 
 
 @njit(cache=True, error_model="numpy")

@@ -42,6 +42,9 @@ INTEGRATORS = ("auto", *SCHEMES, "dop853")
 ON_SLIP = ("stop", "continue")
 #: Largest omega*h allowed for any scheme (well inside every scheme's stability interval).
 _MAX_OMEGA_STEP = 0.5
+#: The quintic Hermite interpolant of a step errs by at most (omega h)^6 / 46080 of the amplitude
+#: in position and (omega h)^5 / 13420 of the velocity amplitude in velocity (measured on sin t).
+_HERMITE_POSITION, _HERMITE_VELOCITY = 46080.0, 13420.0
 _DEFAULT_OUTPUTS = 2001
 
 
@@ -160,8 +163,11 @@ def _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_toler
 
 
 def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = "auto"):
-    r"""The scheme and step for a run: :math:`\omega h = (\mathrm{rtol}/(C_p\,\omega T))^{1/p}`
-    (at most 0.5), the phase error over the run after :math:`\omega T` radians; ``auto`` takes
+    r"""The scheme and step for a run: :math:`\omega h = (\mathrm{rtol}/(C_p\,\omega T))^{1/p}`,
+    the phase error over the run after :math:`\omega T` radians; at most 0.5, and at most
+    :math:`(46080\,\mathrm{rtol})^{1/6}` and :math:`(13420\,\mathrm{rtol})^{1/5}` so that the
+    outputs, interpolated inside the steps with errors :math:`(\omega h)^6/46080` of the
+    amplitude in position and :math:`(\omega h)^5/13420` in velocity, stay within ``rtol``. ``auto`` takes
     the scheme with the fewest force evaluations. Returns ``(name, h)``."""
     names = list(SCHEMES) if integrator == "auto" else [integrator]
     best = None
@@ -171,7 +177,9 @@ def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = 
             step = duration
         else:
             radians = max(omega * duration, 2 * math.pi)
-            omega_step = min((rtol / (constant * radians)) ** (1.0 / order), _MAX_OMEGA_STEP)
+            omega_step = min((rtol / (constant * radians)) ** (1.0 / order), _MAX_OMEGA_STEP,
+                             (_HERMITE_POSITION * rtol) ** (1.0 / 6.0),
+                             (_HERMITE_VELOCITY * rtol) ** (1.0 / 5.0))
             step = omega_step / omega
         cost = len(weights) * duration / step
         if best is None or cost < best[2]:
@@ -199,9 +207,10 @@ def simulate(
     ``rtol`` bounds the relative phase (hence position) error over the run; the energy error is
     checked against ``energy_tolerance`` (default ``100 rtol + 1e-12``) and a run that exceeds
     it, or goes non-finite, stops with that status. ``n_output`` output times, evenly spaced
-    (default 2001); ``step`` fixes the step of a symplectic scheme (``auto`` then means
-    Yoshida-4; rounded down to divide the output spacing, and a step longer than the output
-    spacing thins the outputs to one per step); ``progress`` is called with the fraction done.
+    (default 2001), interpolated inside the steps (quintic Hermite, error far below ``rtol``), so
+    the output spacing never limits the step; ``step`` fixes the step of a symplectic scheme
+    (``auto`` then means Yoshida-4; rounded down so that whole steps fill each rolling
+    stretch); ``progress`` is called with the fraction done.
     """
     _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_tolerance)
     if step is not None and not (isinstance(step, int | float) and math.isfinite(step)
@@ -210,7 +219,6 @@ def simulate(
                               f"got {step!r}")
     clock = time.perf_counter()
     duration = float(duration)
-    requested_step = step
     arrays = system_arrays(system)
     n = arrays.n_bodies
     mass = mass_matrix(arrays)
@@ -231,9 +239,6 @@ def simulate(
     else:
         name, step = choose_scheme(omega_max, duration, rtol, integrator)
     n_output = n_output or _DEFAULT_OUTPUTS
-    if requested_step is not None and requested_step > duration / (n_output - 1):
-        # an explicit step longer than the output spacing: one output per step
-        n_output = math.ceil(duration / requested_step * (1 - 1e-12)) + 1
     grid = np.linspace(0.0, duration, n_output)
     tolerance = energy_tolerance if energy_tolerance is not None else 100 * rtol + 1e-12
 
@@ -268,12 +273,10 @@ class _Run:
         self.progress = progress
         n = arrays.n_bodies
         self.n = n
-        dt = grid[1] - grid[0]
-        if step is None:
-            self.stride, self.h = 1, None
-        else:
-            self.stride = max(1, math.ceil(dt / step * (1 - 1e-12)))
-            self.h = dt / self.stride
+        #: the nominal step; ``h`` is the step actually taken (each rolling segment rounds the
+        #: nominal step down so that whole steps land on the end)
+        self.step = step
+        self.h = step
         self.coeffs = SCHEMES[scheme][1] if scheme in SCHEMES else SCHEMES["kahanli8"][1]
         self.rows: list[FloatArray] = []  # general states at output times
         self.row_slipping: list[np.ndarray] = []
@@ -417,34 +420,16 @@ class _Run:
         model = kernels.kernel_model(self.arrays, x0)
         slipping = np.zeros(self.n, dtype=bool)
         sign = np.zeros(self.n)
-        grid, h = self.grid, self.h
-        # first reach the next output time (after an event the segment starts between them)
-        index = int(np.searchsorted(grid, t, side="left"))
-        if index < grid.size and abs(grid[index] - t) <= 1e-12 * grid[-1]:
-            t = float(grid[index])
-        else:
-            target = float(grid[index])
-            pieces = max(1, math.ceil((target - t) / h * (1 - 1e-12)))
-            seg_q, seg_v = q.copy(), qdot.copy()
-            start_t = t
-            q_new, v_new, friction, normal = kernels.advance(model, self.coeffs, q, qdot,
-                                                             target - t, pieces)
-            self.n_steps += pieces
-            violation = self._violation(friction, normal)
-            if violation is not None or not np.all(np.isfinite(q_new)):
-                return self._locate(model, start_t, seg_q, seg_v, target - start_t, pieces,
-                                    x0)
-            self.segments.append(self._rolling_evaluator(model, [start_t, target],
-                                                         [seg_q, q_new], [seg_v, v_new],
-                                                         (target - t) / pieces, x0))
-            q, qdot, t = q_new, v_new, target
-            self._record(t, self.general_state(q, qdot, x0), slipping, sign)
-        first = int(np.searchsorted(grid, t - 1e-12 * grid[-1], side="left"))
-        rows_left = grid.size - 1 - first
-        if rows_left <= 0:
-            return grid[-1], self.general_state(q, qdot, x0), slipping, sign
+        grid = self.grid
+        span = float(grid[-1]) - t
+        if span <= 1e-12 * grid[-1]:
+            return float(grid[-1]), self.general_state(q, qdot, x0), slipping, sign
+        # equal steps that land on the end; outputs are interpolated inside the steps
+        n_total = max(1, math.ceil(span / self.step * (1 - 1e-12)))
+        h = self.h = span / n_total
+        first = int(np.searchsorted(grid, t + 1e-12 * grid[-1], side="right"))
         # chunks of about 2e5 steps: progress reports and energy checks a few times a second
-        chunk = max(1, min(rows_left, 200_000 // self.stride))
+        chunk = 200_000
         row_times = [np.array([t])]
         row_q = [q[None, :].copy()]
         row_v = [qdot[None, :].copy()]
@@ -460,52 +445,61 @@ class _Run:
         crossing = np.array([0.0, 0.0, 0.0, float(self.mode_weights @ (q - self.q_ref))])
         crossing_states = np.zeros((2, 2, n))
         before = np.empty((2, n))
-        while first < grid.size - 1:
-            rows = min(chunk, grid.size - 1 - first)
-            out_q = np.empty((rows + 1, n))
-            out_v = np.empty((rows + 1, n))
+        q, qdot = q.copy(), qdot.copy()
+        done = 0
+        while done < n_total:
+            steps = min(chunk, n_total - done)
+            t_chunk = t + done * h
+            if done + steps == n_total:
+                last = grid.size
+            else:
+                last = int(np.searchsorted(grid, t + (done + steps) * h, side="right"))
+            out_times = grid[first:last]
+            out_q = np.empty((out_times.size, n))
+            out_v = np.empty((out_times.size, n))
             began = time.perf_counter()
-            status, steps, body = kernels.run_fixed_step(
-                model, self.coeffs, q, qdot, float(grid[first]), h, rows * self.stride,
-                self.stride, True, out_q, out_v, extremes, extreme_states, self.mode_weights,
-                self.q_ref, crossing, crossing_states, before)
+            status, taken, body, filled = kernels.run_fixed_step(
+                model, self.coeffs, q, qdot, t_chunk, h, steps, True, out_times, out_q, out_v,
+                extremes, extreme_states, self.mode_weights, self.q_ref, crossing,
+                crossing_states, before)
             self.integrate_time += time.perf_counter() - began
-            self.n_steps += steps
-            done_rows = steps // self.stride if status == kernels.STATUS_FINISHED else (
-                (steps - 1) // self.stride)
-            row_times.append(grid[first + 1:first + done_rows + 1])
-            row_q.append(out_q[1:done_rows + 1])
-            row_v.append(out_v[1:done_rows + 1])
-            states = self.general_state(out_q[1:done_rows + 1], out_v[1:done_rows + 1], x0)
-            if done_rows:
-                self._record_block(grid[first + 1:first + done_rows + 1], states, slipping,
-                                   sign)
-            if done_rows and not self._energy_ok(states):
+            self.n_steps += taken
+            row_times.append(out_times[:filled])
+            row_q.append(out_q[:filled])
+            row_v.append(out_v[:filled])
+            states = self.general_state(out_q[:filled], out_v[:filled], x0)
+            if filled:
+                self._record_block(out_times[:filled], states, slipping, sign)
+            if filled and not self._energy_ok(states):
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h,
                                                              x0))
                 self._offer_steps(model, x0, extremes, extreme_states, crossing,
                                   crossing_states, h)
                 return float(self.times[-1][-1]), self.rows[-1][-1], slipping, sign
             if status != kernels.STATUS_FINISHED:
+                t_before = t_chunk + (taken - 1) * h
+                row_times.append(np.array([t_before]))
+                row_q.append(before[0][None, :].copy())
+                row_v.append(before[1][None, :].copy())
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h,
                                                              x0))
                 self._offer_steps(model, x0, extremes, extreme_states, crossing,
                                   crossing_states, h)
-                t_before = float(grid[first]) + (steps - 1) * h
                 if status == kernels.STATUS_NONFINITE:
                     self.status = "nonfinite"
                     self.message = (f"the state became non-finite at t = {t_before + h:.6g} s "
                                     f"('{self.arrays.ids[body]}'); the step cannot resolve the "
                                     f"motion")
-                    return t_before, self.rows[-1][-1], slipping, sign
+                    return t_before, self.general_state(before[0], before[1], x0), slipping, \
+                        sign
                 return self._locate(model, t_before, before[0].copy(), before[1].copy(), h, 1,
                                     x0)
-            q, qdot = out_q[rows].copy(), out_v[rows].copy()
-            first += rows
-            self._report(grid[first])
+            first += filled
+            done += steps
+            self._report(t + done * h)
         self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
         self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
-        return float(grid[-1]), self.rows[-1][-1], slipping, sign
+        return float(grid[-1]), self.general_state(q, qdot, x0), slipping, sign
 
     def _local(self, model, x0, t_start, q, v, h) -> _Segment:
         """A segment of two steps from the state (q, v) at ``t_start``."""

@@ -44,8 +44,10 @@ __all__ = [
     "body_loads",
     "kernel_model",
     "observe",
+    "refine_extremes",
     "rolling_forces",
     "run_fixed_step",
+    "signal_zero",
     "slipping_derivatives",
 ]
 
@@ -390,6 +392,109 @@ def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, check_contacts, out_time
                     crossing_states[1, 1, j] = before[1, j]
         crossing[3] = signal
     return STATUS_FINISHED, n_steps, -1, rows
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _advance_into(model, coeffs, h, q0, v0, span, q, v, scratch, gen, fx, fy):
+    """``advance`` without allocations: (q, v) and the loads after ``span`` from (q0, v0), in
+    ceil(span/h) equal steps."""
+    for i in range(q0.shape[0]):
+        q[i] = q0[i]
+        v[i] = v0[i]
+    rolling_forces(model, q, scratch, gen, fx, fy)
+    if span > 0.0:
+        pieces = max(1, math.ceil(span / h * (1.0 - 1e-12)))
+        for _ in range(pieces):
+            _stages(model, coeffs, span / pieces, q, v, scratch, gen, fx, fy)
+
+
+@njit(cache=True, error_model="numpy")
+def refine_extremes(model, coeffs, h, q0, v0, kinds, bodies, best):
+    r"""The extremes the kernel found at step ends, refined on the integrator itself: for
+    extreme j (``kinds[j]`` 0: max :math:`|f|/N`, 1: min :math:`N`, of body ``bodies[j]``) over
+    the two steps from the state (q0[j], v0[j]), three grids of 9 points, each spanning the best
+    point's neighbours on the last (spacing 2h/256 at the end), then the vertex of the parabola
+    through the best point and its neighbours: the value to about 1e-10 relative. ``best`` holds
+    the values found so far as maximised quantities (:math:`|f|/N` or :math:`-N`); returns the
+    refined ones in the same form."""
+    m, n = q0.shape
+    out = best.copy()
+    scratch = _scratch(n, model[1].shape[0])
+    gen = np.empty(n)
+    fx = np.empty(n)
+    fy = np.empty(n)
+    q = np.empty(n)
+    v = np.empty(n)
+    values = np.empty(9)
+    times = np.empty(9)
+    for j in range(m):
+        b = bodies[j]
+        lo, hi = 0.0, 2.0 * h
+        for _level in range(3):
+            for p in range(9):
+                times[p] = lo + (hi - lo) * p / 8.0
+                _advance_into(model, coeffs, h, q0[j], v0[j], times[p], q, v, scratch, gen,
+                              fx, fy)
+                friction, normal = _contact(model, b, gen[b], fx[b], fy[b])
+                if kinds[j] == 0:
+                    values[p] = abs(friction) / normal if normal > 0.0 else np.inf
+                else:
+                    values[p] = -normal
+            k = min(max(int(np.argmax(values)), 1), 7)
+            a, c = values[k - 1], values[k + 1]
+            middle = values[k]
+            out[j] = max(out[j], np.max(values))
+            curvature = a - 2.0 * middle + c
+            if (math.isfinite(a + middle + c) and curvature < 0.0
+                    and abs(a - c) <= -2.0 * curvature):
+                out[j] = max(out[j], middle - (c - a) ** 2 / (8.0 * curvature))
+            lo, hi = times[k - 1], times[k + 1]
+    return out
+
+
+@njit(cache=True, error_model="numpy")
+def signal_zero(model, coeffs, h, q0, v0, weights, q_ref):
+    r"""The instant :math:`\tau \in [0, h]` at which the signal
+    :math:`s = w \cdot (q - q_{ref})`, negative at (q0, v0) and not negative one step later,
+    crosses zero: Newton with the exact rate :math:`\dot s = w \cdot \dot q`, safeguarded by
+    bisection, on the integrator's own step, to rounding."""
+    n = q0.shape[0]
+    scratch = _scratch(n, model[1].shape[0])
+    gen = np.empty(n)
+    fx = np.empty(n)
+    fy = np.empty(n)
+    q = np.empty(n)
+    v = np.empty(n)
+    lo, hi = 0.0, h
+    s_lo = 0.0
+    for i in range(n):
+        s_lo += weights[i] * (q0[i] - q_ref[i])
+    _advance_into(model, coeffs, h, q0, v0, hi, q, v, scratch, gen, fx, fy)
+    s_hi = 0.0
+    for i in range(n):
+        s_hi += weights[i] * (q[i] - q_ref[i])
+    t = lo - s_lo * (hi - lo) / (s_hi - s_lo) if s_hi != s_lo else hi
+    for _ in range(60):
+        _advance_into(model, coeffs, h, q0, v0, t, q, v, scratch, gen, fx, fy)
+        value = 0.0
+        rate = 0.0
+        for i in range(n):
+            value += weights[i] * (q[i] - q_ref[i])
+            rate += weights[i] * v[i]
+        if value < 0.0:
+            lo = t
+        else:
+            hi = t
+        step = value / rate if rate != 0.0 else np.inf
+        if abs(step) <= 1e-12 * h:
+            return t - step
+        candidate = t - step
+        if not (lo < candidate < hi):
+            candidate = 0.5 * (lo + hi)
+        if hi - lo <= 1e-16 * max(h, 1.0):
+            return candidate
+        t = candidate
+    return t
 
 
 @njit(cache=True, error_model="numpy")

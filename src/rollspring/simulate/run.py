@@ -858,41 +858,15 @@ def _refine_together(run: _Run, entries: dict) -> dict[tuple[str, int], float]:
     state the kernel kept (one compiled call per zoom level for all of them)."""
     keys = list(entries)
     first = entries[keys[0]][3].start
-    model, coeffs, h, x0 = first.model, first.coeffs, first.h, first.x0
     q0 = np.stack([entries[k][3].start.q for k in keys])
     v0 = np.stack([entries[k][3].start.v for k in keys])
-    t0 = np.array([entries[k][3].start.t for k in keys])
-    lo, hi = t0.copy(), t0 + 2 * h
-    sign = np.array([1.0 if kind == "ratio" else -1.0 for kind, _ in keys])
-    bodies = np.array([i for _, i in keys])
+    kinds = np.array([0 if kind == "ratio" else 1 for kind, _ in keys], dtype=np.int64)
+    bodies = np.array([i for _, i in keys], dtype=np.int64)
+    sign = np.where(kinds == 0, 1.0, -1.0)
     best = np.array([entries[k][0] for k in keys]) * sign
-    points = 9
-    rows = np.arange(len(keys))
-    for _ in range(3):
-        times = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, points)[None, :]
-        spans = (times - t0[:, None]).ravel()
-        pieces = np.where(spans > 0, np.maximum(1, np.ceil(spans / h * (1 - 1e-12))), 0)
-        q, v = kernels.advance_many(model, coeffs, np.repeat(q0, points, axis=0),
-                                    np.repeat(v0, points, axis=0), spans,
-                                    pieces.astype(np.int64))
-        states = run.general_state(q, v, x0)
-        zeros = np.zeros((len(spans), run.n))
-        friction, normal, *_ = run._observe(states, zeros.astype(bool), zeros)
-        f = friction.reshape(len(keys), points, run.n)[rows, :, bodies]
-        nn = normal.reshape(len(keys), points, run.n)[rows, :, bodies]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = np.where(nn > 0, np.abs(f) / nn, np.inf)
-        values = np.where(sign[:, None] > 0, ratio, -nn)
-        k = np.clip(np.argmax(values, axis=1), 1, points - 2)
-        a, b, c = values[rows, k - 1], values[rows, k], values[rows, k + 1]
-        best = np.maximum(best, np.max(values, axis=1))
-        curvature = a - 2 * b + c
-        with np.errstate(divide="ignore", invalid="ignore"):
-            vertex = b - (c - a) ** 2 / (8 * curvature)
-        inside = np.isfinite(a + b + c) & (curvature < 0) & (np.abs(a - c) <= -2 * curvature)
-        best = np.where(inside, np.maximum(best, vertex), best)
-        lo, hi = times[rows, k - 1], times[rows, k + 1]
-    return {key: float(best[j] * sign[j]) for j, key in enumerate(keys)}
+    refined = kernels.refine_extremes(first.model, first.coeffs, first.h, q0, v0, kinds, bodies,
+                                      best)
+    return {key: float(refined[j] * sign[j]) for j, key in enumerate(keys)}
 
 
 def _refine(run: _Run, kind: str, i: int, value: float, t: float, width: float,
@@ -948,10 +922,6 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
         q = np.where(run.rolls, states[..., n:2 * n], states[..., :n] - arrays.x0)
         return (q - q_eq) @ weights
 
-    def rate_of(states):
-        n = run.n
-        return np.where(run.rolls, states[..., 3 * n:], states[..., 2 * n:3 * n]) @ weights
-
     signal = signal_of(np.concatenate([trajectory.x, trajectory.phi, trajectory.v,
                                        trajectory.omega], axis=1))
     level = 0.5 * (float(np.max(signal)) + float(np.min(signal)))
@@ -960,7 +930,10 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
         # one rolling segment: the kernel counted the upward zero crossings of the signal at
         # every step and kept the states before the first and the last
         count, (first, last) = run.crossings[0]
-        times = [_signal_zero(seg, signal_of, rate_of) for seg in (first, last)]
+        times = [seg.start.t + kernels.signal_zero(seg.start.model, seg.start.coeffs, seg.start.h,
+                                                   seg.start.q, seg.start.v, run.mode_weights,
+                                                   run.q_ref)
+                 for seg in (first, last)]
         return (times[1] - times[0]) / (count - 1)
     upward = np.flatnonzero((values[:-1] < 0) & (values[1:] >= 0))
     if upward.size < 2:
@@ -975,29 +948,3 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
             lambda tt, seg=segment: float(signal_of(seg.evaluate(tt))) - level, lo, hi,
             xtol=1e-15, rtol=4 * np.finfo(float).eps))
     return (crossings[-1] - crossings[0]) / (upward.size - 1)
-
-
-def _signal_zero(segment: _Segment, signal_of, rate_of) -> float:
-    """The upward zero of the signal in the first step of ``segment`` (it is negative at its
-    start and not negative one step later): Newton with the exact rate, safeguarded by
-    bisection, to rounding."""
-    lo, hi = segment.t0, segment.t0 + 0.5 * (segment.t1 - segment.t0)
-    s_lo, s_hi = (float(v) for v in signal_of(segment.evaluate(np.array([lo, hi]))))
-    t = lo - s_lo * (hi - lo) / (s_hi - s_lo) if s_hi != s_lo else hi
-    for _ in range(50):
-        state = segment.evaluate(t)
-        value, rate = float(signal_of(state)), float(rate_of(state))
-        if value < 0:
-            lo = t
-        else:
-            hi = t
-        step = value / rate if rate != 0 else math.inf
-        if abs(step) <= 1e-12 * (segment.t1 - segment.t0):
-            return t - step
-        candidate = t - step
-        if not lo < candidate < hi:
-            candidate = 0.5 * (lo + hi)
-        if hi - lo <= 1e-15:
-            return candidate
-        t = candidate
-    return t

@@ -11,6 +11,7 @@ a constant plus a sum of sinusoids, whose amplitudes are reported here.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -68,7 +69,8 @@ class Equilibrium:
 
 
 def find_equilibrium(
-    system: SystemArrays, *, max_iterations: int = 200, tolerance: float = 1e-13
+    system: SystemArrays, *, max_iterations: int = 200, tolerance: float = 1e-13,
+    forces: Callable[[FloatArray], FloatArray] | None = None,
 ) -> Equilibrium:
     r"""The equilibrium nearest the initial placement, with the zero modes held.
 
@@ -81,13 +83,19 @@ def find_equilibrium(
        whose zero-mode coordinates equal those of the initial placement. The motion released
        from the initial placement conserves :math:`V_0^T M \dot q` (PHYSICS.md (M14)), so it
        oscillates about this point.
+
+    ``forces`` may replace :func:`~rollspring.physics.generalized_forces` of ``system`` by an
+    equal but faster function of q (the simulator passes its compiled kernel).
     """
     n = system.n_bodies
+    if forces is None:
+        def forces(state: FloatArray) -> FloatArray:
+            return generalized_forces(system, state)
     mass = mass_matrix(system)
     inv_mass = 1.0 / system.inertia
 
     def residual_of(state: FloatArray) -> float:
-        force = generalized_forces(system, state)
+        force = forces(state)
         return float(np.sqrt(np.sum(force**2 * inv_mass)))
 
     initial = residual_of(np.zeros(n))
@@ -109,7 +117,7 @@ def find_equilibrium(
             nonzero = kinds != "zero"
             if not np.any(nonzero) or np.any(kinds == "unstable"):
                 break  # Newton heads for saddles: leave it to the trust region
-            along = vectors[:, nonzero].T @ generalized_forces(system, state)
+            along = vectors[:, nonzero].T @ forces(state)
             step = vectors[:, nonzero] @ (along / eigenvalues[nonzero])
             if float(np.max(np.abs(step))) > 0.1:
                 break
@@ -121,7 +129,7 @@ def find_equilibrium(
         if residual <= target:
             return state, residual
         solution = scipy.optimize.least_squares(
-            lambda p: generalized_forces(system, p / root_mass) / root_mass,
+            lambda p: forces(p / root_mass) / root_mass,
             state * root_mass,
             jac=lambda p: -stiffness_matrix(system, p / root_mass)
             / np.outer(root_mass, root_mass),

@@ -42,6 +42,7 @@ __all__ = [
     "advance",
     "advance_many",
     "body_loads",
+    "generalized_forces",
     "kernel_model",
     "observe",
     "refine_extremes",
@@ -194,6 +195,16 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
     body_loads(model, x, q, zeros, zeros, False, fx, fy, tau, length, tension)
     for i in range(q.shape[0]):
         gen[i] = bodies[i, SCALE] * fx[i] + tau[i]
+
+
+@njit(cache=True, error_model="numpy")
+def generalized_forces(model, q):
+    r"""The generalised forces :math:`Q(q)` (M7) of an all-rolling state, as a new array (the
+    compiled twin of :func:`rollspring.physics.generalized_forces` without damping)."""
+    n = q.shape[0]
+    gen = np.empty(n)
+    rolling_forces(model, q, _scratch(n, model[1].shape[0]), gen, np.empty(n), np.empty(n))
+    return gen
 
 
 @njit(cache=True, error_model="numpy")

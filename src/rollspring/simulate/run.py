@@ -222,7 +222,9 @@ def simulate(
     arrays = system_arrays(system)
     n = arrays.n_bodies
     mass = mass_matrix(arrays)
-    equilibrium = find_equilibrium(arrays)
+    start_model = kernels.kernel_model(arrays)
+    equilibrium = find_equilibrium(
+        arrays, forces=lambda q: kernels.generalized_forces(start_model, np.asarray(q, float)))
     stiffness_eq = (equilibrium.stiffness if equilibrium.stiffness is not None
                     else stiffness_matrix(arrays, equilibrium.q))
     omegas_eq, vectors_eq, kinds_eq = normal_modes(mass, stiffness_eq)

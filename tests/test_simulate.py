@@ -372,3 +372,25 @@ def test_progress_is_reported_in_order_up_to_the_end():
              n_output=601, progress=fractions.append)
     assert fractions and fractions == sorted(fractions)
     assert fractions[-1] == 1.0 and len(fractions) >= 3
+
+
+def test_trajectory_tables_and_views_come_from_the_outputs_layer():
+    import rollspring  # registers the views
+
+    trajectory = simulate(centre_pair(1.0, 1.3, 100.0), 0.5, n_output=51)
+    frame = trajectory.to_pandas()
+    assert list(frame.index) == list(trajectory.t)
+    np.testing.assert_array_equal(frame["cyl.x"], trajectory.x[:, 1])
+    assert frame.attrs["units"]["hoop.friction"] == "N"
+    data = trajectory.to_xarray()
+    np.testing.assert_array_equal(data["tension"].values, trajectory.spring_tension)
+    assert rollspring.simulate.run.PRESENTERS["animate"] is not None
+
+
+def test_a_view_without_the_outputs_layer_is_a_clear_error(monkeypatch):
+    from rollspring.simulate import run
+
+    monkeypatch.setattr(run, "PRESENTERS", {})
+    trajectory = simulate(centre_pair(1.0, 1.3, 100.0), 0.1, n_output=3)
+    with pytest.raises(SimulationError, match="to_pandas is provided by rollspring.outputs"):
+        trajectory.to_pandas()

@@ -43,6 +43,24 @@ from rollspring.physics import (
 # rollspring.simulate is the subpackage, and callable: rollspring.simulate(system, duration)
 from rollspring import simulate  # noqa: E402
 from rollspring.simulate import BatchResult, Trajectory, simulate_batch  # noqa: E402
+from rollspring import outputs  # noqa: E402  (registers Trajectory's views)
+
+
+def _register_notebook_display() -> None:
+    """In a running IPython (Jupyter), show System, analyses and trajectories as HTML."""
+    import sys
+
+    if "IPython" not in sys.modules:
+        return
+    from IPython import get_ipython
+
+    if get_ipython() is not None:
+        from rollspring.outputs.jupyter import register_formatters
+
+        register_formatters()
+
+
+_register_notebook_display()
 
 __version__ = "0.1.0"
 

@@ -90,6 +90,21 @@ class Trajectory:
     summary: dict[str, Any] = field(default_factory=dict)
     timings: dict[str, float] = field(default_factory=dict)
 
+    def to_pandas(self) -> Any:
+        """The trajectory as a ``pandas.DataFrame`` indexed by t (needs pandas; see
+        :func:`rollspring.outputs.jupyter.trajectory_to_pandas`)."""
+        return _presenter("to_pandas")(self)
+
+    def to_xarray(self) -> Any:
+        """The trajectory as an ``xarray.Dataset`` with dimensions time, body and spring (needs
+        xarray; see :func:`rollspring.outputs.jupyter.trajectory_to_xarray`)."""
+        return _presenter("to_xarray")(self)
+
+    def animate(self, **options: Any) -> Any:
+        """An inline animation for Jupyter (see
+        :func:`rollspring.outputs.jupyter.animate_inline` for the options)."""
+        return _presenter("animate")(self, **options)
+
     def columns(self) -> dict[str, tuple[str, FloatArray]]:
         """Every output as ``name -> (unit, values)``, named ``<body>.<quantity>``,
         ``<spring>.<quantity>`` or the quantity alone (the CSV columns)."""
@@ -112,6 +127,20 @@ class Trajectory:
         if self.stationary_x is not None:
             out["stationary_x"] = ("m", self.stationary_x)
         return out
+
+
+#: Views of a trajectory that live in a higher layer (tables, animations): the outputs package
+#: registers them when it is imported, as ``import rollspring`` does. Keeps this layer free of
+#: Matplotlib and pandas.
+PRESENTERS: dict[str, Callable[..., Any]] = {}
+
+
+def _presenter(name: str) -> Callable[..., Any]:
+    try:
+        return PRESENTERS[name]
+    except KeyError:
+        raise SimulationError(f"Trajectory.{name} is provided by rollspring.outputs: "
+                              f"import rollspring (or rollspring.outputs) first") from None
 
 
 @dataclass(frozen=True)

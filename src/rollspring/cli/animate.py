@@ -1,0 +1,136 @@
+"""``rollspring animate SYSTEM -o motion.gif|mp4|html``: the simulated motion as an animation.
+
+Simulates the system (as ``rollspring simulate``) for ``--duration`` seconds and renders it with
+:mod:`rollspring.outputs.animation`, with a progress bar on stderr. The command is added to an
+app by :func:`register` (the app module calls it; no import of ``rollspring.cli.app`` at import
+time).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from rollspring.model import load_system, preset_names
+from rollspring.outputs.animation import (
+    FORMATS,
+    MAX_FRAMES,
+    AnimationError,
+    frame_times,
+    write_animation,
+)
+
+__all__ = ["animate", "register"]
+
+
+def animate(
+    system: Annotated[str, typer.Argument(
+        help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
+        show_default=False)],
+    out: Annotated[str | None, typer.Option(
+        "--out", "-o", help="Output file: .gif (Pillow), .mp4 (H.264) or .html (JS player).",
+        show_default=False)] = None,
+    duration: Annotated[float, typer.Option(
+        "--duration", "-T", help="Simulated time to show, s.")] = 4.0,
+    speed: Annotated[float, typer.Option(
+        help="Playback speed: 1 real time, 0.5 slow motion.")] = 1.0,
+    fps: Annotated[int, typer.Option(help="Frames per second of playback.")] = 25,
+    dpi: Annotated[int, typer.Option(help="Resolution: 80 gives frames 640 pixels wide.")] = 80,
+    forces: Annotated[bool, typer.Option(
+        "--forces/--no-forces", help="Draw spring, friction and normal forces.")] = True,
+    on_slip: Annotated[str, typer.Option(
+        "--on-slip", help="stop: end at the first slip; continue: stick-slip.")] = "stop",
+) -> None:
+    """Animate the exact motion: the bodies roll, the springs stretch, force arrows to scale,
+    the CM and X-hat on the floor, and a clock."""
+    target = _check(out, duration, speed, fps, dpi, on_slip)
+    from rollspring.simulate import simulate
+
+    model = load_system(system)
+    frames = math.floor(duration / speed * fps) + 1
+    with _Bar() as bar:
+        bar.start("simulating")
+        trajectory = simulate(model, duration, n_output=max(2001, 2 * frames), on_slip=on_slip,
+                              progress=bar.update)
+        bar.start(f"rendering {target.name}")
+        try:
+            write_animation(trajectory, target, speed=speed, fps=fps, dpi=dpi, forces=forces,
+                            progress=bar.update)
+        except OSError as exc:
+            raise AnimationError(f"{target}: cannot write ({exc.strerror or exc})") from None
+    if trajectory.status != "finished":
+        _say(f"note: {trajectory.message}")
+    shown = float(trajectory.t[-1] - trajectory.t[0])
+    count = frame_times(trajectory, speed=speed, fps=fps).size
+    _say(f"wrote {target} ({count} frames, {shown:g} s of motion at speed {speed:g})")
+
+
+def _check(out: str | None, duration: float, speed: float, fps: int, dpi: int,
+           on_slip: str) -> Path:
+    """Every option checked before any work: one line naming the option."""
+    if out is None:
+        raise AnimationError("--out/-o is required: a .gif, .mp4 or .html file")
+    target = Path(out)
+    if target.suffix.lower() not in FORMATS:
+        raise AnimationError(
+            f"--out: unknown format '{target.suffix or '(no suffix)'}' of {out} "
+            f"(use .gif, .mp4 or .html)")
+    for name, value in (("--duration", duration), ("--speed", speed)):
+        if not (math.isfinite(value) and value > 0):
+            raise AnimationError(f"{name}: must be a positive number, got {value:g}")
+    if not 1 <= fps <= 120:
+        raise AnimationError(f"--fps: must be between 1 and 120, got {fps}")
+    if not 10 <= dpi <= 600:
+        raise AnimationError(f"--dpi: must be between 10 and 600, got {dpi}")
+    if on_slip not in ("stop", "continue"):
+        raise AnimationError(f"--on-slip: must be 'stop' or 'continue', got '{on_slip}'")
+    frames = math.floor(duration / speed * fps) + 1
+    if frames > MAX_FRAMES:
+        raise AnimationError(
+            f"--duration: {duration:g} s at --speed {speed:g} and --fps {fps} is {frames} "
+            f"frames (at most {MAX_FRAMES}); shorten it, raise --speed or lower --fps")
+    return target
+
+
+class _Bar:
+    """A Rich progress bar on stderr (shown on a terminal only), one task at a time."""
+
+    def __init__(self) -> None:
+        from rich.console import Console
+        from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+        self.progress = Progress(TextColumn("{task.description}"), BarColumn(),
+                                 TextColumn("{task.percentage:>3.0f}%"), TimeRemainingColumn(),
+                                 console=Console(stderr=True), transient=True)
+        self.task = None
+
+    def __enter__(self) -> _Bar:
+        self.progress.start()
+        return self
+
+    def start(self, label: str) -> None:
+        if self.task is not None:
+            self.progress.remove_task(self.task)
+        self.task = self.progress.add_task(label, total=1.0)
+
+    def update(self, fraction: float) -> None:
+        if self.task is not None:
+            self.progress.update(self.task, completed=fraction)
+
+    def __exit__(self, *exc_info: object) -> None:
+        self.progress.stop()
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``animate`` command to ``app`` (with rollspring's one-line error handling)."""
+    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+
+    app.command(name="animate")(friendly_errors(animate))
+
+
+def _say(line: str) -> None:
+    """One unwrapped line on stderr, never mixed into stdout."""
+    typer.echo(" ".join(line.split()), err=True)

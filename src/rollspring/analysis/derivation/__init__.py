@@ -1,0 +1,92 @@
+r"""Symbolic derivations (SymPy): the equations of motion of a system, derived step by step.
+
+Public API::
+
+    from rollspring.analysis.derivation import symbolic_system, derive
+
+    sym = symbolic_system(system, symbols=True)    # the system in SymPy form (see .symbolic)
+    sym.mass_matrix, sym.stiffness_matrix, sym.potential, sym.friction, sym.normal, ...
+
+    result = derive(system, method="all", symbols=True)   # a Derivation
+    result.methods["lagrange"].steps       # [Step(equation, latex, words, ref), ...]
+    result.methods["newton"].omega2        # Omega^2 of the oscillating modes (closed forms)
+    result.cross_check                     # CrossCheck: which methods agree, residuals, reasons
+    result.to_text(), result.to_markdown(), result.to_latex()   # renderers (latex: a document)
+    result                                 # in Jupyter: rendered as math (_repr_markdown_)
+
+    appendix_a_friction()                  # the paper's f(y) = F(1 - mRy/(I + mR^2)) derived
+    zero_friction_heights()                # y* = R + I/(mR) for every shape
+
+Methods (the paper's order of ideas): ``newton`` (dynamic equations, Sec. 2 and 4.1),
+``conservation`` (energy and the conserved angular-momentum combination, Sec. 4.2),
+``lagrange`` (Euler-Lagrange, Sec. 4.3; also via ``sympy.physics.mechanics.LagrangesMethod``),
+``natural-frequencies`` (subsystem frequencies, Sec. 4.4 and App. B, C) and ``hamilton``
+(canonical equations, Sec. 4.5).
+"""
+
+from rollspring.analysis.derivation.crosscheck import Check, CrossCheck, cross_check
+from rollspring.analysis.derivation.derive import (
+    ALL,
+    Derivation,
+    DerivationError,
+    derive,
+    parse_methods,
+    setup_section,
+)
+from rollspring.analysis.derivation.forces import (
+    appendix_a_friction,
+    contact_force_section,
+    zero_friction_heights,
+)
+from rollspring.analysis.derivation.frequencies import OMEGA2, Frequencies, normal_frequencies
+from rollspring.analysis.derivation.methods import (
+    METHODS,
+    MethodResult,
+    mechanics_lagrange_check,
+    run_method,
+)
+from rollspring.analysis.derivation.render import FORMATS
+from rollspring.analysis.derivation.steps import Section, Step
+from rollspring.analysis.derivation.symbolic import (
+    EXACT_INERTIA_FACTORS,
+    SymbolicBody,
+    SymbolicForce,
+    SymbolicSpring,
+    SymbolicSystem,
+    exact_number,
+    matrix_to_float,
+    symbolic_system,
+)
+
+__all__ = [
+    "ALL",
+    "EXACT_INERTIA_FACTORS",
+    "FORMATS",
+    "METHODS",
+    "OMEGA2",
+    "Check",
+    "CrossCheck",
+    "Derivation",
+    "DerivationError",
+    "Frequencies",
+    "MethodResult",
+    "Section",
+    "Step",
+    "SymbolicBody",
+    "SymbolicForce",
+    "SymbolicSpring",
+    "SymbolicSystem",
+    "appendix_a_friction",
+    "contact_force_section",
+    "cross_check",
+    "derive",
+    "exact_number",
+    "matrix_to_float",
+    "mechanics_lagrange_check",
+    "normal_frequencies",
+    "parse_methods",
+    "run_method",
+    "setup_section",
+    "symbolic_system",
+    "zero_friction_heights",
+]

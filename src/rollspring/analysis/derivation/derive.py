@@ -1,0 +1,205 @@
+r"""``derive(system, method=...)``: the symbolic system, every method's derivation, the forces and
+the cross-check, as one :class:`Derivation` (rendered as text, Markdown or LaTeX, and as math in
+Jupyter)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from rollspring.analysis.derivation.crosscheck import CrossCheck, cross_check
+from rollspring.analysis.derivation.forces import appendix_a_friction, contact_force_section
+from rollspring.analysis.derivation.frequencies import Frequencies, normal_frequencies
+from rollspring.analysis.derivation.methods import METHODS, MethodResult, run_method
+from rollspring.analysis.derivation.render import latex_document, markdown, text
+from rollspring.analysis.derivation.steps import Section, matrix_equation, named
+from rollspring.analysis.derivation.symbolic import SymbolicSystem, symbolic_system
+from rollspring.errors import AnalysisError
+from rollspring.model import System
+
+__all__ = ["ALL", "Derivation", "DerivationError", "derive", "parse_methods"]
+
+#: ``method="all"`` runs every method in :data:`METHODS`.
+ALL = "all"
+
+
+class DerivationError(AnalysisError, ValueError):
+    """Invalid arguments to :func:`derive` (an unknown method)."""
+
+
+@dataclass
+class Derivation:
+    """The result of :func:`derive`.
+
+    ``symbolic``: the :class:`SymbolicSystem`; ``setup``: its parameters, M, V and K as steps;
+    ``methods``: each requested method's :class:`MethodResult` (``applies``, ``reason``,
+    ``steps``, ``equations``, ``omega2``...); ``forces``: friction and normal forces;
+    ``appendix``: the paper's App. A friction law (with ``method="all"``); ``frequencies``:
+    the reference closed forms of Omega^2; ``cross_check``: the comparison of the methods.
+    """
+
+    system: System
+    symbolic: SymbolicSystem
+    setup: Section
+    methods: dict[str, MethodResult]
+    forces: Section
+    frequencies: Frequencies
+    cross_check: CrossCheck
+    appendix: Section | None = None
+    extras: dict[str, object] = field(default_factory=dict)
+
+    @property
+    def title(self) -> str:
+        """'Derivation: <system name>'."""
+        return f"Derivation: {self.system.name or 'system'}"
+
+    @property
+    def subtitle(self) -> str:
+        """What the parameters are (symbols or exact numbers) and the reference."""
+        kind = ("parameters as symbols" if self.symbolic.symbolic else
+                "parameters as exact numbers (SI units)")
+        extra = "; ".join(self.symbolic.notes)
+        return (f"{self.symbolic.n} bodies, {len(self.symbolic.springs)} springs; {kind}; "
+                f"angles measured from the {self.symbolic.reference}" +
+                (f"; {extra}" if extra else "") + ".")
+
+    @property
+    def sections(self) -> list[Section]:
+        """Every section in display order."""
+        out = [self.setup]
+        for result in self.methods.values():
+            if result.applies:
+                out.append(result.section)
+            else:
+                section = Section(result.title, list(result.section.steps),
+                                  note=f"Does not apply: {result.reason}.")
+                out.append(section)
+        out.append(self.forces)
+        if self.appendix is not None:
+            out.append(self.appendix)
+        out.append(self.cross_check.section())
+        return out
+
+    @property
+    def omega2(self) -> list[sp.Expr | None]:
+        """Closed forms of the squared frequencies of the oscillating modes (reference)."""
+        return list(self.frequencies.omega2)
+
+    def to_text(self) -> str:
+        """Plain text (Unicode pretty-printing)."""
+        return text(self.title, self.subtitle, self.sections)
+
+    def to_markdown(self) -> str:
+        """Markdown with ``$$…$$`` math."""
+        return markdown(self.title, self.subtitle, self.sections)
+
+    def to_latex(self) -> str:
+        """A complete LaTeX document (compiles with pdflatex; amsmath only)."""
+        return latex_document(self.title, self.subtitle, self.sections)
+
+    def render(self, format: str = "text") -> str:  # noqa: A002 - mirrors --format
+        """``text``, ``markdown`` or ``latex``."""
+        if format == "text":
+            return self.to_text()
+        if format == "markdown":
+            return self.to_markdown()
+        if format == "latex":
+            return self.to_latex()
+        raise DerivationError(f"format: unknown format '{format}' (text, markdown, latex)")
+
+    def _repr_markdown_(self) -> str:
+        return self.to_markdown()
+
+    def _repr_latex_(self) -> str:
+        lines = []
+        for section in self.sections:
+            for step in section.steps:
+                lines.append(step.latex)
+        return r"$$\begin{gathered}" + r" \\ ".join(lines[:60]) + r"\end{gathered}$$"
+
+
+def parse_methods(method: str | Sequence[str]) -> list[str]:
+    """``"all"``, one name or a list of names -> method names (validated, paper order)."""
+    names = [method] if isinstance(method, str) else list(method)
+    if ALL in names:
+        return list(METHODS)
+    for name in names:
+        if name not in METHODS:
+            raise DerivationError(f"method: unknown method '{name}' "
+                                  f"(methods: {', '.join(METHODS)}, {ALL})")
+    return [name for name in METHODS if name in names]
+
+
+def derive(system: System | str, method: str | Sequence[str] = ALL, *, symbols: bool = False,
+           budget: float | None = 10.0) -> Derivation:
+    r"""Derive the equations of motion of ``system`` step by step, by each ``method``.
+
+    ``system``: a :class:`~rollspring.model.System` or a preset name / file path;
+    ``method``: ``"all"`` or one or more of ``newton``, ``conservation``, ``lagrange``,
+    ``natural-frequencies``, ``hamilton``; ``symbols``: parameters as symbols
+    (:math:`m_1, R, k, \dots`) instead of exact numbers; ``budget``: seconds allowed for each
+    open-ended symbolic step (factoring, simplifying residuals), where SymPy can be slow.
+    """
+    names = parse_methods(method)
+    if isinstance(system, str):
+        from rollspring.model import load_system
+
+        system = load_system(system)
+    sym = symbolic_system(system, symbols=symbols)
+    setup = setup_section(sym)
+    frequencies = normal_frequencies(sym, budget=budget)
+    sym._cache["frequencies"] = frequencies
+    results = {name: run_method(sym, name, budget=budget) for name in names}
+    for result in results.values():  # applies, but only in part (no linearisation)
+        if result.applies and result.reason:
+            result.section.note = f"Note: {result.reason}."
+    forces, force_results = contact_force_section(sym)
+    appendix = appendix_a_friction()[0] if names == list(METHODS) else None
+    check = cross_check(sym, results, frequencies, budget=budget)
+    return Derivation(system, sym, setup, results, forces, frequencies, check, appendix,
+                      extras={"forces": force_results})
+
+
+def setup_section(sym: SymbolicSystem) -> Section:
+    """The symbolic system: parameters, coordinates, M, the exact V, equilibrium, K."""
+    section = Section("The system in symbols" if sym.symbolic else "The system")
+    rows = []
+    for b in sym.bodies:
+        kind = f"{b.shape} (gamma = {b.gamma})" if b.rolls else "slider"
+        rows.append(f"{b.label} = {b.id}: {kind}")
+    section.add(sp.Matrix([[b.q, b.m, b.R if b.rolls else sp.Integer(0), b.gamma]
+                           for b in sym.bodies]),
+                "Bodies " + "; ".join(rows) + ". Columns: coordinate, mass, radius, inertia "
+                "factor gamma (I = gamma m R^2).", "PHYSICS.md Sec. 1")
+    if sym.symbolic and sym.values:
+        section.add([sp.Eq(s, sp.Float(v, 6)) for s, v in sorted(sym.values.items(),
+                                                                  key=lambda p: p[0].name)],
+                    "The numbers of this system (SI units).")
+    if sym.springs:
+        section.add([matrix_equation(f"d_{s.index + 1}", sp.Matrix(s.d0).T)
+                     for s in sym.springs],
+                    "Each spring's vector from its first to its second end at the reference: "
+                    "length ell, tilt beta above the horizontal.", "(M1)")
+    section.add(matrix_equation("M", sym.mass_matrix), "Mass matrix: the inertias about the "
+                "contact lines, constant and diagonal for any geometry.", "(M4), (M12)")
+    summed = named("sum_s k_s (l_s - L_s)^2/2", r"\sum_s \tfrac12 k_s (l_s - L_s)^2")
+    section.add(sp.Eq(sp.Symbol("V"), sym.potential if sp.count_ops(sym.potential) < 400
+                      else summed),
+                "Potential energy, exact (gravity is a constant while the bodies roll).", "(M5)")
+    forces = sym.reference_forces
+    if any(f != 0 for f in forces):
+        if sym.symbolic:
+            section.add([sp.Eq(f, 0) for f in forces if f != 0],
+                        "Equilibrium conditions Q(0) = 0 the parameters satisfy (pre-tensioned "
+                        "springs or constant forces).", "(M7)")
+        else:
+            section.add(matrix_equation("Q(0)", sp.Matrix([sp.Float(sym.numeric(f), 3)
+                                                          for f in forces])),
+                        "Generalised forces at the reference: zero to rounding (the equilibrium "
+                        "angles are found numerically; the exact numbers carry it).", "(M7)")
+    section.add(matrix_equation("K", sym.stiffness_matrix),
+                "Stiffness matrix K = d2V/dq2 at the reference, spring by spring.",
+                "(M12), (M13)")
+    return section

@@ -1,0 +1,203 @@
+r"""Normal frequencies in closed form: :math:`\det(K - \Omega^2 M) = 0` (PHYSICS.md section 7).
+
+With the constant diagonal :math:`M` the characteristic polynomial is that of
+:math:`A = M^{-1}K` (:math:`A_{ij} = K_{ij}/J_i`). One body: :math:`\Omega^2 = K/J`. Two bodies
+with a zero mode (rank-1 K): :math:`\Omega^2 = \operatorname{tr}A = K_{11}/J_1 + K_{22}/J_2`
+(the paper's sum rule (M15)); without one, the quadratic formula. More bodies: the polynomial
+(a three-term recurrence for chains), its zero roots taken out, and the roots of every factor of
+degree at most two, within a time budget.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import signal
+import threading
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+import sympy as sp
+
+from rollspring.analysis.derivation.symbolic import SymbolicSystem, _is_tridiagonal
+
+__all__ = ["OMEGA2", "Frequencies", "BudgetExceeded", "normal_frequencies", "time_budget"]
+
+#: The symbol of a squared normal frequency.
+OMEGA2 = sp.Symbol("Omega^2")
+#: Largest number of bodies whose characteristic polynomial is expanded.
+MAX_POLYNOMIAL = 12
+
+class BudgetExceeded(Exception):
+    """A symbolic computation ran out of its time budget."""
+
+
+@contextlib.contextmanager
+def time_budget(seconds: float | None) -> Iterator[None]:
+    """Raise :class:`BudgetExceeded` inside the block after ``seconds`` (main thread on POSIX;
+    elsewhere the block runs without a limit)."""
+    usable = (seconds is not None and seconds > 0 and hasattr(signal, "setitimer")
+              and threading.current_thread() is threading.main_thread())
+    if not usable:
+        yield
+        return
+
+    def expire(signum, frame):  # noqa: ARG001
+        raise BudgetExceeded
+
+    previous = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+@dataclass
+class Frequencies:
+    r"""Squared normal frequencies of (M, K).
+
+    ``characteristic``: :math:`\det(\Omega^2 I - M^{-1}K)` (monic in :data:`OMEGA2`), or None
+    when not expanded; ``omega2``: closed forms of the non-zero roots, ascending by value
+    (None entries where no closed form was found); ``numeric``: their numbers; ``n_zero`` zero
+    modes; ``notes``: what was not done and why.
+    """
+
+    characteristic: sp.Expr | None
+    omega2: list[sp.Expr | None]
+    numeric: list[float]
+    n_zero: int
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def complete(self) -> bool:
+        """Every non-zero root has a closed form."""
+        return all(w is not None for w in self.omega2)
+
+
+def dynamic_matrix(sym: SymbolicSystem) -> sp.Matrix:
+    """:math:`A = M^{-1}K`, row i divided by :math:`J_i`."""
+    K = sym.stiffness_matrix
+    J = [b.J for b in sym.bodies]
+    return sp.Matrix(sym.n, sym.n, lambda i, j: sp.cancel(K[i, j] / J[i]) if K[i, j] != 0 else 0)
+
+
+def characteristic_polynomial(A: sp.Matrix, variable: sp.Symbol = OMEGA2) -> sp.Expr:
+    r""":math:`\det(\lambda I - A)`: a three-term recurrence when A is tridiagonal, else
+    Berkowitz."""
+    n = A.shape[0]
+    if _is_tridiagonal(A):
+        previous, current = sp.Integer(1), variable - A[0, 0]
+        for k in range(1, n):
+            previous, current = current, sp.expand(
+                (variable - A[k, k]) * current - A[k, k - 1] * A[k - 1, k] * previous)
+        return sp.expand(current)
+    return A.charpoly(variable).as_expr()
+
+
+def normal_frequencies(sym: SymbolicSystem, *, budget: float | None = 10.0,
+                       matrix: sp.Matrix | None = None) -> Frequencies:
+    """Closed forms of the squared normal frequencies where SymPy finds them (see module).
+
+    ``matrix``: the dynamic matrix to use instead of :math:`M^{-1}K` (any matrix similar to
+    it, e.g. the Hamiltonian coordinates' :math:`M_q^{-1}K_q`).
+    """
+    n, n_zero = sym.n, sym.zero_mode_count()
+    from rollspring.analysis.derivation.symbolic import matrix_to_float
+    from rollspring.analysis.linear import normal_modes
+
+    mass = matrix_to_float(sym.mass_matrix, sym.values)
+    stiff = matrix_to_float(sym.stiffness_matrix, sym.values)
+    eigenvalues, _, kinds = normal_modes(mass, stiff)
+    numeric = [float(v) for v, kind in zip(eigenvalues, kinds, strict=True) if kind != "zero"]
+    A = dynamic_matrix(sym) if matrix is None else matrix
+    notes: list[str] = []
+    began = time.perf_counter()
+
+    def left() -> float | None:
+        return None if budget is None else max(budget - (time.perf_counter() - began), 1e-3)
+
+    if n == 1:
+        value = A[0, 0]
+        return Frequencies(OMEGA2 - value, [value] if n_zero == 0 else [], numeric, n_zero)
+    if n == 2:
+        trace = sp.cancel(A[0, 0] + A[1, 1])
+        det = sp.cancel(A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0])
+        poly = sp.expand(OMEGA2**2 - trace * OMEGA2 + det)
+        if n_zero == 2:
+            return Frequencies(poly, [], numeric, n_zero)
+        if n_zero == 1 and det == 0:
+            return Frequencies(poly, [_tidy(trace)], numeric, n_zero)
+        root = sp.sqrt(sp.factor(trace**2 - 4 * det))
+        roots = [_tidy((trace - root) / 2), _tidy((trace + root) / 2)]
+        roots.sort(key=lambda r: _value(sym, r))
+        return Frequencies(poly, roots, numeric, n_zero)
+    if any(entry.has(sp.sin, sp.cos, sp.atan2) for entry in A):
+        notes.append("the stiffness holds transcendental constants (sines and cosines of the "
+                     "equilibrium angles): the frequencies are given numerically")
+        try:
+            with time_budget(left()):
+                poly = characteristic_polynomial(A) if n <= 4 else None
+        except BudgetExceeded:
+            poly = None
+        return Frequencies(poly, [None] * len(numeric), numeric, n_zero, notes)
+    if n > MAX_POLYNOMIAL and sym.symbolic:
+        notes.append(f"{n} bodies: the characteristic polynomial (degree {n}) is left "
+                     "unexpanded; the frequencies are given numerically")
+        return Frequencies(None, [None] * len(numeric), numeric, n_zero, notes)
+    try:
+        with time_budget(left()):
+            poly = characteristic_polynomial(A)
+    except BudgetExceeded:
+        notes.append(f"the characteristic polynomial took longer than the {budget:g} s budget")
+        return Frequencies(None, [None] * len(numeric), numeric, n_zero, notes)
+    reduced = sp.Poly(poly, OMEGA2)
+    removed = 0
+    while removed < n_zero and reduced.degree() > 0 and sp.cancel(reduced.nth(0)) == 0:
+        reduced = sp.Poly(sp.cancel(reduced.as_expr() / OMEGA2), OMEGA2)
+        removed += 1
+    roots: list[sp.Expr | None] = []
+    try:
+        with time_budget(left()):
+            factors = sp.factor_list(reduced.as_expr(), OMEGA2)[1] if reduced.degree() > 0 else []
+            for factor, multiplicity in factors:
+                fpoly = sp.Poly(factor, OMEGA2)
+                if fpoly.degree() == 0:
+                    continue
+                if fpoly.degree() <= 2:
+                    found = [_tidy(r) for r in sp.roots(fpoly, OMEGA2, multiple=True)]
+                else:
+                    found = [None] * fpoly.degree()
+                    notes.append(f"a factor of degree {fpoly.degree()} of the characteristic "
+                                 "polynomial: no closed form offered (its roots are given "
+                                 "numerically)")
+                roots.extend(found * multiplicity)
+    except BudgetExceeded:
+        notes.append(f"factoring the characteristic polynomial took longer than the {budget:g} s "
+                     "budget; the frequencies are given numerically")
+        roots = [None] * len(numeric)
+    known = sorted((r for r in roots if r is not None), key=lambda r: _value(sym, r))
+    ordered: list[sp.Expr | None] = []
+    for value in numeric:  # match closed forms to the numbers
+        match = next((r for r in known if math.isclose(_value(sym, r), value, rel_tol=1e-8,
+                                                       abs_tol=1e-12 * max(numeric))), None)
+        if match is not None:
+            known.remove(match)
+        ordered.append(match)
+    return Frequencies(poly, ordered, numeric, n_zero, notes)
+
+
+def _value(sym: SymbolicSystem, expr: sp.Expr) -> float:
+    value = complex(sp.sympify(expr).xreplace(sym.values).evalf(30))
+    return value.real
+
+
+def _tidy(expr: sp.Expr) -> sp.Expr:
+    expr = sp.sympify(expr)
+    if expr.count_ops() > 300:
+        return expr
+    candidates = [expr, sp.factor(sp.cancel(expr))]
+    if expr.count_ops() <= 150:
+        candidates.append(sp.simplify(expr))
+    return min(candidates, key=sp.count_ops)

@@ -1,0 +1,132 @@
+r"""Render sections of steps as plain text, Markdown (``$$…$$`` math) or a LaTeX document.
+
+The LaTeX document needs only ``amsmath`` and ``amssymb`` (Debian's texlive-latex-base), and
+is pure ASCII: words are escaped, other characters transliterated.
+"""
+
+from __future__ import annotations
+
+import re
+import unicodedata
+from collections.abc import Sequence
+
+import sympy as sp
+
+from rollspring.analysis.derivation.steps import Section, Step
+
+__all__ = ["FORMATS", "latex_document", "latex_text", "markdown", "text"]
+
+#: Output formats.
+FORMATS = ("text", "markdown", "latex")
+
+
+def text(title: str, subtitle: str, sections: Sequence[Section]) -> str:
+    """Plain text: words, then the equation pretty-printed (Unicode)."""
+    lines = [title, "=" * len(title)]
+    if subtitle:
+        lines += [subtitle]
+    for section in sections:
+        lines += ["", section.title, "-" * len(section.title)]
+        if section.note:
+            lines.append(section.note)
+        for step in section.steps:
+            ref = f"   [{step.ref}]" if step.ref else ""
+            lines.append(f"* {step.words}{ref}")
+            lines.extend("    " + line for line in _pretty(step).splitlines())
+    return "\n".join(lines) + "\n"
+
+
+def _pretty(step: Step) -> str:
+    equation = step.equation
+    items = equation if isinstance(equation, list | tuple) else [equation]
+    if len(items) > 12:
+        items = list(items[:10]) + [sp.Symbol("...")] + [items[-1]]
+    out = []
+    for item in items:
+        try:
+            if isinstance(item, sp.MatrixBase) and max(item.shape) > 8:
+                out.append(f"<{item.shape[0]}x{item.shape[1]} matrix>")
+            elif isinstance(item, sp.Basic | sp.MatrixBase) and sp.count_ops(item) > 400:
+                out.append(_ascii(str(item)))
+            else:
+                out.append(sp.pretty(item, use_unicode=True, num_columns=100))
+        except Exception:  # noqa: BLE001 - a printer limitation must not lose the step
+            out.append(str(item))
+    return "\n".join(out)
+
+
+def markdown(title: str, subtitle: str, sections: Sequence[Section]) -> str:
+    """Markdown with display math ``$$…$$`` (one per step)."""
+    lines = [f"# {_md_escape(title)}"]
+    if subtitle:
+        lines += ["", _md_escape(subtitle)]
+    for section in sections:
+        lines += ["", f"## {_md_escape(section.title)}"]
+        if section.note:
+            lines += ["", _md_escape(section.note)]
+        for step in section.steps:
+            ref = f" *({_md_escape(step.ref)})*" if step.ref else ""
+            lines += ["", _md_escape(step.words) + ref, "", "$$", _one_line(step.latex), "$$"]
+    return "\n".join(lines) + "\n"
+
+
+def latex_document(title: str, subtitle: str, sections: Sequence[Section]) -> str:
+    """A complete, compilable LaTeX document (article, amsmath)."""
+    body = [
+        r"\documentclass[11pt]{article}",
+        r"\usepackage[T1]{fontenc}",
+        r"\usepackage{amsmath}",
+        r"\usepackage{amssymb}",
+        r"\setcounter{MaxMatrixCols}{20}",
+        r"\allowdisplaybreaks",
+        r"\setlength{\textwidth}{16cm}",
+        r"\setlength{\oddsidemargin}{0cm}",
+        r"\setlength{\parindent}{0pt}",
+        r"\setlength{\parskip}{4pt}",
+        r"\begin{document}",
+        rf"\section*{{{latex_text(title)}}}",
+    ]
+    if subtitle:
+        body.append(latex_text(subtitle))
+    for section in sections:
+        body.append(rf"\subsection*{{{latex_text(section.title)}}}")
+        if section.note:
+            body.append(latex_text(section.note))
+        for step in section.steps:
+            ref = rf" \hfill{{\small ({latex_text(step.ref)})}}" if step.ref else ""
+            body.append("")
+            body.append(latex_text(step.words) + ref)
+            body.append(r"\begin{equation*}")
+            body.append(_ascii(step.latex))
+            body.append(r"\end{equation*}")
+    body.append(r"\end{document}")
+    return "\n".join(body) + "\n"
+
+
+_LATEX_SPECIAL = {
+    "\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
+    "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}",
+    "<": r"\textless{}", ">": r"\textgreater{}",
+}
+
+
+def latex_text(words: str) -> str:
+    """Words as LaTeX text: special characters escaped, non-ASCII transliterated."""
+    return "".join(_LATEX_SPECIAL.get(char, char) for char in _ascii(words))
+
+
+def _ascii(value: str) -> str:
+    replaced = (value.replace("\u2014", "---").replace("\u2013", "--").replace("\u2019", "'")
+                .replace("\u2018", "'").replace("\u201c", '"').replace("\u201d", '"')
+                .replace("\u2212", "-").replace("\u00d7", "x").replace("\u00b7", "."))
+    decomposed = unicodedata.normalize("NFKD", replaced)
+    kept = "".join(c for c in decomposed if not unicodedata.combining(c))
+    return kept.encode("ascii", "replace").decode("ascii")
+
+
+def _md_escape(words: str) -> str:
+    return re.sub(r"([\\`*_\[\]<>|$])", r"\\\1", words)
+
+
+def _one_line(latex: str) -> str:
+    return " ".join(latex.split())

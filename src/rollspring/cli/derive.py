@@ -1,0 +1,86 @@
+"""``rollspring derive SYSTEM``: the equations of motion derived step by step (SymPy).
+
+``--method newton|conservation|lagrange|natural-frequencies|hamilton|all`` (repeatable),
+``--format text|markdown|latex``, ``--symbols`` (masses, radii, stiffnesses as symbols),
+``-o FILE`` (written atomically; default stdout). The command is added to an app by
+:func:`register` (the app module calls it at its bottom, so this module never imports
+``rollspring.cli.app`` at import time).
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Annotated
+
+import typer
+
+from rollspring.model import load_system, preset_names
+
+# The derivation engine (SymPy) is imported when the command runs, not when the CLI starts.
+#: The names of the methods and formats, for the help text (a test checks them against the
+#: engine's METHODS, ALL and FORMATS).
+METHOD_NAMES = ("newton", "conservation", "lagrange", "natural-frequencies", "hamilton", "all")
+FORMAT_NAMES = ("text", "markdown", "latex")
+
+__all__ = ["derive_command", "register"]
+
+
+def derive_command(
+    system: Annotated[str, typer.Argument(
+        help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
+        show_default=False)],
+    method: Annotated[list[str] | None, typer.Option(
+        "--method", "-m", help=f"Method(s): {', '.join(METHOD_NAMES[:-1])} or {METHOD_NAMES[-1]} (repeatable).",
+        show_default=False)] = None,
+    format: Annotated[str, typer.Option(  # noqa: A002 - the option is called --format
+        "--format", "-f", help=f"Output format: {', '.join(FORMAT_NAMES)} (latex: a full "
+        "document).")] = "text",
+    symbols: Annotated[bool, typer.Option(
+        "--symbols", help="Masses, radii, stiffnesses and heights as symbols (m_1, R, k, ...) "
+        "instead of exact numbers.")] = False,
+    out: Annotated[str | None, typer.Option(
+        "--out", "-o", help="Write to this file (atomically) instead of stdout.",
+        show_default=False)] = None,
+) -> None:
+    """Derive the equations of motion step by step by Newton, conservation laws, Lagrange,
+    subsystem frequencies and Hamilton; check that they agree (symbolically)."""
+    from rollspring.analysis.derivation import ALL, FORMATS, METHODS, DerivationError, derive
+
+    if format not in FORMATS:
+        raise DerivationError(f"--format: unknown format '{format}' "
+                              f"(formats: {', '.join(FORMATS)})")
+    methods = method or [ALL]
+    for name in methods:
+        if name != ALL and name not in METHODS:
+            raise DerivationError(f"--method: unknown method '{name}' "
+                                  f"(methods: {', '.join(METHODS)}, {ALL})")
+    model = load_system(system)
+    result = derive(model, methods, symbols=symbols)
+    rendered = result.render(format)
+    if out is None:
+        sys.stdout.write(rendered)
+        sys.stdout.flush()
+    else:
+        from rollspring.outputs.files import atomic_write_text
+
+        try:
+            atomic_write_text(out, rendered)
+        except OSError as exc:
+            raise DerivationError(f"--out: {out}: cannot write ({exc.strerror or exc})") from None
+        _say(f"wrote {out}")
+    check = result.cross_check
+    if not check.agree:
+        _say("warning: the methods do not all agree: "
+             + "; ".join(f"{c.method}: {c.what}" for c in check.failures))
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``derive`` command to ``app`` (with rollspring's one-line error handling)."""
+    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+
+    app.command(name="derive")(friendly_errors(derive_command))
+
+
+def _say(line: str) -> None:
+    """One unwrapped line on stderr, never mixed into stdout."""
+    typer.echo(" ".join(line.split()), err=True)

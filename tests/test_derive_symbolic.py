@@ -1,0 +1,178 @@
+"""The symbolic system against rollspring's numeric physics: M, K, Omega^2 for every preset; the
+exact Q, friction and normal forces at random states of an everything-at-once system; the paper's
+Fig. 2 formulas for random parameters, exactly."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from rollspring.analysis import analyze
+from rollspring.analysis.derivation import (
+    mechanics_lagrange_check,
+    normal_frequencies,
+    symbolic_system,
+)
+from rollspring.analysis.derivation.symbolic import exact_number, matrix_to_float
+from rollspring.model import load_system, preset_names
+from rollspring.physics import (
+    contact_forces,
+    contact_forces_jacobian,
+    generalized_forces,
+    stiffness_matrix,
+    system_arrays,
+)
+from tests.conftest import body, make_system, spring
+
+PRESETS = preset_names()
+
+
+@pytest.mark.parametrize("symbols", [False, True])
+@pytest.mark.parametrize("name", PRESETS)
+def test_mass_stiffness_and_frequencies_agree_with_analyze(name: str, symbols: bool) -> None:
+    system = load_system(name)
+    sym = symbolic_system(system, symbols=symbols)
+    numeric = analyze(system)
+    np.testing.assert_allclose(matrix_to_float(sym.mass_matrix, sym.values), numeric.mass,
+                               rtol=1e-13)
+    scale = float(np.max(np.abs(numeric.stiffness)))
+    np.testing.assert_allclose(matrix_to_float(sym.stiffness_matrix, sym.values),
+                               numeric.stiffness, rtol=1e-12, atol=1e-13 * scale)
+    frequencies = normal_frequencies(sym)
+    expected = [m.eigenvalue for m in numeric.modes if m.kind != "zero"]
+    assert frequencies.complete  # every preset has closed-form frequencies
+    assert frequencies.n_zero == sum(m.kind == "zero" for m in numeric.modes)
+    values = [sym.numeric(w) for w in frequencies.omega2]
+    np.testing.assert_allclose(values, expected, rtol=1e-11)
+    if symbols:  # the parameters really are symbols: nothing numeric is left in M
+        assert all(entry.free_symbols for entry in sym.mass_matrix if entry != 0)
+
+
+def test_closed_form_stiffness_equals_the_hessian_of_the_exact_potential() -> None:
+    for name in ("frictionless", "wall-hoop-cylinder"):
+        sym = symbolic_system(load_system(name), symbols=True)
+        assert sp.simplify(sym.hessian() - sym.stiffness_matrix) == sp.zeros(sym.n, sym.n)
+
+
+def everything_system():
+    """Anchors (pre-tension), off-centre and height attachments, a raised track, a custom
+    shape, a slider, a constant force, two springs between the same bodies."""
+    return make_system(
+        [body("hoop", "hoop", x=0.0),
+         body("cyl", "cylinder", radius=0.08, x=0.5, track_height=0.05),
+         body("wheel", "custom", radius=0.12, x=1.0, inertia_factor=0.75),
+         body("block", "slider", mass=2.0, radius=0.05, x=1.5)],
+        [spring("wall", "hoop", at=[{}, {"radius": 0.05, "angle": 60.0}], rest_length=0.45),
+         spring("hoop", "cyl", at=[{"height": 0.15}, {"radius": 0.06, "angle": -30.0}]),
+         spring("hoop", "cyl", stiffness=50.0),
+         spring("cyl", "wheel", at=[{}, {"height": 0.2}], rest_length=0.55),
+         spring("wheel", "block", stiffness=80.0)],
+        anchors=[{"id": "wall", "x": -0.5, "y": 0.15}],
+        forces=[{"body": "wheel", "at": {"radius": 0.05, "angle": 45.0}, "fx": 0.5, "fy": -0.2}],
+    )
+
+
+@pytest.mark.parametrize("symbols", [False, True])
+def test_exact_forces_match_the_numeric_physics_at_random_states(symbols: bool) -> None:
+    system = everything_system()
+    sym = symbolic_system(system, symbols=symbols)
+    assert sym.reference == "equilibrium"
+    arrays = system_arrays(system)
+
+    def lam(exprs):
+        return sp.lambdify(sym.q, [sp.sympify(e).xreplace(sym.values) for e in exprs], "numpy")
+
+    torque, newton = lam(sym.generalized_forces), lam(sym.contact_torques)
+    friction, normal = lam(sym.friction_configuration), lam(sym.normal)
+    rng = np.random.default_rng(7)
+    for _ in range(4):
+        u = rng.normal(0.0, 0.4, sym.n)
+        q = sym.q_reference + u
+        f_num, n_num = contact_forces(arrays, q)
+        np.testing.assert_allclose(torque(*u), generalized_forces(arrays, q), atol=1e-10)
+        np.testing.assert_allclose(newton(*u), generalized_forces(arrays, q), atol=1e-10)
+        np.testing.assert_allclose(friction(*u), f_num, atol=1e-10)
+        np.testing.assert_allclose(normal(*u), n_num, atol=1e-10)
+    q_ref = sym.q_reference
+    np.testing.assert_allclose(matrix_to_float(sym.stiffness_matrix, sym.values),
+                               stiffness_matrix(arrays, q_ref), atol=1e-10)
+    d_friction, d_normal = contact_forces_jacobian(arrays, q_ref)
+    f_lin, n_lin = sym.linear_contact_forces
+    jac_f = np.array([[float(sp.diff(e, q).xreplace(sym.values)) for q in sym.q] for e in f_lin])
+    jac_n = np.array([[float(sp.diff(e, q).xreplace(sym.values)) for q in sym.q] for e in n_lin])
+    np.testing.assert_allclose(jac_f, d_friction, atol=1e-9)
+    np.testing.assert_allclose(jac_n, d_normal, atol=1e-9)
+
+
+def test_lagranges_method_agrees_with_the_structure_route_off_centre() -> None:
+    """sympy.physics.mechanics.LagrangesMethod on the exact (nonlinear) Lagrangian gives
+    J_i phi_i'' + dV/dphi_i = 0 (Fig. 3 geometry: trigonometric attachment paths)."""
+    sym = symbolic_system(load_system("frictionless"), symbols=True)
+    check = mechanics_lagrange_check(sym)
+    assert check["agrees"] is True
+    assert check["residual"] == sp.zeros(2, 1)
+    assert len(check["equations"]) == 2 and check["equations"][0].has(sp.sin)
+
+
+def test_exact_numbers() -> None:
+    assert exact_number(0.1) == sp.Rational(1, 10)
+    assert exact_number(1.4999999999999998) == sp.Rational(3, 2)
+    assert exact_number(1 / 3) == sp.Rational(1, 3)
+    assert exact_number(0.0) == 0
+    close = exact_number(math.pi)  # no simple fraction: the first within 1e-12 of pi
+    assert abs(float(close) - math.pi) <= 1e-12 * math.pi and close.q <= 10**6
+    assert exact_number(0.123456789012345) == sp.Rational(123456789012345, 10**15)
+
+
+fig2 = settings(max_examples=12, deadline=None)
+
+
+@fig2
+@given(st.floats(0.05, 20.0), st.floats(0.05, 20.0), st.floats(0.01, 1.0),
+       st.floats(1.0, 5000.0))
+def test_fig2_exact_for_random_parameters(m1: float, m2: float, radius: float, k: float) -> None:
+    rest = 10 * radius + 1.0
+    system = make_system(
+        [body("hoop", "hoop", mass=m1, radius=radius, x=0.0),
+         body("cylinder", "cylinder", mass=m2, radius=radius, x=rest - 0.01)],
+        [spring("hoop", "cylinder", stiffness=k, rest_length=rest)])
+    sym = symbolic_system(system)
+    M1, M2, K, R = (exact_number(v) for v in (m1, m2, k, radius))
+    # paper (QQQ1), exactly in rational arithmetic
+    (omega2,) = normal_frequencies(sym).omega2
+    assert omega2 == K / (2 * M1) + 2 * K / (3 * M2)
+    # Steiner (I'_1, I'_2) and K = k R^2 [[1, -1], [-1, 1]] (physics stiffness_matrix docstring)
+    assert sym.mass_matrix == sp.diag(2 * M1 * R**2, sp.Rational(3, 2) * M2 * R**2)
+    assert sym.stiffness_matrix == K * R**2 * sp.Matrix([[1, -1], [-1, 1]])
+    # friction: -F/2 on the hoop, +F/3 on the cylinder, F = k(R phi2 - R phi1)
+    p1, p2 = sym.q
+    f1, f2 = sym.linear_contact_forces[0]
+    assert sp.expand(f1 + K * (R * p2 - R * p1) / 2) == 0
+    assert sp.expand(f2 - K * (R * p2 - R * p1) / 3) == 0
+
+
+def test_geometric_stiffness_of_a_pretensioned_hoop_between_walls() -> None:
+    """PHYSICS.md section 7: a hoop point at alpha = 90 deg between two walls, both springs at
+    tension T: K = (kL + kR) R^2 + T r^2 (1/lL + 1/lR) (the path-curvature terms cancel)."""
+    system = make_system(
+        [body("h", "hoop", x=0.0)],
+        [spring("left", "h", at=[{}, {"radius": 0.05, "angle": 90.0}], rest_length=0.4),
+         spring("h", "right", at=[{"radius": 0.05, "angle": 90.0}, {}], rest_length=0.4)],
+        anchors=[{"id": "left", "x": -0.45, "y": 0.1}, {"id": "right", "x": 0.55, "y": 0.1}])
+    sym = symbolic_system(system, symbols=True)
+    s = {symbol.name: symbol for symbol in sym.values}
+    k1, k2, l1, l2, R = s["k_1"], s["k_2"], s["ell_1"], s["ell_2"], s["R"]
+    T = sp.Symbol("T", positive=True)
+    at_tension = {s["L_1"]: l1 - T / k1, s["L_2"]: l2 - T / k2}
+    (condition,) = sym.reference_forces  # equilibrium: the two tensions balance
+    assert sp.simplify(condition.subs(at_tension)) == 0
+    r = R / 2  # the attachment radius 0.05 m is R/2
+    expected = (k1 + k2) * R**2 + T * r**2 * (1 / l1 + 1 / l2)
+    assert sp.simplify(sym.stiffness_matrix[0, 0].subs(at_tension) - expected) == 0
+    np.testing.assert_allclose(matrix_to_float(sym.stiffness_matrix, sym.values),
+                               analyze(system).stiffness, rtol=1e-12)

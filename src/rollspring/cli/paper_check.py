@@ -1,0 +1,246 @@
+"""``rollspring paper-check``: every quantitative claim of the paper, with its computed verdict.
+
+``--json`` prints a list of {``location``, ``claim`` (LaTeX), ``verdict`` (``verified`` |
+``wrong`` | ``holds-only-if``), ``correction`` (LaTeX or null), ``reason``}; ``--format text``
+(default) a Rich table with ✔/✘ marks, ``--format markdown`` a Markdown table with the LaTeX in
+``$...$``. The verdicts come from :mod:`rollspring.analysis.paper_check` (the derivation engine).
+The command is added to an app by :func:`register`.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from collections import Counter
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+
+from rollspring.errors import RollspringError
+
+if TYPE_CHECKING:
+    from rollspring.analysis.paper_check import ClaimCheck
+
+__all__ = ["FORMATS", "PaperCheckError", "markdown_table", "paper_check", "plain", "register",
+           "summary"]
+
+# the verdicts of rollspring.analysis.paper_check (imported when the command runs: SymPy)
+VERIFIED, WRONG, HOLDS_ONLY_IF = "verified", "wrong", "holds-only-if"
+
+#: Formats ``--format`` accepts.
+FORMATS = ("text", "markdown")
+
+_MARK = {VERIFIED: "✔", WRONG: "✘", HOLDS_ONLY_IF: "✘"}
+_WORDS = {VERIFIED: "verified", WRONG: "wrong", HOLDS_ONLY_IF: "holds only if"}
+_STYLE = {VERIFIED: "green", WRONG: "red", HOLDS_ONLY_IF: "yellow"}
+
+
+class PaperCheckError(RollspringError, ValueError):
+    """Invalid options of ``rollspring paper-check``."""
+
+
+def paper_check(
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON list on stdout.")]
+    = False,
+    format: Annotated[str, typer.Option(  # noqa: A002 - the option is called --format
+        "--format", "-f", help=f"Output format: {', '.join(FORMATS)}.")] = "text",
+) -> None:
+    """Check every quantitative claim of the paper against the symbolic derivation: ✔ verified,
+    ✘ wrong (with the correction) or ✘ holds only under a condition (stated)."""
+    if format not in FORMATS:
+        raise PaperCheckError(f"--format: unknown format '{format}' "
+                              f"(formats: {', '.join(FORMATS)})")
+    from rollspring.analysis.paper_check import check_paper
+
+    checks = check_paper()
+    if as_json:
+        sys.stdout.write(json.dumps([c.to_dict() for c in checks], indent=2, ensure_ascii=False)
+                         + "\n")
+        sys.stdout.flush()
+        return
+    if format == "markdown":
+        sys.stdout.write(markdown_table(checks))
+        sys.stdout.flush()
+        return
+    _print_table(checks)
+
+
+def summary(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
+    """'N claims: a verified, b hold only under a condition, c wrong'."""
+    counts = Counter(c.verdict for c in checks)
+    return (f"{len(checks)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_ONLY_IF]} hold "
+            f"only under a condition, {counts[WRONG]} wrong")
+
+
+def markdown_table(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
+    """The checks as a Markdown table (LaTeX in ``$...$``), with a summary line."""
+    lines = [
+        "# The paper's claims, checked by rollspring's derivation engine",
+        "",
+        summary(checks) + ".",
+        "",
+        "| | where | claim | verdict | correction | reason |",
+        "|---|---|---|---|---|---|",
+    ]
+    for check in checks:
+        correction = f"${_cell_math(check.correction)}$" if check.correction else ""
+        lines.append(
+            f"| {_MARK[check.verdict]} | {_cell(check.claim.location)} | "
+            f"${_cell_math(check.claim.latex)}$ | {_WORDS[check.verdict]} | {correction} | "
+            f"{_cell(check.reason)} |")
+    return "\n".join(lines) + "\n"
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def _cell_math(latex: str) -> str:
+    return latex.replace("|", r"\vert ").replace("\n", " ")
+
+
+def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
+    from rich.table import Table
+    from rich.text import Text
+
+    from rollspring.cli.app import _stdout
+
+    table = Table(title="The paper's claims, checked by the derivation engine",
+                  title_justify="left", show_lines=True)
+    table.add_column("", no_wrap=True)
+    table.add_column("where", ratio=2, overflow="fold")
+    table.add_column("claim", ratio=4, overflow="fold")
+    table.add_column("verdict", ratio=4, overflow="fold")
+    for check in checks:
+        verdict = _WORDS[check.verdict]
+        if check.verdict == HOLDS_ONLY_IF:
+            verdict = check.reason
+        elif check.verdict == WRONG:
+            verdict = f"wrong: {check.reason}"
+        if check.correction:
+            verdict += f"\ncorrect: {plain(check.correction)}"
+        mark = f"[{_STYLE[check.verdict]}]{_MARK[check.verdict]}[/]"
+        table.add_row(mark, Text(check.claim.location), Text(plain(check.claim.latex)),
+                      Text(verdict, style=_STYLE[check.verdict] if check.verdict != VERIFIED
+                           else ""))
+    console = _stdout()
+    console.print(table)
+    console.print(summary(checks), markup=False)
+
+
+# -- LaTeX to readable text (for the terminal) ---------------------------------------------------
+
+_SYMBOLS = {
+    r"\varphi": "φ", r"\phi": "φ", r"\Phi": "Φ", r"\Omega": "Ω", r"\omega": "ω",
+    r"\varepsilon": "ε", r"\gamma": "γ", r"\alpha": "α", r"\beta": "β", r"\pi": "π",
+    r"\rightarrow": "→", r"\Rightarrow": "⇒", r"\neq": "≠", r"\equiv": "≡", r"\cdot": "·",
+    r"\quad": "  ", r"\qquad": "   ", r"\,": " ", r"\;": " ", r"\ ": " ", r"\!": "",
+    r"\left": "", r"\right": "", r"\lvert": "|", r"\rvert": "|", r"\vert": "|", r"\sum": "Σ",
+    r"\infty": "∞", r"\leq": "≤", r"\geq": "≥", r"\iff": "⇔", r"\vdots": "⋮",
+}
+_SUPERSCRIPT = str.maketrans("0123456789+-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻")
+_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def _group(text: str, start: int) -> tuple[str, int]:
+    """The brace group (or single character) at ``start``: its content and the end index."""
+    while start < len(text) and text[start] == " ":
+        start += 1
+    if start >= len(text):
+        return "", start
+    if text[start] != "{":
+        if text[start] == "\\":
+            match = re.match(r"\\[A-Za-z]+", text[start:])
+            if match:
+                return match.group(0), start + match.end()
+        return text[start], start + 1
+    depth = 0
+    for i in range(start, len(text)):
+        if text[i] == "{":
+            depth += 1
+        elif text[i] == "}":
+            depth -= 1
+            if depth == 0:
+                return text[start + 1:i], i + 1
+    return text[start + 1:], len(text)
+
+
+def plain(latex: str) -> str:
+    """A LaTeX formula as readable Unicode text (fractions as a/b, roots as √, dots as
+    combining accents, Greek letters, sub- and superscripts of digits)."""
+    out: list[str] = []
+    i = 0
+    text = latex
+    while i < len(text):
+        char = text[i]
+        if char == "\\":
+            match = re.match(r"\\([A-Za-z]+|.)", text[i:])
+            name = "\\" + match.group(1)
+            i += match.end()
+            if name in (r"\frac", r"\tfrac", r"\dfrac"):
+                num, i = _group(text, i)
+                den, i = _group(text, i)
+                fraction = f"{_wrap(plain(num))}/{_wrap(plain(den))}"
+                rest = re.sub(r"^(\s|\\right|\\quad|\\,|\\;|\\ )+", "", text[i:])
+                before = "".join(out).rstrip()[-1:]
+                joined = (rest[:1].isalnum() or (rest[:1] != "" and rest[:1] in "\\(")
+                          or before.isalnum()
+                          or before in ")̇̈₀₁₂₃₄₅₆₇₈₉²³")
+                out.append(f"({fraction})" if joined else fraction)
+            elif name == r"\sqrt":
+                arg, i = _group(text, i)
+                out.append(f"√{_wrap(plain(arg))}")
+            elif name in (r"\dot", r"\ddot", r"\hat", r"\bcancel"):
+                arg, i = _group(text, i)
+                accent = {r"\dot": "\u0307", r"\ddot": "\u0308", r"\hat": "\u0302",
+                          r"\bcancel": "\u0338"}[name]
+                inner = plain(arg)
+                if len(inner) == 1 or (inner[:1].isalpha() and all(
+                        c in "₀₁₂₃₄₅₆₇₈₉" for c in inner[1:])):
+                    out.append(inner[0] + accent + inner[1:])
+                else:
+                    out.append(f"({inner}){accent}")
+            elif name in (r"\text", r"\mathrm", r"\operatorname", r"\mathcal", r"\boldsymbol",
+                          r"\mathbf"):
+                arg, i = _group(text, i)
+                out.append(plain(arg) if name != r"\text" else arg)
+            elif name in _SYMBOLS:
+                out.append(_SYMBOLS[name])
+            else:
+                out.append(name[1:])
+            continue
+        if char in "^_":
+            arg, i = _group(text, i + 1)
+            rendered = plain(arg)
+            table = _SUPERSCRIPT if char == "^" else _SUBSCRIPT
+            converted = rendered.translate(table)
+            if all(c in "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻₀₁₂₃₄₅₆₇₈₉" for c in converted):
+                out.append(converted)
+            else:
+                out.append(f"{char}{_wrap(rendered)}" if char == "^" else f"_{rendered}")
+            continue
+        if char in "{}":
+            i += 1
+            continue
+        out.append(char)
+        i += 1
+    return re.sub(r" {2,}", "  ", "".join(out)).strip()
+
+
+def _wrap(text: str) -> str:
+    """Parenthesise a compound operand."""
+    text = text.strip()
+    atom = r"(\d+(\.\d+)?|√\d+|[A-Za-zφΦΩωεγαβπ][\u0307\u0308\u0302']?[₀-₉]*[⁰-⁹]*)"
+    if len(text) <= 1 or re.fullmatch(atom, text):
+        return text
+    if text.startswith("(") and text.endswith(")") and text.count("(") == 1:
+        return text
+    return f"({text})"
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``paper-check`` command to ``app`` (with rollspring's one-line error handling)."""
+    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+
+    app.command(name="paper-check")(friendly_errors(paper_check))

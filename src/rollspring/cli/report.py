@@ -1,0 +1,78 @@
+"""``rollspring report SYSTEM -o report.html``: one self-contained offline page about a system.
+
+The page (:mod:`rollspring.outputs.report`) holds the parameters, the modal table, X̂, the
+friction needed against μs, the derivations and paper checks, the plots and an animation; with
+``--format pdf`` headless Chromium prints the same page. The command is added to an app by
+:func:`register` (called by ``rollspring.cli.app`` at its bottom).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from rollspring.model import DEFAULT_PRESET, load_system, preset_names
+
+__all__ = ["FORMATS", "register", "report"]
+
+#: Formats ``--format`` accepts (as :data:`rollspring.outputs.report.FORMATS`, which is imported
+#: only when the command runs: it brings Matplotlib, and every other command starts faster).
+FORMATS = ("html", "pdf")
+
+
+def report(
+    system: Annotated[str, typer.Argument(
+        help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
+        show_default=False)] = DEFAULT_PRESET,
+    out: Annotated[str | None, typer.Option(
+        "--out", "-o", help="Output file (default report.html, or report.pdf with --format pdf).",
+        show_default=False)] = None,
+    format: Annotated[str | None, typer.Option(  # noqa: A002 - the option is called --format
+        "--format", "-f", help="html (default; pdf when --out ends in .pdf) or pdf (printed by "
+        "headless Chromium).", show_default=False)] = None,
+    duration: Annotated[float | None, typer.Option(
+        "--duration", "-T", help="Simulated time, s (default: four periods of the slowest mode, "
+        "1 to 20 s).", show_default=False)] = None,
+    derivation: Annotated[bool, typer.Option(
+        "--derivation/--no-derivation", help="Include the symbolic derivation by the five "
+        "methods and the paper's claims (SymPy; the slowest part for large systems).")] = True,
+    chromium: Annotated[str | None, typer.Option(
+        help="Chromium executable for --format pdf (default: $ROLLSPRING_CHROMIUM, then "
+        "chromium on PATH).", show_default=False)] = None,
+) -> None:
+    """Write a self-contained report (HTML, or PDF through headless Chromium): diagram,
+    parameters, modes, X̂, friction needed vs μs, derivations, paper checks, plots, animation."""
+    from rollspring.outputs.report import ReportError, build_report, find_chromium, write_report
+
+    if format is None:
+        format = "pdf" if out is not None and out.lower().endswith(".pdf") else "html"
+    if format not in FORMATS:
+        raise ReportError(f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})")
+    if duration is not None and not duration > 0:
+        raise ReportError(f"--duration: must be a positive number of seconds, got {duration:g}")
+    target = Path(out if out is not None else f"report.{format}")
+    if format == "pdf":
+        find_chromium(chromium)  # fail before the work when Chromium is missing
+    model = load_system(system)
+    from rollspring.cli.app import _progress_after_a_second
+
+    with _progress_after_a_second("building the report") as progress:
+        built = build_report(model, duration=duration, derivation=derivation, progress=progress)
+        written = write_report(built, target, format=format, chromium=chromium)
+    for failure in built.math_failures:
+        _say(f"warning: shown as LaTeX source: {failure}")
+    _say(f"wrote {written}")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``report`` command to ``app`` (with rollspring's one-line error handling)."""
+    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+
+    app.command(name="report")(friendly_errors(report))
+
+
+def _say(line: str) -> None:
+    """One unwrapped line on stderr, never mixed into stdout."""
+    typer.echo(" ".join(line.split()), err=True)

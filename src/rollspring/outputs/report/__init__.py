@@ -1,0 +1,46 @@
+"""The report: one self-contained offline HTML page about a system (``rollspring report``).
+
+The page holds the system's parameters, the equilibrium with M and K, the modal table, the
+stationary point X̂, the friction each body needs against μs, the simulated motion with an
+animation player (Play/Pause, speed, frame slider), the warnings, and the analysis and trajectory
+as embedded data; every formula is MathML (converted from LaTeX by ``latex2mathml``; Chromium
+renders MathML natively). Nothing is fetched: styles and scripts are inline, images and data are
+``data:`` URLs, and a Content-Security-Policy forbids every request. ``format="pdf"`` prints the
+same page with headless Chromium.
+
+Public API::
+
+    report = build_report(system, duration=None, progress=None)   # -> Report (report.html)
+    write_report(report, "report.html")                           # atomic
+    write_report(report, "report.pdf", format="pdf")              # headless Chromium
+    find_chromium()                                               # path, or ReportError
+    latex_to_mathml(r"\\Omega^2 = k/(2m_1)")                      # MathML markup
+"""
+
+from rollspring.outputs.report._build import (
+    FORMATS,
+    Report,
+    animation_data,
+    build_report,
+    default_duration,
+    paper_figure,
+    write_report,
+)
+from rollspring.outputs.report._html import MathConversionError, ReportError, latex_to_mathml
+from rollspring.outputs.report._pdf import CHROMIUM_ENV, find_chromium, html_to_pdf
+
+__all__ = [
+    "CHROMIUM_ENV",
+    "FORMATS",
+    "MathConversionError",
+    "Report",
+    "ReportError",
+    "animation_data",
+    "build_report",
+    "default_duration",
+    "find_chromium",
+    "html_to_pdf",
+    "latex_to_mathml",
+    "paper_figure",
+    "write_report",
+]

@@ -15,13 +15,9 @@ from typing import Annotated
 import typer
 
 from rollspring.model import load_system, preset_names
-from rollspring.outputs.animation import (
-    FORMATS,
-    MAX_FRAMES,
-    AnimationError,
-    frame_times,
-    write_animation,
-)
+
+# rollspring.outputs.animation (Matplotlib) is imported when the command runs, not when the CLI
+# starts: every other command would pay for it.
 
 __all__ = ["animate", "register"]
 
@@ -47,6 +43,7 @@ def animate(
     """Animate the exact motion: the bodies roll, the springs stretch, force arrows to scale,
     the CM and X-hat on the floor, and a clock."""
     target = _check(out, duration, speed, fps, dpi, on_slip)
+    from rollspring.outputs.animation import AnimationError, frame_times, write_animation
     from rollspring.simulate import simulate
 
     model = load_system(system)
@@ -71,6 +68,8 @@ def animate(
 def _check(out: str | None, duration: float, speed: float, fps: int, dpi: int,
            on_slip: str) -> Path:
     """Every option checked before any work: one line naming the option."""
+    from rollspring.outputs.animation import FORMATS, MAX_FRAMES, AnimationError
+
     if out is None:
         raise AnimationError("--out/-o is required: a .gif, .mp4 or .html file")
     target = Path(out)

@@ -189,3 +189,15 @@ def test_the_help_names_the_engines_methods_and_formats():
 
     assert METHOD_NAMES == (*METHODS, ALL)
     assert FORMAT_NAMES == FORMATS
+
+
+def test_the_cross_check_shows_each_residual_not_a_truth_value():
+    from rollspring.analysis.derivation import derive
+    from rollspring.model import load_system
+
+    section = derive(load_system("hoop-cylinder")).cross_check.section()
+    residuals = [step.latex for step in section.steps if "residual" in step.latex]
+    assert len(residuals) >= 5
+    for latex in residuals:
+        assert "False" not in latex and "True" not in latex
+        assert latex.startswith(r"\mathrm{residual} = ")

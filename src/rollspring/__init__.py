@@ -8,6 +8,12 @@ springs to each other and to walls. Quick start::
     result = rollspring.analyze(system)                   # equilibrium, modes, X-hat, friction
     result.modes[1].omega, result.stationary_weights, result.required_mu
     run = rollspring.simulate(system, 10.0)               # the exact nonlinear motion
+    rollspring.derive(system).to_markdown()               # five derivations, cross-checked
+    rollspring.check_paper()                              # the paper's claims with verdicts
+    rollspring.build_report(system)                       # the self-contained HTML report
+
+The symbolic and picture parts (SymPy, Matplotlib) load on first use, so ``import rollspring``
+stays light.
 """
 
 from rollspring.analysis import LinearAnalysis, Mode, analyze, find_equilibrium, normal_modes
@@ -62,10 +68,44 @@ def _register_notebook_display() -> None:
 
 _register_notebook_display()
 
+#: Loaded on first use (SymPy, Matplotlib): name -> module that defines it.
+_LAZY = {
+    "derive": "rollspring.analysis.derivation",
+    "Derivation": "rollspring.analysis.derivation",
+    "symbolic_system": "rollspring.analysis.derivation",
+    "check_paper": "rollspring.analysis.paper_check",
+    "paper_claims": "rollspring.analysis.paper_check",
+    "build_report": "rollspring.outputs.report",
+    "write_report": "rollspring.outputs.report",
+    "worksheet": "rollspring.outputs.worksheet",
+}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'rollspring' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_LAZY])
+
 __version__ = "0.1.0"
 
 __all__ = [
     "AnalysisError",
+    "Derivation",
+    "build_report",
+    "check_paper",
+    "derive",
+    "paper_claims",
+    "symbolic_system",
+    "worksheet",
+    "write_report",
     "BatchResult",
     "Anchor",
     "Attachment",

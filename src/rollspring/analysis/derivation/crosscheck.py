@@ -17,7 +17,7 @@ import sympy as sp
 
 from rollspring.analysis.derivation.frequencies import BudgetExceeded, Frequencies, time_budget
 from rollspring.analysis.derivation.methods import MethodResult
-from rollspring.analysis.derivation.steps import Section, named
+from rollspring.analysis.derivation.steps import Section, latex_of, named
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
 
 __all__ = ["Check", "CrossCheck", "cross_check", "equations_matrix"]
@@ -57,8 +57,9 @@ class CrossCheck:
         section = Section("Cross-check of the methods")
         for check in self.checks:
             verdict = {True: "agrees", False: "DIFFERS", None: "undecided (time budget)"}
-            section.add(sp.Eq(named("residual", r"\mathrm{residual}"), check.residual),
-                        f"{check.method}: {check.what} {verdict[check.agrees]}.")
+            # (an Eq of a symbol and a Matrix would evaluate to False: the LaTeX is built here)
+            section.add(check.residual, f"{check.method}: {check.what} {verdict[check.agrees]}.",
+                        latex=r"\mathrm{residual} = " + latex_of(check.residual))
         for name, reason in self.not_applicable.items():
             section.add(named("not applicable", r"\text{not applicable}"),
                         f"{name} does not apply: {reason}.", latex=r"\text{not applicable}")

@@ -307,9 +307,12 @@ def test_kernels_agree_with_the_numpy_physics(r1, a1, r2, a2, q1, q2):
     np.testing.assert_allclose(derivative[6:] * arrays.inertia, generalized_forces(arrays, q),
                                atol=1e-12)
     out = [np.empty((1, 2)), np.empty((1, 2)), np.empty((1, 2)), np.empty((1, 2)), np.empty(1)]
+    ratio, kinetic = np.empty((1, 2)), np.empty(1)
     kernels.observe(model, state[None, :], np.zeros((1, 2), dtype=bool), np.zeros((1, 2)),
-                    False, *out)
+                    False, *out, arrays.gamma * arrays.mass * arrays.radius**2, ratio, kinetic)
     assert out[4][0] == pytest.approx(float(potential_energy(arrays, q)), abs=1e-12)
+    assert kinetic[0] == 0.0  # at rest
+    np.testing.assert_allclose(ratio[0], np.abs(f_ref) / (arrays.mu_static * n_ref), rtol=1e-12)
 
 
 @pytest.mark.parametrize(("kwargs", "field"), [

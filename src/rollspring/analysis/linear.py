@@ -66,11 +66,14 @@ class Equilibrium:
     reason: str = ""
     #: the stiffness matrix K(q*) (None when no equilibrium was found)
     stiffness: FloatArray | None = None
+    #: :func:`normal_modes` of (M, K(q*)): (eigenvalues, vectors, kinds), or None
+    modes: tuple[FloatArray, FloatArray, np.ndarray] | None = None
 
 
 def find_equilibrium(
     system: SystemArrays, *, max_iterations: int = 200, tolerance: float = 1e-13,
     forces: Callable[[FloatArray], FloatArray] | None = None,
+    stiffness: Callable[[FloatArray], FloatArray] | None = None,
 ) -> Equilibrium:
     r"""The equilibrium nearest the initial placement, with the zero modes held.
 
@@ -85,12 +88,18 @@ def find_equilibrium(
        oscillates about this point.
 
     ``forces`` may replace :func:`~rollspring.physics.generalized_forces` of ``system`` by an
-    equal but faster function of q (the simulator passes its compiled kernel).
+    equal but faster function of q (the simulator passes its compiled kernel), ``stiffness``
+    likewise :func:`~rollspring.physics.stiffness_matrix` (the simulator passes one that keeps
+    K at the start).
     """
     n = system.n_bodies
     if forces is None:
         def forces(state: FloatArray) -> FloatArray:
             return generalized_forces(system, state)
+    stiffness_of = stiffness
+    if stiffness_of is None:
+        def stiffness_of(state: FloatArray) -> FloatArray:
+            return stiffness_matrix(system, state)
     mass = mass_matrix(system)
     inv_mass = 1.0 / system.inertia
 
@@ -113,7 +122,7 @@ def find_equilibrium(
         for _ in range(10):  # plain Newton while its steps are small and the residual falls
             if residual <= target:
                 return state, residual
-            eigenvalues, vectors, kinds = normal_modes(mass, stiffness_matrix(system, state))
+            eigenvalues, vectors, kinds = normal_modes(mass, stiffness_of(state))
             nonzero = kinds != "zero"
             if not np.any(nonzero) or np.any(kinds == "unstable"):
                 break  # Newton heads for saddles: leave it to the trust region
@@ -131,7 +140,7 @@ def find_equilibrium(
         solution = scipy.optimize.least_squares(
             lambda p: forces(p / root_mass) / root_mass,
             state * root_mass,
-            jac=lambda p: -stiffness_matrix(system, p / root_mass)
+            jac=lambda p: -stiffness_of(p / root_mass)
             / np.outer(root_mass, root_mass),
             method="trf",
             x_scale=0.1 * root_mass,  # trust region starts at 0.1 rad (0.1 m for sliders)
@@ -153,18 +162,19 @@ def find_equilibrium(
             "with no restoring stiffness (the system accelerates away), or the nearest "
             "equilibrium is too far away to be found",
         )
-    stiffness = stiffness_matrix(system, q)
-    _, _, kinds = normal_modes(mass, stiffness)
-    n_zero = int(np.sum(kinds == "zero"))
+    stiffness_eq = stiffness_of(q)
+    modes = normal_modes(mass, stiffness_eq)
+    n_zero = int(np.sum(modes[2] == "zero"))
     if n_zero:
-        held = _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness)
+        held = _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness_eq)
         if not np.array_equal(held, q):
-            q, stiffness = held, stiffness_matrix(system, held)
+            q, stiffness_eq = held, stiffness_of(held)
+            modes = normal_modes(mass, stiffness_eq)
             residual = residual_of(q)
     found = residual <= 1e-9 * scale
     return Equilibrium(q, found, residual,
                        "" if found else "the equilibrium search did not converge",
-                       stiffness if found else None)
+                       stiffness_eq if found else None, modes if found else None)
 
 
 def _valley_directions(system: SystemArrays, mass: FloatArray, q: FloatArray, n_zero: int,

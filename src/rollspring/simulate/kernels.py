@@ -548,12 +548,15 @@ def slipping_derivatives(model, state, slipping, sign, damped, out):
 
 @njit(cache=True, error_model="numpy")
 def observe(model, states, slipping, sign, damped, friction, normal, length, tension,
-            potential):
+            potential, central, ratio, kinetic):
     r"""Per row of ``states`` (rows of ``[x, phi, u, omega]``): friction (the static friction
     a rolling body needs, (M8), or the kinetic friction of a slipping body, (M19)), normal force
-    (M9), spring lengths and tensions, and the potential energy
+    (M9), spring lengths and tensions, the potential energy
     :math:`U = \sum \tfrac12 k(l - L_0)^2 - \sum F\cdot(P - P_0)` (gravity left out; P_0 at the
-    model's reference positions, so pass the model of the initial placement).
+    model's reference positions, so pass the model of the initial placement), the kinetic
+    energy :math:`\sum \tfrac12 (m_i u_i^2 + I_i \omega_i^2)` (``central`` holds the central
+    inertias :math:`I_i`) and the friction ratio :math:`|f|/(\mu_s N)` (0 for sliders and for
+    :math:`\mu_s = \infty`, :math:`\infty` when :math:`N \le 0`).
     ``slipping``/``sign`` are per row."""
     n = states.shape[1] // 4
     b, springs, forces, force_body, g = model[0], model[1], model[3], model[4], model[5]
@@ -586,3 +589,17 @@ def observe(model, states, slipping, sign, damped, friction, normal, length, ten
             else:
                 friction[row, i] = (b[i, MASS] * b[i, SCALE] * (b[i, SCALE] * fx[i] + tau[i])
                                     / b[i, INERTIA] - fx[i])
+        moving = 0.0
+        for i in range(n):
+            u = state[2 * n + i]
+            w = state[3 * n + i]
+            moving += 0.5 * (b[i, MASS] * u * u + central[i] * w * w)
+            if b[i, ROLLS] == 0.0:
+                ratio[row, i] = 0.0
+            elif normal[row, i] <= 0.0:
+                ratio[row, i] = np.inf
+            elif math.isinf(b[i, MU_S]):
+                ratio[row, i] = 0.0
+            else:
+                ratio[row, i] = abs(friction[row, i]) / (b[i, MU_S] * normal[row, i])
+        kinetic[row] = moving

@@ -21,7 +21,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import scipy.integrate
@@ -143,6 +143,18 @@ def _presenter(name: str) -> Callable[..., Any]:
                               f"import rollspring (or rollspring.outputs) first") from None
 
 
+class _Observed(NamedTuple):
+    """What the kernel observes at rows of states (see :func:`kernels.observe`)."""
+
+    friction: FloatArray
+    normal: FloatArray
+    ratio: FloatArray
+    length: FloatArray
+    tension: FloatArray
+    potential: FloatArray
+    kinetic: FloatArray
+
+
 @dataclass(frozen=True)
 class _Start:
     """A rolling state (q, v) at time t with what the kernel needs to step on from it."""
@@ -252,12 +264,25 @@ def simulate(
     n = arrays.n_bodies
     mass = mass_matrix(arrays)
     start_model = kernels.kernel_model(arrays)
+    start_stiffness: list[FloatArray] = []  # K at the initial placement, if the search made it
+
+    def stiffness_of(q: FloatArray) -> FloatArray:
+        k = stiffness_matrix(arrays, q)
+        if not start_stiffness and not np.any(q):
+            start_stiffness.append(k)
+        return k
+
     equilibrium = find_equilibrium(
-        arrays, forces=lambda q: kernels.generalized_forces(start_model, np.asarray(q, float)))
-    stiffness_eq = (equilibrium.stiffness if equilibrium.stiffness is not None
-                    else stiffness_matrix(arrays, equilibrium.q))
-    omegas_eq, vectors_eq, kinds_eq = normal_modes(mass, stiffness_eq)
-    omegas_0, _, _ = normal_modes(mass, stiffness_matrix(arrays, np.zeros(n)))
+        arrays, forces=lambda q: kernels.generalized_forces(start_model, np.asarray(q, float)),
+        stiffness=stiffness_of)
+    if equilibrium.modes is not None:
+        omegas_eq, vectors_eq, kinds_eq = equilibrium.modes
+    else:
+        omegas_eq, vectors_eq, kinds_eq = normal_modes(mass, stiffness_matrix(arrays,
+                                                                              equilibrium.q))
+    stiffness_0 = start_stiffness[0] if start_stiffness else stiffness_matrix(arrays,
+                                                                              np.zeros(n))
+    omegas_0, _, _ = normal_modes(mass, stiffness_0)
     omega_max = float(np.sqrt(max(np.max(np.abs(omegas_eq)), np.max(np.abs(omegas_0)), 0.0)))
     oscillating = np.flatnonzero(kinds_eq == "oscillating")
     period_linear = (2 * math.pi / math.sqrt(omegas_eq[oscillating[0]])
@@ -310,6 +335,8 @@ class _Run:
         self.h = step
         self.coeffs = SCHEMES[scheme][1] if scheme in SCHEMES else SCHEMES["kahanli8"][1]
         self.rows: list[FloatArray] = []  # general states at output times
+        self.observed: list[_Observed] = []  # forces, energies, ... at those rows
+        self.central = np.ascontiguousarray(arrays.gamma * arrays.mass * arrays.radius**2)
         self.row_slipping: list[np.ndarray] = []
         self.row_sign: list[np.ndarray] = []
         self.times: list[float] = []
@@ -372,31 +399,31 @@ class _Run:
         self._record_block(np.array([t]), np.asarray(state, dtype=float)[None, :], slipping,
                            sign)
 
-    def _record_block(self, times, states, slipping, sign) -> None:
+    def _record_block(self, times, states, slipping, sign) -> _Observed:
+        """Keep output rows with everything observed at them; returns what was observed."""
         self.times.append(np.asarray(times, dtype=float).copy())
-        self.rows.append(np.asarray(states, dtype=float).copy())
+        self.rows.append(np.ascontiguousarray(states, dtype=float).copy())
         self.row_slipping.append(np.broadcast_to(slipping, (len(times), self.n)).copy())
         self.row_sign.append(np.broadcast_to(sign, (len(times), self.n)).copy())
+        observed = self._observe(self.rows[-1], self.row_slipping[-1], self.row_sign[-1])
+        self.observed.append(observed)
+        return observed
 
     def _energy(self, states, slipping, sign) -> FloatArray:
-        *_, potential = self._observe(states, slipping, sign)
-        n, a = self.n, self.arrays
-        u, w = states[:, 2 * n:3 * n], states[:, 3 * n:]
-        central = a.gamma * a.mass * a.radius**2
-        return potential + 0.5 * np.sum(a.mass * u**2 + central * w**2, axis=1)
+        observed = self._observe(states, slipping, sign)
+        return observed.potential + observed.kinetic
 
-    def _observe(self, states, slipping, sign):
+    def _observe(self, states, slipping, sign) -> _Observed:
         rows = states.shape[0]
         ns = self.arrays.n_springs
-        friction = np.empty((rows, self.n))
-        normal = np.empty((rows, self.n))
-        length = np.empty((rows, ns))
-        tension = np.empty((rows, ns))
-        potential = np.empty(rows)
+        out = _Observed(np.empty((rows, self.n)), np.empty((rows, self.n)),
+                        np.empty((rows, self.n)), np.empty((rows, ns)), np.empty((rows, ns)),
+                        np.empty(rows), np.empty(rows))
         kernels.observe(self.model, np.ascontiguousarray(states), np.asarray(slipping),
-                        np.asarray(sign, dtype=float), self.damped, friction, normal, length,
-                        tension, potential)
-        return friction, normal, length, tension, potential
+                        np.asarray(sign, dtype=float), self.damped, out.friction, out.normal,
+                        out.length, out.tension, out.potential, self.central, out.ratio,
+                        out.kinetic)
+        return out
 
     def _contact_verdict(self, state, slipping):
         """('liftoff' | 'slip', body) if a rolling body violates its contact now, else None."""
@@ -499,9 +526,8 @@ class _Run:
             row_q.append(out_q[:filled])
             row_v.append(out_v[:filled])
             states = self.general_state(out_q[:filled], out_v[:filled], x0)
-            if filled:
-                self._record_block(out_times[:filled], states, slipping, sign)
-            if filled and not self._energy_ok(states):
+            if filled and not self._energy_ok(
+                    self._record_block(out_times[:filled], states, slipping, sign)):
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h,
                                                              x0))
                 self._offer_steps(model, x0, extremes, extreme_states, crossing,
@@ -567,9 +593,8 @@ class _Run:
                 return "slip", i
         return None
 
-    def _energy_ok(self, states) -> bool:
-        energy = self._energy(states, np.zeros((len(states), self.n), dtype=bool),
-                              np.zeros((len(states), self.n)))
+    def _energy_ok(self, observed: _Observed) -> bool:
+        energy = observed.potential + observed.kinetic
         scale = max(abs(self.e0), 1e-300)
         error = float(np.max(np.abs(energy - self.e_segment))) / scale
         if not np.isfinite(error):
@@ -741,32 +766,33 @@ class _Run:
     # -- results ----------------------------------------------------------------------------
     def trajectory(self, system: System) -> Trajectory:
         a, n = self.arrays, self.n
-        all_times = np.concatenate(self.times)
-        order = np.argsort(all_times, kind="stable")
-        times = all_times[order]
-        keep = np.concatenate([[True], np.diff(times) > 0])
-        order = order[keep]
-        times = times[keep]
-        states = np.concatenate(self.rows)[order]
-        slipping = np.concatenate(self.row_slipping)[order]
-        sign = np.concatenate(self.row_sign)[order]
-        friction, normal, length, tension, potential = self._observe(states, slipping, sign)
-        u, w = states[:, 2 * n:3 * n], states[:, 3 * n:]
-        central = a.gamma * a.mass * a.radius**2
-        kinetic = 0.5 * np.sum(a.mass * u**2 + central * w**2, axis=1)
+        times = np.concatenate(self.times)
+        pick = None  # rows in time order, each time once (events can repeat a time)
+        if times.size > 1 and not np.all(np.diff(times) > 0):
+            order = np.argsort(times, kind="stable")
+            keep = np.concatenate([[True], np.diff(times[order]) > 0])
+            pick = order[keep]
+
+        def column(parts):
+            joined = np.concatenate(parts)
+            return joined if pick is None else joined[pick]
+
+        times = times if pick is None else times[pick]
+        states = column(self.rows)
+        observed = {name: column([getattr(o, name) for o in self.observed])
+                    for name in _Observed._fields}
+        kinetic, potential = observed["kinetic"], observed["potential"]
         x = states[:, :n]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = np.where(self.rolls & (normal > 0), np.abs(friction)
-                             / (a.mu_static * normal), np.where(self.rolls, np.inf, 0.0))
-        ratio = np.where(np.isinf(a.mu_static) & (normal > 0), 0.0, ratio)
         return Trajectory(
             system=system, ids=a.ids, spring_names=a.spring_names, t=times, x=x,
-            phi=states[:, n:2 * n], v=u, omega=w, friction=friction, normal=normal,
-            friction_ratio=ratio, slipping=slipping, spring_length=length,
-            spring_tension=tension, kinetic=kinetic, potential=potential,
-            energy=kinetic + potential, cm_x=x @ a.mass / np.sum(a.mass), stationary_x=None,
-            status=self.status, message=self.message, integrator=self.scheme, step=self.h,
-            n_steps=self.n_steps, events=list(self.events))
+            phi=states[:, n:2 * n], v=states[:, 2 * n:3 * n], omega=states[:, 3 * n:],
+            friction=observed["friction"], normal=observed["normal"],
+            friction_ratio=observed["ratio"], slipping=column(self.row_slipping),
+            spring_length=observed["length"], spring_tension=observed["tension"],
+            kinetic=kinetic, potential=potential, energy=kinetic + potential,
+            cm_x=x @ a.mass / np.sum(a.mass), stationary_x=None, status=self.status,
+            message=self.message, integrator=self.scheme, step=self.h, n_steps=self.n_steps,
+            events=list(self.events))
 
 
 def _summary(trajectory: Trajectory, run: _Run, arrays: SystemArrays, q_eq, lowest, mass,
@@ -953,10 +979,6 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
         q = np.where(run.rolls, states[..., n:2 * n], states[..., :n] - arrays.x0)
         return (q - q_eq) @ weights
 
-    signal = signal_of(np.concatenate([trajectory.x, trajectory.phi, trajectory.v,
-                                       trajectory.omega], axis=1))
-    level = 0.5 * (float(np.max(signal)) + float(np.min(signal)))
-    values = signal - level
     if len(run.crossings) == 1 and len(run.segments) == 1 and run.crossings[0][0] >= 2:
         # one rolling segment: the kernel counted the upward zero crossings of the signal at
         # every step and kept the states before the first and the last
@@ -966,6 +988,10 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
                                                    run.q_ref)
                  for seg in (first, last)]
         return (times[1] - times[0]) / (count - 1)
+    signal = signal_of(np.concatenate([trajectory.x, trajectory.phi, trajectory.v,
+                                       trajectory.omega], axis=1))
+    level = 0.5 * (float(np.max(signal)) + float(np.min(signal)))
+    values = signal - level
     upward = np.flatnonzero((values[:-1] < 0) & (values[1:] >= 0))
     if upward.size < 2:
         return None

@@ -27,7 +27,6 @@ per second of playback. ``progress`` is called with the fraction of frames rende
 
 from __future__ import annotations
 
-import contextlib
 import hashlib
 import html
 import math
@@ -41,7 +40,7 @@ import numpy as np
 
 from rollspring.errors import RollspringError
 from rollspring.outputs.figures import SystemScene, scene_for_trajectory, states_at, theme
-from rollspring.outputs.files import atomic_write, atomic_write_text
+from rollspring.outputs.files import atomic_path, atomic_write, atomic_write_text
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import Trajectory
 
@@ -227,29 +226,19 @@ def _padded(frame: np.ndarray, block: int) -> np.ndarray:
 def _write_mp4(animation: MotionAnimation, target: Path, progress: Progress | None) -> None:
     import imageio_ffmpeg
 
-    target.parent.mkdir(parents=True, exist_ok=True)
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part.mp4",
-                                             dir=target.parent)
-    os.close(descriptor)
-    try:
+    with atomic_path(target, suffix=".part.mp4") as temporary:
         writer = None
         for frame in animation.frames(progress):
             rgb = _padded(frame, 16)
             if writer is None:
                 writer = imageio_ffmpeg.write_frames(
-                    temporary, (rgb.shape[1], rgb.shape[0]), fps=animation.fps,
+                    str(temporary), (rgb.shape[1], rgb.shape[0]), fps=animation.fps,
                     codec="libx264", pix_fmt_out="yuv420p", quality=8, macro_block_size=16,
                     ffmpeg_log_level="error", output_params=["-movflags", "+faststart"])
                 writer.send(None)
             writer.send(rgb.tobytes())
         if writer is not None:
             writer.close()
-        os.chmod(temporary, 0o644)
-        os.replace(temporary, target)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(temporary)
-        raise
 
 
 _ICONS = {

@@ -13,28 +13,37 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import IO
 
-__all__ = ["atomic_write", "atomic_write_bytes", "atomic_write_text"]
+__all__ = ["atomic_path", "atomic_write", "atomic_write_bytes", "atomic_write_text"]
 
 
 @contextlib.contextmanager
-def atomic_write(path: str | os.PathLike[str], mode: str = "w", **open_kwargs) -> Iterator[IO]:
-    """Open a temporary file next to ``path``; on success flush, fsync and rename it onto
-    ``path``; on any exception remove it and leave ``path`` untouched."""
+def atomic_path(path: str | os.PathLike[str], suffix: str = ".part") -> Iterator[Path]:
+    """A temporary path next to ``path`` for a writer that wants a file name (an encoder, a
+    browser printing a PDF); on success it is renamed onto ``path``, on any exception removed,
+    leaving ``path`` untouched. ``suffix`` ends the temporary name (some writers go by it)."""
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part",
+    descriptor, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=suffix,
                                              dir=target.parent)
+    os.close(descriptor)
     try:
-        with os.fdopen(descriptor, mode, **open_kwargs) as handle:
-            yield handle
-            handle.flush()
-            os.fsync(handle.fileno())
+        yield Path(temporary)
         os.chmod(temporary, 0o644)
         os.replace(temporary, target)
     except BaseException:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(temporary)
         raise
+
+
+@contextlib.contextmanager
+def atomic_write(path: str | os.PathLike[str], mode: str = "w", **open_kwargs) -> Iterator[IO]:
+    """Open a temporary file next to ``path``; on success flush, fsync and rename it onto
+    ``path``; on any exception remove it and leave ``path`` untouched."""
+    with atomic_path(path) as temporary, open(temporary, mode, **open_kwargs) as handle:
+        yield handle
+        handle.flush()
+        os.fsync(handle.fileno())
 
 
 def atomic_write_text(path: str | os.PathLike[str], text: str) -> None:

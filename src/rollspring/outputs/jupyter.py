@@ -35,6 +35,7 @@ import numpy as np
 
 from rollspring.analysis import LinearAnalysis, Mode
 from rollspring.model import System
+from rollspring.outputs.numbers import short_number as _g
 from rollspring.simulate import Trajectory
 
 __all__ = [
@@ -55,20 +56,6 @@ NOTEBOOK_DPI = 100
 _TABLE = ('<table style="border-collapse: collapse; margin: 0.3em 0; font-size: 0.92em">'
           "{head}{rows}</table>")
 _CELL = 'style="padding: 0.15em 0.6em; text-align: {align}; border-bottom: 1px solid #ddd"'
-
-
-def _g(value: Any, digits: int = 6) -> str:
-    """A number as short text: ∞, −, or ``digits`` significant digits."""
-    if value is None:
-        return "–"
-    value = float(value)
-    if math.isnan(value):
-        return "–"
-    if math.isinf(value):
-        return "∞" if value > 0 else "−∞"
-    if value == 0:
-        return "0"
-    return f"{value:.{digits}g}"
 
 
 def _table(header: list[str], rows: list[list[Any]], caption: str = "") -> str:

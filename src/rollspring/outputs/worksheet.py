@@ -36,7 +36,7 @@ import numpy as np
 
 from rollspring.analysis import LinearAnalysis, analyze
 from rollspring.analysis.derivation import Derivation, Section, derive
-from rollspring.analysis.derivation.render import latex_text
+from rollspring.analysis.derivation.render import LATEX_PREAMBLE, latex_text
 from rollspring.errors import RollspringError
 from rollspring.model import System, system_from_dict
 
@@ -625,21 +625,6 @@ def _md(words: str) -> str:
 
 # -- LaTeX ---------------------------------------------------------------------------------------
 
-_PREAMBLE = [
-    r"\documentclass[11pt]{article}",
-    r"\usepackage[T1]{fontenc}",
-    r"\usepackage{amsmath}",
-    r"\usepackage{amssymb}",
-    r"\setcounter{MaxMatrixCols}{20}",
-    r"\allowdisplaybreaks",
-    r"\setlength{\textwidth}{16cm}",
-    r"\setlength{\oddsidemargin}{0cm}",
-    r"\setlength{\textheight}{23cm}",
-    r"\setlength{\topmargin}{-1cm}",
-    r"\setlength{\parindent}{0pt}",
-    r"\setlength{\parskip}{4pt}",
-    r"\begin{document}",
-]
 
 
 def _latex_words(text: str) -> str:
@@ -668,7 +653,7 @@ def _latex_tables(sheet: Worksheet) -> list[str]:
 
 
 def _latex_sheet(sheet: Worksheet) -> str:
-    lines = list(_PREAMBLE)
+    lines = list(LATEX_PREAMBLE)
     lines += [rf"\section*{{rollspring worksheet, {latex_text(sheet.title)}}}",
               rf"\emph{{Seed {sheet.seed}. SI units; $g = {sheet.system.gravity:g}$\,m/s$^2$.}}",
               r"\subsection*{The system}"]
@@ -683,7 +668,7 @@ def _latex_sheet(sheet: Worksheet) -> str:
 
 
 def _latex_solutions(sheet: Worksheet) -> str:
-    lines = list(_PREAMBLE)
+    lines = list(LATEX_PREAMBLE)
     lines += [rf"\section*{{Solutions: rollspring worksheet, {latex_text(sheet.title)}}}",
               rf"\emph{{Seed {sheet.seed}.}}",
               r"\subsection*{The system as a rollspring file}",

@@ -14,7 +14,7 @@ import sympy as sp
 
 from rollspring.analysis.derivation.steps import Section, Step
 
-__all__ = ["FORMATS", "latex_document", "latex_text", "markdown", "text"]
+__all__ = ["FORMATS", "LATEX_PREAMBLE", "latex_document", "latex_text", "markdown", "text"]
 
 #: Output formats.
 FORMATS = ("text", "markdown", "latex")
@@ -70,22 +70,28 @@ def markdown(title: str, subtitle: str, sections: Sequence[Section]) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: The preamble of every LaTeX document rollspring writes (article, amsmath; A4-ish text block),
+#: up to and including ``\begin{document}``.
+LATEX_PREAMBLE = (
+    r"\documentclass[11pt]{article}",
+    r"\usepackage[T1]{fontenc}",
+    r"\usepackage{amsmath}",
+    r"\usepackage{amssymb}",
+    r"\setcounter{MaxMatrixCols}{20}",
+    r"\allowdisplaybreaks",
+    r"\setlength{\textwidth}{16cm}",
+    r"\setlength{\oddsidemargin}{0cm}",
+    r"\setlength{\textheight}{23cm}",
+    r"\setlength{\topmargin}{-1cm}",
+    r"\setlength{\parindent}{0pt}",
+    r"\setlength{\parskip}{4pt}",
+    r"\begin{document}",
+)
+
+
 def latex_document(title: str, subtitle: str, sections: Sequence[Section]) -> str:
     """A complete, compilable LaTeX document (article, amsmath)."""
-    body = [
-        r"\documentclass[11pt]{article}",
-        r"\usepackage[T1]{fontenc}",
-        r"\usepackage{amsmath}",
-        r"\usepackage{amssymb}",
-        r"\setcounter{MaxMatrixCols}{20}",
-        r"\allowdisplaybreaks",
-        r"\setlength{\textwidth}{16cm}",
-        r"\setlength{\oddsidemargin}{0cm}",
-        r"\setlength{\parindent}{0pt}",
-        r"\setlength{\parskip}{4pt}",
-        r"\begin{document}",
-        rf"\section*{{{latex_text(title)}}}",
-    ]
+    body = [*LATEX_PREAMBLE, rf"\section*{{{latex_text(title)}}}"]
     if subtitle:
         body.append(latex_text(subtitle))
     for section in sections:

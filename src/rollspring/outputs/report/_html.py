@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import latex2mathml.converter
 
 from rollspring.errors import RollspringError
+from rollspring.outputs.numbers import html_number as fmt
 
 __all__ = [
     "MathConversionError",
@@ -54,24 +55,6 @@ def esc(value: object) -> Markup:
 def join(parts: Iterable[object], sep: str = "") -> Markup:
     """Concatenate escaped parts."""
     return Markup(sep.join(esc(p) for p in parts))
-
-
-def fmt(value: float | None, digits: int = 6) -> str:
-    """A number for reading: 6 significant digits, ``∞``, ``−∞``, ``–`` for None/NaN, ``0``."""
-    if value is None:
-        return "–"
-    value = float(value)
-    if math.isnan(value):
-        return "–"
-    if math.isinf(value):
-        return "∞" if value > 0 else "−∞"
-    if value == 0:
-        return "0"
-    text = f"{value:.{digits}g}"
-    if "e" in text:
-        mantissa, exponent = text.split("e")
-        text = f"{mantissa}×10<sup>{int(exponent)}</sup>"
-    return text.replace("-", "−")
 
 
 @dataclass(frozen=True)

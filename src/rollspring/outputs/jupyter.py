@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import base64
 import html
-import math
 from typing import Any
 
 import numpy as np

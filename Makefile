@@ -1,5 +1,6 @@
 # rollspring: two commands.
 #   make demo   set up .venv, analyse and simulate the default system (the paper's hoop and cylinder)
+#               and write its report (build/demo/report.html)
 #   make test   set up .venv and run the whole test suite
 PYTHON ?= python3
 VENV   := .venv
@@ -27,6 +28,7 @@ $(STAMP): pyproject.toml constraints.txt
 demo: $(STAMP)
 	$(BIN)/rollspring analyze hoop-cylinder
 	$(BIN)/rollspring simulate hoop-cylinder --duration 10 --rtol 1e-10
+	$(BIN)/rollspring report hoop-cylinder -o build/demo/report.html
 
 test: $(STAMP) system-packages
 	$(BIN)/python -m pytest

@@ -30,7 +30,8 @@ def derive_command(
         help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
         show_default=False)],
     method: Annotated[list[str] | None, typer.Option(
-        "--method", "-m", help=f"Method(s): {', '.join(METHOD_NAMES[:-1])} or {METHOD_NAMES[-1]} (repeatable).",
+        "--method", "-m",
+        help=f"Method(s): {', '.join(METHOD_NAMES[:-1])} or {METHOD_NAMES[-1]} (repeatable).",
         show_default=False)] = None,
     format: Annotated[str, typer.Option(  # noqa: A002 - the option is called --format
         "--format", "-f", help=f"Output format: {', '.join(FORMAT_NAMES)} (latex: a full "

@@ -208,8 +208,8 @@ def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = 
     the phase error over the run after :math:`\omega T` radians; at most 0.5, and at most
     :math:`(46080\,\mathrm{rtol})^{1/6}` and :math:`(13420\,\mathrm{rtol})^{1/5}` so that the
     outputs, interpolated inside the steps with errors :math:`(\omega h)^6/46080` of the
-    amplitude in position and :math:`(\omega h)^5/13420` in velocity, stay within ``rtol``. ``auto`` takes
-    the scheme with the fewest force evaluations. Returns ``(name, h)``."""
+    amplitude in position and :math:`(\omega h)^5/13420` in velocity, stay within ``rtol``.
+    ``auto`` takes the scheme with the fewest force evaluations. Returns ``(name, h)``."""
     names = list(SCHEMES) if integrator == "auto" else [integrator]
     best = None
     for name in names:

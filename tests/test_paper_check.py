@@ -279,7 +279,7 @@ def test_cli_text_table_marks_and_counts() -> None:
     result = runner.invoke(app, ["paper-check"])
     assert result.exit_code == 0, result.output
     counts = {v: sum(1 for e in EXPECTED.values() if e == v) for v in VERDICTS}
-    assert "✔" in result.stdout and "✘" in result.stdout
+    assert "✔" in result.stdout and "✘" in result.stdout and "⚠" in result.stdout
     assert (f"{len(EXPECTED)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_ONLY_IF]} hold "
             f"only under a condition, {counts[WRONG]} wrong") in result.stdout
     assert "R₁=R₂/2" in result.stdout  # the LaTeX shown as readable text
@@ -289,8 +289,8 @@ def test_cli_text_table_marks_and_counts() -> None:
 def test_cli_markdown_table() -> None:
     result = runner.invoke(app, ["paper-check", "--format", "markdown"])
     assert result.exit_code == 0, result.output
-    rows = [line for line in result.stdout.splitlines() if line.startswith("| ✔") or
-            line.startswith("| ✘")]
+    rows = [line for line in result.stdout.splitlines()
+            if line.startswith(("| ✔", "| ✘", "| ⚠"))]
     assert len(rows) == len(EXPECTED)
     assert all(line.count(" | ") == 5 for line in rows)  # 6 cells, no stray pipes
     assert r"$\frac{f_1}{f_2}=\frac{3}{2}" in result.stdout

@@ -269,7 +269,7 @@ def test_the_papers_claims_about_fig_2_with_their_verdicts(report: Report, page:
               if {"fig2", "fig2-radii"} & {k.strip() for k in c.system.split(",")}]
     assert [location for location, _ in shown] == [c.location for c in claims]
     assert len(shown) >= 20
-    words = {"verified": "✔ verified", "holds-only-if": "✘ holds only if", "wrong": "✘ wrong"}
+    words = {"verified": "✔ verified", "holds-only-if": "⚠ holds only if", "wrong": "✘ wrong"}
     for claim in claims[:3]:  # the verdicts are paper_check's
         assert dict(shown)[claim.location] == words[paper_check.check_claim(claim).verdict]
     # the frequency of eq. (QQQ1) is right (tests above recompute it from the closed form)

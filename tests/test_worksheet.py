@@ -235,3 +235,21 @@ def test_cli_constants_are_the_librarys() -> None:
     # the CLI module keeps its own copies so that importing it does not import SymPy
     assert cli_worksheet.FORMATS == FORMATS
     assert cli_worksheet.LEVELS == LEVELS
+
+
+def test_level_3_starts_as_its_words_say_only_body_2_displaced():
+    """'Body 2 is pushed A to the left (every spring at rest before)': all springs have one rest
+    length L, so every body but body 2 sits at its rest place (i - 1) L, body 2 at L - A."""
+    seen = set()
+    for seed in range(12):
+        sheet = worksheet(3, seed)
+        seen.add(sheet.variant)
+        rest = {spring["rest_length"] for spring in sheet.data["springs"]}
+        assert len(rest) == 1
+        (length,) = rest
+        xs = [body["x"] for body in sheet.data["bodies"]]
+        for i, x in enumerate(xs):
+            if i != 1:
+                assert x == pytest.approx(i * length, abs=1e-12)
+        assert 0 < length - xs[1] < 0.1 * length and "pushed" in " ".join(sheet.setting)
+    assert seen == {"wall", "two-walls", "chain"}

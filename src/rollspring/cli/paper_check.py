@@ -2,7 +2,7 @@
 
 ``--json`` prints a list of {``location``, ``claim`` (LaTeX), ``verdict`` (``verified`` |
 ``wrong`` | ``holds-only-if``), ``correction`` (LaTeX or null), ``reason``}; ``--format text``
-(default) a Rich table with ✔/✘ marks, ``--format markdown`` a Markdown table with the LaTeX in
+(default) a Rich table with ✔/⚠/✘ marks, ``--format markdown`` a Markdown table with the LaTeX in
 ``$...$``. The verdicts come from :mod:`rollspring.analysis.paper_check` (the derivation engine).
 The command is added to an app by :func:`register`.
 """
@@ -31,7 +31,7 @@ VERIFIED, WRONG, HOLDS_ONLY_IF = "verified", "wrong", "holds-only-if"
 #: Formats ``--format`` accepts.
 FORMATS = ("text", "markdown")
 
-_MARK = {VERIFIED: "✔", WRONG: "✘", HOLDS_ONLY_IF: "✘"}
+_MARK = {VERIFIED: "✔", WRONG: "✘", HOLDS_ONLY_IF: "⚠"}
 _WORDS = {VERIFIED: "verified", WRONG: "wrong", HOLDS_ONLY_IF: "holds only if"}
 _STYLE = {VERIFIED: "green", WRONG: "red", HOLDS_ONLY_IF: "yellow"}
 
@@ -47,7 +47,7 @@ def paper_check(
         "--format", "-f", help=f"Output format: {', '.join(FORMATS)}.")] = "text",
 ) -> None:
     """Check every quantitative claim of the paper against the symbolic derivation: ✔ verified,
-    ✘ wrong (with the correction) or ✘ holds only under a condition (stated)."""
+    ✘ wrong (with the correction) or ⚠ holds only under a condition (stated)."""
     if format not in FORMATS:
         raise PaperCheckError(f"--format: unknown format '{format}' "
                               f"(formats: {', '.join(FORMATS)})")

@@ -214,7 +214,7 @@ def _level3(rng: np.random.Generator) -> tuple[str, dict, list[str]]:
     shapes = [_pick(rng, _SHAPES) for _ in range(n)]
     masses = [_pick(rng, _MASSES) for _ in range(n)]
     ids = [f"b{i + 1}" for i in range(n)]
-    x = [0.0, _REST - A] + ([2 * _REST - A] if n == 3 else [])
+    x = [0.0, _REST - A] + ([2 * _REST] if n == 3 else [])  # only body 2 is displaced
     bodies = [_body(ids[i], shapes[i], masses[i], R, x[i]) for i in range(n)]
     anchors = []
     ends = [(ids[i], ids[i + 1]) for i in range(n - 1)]

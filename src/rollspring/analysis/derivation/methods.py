@@ -21,7 +21,7 @@ method's own equations, the conserved quantities, the equation of motion of the 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import sympy as sp
@@ -190,8 +190,9 @@ def _whole_system(section: Section, sym: SymbolicSystem, *, coords: list[sp.Symb
         momentum = sp.Add(*[masses[i] * v0[i] * velocities[i] for i in range(n)])
         out["conserved"] = momentum
         section.add(sp.Eq(_content_free(momentum, velocities), 0),
-                    "Integrating over time: this angular-momentum combination is conserved "
-                    "(zero for a start at rest relative to the stationary point).", refs[1])
+                    "Integrating over time: this combination of angular momenta about the "
+                    "contact lines (of linear momenta, for sliders) is conserved (zero for a "
+                    "start at rest relative to the stationary point).", refs[1])
         if in_angles:
             weights = [sp.cancel(masses[i] * v0[i] / sym.bodies[i].s) for i in range(n)]
             common = _symbolic_gcd(weights)
@@ -199,10 +200,15 @@ def _whole_system(section: Section, sym: SymbolicSystem, *, coords: list[sp.Symb
             out["weights"] = weights
             xs = [_x_symbol(sym, i) for i in range(n)]
             xhat = sp.Symbol("Xhat")
+            per_mass = [sp.cancel(w / sym.bodies[i].m) for i, w in enumerate(weights)]
+            is_cm = all(sp.simplify(r - per_mass[0]) == 0 for r in per_mass[1:])
+            verdict = ("this point stays at rest; here it is the centre of mass (the weights are "
+                       "proportional to the masses)" if is_cm else
+                       "this point, not the centre of mass, stays at rest")
             section.add(sp.Eq(xhat, sp.Add(*[w * x for w, x in zip(weights, xs, strict=True)])
                               / sp.Add(*weights)),
                         "With x_i = s_i q_i the combination is a weighted sum of centre "
-                        "velocities: this point, not the centre of mass, stays at rest.", refs[2])
+                        f"velocities: {verdict}.", refs[2])
     if n == 2 and v0 is not None and frequencies.n_zero == 1 and v0[0] != 0 and v0[1] != 0:
         ratio = sp.cancel(-masses[0] * v0[0] / (masses[1] * v0[1]))
         out["ratio"] = ratio
@@ -472,13 +478,16 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         speeds = [_sqrt_form(v) for v in speeds]
         v_syms = [sp.Symbol(f"v_{sym.bodies[i].label}") for i in range(2)]
         section.add([sp.Eq(v_syms[i], _root_display(speeds[i], amplitude)) for i in range(2)],
-                    "Largest centre speeds, v = R times the largest angular velocity.",
+                    "Largest centre speeds, v = R times the largest angular velocity (for a "
+                    "slider, its largest speed).",
                     "paper (om), (pi)")
         deformation_rate = sp.cancel(sp.Abs(b[0] + b[1] * ratio) * rate1)
         omega = _sqrt_form(sp.factor(deformation_rate / amplitude))
         section.add(sp.Eq(sp.Symbol("Omega"), omega),
-                    "The deformation rate at its largest is A Omega (harmonic motion): Omega = "
-                    "(v1 + v2)/A for a horizontal centre spring.", "paper Omega = (v1+v2)/A")
+                    "The spring's deformation rate, sum_i b_i q_i' with the lever arms b_i, is A "
+                    "Omega at its largest (harmonic motion); for a horizontal spring between the "
+                    "centres the rate is v1 + v2, the paper's Omega = (v1 + v2)/A.",
+                    "paper Omega = (v1+v2)/A")
         amplitudes = [sp.factor(sp.cancel(v / omega)) for v in speeds]
         section.add([sp.Eq(sp.Symbol(f"A_{sym.bodies[i].label}"), amplitudes[i])
                      for i in range(2)], "Centre amplitudes about the stationary point, "
@@ -856,5 +865,27 @@ _RUNNERS: dict[str, Callable[[SymbolicSystem, float | None], MethodResult]] = {
 
 
 def run_method(sym: SymbolicSystem, name: str, *, budget: float | None = 10.0) -> MethodResult:
-    """Run one method by name (see :data:`METHODS`)."""
-    return _RUNNERS[name](sym, budget)
+    """Run one method by name (see :data:`METHODS`). The paper's equation labels name its
+    Fig. 2 formulas (centres joined by a horizontal spring); for any other system they are
+    shown as "cf. paper ... (Fig. 2 there)": the step is the same idea, not the paper's
+    expression."""
+    result = _RUNNERS[name](sym, budget)
+    if not _is_papers_fig2(sym):
+        result.section.steps[:] = [
+            replace(step, ref=_compare_ref(step.ref)) for step in result.section.steps]
+    return result
+
+
+def _is_papers_fig2(sym: SymbolicSystem) -> bool:
+    """Two rolling bodies joined at their centres by one horizontal spring (the paper's Fig. 2),
+    nothing else."""
+    return (sym.n == 2 and len(sym.springs) == 1 and sym.springs[0].bodies == (0, 1)
+            and sym.springs[0].stays_horizontal and all(b.rolls for b in sym.bodies)
+            and not sym.forces)
+
+
+def _compare_ref(ref: str) -> str:
+    """'paper (QQQ1); (M12)' -> 'cf. paper (QQQ1) (Fig. 2 there); (M12)'."""
+    parts = [part.strip() for part in ref.split(";")]
+    return "; ".join(f"cf. {part} (Fig. 2 there)" if part.startswith("paper") else part
+                     for part in parts if part)

@@ -621,7 +621,7 @@ class _Page:
         bench = paper_check._Bench()  # shares the symbolic systems between the claims
         checks = [paper_check.check_claim(claim, bench) for claim in claims]
         words = {paper_check.VERIFIED: ("✔ verified", "ok"),
-                 paper_check.HOLDS_ONLY_IF: ("✘ holds only if", "other"),
+                 paper_check.HOLDS_ONLY_IF: ("⚠ holds only if", "other"),
                  paper_check.WRONG: ("✘ wrong", "bad")}
         rows = []
         for check in checks:

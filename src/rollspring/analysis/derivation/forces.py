@@ -36,7 +36,7 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
     """
     m, R, I, F = sp.symbols("m R I F", positive=True)
     y = sp.Symbol("y", nonnegative=True)
-    f, a, acc = sp.symbols("f a varphiddot", real=True)
+    f, a, acc = sp.symbols("f a phiddot", real=True)
     section = Section("Friction of a pulled body (paper App. A)")
     newton = sp.Eq(F - f, m * a)
     torque = sp.Eq(F * y, (I + m * R**2) * acc)

@@ -387,7 +387,9 @@ def test_trajectory_tables_and_views_come_from_the_outputs_layer():
     assert frame.attrs["units"]["hoop.friction"] == "N"
     data = trajectory.to_xarray()
     np.testing.assert_array_equal(data["tension"].values, trajectory.spring_tension)
-    assert rollspring.simulate.run.PRESENTERS["animate"] is not None
+    player = trajectory.animate(fps=4, dpi=20).data  # Matplotlib's JS player, self-contained
+    assert player.count("data:image/png;base64,") == 3 and "http" not in player
+    assert callable(rollspring.simulate.run.PRESENTERS["animate"])
 
 
 def test_a_view_without_the_outputs_layer_is_a_clear_error(monkeypatch):

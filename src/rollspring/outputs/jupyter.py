@@ -34,6 +34,7 @@ import numpy as np
 
 from rollspring.analysis import LinearAnalysis, Mode
 from rollspring.model import System
+from rollspring.outputs.numbers import attachment_words
 from rollspring.outputs.numbers import short_number as _g
 from rollspring.simulate import Trajectory
 
@@ -90,14 +91,6 @@ def _heading(system: System, kind: str) -> str:
     return text
 
 
-def _attachment(at: Any) -> str:
-    if at.height is not None:
-        return f"height {_g(at.height, 4)} m"
-    if at.radius is not None:
-        return f"r {_g(at.radius, 4)} m at {_g(at.angle or 0.0, 4)}°"
-    return "centre"
-
-
 def system_html(system: System) -> str:
     """The system as HTML: its diagram (initial placement, CM on the floor) and tables of the
     bodies, springs, anchors and applied forces, as given in the file (SI units)."""
@@ -116,8 +109,8 @@ def system_html(system: System) -> str:
         for spring, rest in zip(system.springs, system.rest_lengths, strict=True):
             a, b = spring.attachments
             rows.append([html.escape(" – ".join(spring.ends)), _g(spring.stiffness, 6),
-                         _g(rest, 6), _g(spring.damping, 4), f"{_attachment(a)}; "
-                         f"{_attachment(b)}"])
+                         _g(rest, 6), _g(spring.damping, 4), f"{attachment_words(a)}; "
+                         f"{attachment_words(b)}"])
         parts.append(_table(["spring", "k (N/m)", "L₀ (m)", "c (N s/m)", "attached at"], rows,
                             "Springs"))
     if system.anchors:
@@ -126,7 +119,7 @@ def system_html(system: System) -> str:
                             "Anchors"))
     if system.forces:
         parts.append(_table(["force on", "at", "Fx (N)", "Fy (N)"],
-                            [[html.escape(f.body), _attachment(f.at), _g(f.fx), _g(f.fy)]
+                            [[html.escape(f.body), attachment_words(f.at), _g(f.fx), _g(f.fy)]
                              for f in system.forces], "Applied forces"))
     parts.append(f'<div style="color: #666">g = {_g(system.gravity)} m/s²</div>')
     return "<div>" + "".join(parts) + "</div>"

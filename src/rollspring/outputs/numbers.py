@@ -1,10 +1,12 @@
-"""Numbers as text for HTML pages and tables (the report, the Jupyter views)."""
+"""Numbers (and attachments) as text for HTML pages and tables (the report, the Jupyter
+views)."""
 
 from __future__ import annotations
 
 import math
+from typing import Any
 
-__all__ = ["html_number", "short_number"]
+__all__ = ["attachment_words", "html_number", "short_number"]
 
 
 def short_number(value: float | None, digits: int = 6) -> str:
@@ -29,3 +31,13 @@ def html_number(value: float | None, digits: int = 6) -> str:
         mantissa, exponent = text.split("e")
         text = f"{mantissa}×10<sup>{int(exponent)}</sup>"
     return text.replace("-", "−")
+
+
+def attachment_words(at: Any) -> str:
+    """Where a spring end sits on its body: ``centre``, ``height 0.15 m`` or
+    ``r = 0.05 m at 40°`` (an :class:`~rollspring.model.Attachment`)."""
+    if at.height is not None:
+        return f"height {short_number(at.height)} m"
+    if at.radius is not None:
+        return f"r = {short_number(at.radius)} m at {short_number(at.angle or 0.0)}°"
+    return "centre"

@@ -198,12 +198,17 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
 
 
 @njit(cache=True, error_model="numpy")
+def _workspace(model, n):
+    """The work arrays of one force evaluation: (scratch, gen, fx, fy)."""
+    return _scratch(n, model[1].shape[0]), np.empty(n), np.empty(n), np.empty(n)
+
+
+@njit(cache=True, error_model="numpy")
 def generalized_forces(model, q):
     r"""The generalised forces :math:`Q(q)` (M7) of an all-rolling state, as a new array (the
     compiled twin of :func:`rollspring.physics.generalized_forces` without damping)."""
-    n = q.shape[0]
-    gen = np.empty(n)
-    rolling_forces(model, q, _scratch(n, model[1].shape[0]), gen, np.empty(n), np.empty(n))
+    scratch, gen, fx, fy = _workspace(model, q.shape[0])
+    rolling_forces(model, q, scratch, gen, fx, fy)
     return gen
 
 
@@ -248,10 +253,7 @@ def advance(model, coeffs, q, v, duration, n_steps):
     q = q.copy()
     v = v.copy()
     n = q.shape[0]
-    scratch = _scratch(n, model[1].shape[0])
-    gen = np.empty(n)
-    fx = np.empty(n)
-    fy = np.empty(n)
+    scratch, gen, fx, fy = _workspace(model, n)
     friction = np.empty(n)
     normal = np.empty(n)
     rolling_forces(model, q, scratch, gen, fx, fy)
@@ -331,11 +333,8 @@ def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, check_contacts, out_time
     """
     bodies = model[0]
     n = q.shape[0]
-    scratch = _scratch(n, model[1].shape[0])
-    gen = np.empty(n)
+    scratch, gen, fx, fy = _workspace(model, n)
     gen_before = np.empty(n)
-    fx = np.empty(n)
-    fy = np.empty(n)
     rolling_forces(model, q, scratch, gen, fx, fy)
     rows = 0
     n_out = out_times.shape[0]
@@ -430,10 +429,7 @@ def refine_extremes(model, coeffs, h, q0, v0, kinds, bodies, best):
     refined ones in the same form."""
     m, n = q0.shape
     out = best.copy()
-    scratch = _scratch(n, model[1].shape[0])
-    gen = np.empty(n)
-    fx = np.empty(n)
-    fy = np.empty(n)
+    scratch, gen, fx, fy = _workspace(model, n)
     q = np.empty(n)
     v = np.empty(n)
     values = np.empty(9)
@@ -470,10 +466,7 @@ def signal_zero(model, coeffs, h, q0, v0, weights, q_ref):
     crosses zero: Newton with the exact rate :math:`\dot s = w \cdot \dot q`, safeguarded by
     bisection, on the integrator's own step, to rounding."""
     n = q0.shape[0]
-    scratch = _scratch(n, model[1].shape[0])
-    gen = np.empty(n)
-    fx = np.empty(n)
-    fy = np.empty(n)
+    scratch, gen, fx, fy = _workspace(model, n)
     q = np.empty(n)
     v = np.empty(n)
     lo, hi = 0.0, h

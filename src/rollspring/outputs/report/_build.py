@@ -25,6 +25,7 @@ from rollspring.errors import RollspringError
 from rollspring.model import System
 from rollspring.outputs import figures
 from rollspring.outputs.files import atomic_write_text
+from rollspring.outputs.numbers import attachment_words
 from rollspring.outputs.report._assets import CSS, PLAYER_JS
 from rollspring.outputs.report._html import (
     Markup,
@@ -290,7 +291,7 @@ class _Page:
             caption="Bodies", table_id="bodies")
         springs = table(
             ["spring", "ends", "attachments", "k (N/m)", "rest length (m)", "damping (N s/m)"],
-            [[name, " – ".join(s.ends), " ; ".join(_attachment_text(at) for at in s.attachments),
+            [[name, " – ".join(s.ends), " ; ".join(attachment_words(at) for at in s.attachments),
               Num(s.stiffness), Num(float(arrays.rest_length[k])), Num(s.damping)]
              for k, (name, s) in enumerate(zip(arrays.spring_names, system.springs,
                                                 strict=True))],
@@ -300,7 +301,7 @@ class _Page:
                         caption="Anchors (fixed points)", table_id="anchors") \
             if system.anchors else ""
         forces = table(["body", "point", "Fx (N)", "Fy (N)"],
-                       [[f.body, _attachment_text(f.at), Num(f.fx), Num(f.fy)]
+                       [[f.body, attachment_words(f.at), Num(f.fx), Num(f.fy)]
                         for f in system.forces],
                        caption="Constant forces", table_id="forces") if system.forces else ""
         gravity = Markup(f'<p>Gravity g = <span id="gravity" data-value="{system.gravity!r}">'
@@ -751,14 +752,6 @@ def paper_figure(system: System) -> tuple[str, set[str]] | None:
         if len(wall) == 1 and any(bodies[e].shape == "hoop" for e in wall[0].ends if e in bodies):
             return "Fig. 4 (a) (a wall spring on the hoop)", {"fig4a"}
     return None
-
-
-def _attachment_text(at: Any) -> str:
-    if at.height is not None:
-        return f"height {at.height:g} m"
-    if at.radius is not None:
-        return f"r = {at.radius:g} m at {at.angle or 0.0:g}°"
-    return "centre"
 
 
 def animation_data(analysis: LinearAnalysis, trajectory: Trajectory, frames: int) -> dict:

@@ -1,0 +1,636 @@
+// rollspring's interactive page: wires the editor, the canvas, the plots and the panels to the
+// API (docs/web-api.md). Every change sends one debounced POST /api/simulate (+ /api/analyze);
+// the whole trajectory comes back and is animated here with requestAnimationFrame.
+//
+// For benchmarks and tests the page exposes `window.rollspringPage`:
+//   frameTimes()  → the recent requestAnimationFrame timestamps (ms) while playing (last 240);
+//   lastUpdate()  → {changed, drawn}: performance.now() of the last parameter change (slider
+//                   release, field commit, drag release, key on a body) and of the first canvas
+//                   frame drawn with the motion computed for it (null before any change);
+//   ready()       → a Promise resolved once the first motion is drawn;
+//   system()      → a copy of the system being edited (the JSON form);
+//   time()        → the clock (s); dt() → the Step interval (s): one output interval.
+// Initial displacements are shown relative to where each body was when the system was loaded
+// (the preset, file or link): that is also where Home puts a body back.
+
+import { ApiError, getJson, latest, postBlob, postJson } from "./api.js";
+import { Editor } from "./editor.js";
+import { roundTo, sig, signedMetres } from "./format.js";
+import { attachmentFromPoint, springEnds, worldBounds } from "./geometry.js";
+import { Handles } from "./handles.js";
+import { renderDerivation, renderEnergyBars, renderModes } from "./panels.js";
+import { Plots } from "./plots.js";
+import { largestForce, Scene } from "./scene.js";
+import { energyBars } from "./series.js";
+import { advance, clockText, outputInterval, sampleIndex, SPEEDS, stepForward, valueAt } from "./timeline.js";
+import { decodeState, encodeState } from "./urlstate.js";
+
+const DURATION = 10;
+const OUTPUTS = 601;
+const DEBOUNCE_MS = 90;
+const ARROW_PX = 70; // the largest force shown is drawn this long
+
+const $ = (selector) => document.querySelector(selector);
+
+const state = {
+  preset: "",
+  system: null, // the system being edited (JSON form)
+  loaded: {}, // body id → x when the system was loaded (Home)
+  show: { spring: false, friction: true, normal: false, markers: true, linear: false },
+  onSlip: "stop",
+  speed: 1,
+  start: null, // {mode, amplitude}: start along a mode instead of the system's x, v
+  t: 0,
+  window: null, // the world window the canvas shows
+};
+
+let run = null; // the last good /api/simulate answer
+let analysis = null; // the last good /api/analyze answer
+let playing = false;
+let dragging = false;
+let alerted = false;
+let lastFrame = null;
+const frames = [];
+let pendingChange = null;
+let lastUpdate = null;
+let drawnRun = null;
+let resolveReady;
+const readyPromise = new Promise((resolve) => (resolveReady = resolve));
+
+const simulate = latest("/api/simulate");
+const analyze = latest("/api/analyze");
+const derive = latest("/api/derive");
+const scene = new Scene($("#scene"));
+const plots = new Plots($("#plots"), (t) => seek(t));
+const editor = new Editor($("#editor"), (kind) => edited(kind));
+const handles = new Handles($("#handles"), {
+  x: (id) => body(id).x,
+  home: (id) => state.loaded[id] ?? body(id).x,
+  pxPerM: () => scene.view.pxPerM,
+  moveBody,
+  dotAt,
+  moveDot,
+});
+
+function body(id) {
+  return state.system.bodies.find((b) => b.id === id);
+}
+
+// ---------------------------------------------------------------- loading and recomputing
+
+function loadSystem(system, preset = "") {
+  state.system = structuredClone(system);
+  state.preset = preset;
+  state.loaded = Object.fromEntries(system.bodies.map((b) => [b.id, b.x]));
+  state.start = null;
+  state.t = 0;
+  state.window = worldBounds(state.system);
+  scene.setWindow(state.window);
+  $("#preset").value = preset;
+  editor.load(state.system);
+  run = null;
+  recomputeNow();
+}
+
+let timer = null;
+function recompute() {
+  clearTimeout(timer);
+  timer = setTimeout(recomputeNow, DEBOUNCE_MS);
+}
+
+async function recomputeNow() {
+  clearTimeout(timer);
+  const system = structuredClone(state.system);
+  const request = { system, duration: DURATION, outputs: OUTPUTS, on_slip: state.onSlip,
+    linear: state.show.linear };
+  if (state.start) request.start = state.start;
+  setStatus("Computing…");
+  try {
+    const [sim, lin] = await Promise.all([simulate(request), analyze({ system })]);
+    if (!sim || !lin) return; // superseded by a newer change
+    editor.clearErrors();
+    $("#system-error").hidden = true;
+    apply(sim, lin, system);
+  } catch (error) {
+    showError(error);
+  }
+}
+
+function showError(error) {
+  if (error instanceof ApiError) {
+    editor.clearErrors();
+    if (!editor.showError(error.path, error.message)) {
+      $("#system-error").textContent = error.message;
+      $("#system-error").hidden = false;
+    }
+    setStatus("Not computed: the system is not valid (see the message next to the field).");
+  } else {
+    setStatus(`Not computed: ${error.message}`);
+  }
+}
+
+function apply(sim, lin, system) {
+  run = sim;
+  run.system = system;
+  analysis = lin;
+  alerted = false;
+  $("#alert").textContent = "";
+  const end = run.t[run.t.length - 1];
+  state.t = Math.min(state.t, end);
+  // a body leaving the window: show the whole motion
+  const bounds = worldBounds(system, Object.fromEntries(Object.entries(run.bodies).map(([id, b]) => [id, b.x])));
+  if (bounds.xmin < state.window.xmin || bounds.xmax > state.window.xmax) {
+    state.window = { ...state.window, xmin: Math.min(bounds.xmin, state.window.xmin),
+      xmax: Math.max(bounds.xmax, state.window.xmax) };
+    scene.setWindow(state.window);
+  }
+  const slider = $("#time");
+  slider.max = String(end);
+  slider.step = String(outputInterval(run.t));
+  $("#dt").textContent = `${sig(outputInterval(run.t), 4)} s`;
+  plots.setRun(run, system);
+  renderModes($("#modes tbody"), analysis, playMode);
+  renderAnalysisNote();
+  renderInitial();
+  describeRun();
+  if (state.start && !playing) play();
+  draw();
+  saveUrl();
+  if ($("#derivation").open) loadDerivation();
+  if ($("#toml-panel").open && !tomlEdited) loadToml();
+}
+
+function describeRun() {
+  const s = run.summary;
+  const event = firstEvent();
+  const end = run.t[run.t.length - 1];
+  if (event) {
+    setStatus(`Computed ${sig(end, 4)} s. ${event.kind === "slip" ? "Slips" : "Lifts off"}: `
+      + `${event.body} at t = ${event.time.toFixed(4)} s — play to see it.`);
+  } else {
+    setStatus(`Computed ${sig(end, 4)} s (${s.status}); every body rolls without slipping, `
+      + `max |f|/(μs N) = ${sig(maxRatio(), 3)}.`);
+  }
+}
+
+function maxRatio() {
+  const m = run.summary.max_friction_ratio;
+  if (m && typeof m === "object") return Math.max(...Object.values(m).filter((v) => v != null));
+  return m;
+}
+
+/** The first slip or lift-off: {kind, time, body} or null. */
+function firstEvent() {
+  const { first_slip: slip, first_liftoff: lift } = run.summary;
+  const events = [];
+  if (slip) events.push({ kind: "slip", ...slip });
+  if (lift) events.push({ kind: "lift-off", ...lift });
+  events.sort((a, b) => a.time - b.time);
+  return events[0] || null;
+}
+
+function renderAnalysisNote() {
+  const osc = analysis.modes.filter((m) => m.kind === "oscillating");
+  const sp = analysis.stationary_point;
+  const parts = [osc.length ? `Ω = ${sig(osc[0].omega, 6)} rad/s (lowest mode)` : "no oscillating mode"];
+  if (sp && sp.weights) {
+    parts.push(`X̂ = ${Object.entries(sp.weights).map(([id, w]) => `${sig(w, 4)}·x_${id}`).join(" + ")}`
+      + `${sp.is_centre_of_mass ? " (the centre of mass)" : " (not the centre of mass)"}`);
+  }
+  if (analysis.warnings && analysis.warnings.length) parts.push(`⚠ ${analysis.warnings.join(" ⚠ ")}`);
+  $("#analysis-note").textContent = parts.join(" · ");
+}
+
+// ---------------------------------------------------------------- the initial state
+
+function renderInitial() {
+  const list = $("#initial");
+  const eq = analysis ? analysis.equilibrium.x || {} : {};
+  const items = state.system.bodies.map((b) => {
+    const li = document.createElement("li");
+    const out = document.createElement("output");
+    out.id = `disp-${b.id}`;
+    out.className = "displacement";
+    const d = roundTo(b.x - (state.loaded[b.id] ?? b.x), 1e-9);
+    out.dataset.m = String(d);
+    out.textContent = signedMetres(d);
+    const fromEq = eq[b.id] != null ? `; from equilibrium ${signedMetres(roundTo(b.x - eq[b.id], 1e-9))}` : "";
+    li.append(`${b.id}: x₀ = ${sig(b.x, 5)} m, moved `, out, ` from where it was loaded${fromEq}`);
+    return li;
+  });
+  if (state.start) {
+    const li = document.createElement("li");
+    li.textContent = `Starting at rest along mode ${state.start.mode + 1}, largest centre `
+      + `displacement ${state.start.amplitude} m (drag a body to start from the positions above).`;
+    items.push(li);
+  }
+  list.replaceChildren(...items);
+}
+
+function moveBody(id, x, phase) {
+  pause();
+  state.t = 0;
+  state.start = null;
+  body(id).x = x;
+  editor.refreshField(`bodies.${state.system.bodies.indexOf(body(id))}.x`);
+  dragging = phase === "move";
+  renderInitial();
+  draw();
+  if (phase === "end") edited("commit");
+}
+
+function dotAt(q) {
+  if (playing || state.t !== 0 || !state.system) return null;
+  const dots = attachmentDotsNow();
+  return dots.find((d) => Math.hypot(d.p.x - q.x, d.p.y - q.y) <= 7) || null;
+}
+
+function attachmentDotsNow() {
+  const dots = [];
+  state.system.springs.forEach((spring, s) => {
+    const ends = springEnds(state.system, spring, (id) => ({ x: body(id).x, phi: 0 }));
+    spring.ends.forEach((id, j) => {
+      const b = body(id);
+      if (b && b.shape !== "slider") dots.push({ spring: s, end: j, body: b, p: scene.view.toCanvas(ends[j]) });
+    });
+  });
+  return dots;
+}
+
+function moveDot(dot, q, phase) {
+  const spring = state.system.springs[dot.spring];
+  spring.at ??= [{}, {}];
+  spring.at[dot.end] = attachmentFromPoint(dot.body, scene.view.toWorld(q));
+  dragging = phase === "move";
+  draw();
+  if (phase === "end") {
+    editor.render();
+    edited("commit");
+  }
+}
+
+// ---------------------------------------------------------------- edits
+
+function edited(kind) {
+  if (kind === "commit") pendingChange = performance.now();
+  renderInitial();
+  draw();
+  recompute();
+}
+
+function playMode(index) {
+  state.start = { mode: index, amplitude: Number($("#amplitude").value) || 0.01 };
+  state.t = 0;
+  pendingChange = performance.now();
+  pause();
+  recomputeNow();
+}
+
+// ---------------------------------------------------------------- the clock and drawing
+
+function dt() {
+  return run ? outputInterval(run.t) : 1 / 60;
+}
+
+function play() {
+  if (!run) return;
+  if (state.t >= run.t[run.t.length - 1]) {
+    state.t = 0;
+    alerted = false;
+  }
+  playing = true;
+  lastFrame = null;
+  $("#play").textContent = "Pause";
+  $("#play").setAttribute("aria-label", "Pause");
+  requestAnimationFrame(tick);
+}
+
+function pause() {
+  if (!playing) return;
+  playing = false;
+  $("#play").textContent = "Play";
+  $("#play").setAttribute("aria-label", "Play");
+  saveUrl();
+}
+
+function tick(now) {
+  if (!playing) return;
+  frames.push(now);
+  if (frames.length > 240) frames.shift();
+  if (lastFrame !== null) {
+    const next = advance(state.t, now - lastFrame, state.speed, run.t[run.t.length - 1]);
+    state.t = next.t;
+    if (next.ended) pause();
+  }
+  lastFrame = now;
+  draw();
+  if (playing) requestAnimationFrame(tick);
+}
+
+function seek(t) {
+  pause();
+  state.t = Math.max(0, Math.min(t, run ? run.t[run.t.length - 1] : 0));
+  if (run && state.t < (firstEvent()?.time ?? Infinity)) alerted = false;
+  draw();
+  saveUrl();
+}
+
+function step() {
+  if (!run) return;
+  seek(stepForward(state.t, dt(), run.t[run.t.length - 1]));
+}
+
+/** Pose of every body at the clock: from the trajectory, or while a body is being dragged or
+ * its new motion is on its way, at rest where the system places it. */
+function frameNow() {
+  const preview = !run || dragging || (state.t === 0 && pendingChange !== null && drawnRun === run && !state.start);
+  const t = state.t;
+  const system = preview ? state.system : run.system;
+  if (preview) {
+    const pose = (id) => ({ x: body(id).x, phi: 0 });
+    const tensions = system.springs.map((s) => restTension(system, s, pose));
+    return { system, pose, tensions, contact: () => null, cm: null, xhat: null, t, ghosts: null,
+      flash: new Set(), show: state.show, forceScale: 0, preview: true };
+  }
+  const times = run.t;
+  const pose = (id) => ({ x: valueAt(times, run.bodies[id].x, t), phi: valueAt(times, run.bodies[id].phi, t) });
+  const i = sampleIndex(times, t);
+  const flash = new Set();
+  const event = firstEvent();
+  if (event && t >= event.time - 1e-9) flash.add(event.body);
+  for (const [id, b] of Object.entries(run.bodies)) if (b.slipping[i]) flash.add(id);
+  const largest = largestForce(run, state.show);
+  return {
+    system, pose, t, flash, show: state.show,
+    tensions: run.springs.map((s) => valueAt(times, s.tension, t)),
+    contact: (id) => ({ f: valueAt(times, run.bodies[id].friction, t), N: valueAt(times, run.bodies[id].normal, t) }),
+    cm: valueAt(times, run.cm_x, t),
+    xhat: run.stationary_x ? valueAt(times, run.stationary_x, t) : null,
+    ghosts: state.show.linear && run.linear
+      ? Object.fromEntries(Object.entries(run.linear).map(([id, xs]) => [id, valueAt(times, xs, t)])) : null,
+    forceScale: largest > 0 ? ARROW_PX / largest : 0,
+    preview: false,
+  };
+}
+
+function restTension(system, spring, pose) {
+  if (spring.rest_length == null) return 0;
+  const [a, b] = springEnds(system, spring, pose);
+  return spring.stiffness * (Math.hypot(b.x - a.x, b.y - a.y) - spring.rest_length);
+}
+
+function draw() {
+  if (!state.system) return;
+  const frame = frameNow();
+  scene.draw(frame);
+  $("#clock").textContent = clockText(state.t);
+  $("#clock").dataset.t = String(state.t);
+  $("#time").value = String(state.t);
+  $("#scale-note").textContent = frame.forceScale > 0 && (state.show.spring || state.show.friction || state.show.normal)
+    ? `arrows: 1 N = ${sig(frame.forceScale, 3)} px` : "";
+  placeHandles(frame);
+  if (!frame.preview) {
+    plots.setTime(state.t);
+    renderEnergyBars($("#energy-bars"), energyBars(run, sampleIndex(run.t, state.t)));
+    announceEvent();
+    if (drawnRun !== run) {
+      drawnRun = run;
+      if (pendingChange !== null) {
+        lastUpdate = { changed: pendingChange, drawn: performance.now() };
+        pendingChange = null;
+      }
+      resolveReady();
+    }
+  }
+}
+
+function announceEvent() {
+  const event = firstEvent();
+  if (!event || alerted || state.t < event.time - 1e-9) return;
+  alerted = true;
+  const what = event.kind === "slip"
+    ? "starts to slip: the friction it needs reaches μs N"
+    : "lifts off: its normal force reaches zero";
+  $("#alert").textContent = `${event.body} ${what}, at t = ${event.time.toFixed(4)} s.`;
+  if (state.onSlip === "stop" || event.kind !== "slip") pause();
+}
+
+function placeHandles(frame) {
+  handles.sync(frame.system.bodies.map((b) => {
+    const { x } = frame.pose(b.id);
+    const c = scene.view.toCanvas({ x, y: (b.track_height || 0) + b.radius });
+    const size = Math.max(28, 2 * b.radius * scene.view.pxPerM);
+    const home = state.loaded[b.id] ?? b.x;
+    const d = roundTo(body(b.id) ? body(b.id).x - home : 0, 1e-9);
+    return { id: b.id, left: c.x - size / 2, top: c.y - size / 2, size, now: d,
+      min: roundTo(state.window.xmin - home, 1e-3), max: roundTo(state.window.xmax - home, 1e-3),
+      text: `${signedMetres(d)} from where it was loaded` };
+  }));
+}
+
+function setStatus(text) {
+  $("#status").textContent = text;
+}
+
+// ---------------------------------------------------------------- the URL (share)
+
+let urlTimer = null;
+function saveUrl() {
+  clearTimeout(urlTimer);
+  urlTimer = setTimeout(async () => {
+    const fragment = await encodeState(shareable());
+    history.replaceState(null, "", `#${fragment}`);
+  }, 150);
+}
+
+function shareable() {
+  return { preset: state.preset, system: state.system, loaded: state.loaded, show: state.show,
+    onSlip: state.onSlip, speed: state.speed, start: state.start, t: state.t, window: state.window };
+}
+
+function restore(saved) {
+  loadSystem(saved.system, saved.preset || "");
+  Object.assign(state, { loaded: saved.loaded, show: saved.show, onSlip: saved.onSlip,
+    speed: saved.speed, start: saved.start, t: saved.t, window: saved.window });
+  scene.setWindow(state.window);
+  syncViewControls();
+  recomputeNow();
+}
+
+// ---------------------------------------------------------------- the panels
+
+let tomlEdited = false;
+async function loadToml() {
+  try {
+    const forms = await postJson("/api/system", { system: state.system });
+    $("#toml").value = forms.toml;
+    tomlEdited = false;
+  } catch (error) {
+    showError(error);
+  }
+}
+
+async function applyToml(text) {
+  const slot = $("#toml-error");
+  try {
+    const forms = await postJson("/api/system", { toml: text });
+    slot.hidden = true;
+    $("#toml").removeAttribute("aria-invalid");
+    tomlEdited = false;
+    pendingChange = performance.now();
+    loadSystem(forms.system, "");
+    $("#toml").value = forms.toml;
+  } catch (error) {
+    slot.textContent = error.message;
+    slot.hidden = false;
+    $("#toml").setAttribute("aria-invalid", "true");
+  }
+}
+
+async function loadDerivation() {
+  const box = $("#derivation-body");
+  box.textContent = "Deriving… (this can take a few seconds)";
+  box.setAttribute("aria-busy", "true");
+  try {
+    const d = await derive({ system: state.system });
+    if (d) renderDerivation(box, d);
+  } catch (error) {
+    box.textContent = `Could not derive: ${error.message}`;
+  }
+  box.removeAttribute("aria-busy");
+}
+
+function download(blob, name) {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+}
+
+function fileStem() {
+  return state.preset || "system";
+}
+
+async function downloadFrom(path, payload, name) {
+  try {
+    download(await postBlob(path, payload), name);
+  } catch (error) {
+    setStatus(`Download failed: ${error.message}`);
+  }
+}
+
+// ---------------------------------------------------------------- controls
+
+function syncViewControls() {
+  for (const key of Object.keys(state.show)) $(`#show-${key}`).checked = state.show[key];
+  $("#continue-slip").checked = state.onSlip === "continue";
+  $("#speed").value = String(state.speed);
+}
+
+function wireControls(presets) {
+  const picker = $("#preset");
+  picker.replaceChildren(new Option("(edited system)", ""),
+    ...presets.map((p) => new Option(`${p.title} (${p.name})`, p.name)));
+  picker.addEventListener("change", () => {
+    const p = presets.find((q) => q.name === picker.value);
+    if (p) {
+      pause();
+      pendingChange = performance.now();
+      loadSystem(p.system, p.name);
+    }
+  });
+  $("#play").addEventListener("click", () => (playing ? pause() : play()));
+  $("#step").addEventListener("click", step);
+  $("#restart").addEventListener("click", () => seek(0));
+  $("#time").addEventListener("input", () => seek(Number($("#time").value)));
+  const speed = $("#speed");
+  speed.replaceChildren(...SPEEDS.map((s) => new Option(`${s}×`, String(s))));
+  speed.addEventListener("change", () => {
+    state.speed = Number(speed.value);
+    saveUrl();
+  });
+  for (const key of Object.keys(state.show)) {
+    $(`#show-${key}`).addEventListener("change", (e) => {
+      state.show[key] = e.target.checked;
+      if (key === "linear") recomputeNow();
+      else draw();
+      saveUrl();
+    });
+  }
+  $("#continue-slip").addEventListener("change", (e) => {
+    state.onSlip = e.target.checked ? "continue" : "stop";
+    pendingChange = performance.now();
+    recomputeNow();
+  });
+  $("#share").addEventListener("click", async () => {
+    const url = `${location.origin}${location.pathname}#${await encodeState(shareable())}`;
+    history.replaceState(null, "", url);
+    $("#share-url").value = url;
+    $("#share-url").hidden = false;
+    $("#share-url").select();
+    try {
+      await navigator.clipboard.writeText(url);
+      setStatus("Link copied: it opens this system, initial state, view and time.");
+    } catch {
+      setStatus("Link ready: copy it from the field next to the Share button.");
+    }
+  });
+  $("#toml-panel").addEventListener("toggle", () => $("#toml-panel").open && loadToml());
+  $("#toml").addEventListener("input", () => (tomlEdited = true));
+  $("#apply-toml").addEventListener("click", () => applyToml($("#toml").value));
+  $("#import").addEventListener("change", async (e) => {
+    const file = e.target.files[0];
+    if (!file) return;
+    const text = await file.text();
+    $("#toml").value = text;
+    applyToml(text);
+    e.target.value = "";
+  });
+  $("#download-toml").addEventListener("click", async () => {
+    if (!tomlEdited) await loadToml();
+    download(new Blob([$("#toml").value], { type: "application/toml" }), `${fileStem()}.toml`);
+  });
+  $("#download-csv").addEventListener("click", () => downloadFrom("/api/simulate.csv",
+    { system: state.system, duration: DURATION, outputs: OUTPUTS, on_slip: state.onSlip,
+      ...(state.start ? { start: state.start } : {}) }, `${fileStem()}-trajectory.csv`));
+  $("#download-report").addEventListener("click", () => downloadFrom("/api/report",
+    { system: state.system }, `${fileStem()}-report.html`));
+  $("#derivation").addEventListener("toggle", () => $("#derivation").open && loadDerivation());
+  syncViewControls();
+  new ResizeObserver(() => {
+    if (scene.resize()) draw();
+  }).observe($("#scene"));
+}
+
+window.rollspringPage = {
+  frameTimes: () => [...frames],
+  lastUpdate: () => (lastUpdate ? { ...lastUpdate } : null),
+  ready: () => readyPromise,
+  system: () => structuredClone(state.system),
+  time: () => state.t,
+  dt,
+};
+
+async function main() {
+  const presets = await getJson("/api/presets");
+  wireControls(presets);
+  const saved = await decodeState(location.hash);
+  if (saved) {
+    restore(saved);
+    return;
+  }
+  let start = null;
+  try {
+    start = await getJson("/api/start");
+  } catch {
+    // an older server without /api/start: the default preset
+  }
+  const preset = presets.find((p) => p.name === (start && start.preset)) || presets.find((p) => p.name === "hoop-cylinder") || presets[0];
+  if (start && !start.preset) loadSystem(start.system, "");
+  else loadSystem(preset.system, preset.name);
+}
+
+main().catch((error) => setStatus(`The page could not start: ${error.message}`));

@@ -1,0 +1,90 @@
+// The four time plots (uPlot), each with a time cursor that follows the animation's clock.
+
+import uPlot from "/vendor/uplot/uPlot.esm.js";
+import { energySeries, forceSeries, positionSeries, ratioSeries } from "./series.js";
+
+const PLOTS = [
+  { key: "positions", title: "Centre positions, CM and X̂", unit: "x (m)", build: positionSeries },
+  { key: "forces", title: "Friction f and normal force N, with ±μs N", unit: "force (N)",
+    build: forceSeries },
+  { key: "ratio", title: "Friction used, |f| / (μs N)", unit: "|f| / (μs N)", build: ratioSeries },
+  { key: "energy", title: "Energy", unit: "energy (J)", build: energySeries },
+];
+
+/** One uPlot per figure in `container`; `setRun` replaces the data, `setTime` moves the
+ * cursors, `onSeek(t)` is called when the user clicks a plot to set the clock. */
+export class Plots {
+  constructor(container, onSeek) {
+    this.container = container;
+    this.onSeek = onSeek;
+    this.figures = PLOTS.map((spec) => {
+      const figure = document.createElement("figure");
+      figure.className = "plot";
+      figure.dataset.plot = spec.key;
+      const caption = document.createElement("figcaption");
+      caption.textContent = spec.title;
+      figure.append(caption);
+      container.append(figure);
+      return { spec, figure, plot: null, signature: "", cursor: null, revision: 0 };
+    });
+    new ResizeObserver(() => this.resize()).observe(container);
+  }
+
+  width(figure) {
+    return Math.max(200, Math.floor(figure.getBoundingClientRect().width));
+  }
+
+  resize() {
+    for (const f of this.figures) if (f.plot) f.plot.setSize({ width: this.width(f.figure), height: 200 });
+  }
+
+  /** Show the trajectory `run` of `system`. */
+  setRun(run, system) {
+    for (const f of this.figures) {
+      const { data, series } = f.spec.build(run, system);
+      const signature = series.map((s) => s.label).join("|");
+      if (f.plot && signature === f.signature) {
+        f.plot.setData(data);
+      } else {
+        if (f.plot) f.plot.destroy();
+        f.plot = this.make(f, series, data);
+        f.signature = signature;
+      }
+      f.revision += 1;
+      f.figure.dataset.revision = String(f.revision);
+    }
+  }
+
+  make(f, series, data) {
+    const plot = new uPlot({
+      width: this.width(f.figure),
+      height: 200,
+      scales: { x: { time: false } },
+      axes: [{ label: "t (s)", size: 36, labelSize: 18 }, { label: f.spec.unit, size: 58, labelSize: 18 }],
+      legend: { live: true },
+      cursor: { drag: { x: false, y: false } },
+      series: [{ label: "t (s)" }, ...series.map((s) => ({
+        label: s.label, stroke: s.stroke, width: s.width || 1.6, dash: s.dash, spanGaps: false,
+        points: { show: false },
+      }))],
+    }, data, f.figure);
+    const cursor = document.createElement("div");
+    cursor.className = "time-cursor";
+    plot.over.append(cursor);
+    plot.over.addEventListener("click", () => {
+      const left = plot.cursor.left;
+      if (left != null && left >= 0) this.onSeek(plot.posToVal(left, "x"));
+    });
+    f.cursor = cursor;
+    return plot;
+  }
+
+  /** Move every time cursor to t. */
+  setTime(t) {
+    for (const f of this.figures) {
+      if (!f.plot) continue;
+      const left = f.plot.valToPos(t, "x");
+      f.cursor.style.transform = `translateX(${left}px)`;
+    }
+  }
+}

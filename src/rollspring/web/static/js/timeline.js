@@ -1,0 +1,49 @@
+// Pure playback arithmetic (no DOM): where the clock is, what a Step does, and values between
+// output samples. Times in seconds, samples on the server's output grid t[0..n-1].
+
+export const SPEEDS = [0.1, 0.25, 0.5, 1, 1.5, 2];
+
+/** The output interval of a trajectory: the fixed dt a Step advances the clock by. */
+export function outputInterval(times) {
+  return times.length > 1 ? (times[times.length - 1] - times[0]) / (times.length - 1) : 0;
+}
+
+/** The clock after one Step: exactly t + dt, not past the end. */
+export function stepForward(t, dt, end) {
+  return Math.min(t + dt, end);
+}
+
+/** The clock after `elapsedMs` of wall time at `speed`; {t, ended} (ended: reached `end`). */
+export function advance(t, elapsedMs, speed, end) {
+  const next = t + (elapsedMs / 1000) * speed;
+  return next >= end ? { t: end, ended: true } : { t: next, ended: false };
+}
+
+/** Index i of the last sample with times[i] <= t (0 before the start, n-1 after the end). */
+export function sampleIndex(times, t) {
+  let lo = 0;
+  let hi = times.length - 1;
+  if (t >= times[hi]) return hi;
+  while (hi - lo > 1) {
+    const mid = (lo + hi) >> 1;
+    if (times[mid] <= t) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
+/** values(t) by linear interpolation between samples (nulls stay null). */
+export function valueAt(times, values, t) {
+  const i = sampleIndex(times, t);
+  if (i >= times.length - 1) return values[times.length - 1];
+  const a = values[i];
+  const b = values[i + 1];
+  if (a == null || b == null) return a;
+  const s = (t - times[i]) / (times[i + 1] - times[i]);
+  return a + (b - a) * Math.max(0, Math.min(1, s));
+}
+
+/** The clock as shown: "t = 1.2333 s" (4 decimals). */
+export function clockText(t) {
+  return `t = ${t.toFixed(4)} s`;
+}

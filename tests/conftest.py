@@ -5,8 +5,17 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import Any
 
+import os
+
 import numpy as np
 import pytest
+from hypothesis import settings
+
+# Hypothesis: CI runs a fixed, derandomised profile (the same examples every run, no example
+# database); developers get random examples (HYPOTHESIS_PROFILE=dev, or any run outside CI).
+settings.register_profile("ci", derandomize=True, database=None, print_blob=True)
+settings.register_profile("dev", print_blob=True)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") else "dev"))
 
 from rollspring.model import System, system_from_dict
 

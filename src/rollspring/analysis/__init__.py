@@ -7,6 +7,7 @@ from rollspring.analysis.linear import (
     Mode,
     analyze,
     find_equilibrium,
+    linear_motion,
     normal_modes,
     stationary_weights,
 )
@@ -18,6 +19,7 @@ __all__ = [
     "Mode",
     "analyze",
     "find_equilibrium",
+    "linear_motion",
     "normal_modes",
     "stationary_weights",
 ]

@@ -42,6 +42,7 @@ __all__ = [
     "Mode",
     "analyze",
     "find_equilibrium",
+    "linear_motion",
     "normal_modes",
     "stationary_weights",
 ]
@@ -610,6 +611,42 @@ def _response(
         xhat = component(weights @ x_modes, float(weights @ x_eq))
         result["stationary_amplitude"] = float(_clean(xhat.amplitude, length_scale))
     return result
+
+
+def linear_motion(analysis: LinearAnalysis, t: FloatArray) -> FloatArray:
+    r"""The motion of the linearised system from the initial state, by exact modal
+    superposition: centre positions :math:`x_i(t) = x_{i0} + s_i q_i(t)` (m), shape
+    (len(t), n_bodies).
+
+    With :math:`u = q - q^*`, M-orthonormal modes :math:`v_n` (:math:`K v_n = \lambda_n M v_n`,
+    PHYSICS.md (M12)) and :math:`\eta_n = v_n^T M u`, each mode moves on its own:
+    :math:`\eta_n(t) = \eta_{n0}\cos\omega_n t + \dot\eta_{n0}\sin(\omega_n t)/\omega_n`
+    (oscillating), :math:`\eta_{n0} + \dot\eta_{n0} t` (zero mode, (M14)),
+    :math:`\eta_{n0}\cosh\kappa_n t + \dot\eta_{n0}\sinh(\kappa_n t)/\kappa_n` (unstable,
+    :math:`\kappa_n^2 = -\lambda_n`); the start is :math:`q(0) = 0` (the initial placement),
+    :math:`\dot q(0) = v_0/s`. Without an equilibrium there is no linear motion: ValueError.
+    """
+    if not analysis.equilibrium.found:
+        raise ValueError("no equilibrium near the initial placement: no linear motion")
+    arrays = analysis.arrays
+    times = np.asarray(t, dtype=float)
+    eigenvalues, vectors, kinds = normal_modes(analysis.mass, analysis.stiffness)
+    q_eq = analysis.equilibrium.q
+    mass = np.diag(analysis.mass) if np.ndim(analysis.mass) == 2 else analysis.mass
+    eta0 = vectors.T @ (mass * -q_eq)
+    etadot0 = vectors.T @ (mass * arrays.v0 / arrays.scale)
+    eta = np.empty((times.size, eigenvalues.size))
+    for n, (lam, kind) in enumerate(zip(eigenvalues, kinds, strict=True)):
+        if kind == "oscillating":
+            rate = math.sqrt(lam)
+            eta[:, n] = eta0[n] * np.cos(rate * times) + etadot0[n] / rate * np.sin(rate * times)
+        elif kind == "unstable":
+            rate = math.sqrt(-lam)
+            eta[:, n] = eta0[n] * np.cosh(rate * times) + etadot0[n] / rate * np.sinh(rate * times)
+        else:
+            eta[:, n] = eta0[n] + etadot0[n] * times
+    q = q_eq + eta @ vectors.T
+    return arrays.x0 + arrays.scale * q
 
 
 def _frequency_groups(omegas: FloatArray) -> list[list[int]]:

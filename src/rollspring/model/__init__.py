@@ -6,8 +6,13 @@ from rollspring.model.files import (
     preset_names,
     preset_path,
     system_from_dict,
+    system_from_text,
     system_json_schema,
+    system_to_json,
+    system_to_toml,
+    validation_errors,
 )
+from rollspring.model.placement import rolled
 from rollspring.model.schema import (
     INERTIA_FACTORS,
     Anchor,
@@ -30,6 +35,11 @@ __all__ = [
     "load_system",
     "preset_names",
     "preset_path",
+    "rolled",
     "system_from_dict",
+    "system_from_text",
     "system_json_schema",
+    "system_to_json",
+    "system_to_toml",
+    "validation_errors",
 ]

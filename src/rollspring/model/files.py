@@ -20,7 +20,11 @@ __all__ = [
     "preset_names",
     "preset_path",
     "system_from_dict",
+    "system_from_text",
     "system_json_schema",
+    "system_to_json",
+    "system_to_toml",
+    "validation_errors",
 ]
 
 #: The built-in default system: the paper's hoop and cylinder joined at their centres (Fig. 2).
@@ -91,28 +95,29 @@ def _shown(path: Path | str) -> str:
     return _oneline(path)
 
 
-def _parse(text: str, path: Path) -> dict[str, Any]:
+def _parse(text: str, path: Path, *, shown: str | None = None) -> dict[str, Any]:
     suffix = path.suffix.lower()
+    name = _shown(path) if shown is None else shown
     if suffix == ".json":
         try:
             data = json.loads(text, parse_constant=_json_constant,
                               object_pairs_hook=_no_duplicate_keys)
         except ModelError as exc:  # a duplicate key
-            raise ModelError(f"{_shown(path)}: {exc}") from None
+            raise ModelError(f"{name}: {exc}") from None
         except json.JSONDecodeError as exc:
             raise ModelError(
-                f"{_shown(path)}: JSON syntax error: {exc.msg} (line {exc.lineno}, "
+                f"{name}: JSON syntax error: {exc.msg} (line {exc.lineno}, "
                 f"column {exc.colno})"
             ) from None
         if not isinstance(data, dict):
-            raise ModelError(f"{_shown(path)}: the top level must be a JSON object")
+            raise ModelError(f"{name}: the top level must be a JSON object")
         return data
     if suffix in (".toml", ""):
         try:
             return tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
-            raise ModelError(f"{_shown(path)}: TOML syntax error: {_oneline(exc)}") from None
-    raise ModelError(f"{_shown(path)}: unknown file type {suffix!r} (use .toml or .json)")
+            raise ModelError(f"{name}: TOML syntax error: {_oneline(exc)}") from None
+    raise ModelError(f"{name}: unknown file type {suffix!r} (use .toml or .json)")
 
 
 def _no_duplicate_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
@@ -136,6 +141,59 @@ def system_from_dict(data: dict[str, Any], *, source: str = "system") -> System:
         return System.model_validate(data)
     except ValidationError as exc:
         raise ModelError(f"{source}: {_oneline(_one_line(exc, data))}") from None
+
+
+def system_from_text(text: str, *, format: str = "toml",  # noqa: A002 - toml | json
+                     source: str = "toml") -> System:
+    """Parse and validate the text of a system file (``format`` ``"toml"`` or ``"json"``);
+    errors are one-line :class:`~rollspring.errors.ModelError` messages starting with
+    ``source``, as for files."""
+    try:
+        data = _parse(text, Path(f"{source}.{format}"), shown=source)
+    except RecursionError:
+        raise ModelError(f"{source}: nested too deeply to be a system file") from None
+    except ValueError as exc:
+        if isinstance(exc, ModelError):
+            raise
+        raise ModelError(f"{source}: a number has too many digits ({_oneline(exc)})") from None
+    return system_from_dict(data, source=source)
+
+
+def validation_errors(errors: list[dict[str, Any]], data: Any
+                      ) -> list[tuple[tuple[Any, ...], str, str]]:
+    """pydantic's validation errors (``ValidationError.errors()``, locations relative to
+    ``data``) as ``(loc, message, type)``: ``message`` the one-line words the CLI prints."""
+    out = []
+    for error in errors:
+        loc = tuple(p for p in error["loc"]
+                    if not (isinstance(p, str) and p.startswith("function-")))
+        out.append((loc, _oneline(_describe(error, data)), str(error["type"])))
+    return out
+
+
+def _json_number(value: float) -> float | str:
+    return value if math.isfinite(value) else ("inf" if value > 0 else "-inf")
+
+
+def system_to_json(system: System) -> dict[str, Any]:
+    """The JSON form of a system: the structure of a system file, unset options left out,
+    an infinite ``mu_static`` written as ``"inf"`` (JSON has no infinity)."""
+    data = system.model_dump(mode="python", exclude_none=True)
+    for body in data["bodies"]:
+        body["mu_static"] = _json_number(body["mu_static"])
+    return data
+
+
+def system_to_toml(system: System) -> str:
+    """The system as the text of a TOML system file (tomli-w); loading it gives the same
+    system."""
+    import tomli_w
+
+    data = system.model_dump(mode="python", exclude_none=True)
+    for key in ("anchors", "springs", "forces"):
+        if not data[key]:
+            del data[key]
+    return tomli_w.dumps(data)
 
 
 def _one_line(exc: ValidationError, data: Any) -> str:

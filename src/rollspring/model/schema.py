@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, WithJsonSchema, field_validator, model_validator
 
 __all__ = [
     "INERTIA_FACTORS",
@@ -114,10 +114,12 @@ class Body(_Strict):
     track_height: Finite = Field(default=0.0, description="Height of the floor under the body (m).")
     x: Finite = Field(description="Initial horizontal position of the centre (m).")
     v: Finite = Field(default=0.0, description="Initial velocity of the centre (m/s).")
-    mu_static: Annotated[float, Field(ge=0, allow_inf_nan=True)] = Field(
+    mu_static: Annotated[float, Field(ge=0, allow_inf_nan=True),
+                         WithJsonSchema({"anyOf": [{"type": "number", "minimum": 0},
+                                                   {"const": "inf"}]})] = Field(
         default=1.0,
-        description="Static friction coefficient; inf enforces rolling (rack and pinion). "
-        "Ignored for sliders.",
+        description="Static friction coefficient; inf enforces rolling (rack and pinion), "
+        'written "inf" in JSON. Ignored for sliders.',
     )
     mu_kinetic: NonNegative | None = Field(
         default=None,
@@ -130,6 +132,8 @@ class Body(_Strict):
     def _not_nan(cls, value: object) -> object:
         if isinstance(value, float) and math.isnan(value):
             raise ValueError("must be a finite number or inf, not NaN")
+        if value == "inf":  # JSON has no infinity: the JSON form writes it as "inf"
+            return math.inf
         return value
 
     @model_validator(mode="after")

@@ -2,6 +2,7 @@
 #   make demo   set up .venv, analyse and simulate the default system (the paper's hoop and cylinder)
 #               and write its report (build/demo/report.html)
 #   make test   set up .venv and run the whole test suite
+#   rollspring serve   (after either) the interactive page at http://127.0.0.1:8000/
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -25,18 +26,25 @@ $(STAMP): pyproject.toml constraints.txt
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt -e ".[test]"
 	touch $(STAMP)
 
-demo: $(STAMP)
+# the page's front-end libraries (uPlot), pinned in package.json / package-lock.json
+WEB_STATIC := src/rollspring/web/static
+WEB_STAMP  := $(WEB_STATIC)/node_modules/.installed
+$(WEB_STAMP): $(WEB_STATIC)/package.json $(WEB_STATIC)/package-lock.json
+	npm ci --prefix $(WEB_STATIC) --no-audit --no-fund --loglevel=error
+	touch $(WEB_STAMP)
+
+demo: $(STAMP) $(WEB_STAMP)
 	$(BIN)/rollspring analyze hoop-cylinder
 	$(BIN)/rollspring simulate hoop-cylinder --duration 10 --rtol 1e-10
 	$(BIN)/rollspring report hoop-cylinder -o build/demo/report.html
 
-test: $(STAMP) system-packages
+test: $(STAMP) $(WEB_STAMP) system-packages
 	$(BIN)/python -m pytest
 
 # benchmarks (bench/README.md): installs the bench extra (MuJoCo, pymunk), runs every bench/bench_*.py
-bench: $(STAMP)
+bench: $(STAMP) $(WEB_STAMP)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt -e ".[test,bench]"
 	@for script in bench/bench_*.py; do echo "== $$script"; $(BIN)/python $$script || exit 1; done
 
 clean:
-	rm -rf $(VENV) .pytest_cache .hypothesis build src/*.egg-info
+	rm -rf $(VENV) .pytest_cache .hypothesis build src/*.egg-info $(WEB_STATIC)/node_modules

@@ -1,0 +1,128 @@
+"""Analyses and simulations as the interfaces deliver them.
+
+:func:`analysis_payload` is the object ``rollspring analyze --json`` prints and
+``POST /api/analyze`` answers; :func:`run_simulation` starts a run the way an interface asks
+for it (from the file's placement, or displaced along a normal mode) and
+:func:`simulation_payload` is the web API's form of the result: the summary
+``rollspring simulate --json`` prints plus every output array.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from rollspring.analysis import LinearAnalysis, analyze, linear_motion
+from rollspring.errors import SimulationError
+from rollspring.model import System, rolled
+from rollspring.outputs import summary_json
+from rollspring.simulate import Trajectory, simulate
+
+__all__ = ["ModeStart", "SimulationRun", "analysis_payload", "mode_start", "run_simulation",
+           "simulation_payload"]
+
+
+def analysis_payload(system: System) -> tuple[dict[str, Any], list[str]]:
+    """The linear analysis of ``system`` as JSON (``analyze --json``) and its warnings."""
+    result = analyze(system)
+    return result.to_dict(), list(result.warnings)
+
+
+@dataclass(frozen=True)
+class ModeStart:
+    """Start at rest in the equilibrium displaced along mode ``mode`` (an index into the
+    analysis' ``modes``, sorted by ω) so that the largest centre displacement is ``amplitude``
+    metres."""
+
+    mode: int
+    amplitude: float
+
+
+@dataclass
+class SimulationRun:
+    """A finished run: the system as it was started (``system``: the file's placement, or the
+    displaced one of a :class:`ModeStart`), its ``trajectory`` and, when asked for, the
+    ``linear`` motion from the same start (centre positions over ``trajectory.t``)."""
+
+    system: System
+    trajectory: Trajectory
+    linear: np.ndarray | None
+
+
+def mode_start(system: System, start: ModeStart,
+               analysis: LinearAnalysis | None = None) -> System:
+    r"""``system`` placed at rest at :math:`q^* + a\,v_n` — the equilibrium displaced along the
+    oscillating mode :math:`v_n` (shape normalised to a largest centre displacement of 1 m)
+    with amplitude :math:`a` — by rolling the bodies there (:func:`rollspring.model.rolled`)."""
+    analysis = analyze(system) if analysis is None else analysis
+    modes = analysis.modes
+    if not 0 <= start.mode < len(modes):
+        raise SimulationError(f"start.mode: no mode {start.mode} (the system has modes 0 to "
+                              f"{len(modes) - 1})")
+    mode = modes[start.mode]
+    if mode.kind != "oscillating":
+        raise SimulationError(f"start.mode: mode {start.mode} is a {mode.kind} mode; only an "
+                              "oscillating mode can be played")
+    if not analysis.equilibrium.found:
+        raise SimulationError(f"start.mode: {analysis.equilibrium.reason}")
+    q = analysis.equilibrium.q + start.amplitude * mode.shape_q
+    return rolled(system, q, velocities=np.zeros(len(system.bodies)))
+
+
+def run_simulation(system: System, duration: float, *, rtol: float = 1e-8, outputs: int = 2001,
+                   on_slip: str = "stop", integrator: str = "auto",
+                   start: ModeStart | None = None, linear: bool = False,
+                   progress: Callable[[float], None] | None = None) -> SimulationRun:
+    """Simulate ``system`` for ``duration`` s (:func:`rollspring.simulate`), from its file's
+    placement or from a :class:`ModeStart`; with ``linear``, also the linear motion from the
+    same start (:func:`rollspring.analysis.linear_motion`; None where the system has no
+    equilibrium)."""
+    analysis = analyze(system) if start is not None or linear else None
+    if start is not None:
+        system = mode_start(system, start, analysis)
+        analysis = analyze(system) if linear else None
+    trajectory = simulate(system, duration, rtol=rtol, integrator=integrator, n_output=outputs,
+                          on_slip=on_slip, progress=progress)
+    line = None
+    if linear and analysis is not None and analysis.equilibrium.found:
+        line = linear_motion(analysis, trajectory.t)
+    return SimulationRun(system=system, trajectory=trajectory, linear=line)
+
+
+def simulation_payload(run: SimulationRun) -> dict[str, Any]:
+    """The run as the web API gives it (docs/web-api.md): the summary (JSON-ready), then every
+    output over ``t`` (SI units) as contiguous NumPy arrays — per body, per spring, energies,
+    the CM and X̂. :func:`rollspring.outputs.json_ready` turns it into plain JSON values (an
+    infinite friction ratio, N <= 0, becomes ``null``); orjson writes it directly."""
+    trajectory = run.trajectory
+
+    def column(values: np.ndarray, i: int) -> np.ndarray:
+        return np.ascontiguousarray(values[:, i])
+
+    bodies = {}
+    for i, name in enumerate(trajectory.ids):
+        bodies[name] = {
+            "x": column(trajectory.x, i), "phi": column(trajectory.phi, i),
+            "v": column(trajectory.v, i), "omega": column(trajectory.omega, i),
+            "friction": column(trajectory.friction, i), "normal": column(trajectory.normal, i),
+            "friction_ratio": column(trajectory.friction_ratio, i),
+            "slipping": column(trajectory.slipping, i),
+        }
+    return {
+        "summary": summary_json(trajectory),
+        "t": trajectory.t,
+        "bodies": bodies,
+        "springs": [{"length": column(trajectory.spring_length, s),
+                     "tension": column(trajectory.spring_tension, s)}
+                    for s in range(len(trajectory.spring_names))],
+        "energy": {"kinetic": trajectory.kinetic, "potential": trajectory.potential,
+                   "total": trajectory.energy},
+        "cm_x": trajectory.cm_x,
+        "stationary_x": trajectory.stationary_x,
+        "initial": {body.id: {"x": body.x, "v": body.v} for body in run.system.bodies},
+        "linear": None if run.linear is None else {
+            name: column(run.linear, i) for i, name in enumerate(trajectory.ids)},
+    }

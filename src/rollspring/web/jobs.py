@@ -1,0 +1,108 @@
+"""The web API's computations, as they run inside a worker process (:mod:`.workers`).
+
+Each job takes the validated request (a :class:`~rollspring.model.System` and plain options)
+and returns the finished response body as bytes, so that only bytes cross the pipe back. The
+work itself is the orchestration layer's (:mod:`rollspring.service`); this module only encodes.
+"""
+
+from __future__ import annotations
+
+import re
+import warnings
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import orjson
+
+from rollspring.errors import RollspringError
+from rollspring.model import load_system
+from rollspring.service import runs
+
+__all__ = ["JOBS", "execute", "warm_up"]
+
+_JSON_OPTIONS = orjson.OPT_SERIALIZE_NUMPY
+
+
+def _json(value: Any) -> bytes:
+    return orjson.dumps(value, option=_JSON_OPTIONS)
+
+
+def analyze(request: dict[str, Any]) -> bytes:
+    """``POST /api/analyze``: the ``analyze --json`` object."""
+    payload, _ = runs.analysis_payload(request["system"])
+    return _json(payload)
+
+
+def _run(request: dict[str, Any]) -> runs.SimulationRun:
+    start = request.get("start")
+    return runs.run_simulation(
+        request["system"], request["duration"], rtol=request["rtol"],
+        outputs=request["outputs"], on_slip=request["on_slip"],
+        start=None if start is None else runs.ModeStart(start["mode"], start["amplitude"]),
+        linear=request.get("linear", False))
+
+
+def simulate(request: dict[str, Any]) -> bytes:
+    """``POST /api/simulate``: the summary and every output array."""
+    return _json(runs.simulation_payload(_run(request)))
+
+
+def simulate_csv(request: dict[str, Any]) -> bytes:
+    """``POST /api/simulate.csv``: ``trajectory.csv`` as ``simulate --out`` writes it."""
+    from rollspring.outputs import trajectory_csv
+
+    return trajectory_csv(_run(request).trajectory).encode()
+
+
+def derive(request: dict[str, Any]) -> bytes:
+    """``POST /api/derive``: the derivation by the requested methods, with MathML."""
+    from rollspring.service import documents  # SymPy: loaded on first use
+
+    return _json(documents.derivation_payload(request["system"], request["method"]))
+
+
+def report(request: dict[str, Any]) -> bytes:
+    """``POST /api/report``: the self-contained HTML report."""
+    from rollspring.service import documents  # SymPy and Matplotlib: loaded on first use
+
+    built = documents.build_report(request["system"], duration=request.get("duration"))
+    return built.html.encode()
+
+
+JOBS: dict[str, Callable[[dict[str, Any]], bytes]] = {
+    "analyze": analyze, "simulate": simulate, "simulate_csv": simulate_csv,
+    "derive": derive, "report": report,
+}
+
+#: A message that starts with one of the request's fields names it (``duration: must be …``).
+_FIELD = re.compile(r"^(system|toml|duration|rtol|outputs|on_slip|start(?:\.\w+)?|method|"
+                    r"linear)\b")
+
+
+def execute(job: str, request: dict[str, Any]) -> tuple[str, Any]:
+    """Run a job: ``("ok", bytes)``, or ``("error", (kind, message, loc))`` with kind
+    ``"invalid"`` for rollspring's own errors and numerical failures of the values asked for
+    (HTTP 422) and ``"crash"`` for anything else (a bug: HTTP 500)."""
+    try:
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore", RuntimeWarning)
+            return "ok", JOBS[job](request)
+    except RollspringError as exc:
+        message = " ".join(str(exc).split())
+        match = _FIELD.match(message)
+        loc = ["body", *match.group(1).split(".")] if match else ["body"]
+        return "error", ("invalid", message, loc)
+    except (ArithmeticError, np.linalg.LinAlgError, ValueError) as exc:
+        message = (f"the computation failed for these values ({type(exc).__name__}: "
+                   f"{' '.join(str(exc).split())[:300]})")
+        return "error", ("invalid", message, ["body", "system"])
+    except Exception as exc:  # a bug: reported as HTTP 500 with its type
+        return "error", ("crash", f"internal error: {type(exc).__name__}: {exc}"[:500], [])
+
+
+def warm_up() -> None:
+    """Load the compiled kernels (Numba's disk cache) before the first request."""
+    system = load_system("hoop-cylinder")
+    execute("simulate", {"system": system, "duration": 0.05, "rtol": 1e-8, "outputs": 11,
+                         "on_slip": "stop", "linear": True})

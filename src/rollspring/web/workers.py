@@ -1,0 +1,158 @@
+"""A pool of worker processes that run the web API's computations under a time budget.
+
+An endpoint (a plain ``def``, run in FastAPI's thread pool) hands its job to an idle worker
+process and waits for the answer. A job that runs past its budget cannot be stopped inside a
+thread, so its worker *process* is killed and replaced, and the request gets HTTP 503 while the
+other workers go on serving. When every worker is busy for longer than the budget, a request is
+refused the same way instead of waiting in an unbounded queue (uvicorn's concurrency limit
+refuses the excess at once before that).
+
+Workers are forked from a ``forkserver`` that has already imported the scientific stack and
+rollspring (``PRELOAD``), so a replacement starts in milliseconds; each warms the compiled
+kernels (from Numba's on-disk cache) before its first job.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import multiprocessing
+import os
+import queue
+import threading
+from dataclasses import dataclass
+from multiprocessing.connection import Connection
+from typing import Any
+
+__all__ = ["PRELOAD", "ComputePool", "JobFailed", "OverBudget", "Overloaded"]
+
+#: Modules the forkserver imports once, so that every worker starts with them loaded.
+PRELOAD = ["rollspring.web.jobs"]
+
+
+class Overloaded(Exception):
+    """No worker became free within the budget: the server is at capacity (HTTP 503)."""
+
+
+class OverBudget(Exception):
+    """The job ran past its time budget; its worker was killed and replaced (HTTP 503)."""
+
+
+@dataclass
+class JobFailed(Exception):
+    """The job raised: ``kind`` ``"invalid"`` (a RollspringError: a bad request, HTTP 422,
+    ``loc`` the field it names) or ``"crash"`` (a bug or a dead worker, HTTP 500)."""
+
+    kind: str
+    message: str
+    loc: tuple[Any, ...] = ()
+
+    def __str__(self) -> str:
+        return self.message
+
+
+class _Worker:
+    def __init__(self, context: Any) -> None:
+        self.connection, child = context.Pipe()
+        self.process = context.Process(target=_serve, args=(child,), daemon=True,
+                                       name="rollspring-worker")
+        self.process.start()
+        child.close()
+
+    def kill(self) -> None:
+        with contextlib.suppress(Exception):
+            self.process.kill()
+        with contextlib.suppress(Exception):
+            self.process.join(timeout=5)
+        with contextlib.suppress(Exception):
+            self.connection.close()
+
+
+class ComputePool:
+    """``size`` worker processes; :meth:`run` runs one job with a time budget (s)."""
+
+    def __init__(self, size: int | None = None, budget: float = 10.0) -> None:
+        if not budget > 0:
+            raise ValueError(f"budget: must be a positive number of seconds, got {budget!r}")
+        self.size = max(1, size or os.cpu_count() or 1)
+        self.budget = float(budget)
+        self._context = multiprocessing.get_context("forkserver")
+        self._context.set_forkserver_preload(PRELOAD)
+        self._idle: queue.Queue[_Worker] = queue.Queue()
+        self._all: set[_Worker] = set()
+        self._lock = threading.Lock()
+        self._closed = False
+        self.replaced = 0  # workers killed for running past the budget (or dying)
+        for _ in range(self.size):
+            self._idle.put(self._start())
+
+    def _start(self) -> _Worker:
+        worker = _Worker(self._context)
+        with self._lock:
+            self._all.add(worker)
+        return worker
+
+    def _replace(self, worker: _Worker) -> None:
+        worker.kill()
+        with self._lock:
+            self._all.discard(worker)
+            self.replaced += 1
+            closed = self._closed
+        if not closed:
+            self._idle.put(self._start())
+
+    def run(self, job: str, payload: Any, *, budget: float | None = None) -> Any:
+        """Run ``rollspring.web.jobs.<job>(payload)`` in a worker and return its result.
+
+        Raises :class:`Overloaded` when no worker is free within the budget,
+        :class:`OverBudget` when the job runs past it (the worker is replaced) and
+        :class:`JobFailed` when the job raises."""
+        limit = self.budget if budget is None else budget
+        try:
+            worker = self._idle.get(timeout=limit)
+        except queue.Empty:
+            raise Overloaded(f"the server is busy: no worker was free within {limit:g} s; "
+                             "try again") from None
+        try:
+            worker.connection.send((job, payload))
+            ready = worker.connection.poll(limit)
+        except (OSError, EOFError, BrokenPipeError):
+            self._replace(worker)
+            raise JobFailed("crash", "a worker process died; try again") from None
+        if not ready:
+            self._replace(worker)
+            raise OverBudget(f"the computation ran past its time budget of {limit:g} s and was "
+                             "abandoned; ask for less (a shorter duration, fewer outputs, a "
+                             "larger rtol)")
+        try:
+            status, value = worker.connection.recv()
+        except (OSError, EOFError):
+            self._replace(worker)
+            raise JobFailed("crash", "a worker process died; try again") from None
+        self._idle.put(worker)
+        if status == "ok":
+            return value
+        kind, message, loc = value
+        raise JobFailed(kind, message, tuple(loc))
+
+    def close(self) -> None:
+        """Stop every worker."""
+        with self._lock:
+            self._closed = True
+            workers = list(self._all)
+            self._all.clear()
+        for worker in workers:
+            worker.kill()
+
+
+def _serve(connection: Connection) -> None:
+    """A worker's loop: warm up, then answer ``(job, payload)`` messages until the pipe
+    closes."""
+    from rollspring.web import jobs
+
+    jobs.warm_up()
+    while True:
+        try:
+            job, payload = connection.recv()
+        except (EOFError, OSError, KeyboardInterrupt):
+            return
+        connection.send(jobs.execute(job, payload))

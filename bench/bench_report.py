@@ -42,7 +42,8 @@ def command(out: Path) -> None:
 def main() -> None:
     print(machine_note())
     from rollspring import load_system
-    from rollspring.outputs.report import build_report, find_chromium, write_report
+    from rollspring.outputs.report import find_chromium, write_report
+    from rollspring.service.documents import build_report
 
     rows = []
     with tempfile.TemporaryDirectory(prefix="bench-report-") as folder:

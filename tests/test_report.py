@@ -22,6 +22,7 @@ from typer.testing import CliRunner
 
 from rollspring import analyze, load_system, system_from_dict
 from rollspring.analysis import paper_check
+from rollspring.analysis.paper_check import paper_figure
 from rollspring.cli import app
 from rollspring.model import preset_names
 from rollspring.outputs import files
@@ -31,12 +32,11 @@ from rollspring.outputs.report import (
     Report,
     ReportError,
     animation_data,
-    build_report,
     find_chromium,
-    paper_figure,
     latex_to_mathml,
     write_report,
 )
+from rollspring.service.documents import build_report
 from tests.conftest import body, make_system, spring
 
 MATHML = "http://www.w3.org/1998/Math/MathML"

@@ -17,7 +17,8 @@ from typer.testing import CliRunner
 
 from rollspring.cli import app
 from rollspring.model import load_system
-from rollspring.outputs.report import build_report, find_chromium, write_report
+from rollspring.outputs.report import find_chromium, write_report
+from rollspring.service.documents import build_report
 
 MATHML = "http://www.w3.org/1998/Math/MathML"
 ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",

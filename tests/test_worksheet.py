@@ -31,8 +31,8 @@ from rollspring.outputs.worksheet import (
     format_number,
     render_sheet,
     render_solutions,
-    worksheet,
 )
+from rollspring.service.documents import worksheet
 
 #: (level, seed) covering every level and variant: level 3 chain, two walls, one wall; level 4
 #: wall hook and free pair.

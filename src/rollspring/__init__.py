@@ -75,9 +75,9 @@ _LAZY = {
     "symbolic_system": "rollspring.analysis.derivation",
     "check_paper": "rollspring.analysis.paper_check",
     "paper_claims": "rollspring.analysis.paper_check",
-    "build_report": "rollspring.outputs.report",
+    "build_report": "rollspring.service.documents",
     "write_report": "rollspring.outputs.report",
-    "worksheet": "rollspring.outputs.worksheet",
+    "worksheet": "rollspring.service.documents",
 }
 
 

@@ -30,7 +30,8 @@ the force of the floor on body i, positive along +x.
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Sequence
+import math
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -50,8 +51,10 @@ __all__ = [
     "ClaimCheck",
     "Derived",
     "check_claim",
+    "check_claims",
     "check_paper",
     "paper_claims",
+    "paper_figure",
     "paper_system",
 ]
 
@@ -393,11 +396,62 @@ def check_claim(claim: Claim, bench: _Bench | None = None) -> ClaimCheck:
     return ClaimCheck(claim, WRONG, correction, reason, paper, derived.value)
 
 
+def check_claims(claims: Iterable[Claim]) -> tuple[ClaimCheck, ...]:
+    """Each of ``claims`` with its verdict; the claims share the symbolic systems they are
+    derived on (each built once)."""
+    bench = _Bench()
+    return tuple(check_claim(claim, bench) for claim in claims)
+
+
 @functools.cache
 def check_paper() -> tuple[ClaimCheck, ...]:
     """Every claim of :func:`paper_claims` with its verdict (computed once per process)."""
-    bench = _Bench()
-    return tuple(check_claim(claim, bench) for claim in paper_claims())
+    return check_claims(paper_claims())
+
+
+def paper_figure(system: System) -> tuple[str, set[str]] | None:
+    """Which of the paper's systems ``system`` is, as ``(label, keys of`` :data:`SYSTEMS` ``)``,
+    or None.
+
+    By structure, not by numbers (the paper's claims are symbolic): two sliders joined at their
+    centres (Fig. 1); a hoop and a solid cylinder, or two hoops, or two cylinders, joined at
+    their centres, centres level (Fig. 2); a hoop and a cylinder joined at their percussion
+    heights (1 + γ)R (Fig. 3); a wall spring on a hoop that is joined to a cylinder at the centres
+    (Fig. 4 (a)). No constant forces in any of them.
+    """
+    if system.forces:
+        return None
+    bodies = {b.id: b for b in system.bodies}
+    shapes = sorted(b.shape for b in system.bodies)
+    springs = system.springs
+
+    def centres(spring: Any) -> bool:
+        return all(at.is_centre_form for at in spring.attachments)
+
+    level = len({round(b.track_height + b.radius, 12) for b in system.bodies}) == 1
+    if len(bodies) == 2 and len(springs) == 1 and not system.anchors:
+        (spring,) = springs
+        if shapes == ["slider", "slider"] and centres(spring):
+            return "Fig. 1 (two point masses)", {"fig1"}
+        if centres(spring) and level:
+            if shapes == ["cylinder", "hoop"]:
+                return "Fig. 2 (hoop and cylinder joined at their centres)", {"fig2", "fig2-radii"}
+            if shapes == ["hoop", "hoop"]:
+                return "Sec. 2 variant with two hoops", {"two-hoops"}
+            if shapes == ["cylinder", "cylinder"]:
+                return "Sec. 2 variant with two cylinders", {"two-cylinders"}
+        if shapes == ["cylinder", "hoop"] and all(
+                at.height is not None
+                and math.isclose(at.height, bodies[end].percussion_height, rel_tol=1e-9)
+                for end, at in zip(spring.ends, spring.attachments, strict=True)):
+            return "Fig. 3 (springs at the percussion points, no friction)", {"fig3"}
+    if (len(bodies) == 2 and len(system.anchors) == 1 and len(springs) == 2
+            and shapes == ["cylinder", "hoop"] and all(centres(s) for s in springs)):
+        anchor = system.anchors[0].id
+        wall = [s for s in springs if anchor in s.ends]
+        if len(wall) == 1 and any(bodies[e].shape == "hoop" for e in wall[0].ends if e in bodies):
+            return "Fig. 4 (a) (a wall spring on the hoop)", {"fig4a"}
+    return None
 
 
 # -- the recipes -------------------------------------------------------------------------------

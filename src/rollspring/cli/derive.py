@@ -45,7 +45,8 @@ def derive_command(
 ) -> None:
     """Derive the equations of motion step by step by Newton, conservation laws, Lagrange,
     subsystem frequencies and Hamilton; check that they agree (symbolically)."""
-    from rollspring.analysis.derivation import ALL, FORMATS, METHODS, DerivationError, derive
+    from rollspring.analysis.derivation import ALL, FORMATS, METHODS, DerivationError
+    from rollspring.service.documents import derivation_document
 
     if format not in FORMATS:
         raise DerivationError(f"--format: unknown format '{format}' "
@@ -55,9 +56,8 @@ def derive_command(
         if name != ALL and name not in METHODS:
             raise DerivationError(f"--method: unknown method '{name}' "
                                   f"(methods: {', '.join(METHODS)}, {ALL})")
-    model = load_system(system)
-    result = derive(model, methods, symbols=symbols)
-    rendered = result.render(format)
+    rendered, check = derivation_document(load_system(system), methods, format=format,
+                                          symbols=symbols)
     if out is None:
         sys.stdout.write(rendered)
         sys.stdout.flush()
@@ -69,7 +69,6 @@ def derive_command(
         except OSError as exc:
             raise DerivationError(f"--out: {out}: cannot write ({exc.strerror or exc})") from None
         _say(f"wrote {out}")
-    check = result.cross_check
     if not check.agree:
         _say("warning: the methods do not all agree: "
              + "; ".join(f"{c.method}: {c.what}" for c in check.failures))

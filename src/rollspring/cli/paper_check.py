@@ -3,8 +3,9 @@
 ``--json`` prints a list of {``location``, ``claim`` (LaTeX), ``verdict`` (``verified`` |
 ``wrong`` | ``holds-only-if``), ``correction`` (LaTeX or null), ``reason``}; ``--format text``
 (default) a Rich table with ✔/⚠/✘ marks, ``--format markdown`` a Markdown table with the LaTeX in
-``$...$``. The verdicts come from :mod:`rollspring.analysis.paper_check` (the derivation engine).
-The command is added to an app by :func:`register`.
+``$...$``. The verdicts come from :mod:`rollspring.analysis.paper_check` (the derivation engine),
+through :func:`rollspring.service.documents.paper_checks`. The command is added to an app by
+:func:`register`.
 """
 
 from __future__ import annotations
@@ -51,12 +52,11 @@ def paper_check(
     if format not in FORMATS:
         raise PaperCheckError(f"--format: unknown format '{format}' "
                               f"(formats: {', '.join(FORMATS)})")
-    from rollspring.analysis.paper_check import check_paper
+    from rollspring.service.documents import claims_json, paper_checks
 
-    checks = check_paper()
+    checks = paper_checks()
     if as_json:
-        sys.stdout.write(json.dumps([c.to_dict() for c in checks], indent=2, ensure_ascii=False)
-                         + "\n")
+        sys.stdout.write(json.dumps(claims_json(checks), indent=2, ensure_ascii=False) + "\n")
         sys.stdout.flush()
         return
     if format == "markdown":

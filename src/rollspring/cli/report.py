@@ -1,8 +1,9 @@
 """``rollspring report SYSTEM -o report.html``: one self-contained offline page about a system.
 
-The page (:mod:`rollspring.outputs.report`) holds the parameters, the modal table, X̂, the
-friction needed against μs, the derivations and paper checks, the plots and an animation; with
-``--format pdf`` headless Chromium prints the same page. The command is added to an app by
+The page (made by :func:`rollspring.service.documents.build_report`, rendered by
+:mod:`rollspring.outputs.report`) holds the parameters, the modal table, X̂, the friction needed
+against μs, the derivations and paper checks, the plots and an animation; with ``--format pdf``
+headless Chromium prints the same page. The command is added to an app by
 :func:`register` (called by ``rollspring.cli.app`` at its bottom).
 """
 
@@ -44,7 +45,8 @@ def report(
 ) -> None:
     """Write a self-contained report (HTML, or PDF through headless Chromium): diagram,
     parameters, modes, X̂, friction needed vs μs, derivations, paper checks, plots, animation."""
-    from rollspring.outputs.report import ReportError, build_report, find_chromium, write_report
+    from rollspring.outputs.report import ReportError, find_chromium, write_report
+    from rollspring.service.documents import build_report
 
     if format is None:
         format = "pdf" if out is not None and out.lower().endswith(".pdf") else "html"

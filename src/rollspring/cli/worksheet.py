@@ -4,7 +4,8 @@
 writes the sheet to FILE and the solutions to FILE with ``-solutions`` before its suffix
 (``sheet.md`` -> ``sheet-solutions.md``), each atomically; without ``-o`` both are printed,
 separated by a marked line. The same level and seed always give the same sheet
-(:mod:`rollspring.outputs.worksheet`). The command is added to an app by :func:`register`.
+(:func:`rollspring.service.documents.worksheet`, rendered by :mod:`rollspring.outputs.worksheet`).
+The command is added to an app by :func:`register`.
 """
 
 from __future__ import annotations
@@ -78,7 +79,8 @@ def worksheet_command(
     if format not in FORMATS:
         raise WorksheetOptionError(f"--format: unknown format '{format}' "
                              f"(formats: {', '.join(FORMATS)})")
-    from rollspring.outputs.worksheet import render_sheet, render_solutions, worksheet
+    from rollspring.outputs.worksheet import render_sheet, render_solutions
+    from rollspring.service.documents import worksheet
 
     sheet = worksheet(number, value)
     text = render_sheet(sheet, format)

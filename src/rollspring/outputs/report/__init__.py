@@ -8,9 +8,13 @@ renders MathML natively). Nothing is fetched: styles and scripts are inline, ima
 ``data:`` URLs, and a Content-Security-Policy forbids every request. ``format="pdf"`` prints the
 same page with headless Chromium.
 
+This package renders results computed elsewhere: :func:`rollspring.service.documents.build_report`
+(``rollspring.build_report``) analyses, simulates and derives, then calls :func:`render_report`.
+
 Public API::
 
-    report = build_report(system, duration=None, progress=None)   # -> Report (report.html)
+    report = render_report(system, analysis, trajectory, frames=frames,
+                           derivation=derivation, paper=(label, checks))  # -> Report
     write_report(report, "report.html")                           # atomic
     write_report(report, "report.pdf", format="pdf")              # headless Chromium
     find_chromium()                                               # path, or ReportError
@@ -21,9 +25,10 @@ from rollspring.outputs.report._build import (
     FORMATS,
     Report,
     animation_data,
-    build_report,
+    animation_frames,
     default_duration,
-    paper_figure,
+    derivation_sections,
+    render_report,
     write_report,
 )
 from rollspring.outputs.report._html import MathConversionError, ReportError, latex_to_mathml
@@ -36,11 +41,12 @@ __all__ = [
     "Report",
     "ReportError",
     "animation_data",
-    "build_report",
+    "animation_frames",
     "default_duration",
+    "derivation_sections",
     "find_chromium",
     "html_to_pdf",
     "latex_to_mathml",
-    "paper_figure",
+    "render_report",
     "write_report",
 ]

@@ -1,8 +1,9 @@
-r"""Assemble the report page from an analysis, a simulation and their pictures.
+r"""Assemble the report page from results already computed (an analysis, a simulation, a
+derivation, the paper's claims checked) and their pictures.
 
 Each ``_Page.section_*`` method returns one ``<section>`` of the page (Markup);
-:func:`build_report` computes what they need once (analysis, simulation), times each stage and
-puts the sections in order.
+:func:`render_report` puts the sections in order. What the page shows is computed by
+:func:`rollspring.service.documents.build_report`, which calls it.
 """
 
 from __future__ import annotations
@@ -10,18 +11,17 @@ from __future__ import annotations
 import base64
 import json
 import math
-import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from rollspring.analysis import LinearAnalysis, analyze, paper_check
-from rollspring.analysis.derivation import Derivation, derive
+from rollspring.analysis import LinearAnalysis
+from rollspring.analysis.derivation import Derivation, Section
+from rollspring.analysis.paper_check import HOLDS_ONLY_IF, VERDICTS, VERIFIED, WRONG, ClaimCheck
 from rollspring.analysis.report import CONVENTIONS
-from rollspring.errors import RollspringError
 from rollspring.model import System
 from rollspring.outputs import figures
 from rollspring.outputs.files import atomic_write_text
@@ -38,10 +38,10 @@ from rollspring.outputs.report._html import (
 )
 from rollspring.outputs.report._pdf import html_to_pdf
 from rollspring.outputs.trajectory import json_ready, summary_json, trajectory_csv
-from rollspring.simulate import Trajectory, simulate
+from rollspring.simulate import Trajectory
 
-__all__ = ["FORMATS", "Report", "animation_data", "build_report", "default_duration",
-           "paper_figure", "write_report"]
+__all__ = ["FORMATS", "Report", "animation_data", "animation_frames", "default_duration",
+           "derivation_sections", "render_report", "write_report"]
 
 #: Values of ``format`` that :func:`write_report` accepts.
 FORMATS = ("html", "pdf")
@@ -76,59 +76,59 @@ def default_duration(analysis: LinearAnalysis) -> float:
     return float(min(max(4.0 * max(periods), 1.0), 20.0))
 
 
-def build_report(system: System, *, duration: float | None = None, rtol: float = 1e-8,
-                 derivation: bool = True,
-                 progress: Callable[[float], None] | None = None) -> Report:
-    """Analyse and simulate ``system`` and build its self-contained report page.
-
-    ``duration`` is the simulated time (default :func:`default_duration`); ``derivation=False``
-    leaves out the symbolic part (the derivation by the five methods and the paper's claims:
-    SymPy, the slowest part for large systems); ``progress`` is called with the fraction done
-    (0..1) after each stage.
-    """
-    timings: dict[str, float] = {}
-    started = clock = time.perf_counter()
-
-    def done(stage: str, fraction: float) -> None:
-        nonlocal clock
-        now = time.perf_counter()
-        timings[stage] = now - clock
-        clock = now
-        if progress is not None:
-            progress(fraction)
-
-    analysis = analyze(system)
-    if duration is None:
-        duration = default_duration(analysis)
-    elif not (isinstance(duration, int | float) and math.isfinite(duration) and duration > 0):
-        raise ReportError(f"duration: must be a positive number of seconds, got {duration!r}")
-    done("analyze", 0.05)
+def animation_frames(duration: float) -> tuple[int, int]:
+    """``(frames, rows)`` for a report of ``duration`` simulated seconds: the frames the player
+    stores (:data:`FRAMES_PER_SECOND`, 50 to 1200) and the output rows the simulation needs
+    for them (the plots use every row)."""
     frames = int(min(max(math.ceil(duration * FRAMES_PER_SECOND), 50), _MAX_FRAMES))
-    trajectory = simulate(system, float(duration), rtol=rtol,
-                          n_output=_ROWS_PER_FRAME * (frames - 1) + 1)
-    done("simulate", 0.2)
+    return frames, _ROWS_PER_FRAME * (frames - 1) + 1
+
+
+def derivation_sections(derivation: Derivation) -> list[Section]:
+    """The sections of ``derivation`` shown as steps: every one but the cross-check's own
+    (shown as a table of verdicts instead)."""
+    own_table = derivation.cross_check.section().title
+    return [s for s in derivation.sections if s.title != own_table]
+
+
+def render_report(system: System, analysis: LinearAnalysis, trajectory: Trajectory, *,
+                  frames: int, derivation: Derivation | None = None,
+                  derivation_error: str | None = None,
+                  paper: tuple[str, Sequence[ClaimCheck]] | None = None,
+                  stage: Callable[[str, float], None] | None = None) -> Report:
+    """The self-contained report page of ``system`` from its ``analysis`` and ``trajectory``.
+
+    ``frames``: animation frames the player stores (:func:`animation_frames`); ``derivation``:
+    the symbolic derivation to show, or ``derivation_error`` (why there is none) — with neither
+    the page has no derivation; ``paper``: ``(label of the paper's figure, its claims checked)``
+    when the system is one of the paper's; ``stage`` is called after each stage of the
+    rendering with its name and the fraction of the rendering done (0..1).
+    """
+    def done(name: str, fraction: float) -> None:
+        if stage is not None:
+            stage(name, fraction)
 
     failures: list[str] = []
     page = _Page(system, analysis, trajectory, failures)
     sections = [page.section_overview(), page.section_diagram(), page.section_parameters(),
                 page.section_equilibrium(), page.section_modes(),
                 page.section_stationary_point(), page.section_friction()]
-    done("tables and figures", 0.45)
+    done("tables and figures", 0.5)
     sections.append(page.section_animation(frames))
     sections.append(page.section_plots())
-    done("animation and plots", 0.6)
-    if derivation:
-        sections.append(page.section_derivation())
-        done("derivation", 0.85)
-        sections.append(page.section_paper_check())
-        done("paper check", 0.98)
+    done("animation and plots", 0.75)
+    if derivation is not None or derivation_error is not None:
+        sections.append(page.section_derivation(derivation, derivation_error))
+        done("derivation", 0.9)
+    if paper is not None:
+        sections.append(page.section_paper_check(*paper))
+        done("paper check", 0.95)
     sections.append(page.section_warnings())
     sections.append(page.section_data())
     html = page.document([s for s in sections if s])
     done("assemble", 1.0)
-    timings["total"] = time.perf_counter() - started
     return Report(system=system, analysis=analysis, trajectory=trajectory, html=html,
-                  sections=page.section_ids, math_failures=failures, timings=timings)
+                  sections=page.section_ids, math_failures=failures)
 
 
 def write_report(report: Report, path: str | Path, *, format: str = "html",  # noqa: A002
@@ -568,13 +568,12 @@ class _Page:
 
     # -- the derivation by the five methods -------------------------------------------------
 
-    def section_derivation(self) -> Markup:
+    def section_derivation(self, derivation: Derivation | None,
+                           error: str | None) -> Markup:
         title = "Derivation by the paper's five methods"
-        try:
-            derivation = derive(self.system, symbols=True)
-        except RollspringError as exc:
+        if derivation is None:
             return self.section("derivation", title, Markup(
-                f'<p class="verdict-bad">No derivation for this system: {esc(exc)}</p>'))
+                f'<p class="verdict-bad">No derivation for this system: {esc(error)}</p>'))
         return self.section("derivation", title, *self._derivation_parts(derivation))
 
     def _derivation_parts(self, derivation: Derivation) -> list[object]:
@@ -595,9 +594,7 @@ class _Page:
                  for name, reason in check.not_applicable.items()]
         parts.append(table(["method", "compared", "verdict"], rows,
                            caption="Cross-check of the methods", table_id="cross-check"))
-        own_table = check.section().title  # shown above as the cross-check table
-        sections = [s for s in derivation.sections if s.title != own_table]
-        for number, section in enumerate(sections, 1):
+        for number, section in enumerate(derivation_sections(derivation), 1):
             steps = []
             for step in section.steps:
                 ref = f' <span class="ref">[{esc(step.ref)}]</span>' if step.ref else ""
@@ -612,18 +609,9 @@ class _Page:
 
     # -- the paper's claims ----------------------------------------------------------------
 
-    def section_paper_check(self) -> Markup:
-        figure = paper_figure(self.system)
-        if figure is None:
-            return ""
-        label, keys = figure
-        claims = [c for c in paper_check.paper_claims()
-                  if keys & {key.strip() for key in c.system.split(",")}]
-        bench = paper_check._Bench()  # shares the symbolic systems between the claims
-        checks = [paper_check.check_claim(claim, bench) for claim in claims]
-        words = {paper_check.VERIFIED: ("✔ verified", "ok"),
-                 paper_check.HOLDS_ONLY_IF: ("⚠ holds only if", "other"),
-                 paper_check.WRONG: ("✘ wrong", "bad")}
+    def section_paper_check(self, label: str, checks: Sequence[ClaimCheck]) -> Markup:
+        words = {VERIFIED: ("✔ verified", "ok"), HOLDS_ONLY_IF: ("⚠ holds only if", "other"),
+                 WRONG: ("✘ wrong", "bad")}
         rows = []
         for check in checks:
             text, css = words[check.verdict]
@@ -637,14 +625,14 @@ class _Page:
                 Markup(f'<span class="cellmath">{self.math(check.correction, display=False)}'
                        "</span>") if check.correction else "–",
                 check.reason])
-        counts = {v: sum(1 for c in checks if c.verdict == v) for v in paper_check.VERDICTS}
+        counts = {v: sum(1 for c in checks if c.verdict == v) for v in VERDICTS}
         intro = Markup(
             f"<p>This system is the paper's {esc(label)}. Each quantitative claim the paper makes "
             "about it is derived again by rollspring's derivation engine, on the paper's system "
             "with its parameters as symbols (m₁, m₂, R, k …), and compared with "
             "<code>simplify(paper − derived) == 0</code>: "
-            f"{counts[paper_check.VERIFIED]} verified, {counts[paper_check.HOLDS_ONLY_IF]} hold "
-            f"only under a condition, {counts[paper_check.WRONG]} wrong. "
+            f"{counts[VERIFIED]} verified, {counts[HOLDS_ONLY_IF]} hold only under a condition, "
+            f"{counts[WRONG]} wrong. "
             "(<code>rollspring paper-check</code> lists every claim of the paper.)</p>")
         return self.section("paper-check", "The paper's claims, checked", intro,
                             table(["where", "claim", "verdict", "correction", "reason"], rows,
@@ -707,51 +695,6 @@ class _Page:
             "image, formula (MathML) and data set is in it.</footer></main>"
             f"<script>{PLAYER_JS}</script></body></html>\n"
         )
-
-
-def paper_figure(system: System) -> tuple[str, set[str]] | None:
-    """Which of the paper's systems ``system`` is, as ``(label, keys of
-    rollspring.analysis.paper_check.SYSTEMS)``, or None.
-
-    By structure, not by numbers (the paper's claims are symbolic): two sliders joined at their
-    centres (Fig. 1); a hoop and a solid cylinder, or two hoops, or two cylinders, joined at
-    their centres, centres level (Fig. 2); a hoop and a cylinder joined at their percussion
-    heights (1 + γ)R (Fig. 3); a wall spring on a hoop that is joined to a cylinder at the centres
-    (Fig. 4 (a)). No constant forces in any of them.
-    """
-    if system.forces:
-        return None
-    bodies = {b.id: b for b in system.bodies}
-    shapes = sorted(b.shape for b in system.bodies)
-    springs = system.springs
-
-    def centres(spring: Any) -> bool:
-        return all(at.is_centre_form for at in spring.attachments)
-
-    level = len({round(b.track_height + b.radius, 12) for b in system.bodies}) == 1
-    if len(bodies) == 2 and len(springs) == 1 and not system.anchors:
-        (spring,) = springs
-        if shapes == ["slider", "slider"] and centres(spring):
-            return "Fig. 1 (two point masses)", {"fig1"}
-        if centres(spring) and level:
-            if shapes == ["cylinder", "hoop"]:
-                return "Fig. 2 (hoop and cylinder joined at their centres)", {"fig2", "fig2-radii"}
-            if shapes == ["hoop", "hoop"]:
-                return "Sec. 2 variant with two hoops", {"two-hoops"}
-            if shapes == ["cylinder", "cylinder"]:
-                return "Sec. 2 variant with two cylinders", {"two-cylinders"}
-        if shapes == ["cylinder", "hoop"] and all(
-                at.height is not None
-                and math.isclose(at.height, bodies[end].percussion_height, rel_tol=1e-9)
-                for end, at in zip(spring.ends, spring.attachments, strict=True)):
-            return "Fig. 3 (springs at the percussion points, no friction)", {"fig3"}
-    if (len(bodies) == 2 and len(system.anchors) == 1 and len(springs) == 2
-            and shapes == ["cylinder", "hoop"] and all(centres(s) for s in springs)):
-        anchor = system.anchors[0].id
-        wall = [s for s in springs if anchor in s.ends]
-        if len(wall) == 1 and any(bodies[e].shape == "hoop" for e in wall[0].ends if e in bodies):
-            return "Fig. 4 (a) (a wall spring on the hoop)", {"fig4a"}
-    return None
 
 
 def animation_data(analysis: LinearAnalysis, trajectory: Trajectory, frames: int) -> dict:

@@ -1,0 +1,160 @@
+"""Documents about a system: the report, the derivation, the paper's claims and the worksheets.
+
+Each function computes what its document shows, in order (analysis → simulation → derivation →
+the paper's claims), and hands the results to a renderer of :mod:`rollspring.outputs`, which
+computes nothing itself. The CLI (``rollspring report``, ``derive``, ``paper-check``,
+``worksheet``) and the web API (``POST /api/report``) call these functions.
+
+Public API::
+
+    build_report(system, duration=None, derivation=True, progress=None)  # -> Report
+    derivation_document(system, ["newton"], format="markdown")    # -> (text, CrossCheck)
+    paper_checks()                                                # every claim, with its verdict
+    figure_claims(system)                                         # (label, checks) or None
+    claims_json(checks)                                           # as paper-check --json
+    worksheet(level, seed)                                        # -> Worksheet
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import time
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any
+
+from rollspring.analysis import analyze
+from rollspring.analysis.derivation import ALL, CrossCheck, derive
+from rollspring.analysis.paper_check import (
+    ClaimCheck,
+    check_claims,
+    check_paper,
+    paper_claims,
+    paper_figure,
+)
+from rollspring.errors import RollspringError
+from rollspring.model import System, system_from_dict
+from rollspring.outputs.report import (
+    Report,
+    ReportError,
+    animation_frames,
+    default_duration,
+    render_report,
+)
+from rollspring.outputs.worksheet import LEVELS, Worksheet, WorksheetError
+from rollspring.service import exercises
+from rollspring.simulate import simulate
+
+__all__ = ["build_report", "claims_json", "derivation_document", "figure_claims", "paper_checks",
+           "worksheet"]
+
+
+# -- the report -----------------------------------------------------------------------------------
+
+def build_report(system: System, *, duration: float | None = None, rtol: float = 1e-8,
+                 derivation: bool = True,
+                 progress: Callable[[float], None] | None = None) -> Report:
+    """Analyse and simulate ``system``, derive it, check the paper's claims about it, and render
+    its self-contained report page (:func:`rollspring.outputs.report.render_report`).
+
+    ``duration`` is the simulated time (default
+    :func:`~rollspring.outputs.report.default_duration`); ``derivation=False`` leaves out the
+    symbolic part (the derivation by the five methods and the paper's claims: SymPy, the slowest
+    part for large systems); ``progress`` is called with the fraction done (0..1) after each
+    stage. ``Report.timings`` holds the seconds each stage took, and their ``total``.
+    """
+    timings: dict[str, float] = {}
+    started = clock = time.perf_counter()
+
+    def done(stage: str, fraction: float) -> None:
+        nonlocal clock
+        now = time.perf_counter()
+        timings[stage] = now - clock
+        clock = now
+        if progress is not None:
+            progress(fraction)
+
+    analysis = analyze(system)
+    if duration is None:
+        duration = default_duration(analysis)
+    elif not (isinstance(duration, int | float) and math.isfinite(duration) and duration > 0):
+        raise ReportError(f"duration: must be a positive number of seconds, got {duration!r}")
+    done("analyze", 0.05)
+    frames, rows = animation_frames(duration)
+    trajectory = simulate(system, float(duration), rtol=rtol, n_output=rows)
+    computed = 0.2
+    done("simulate", computed)
+    derived = error = paper = None
+    if derivation:
+        try:
+            derived = derive(system, symbols=True)
+        except RollspringError as exc:
+            error = str(exc)
+        done("derive", 0.5)
+        paper = figure_claims(system)
+        computed = 0.6
+        done("check the paper's claims", computed)
+    report = render_report(system, analysis, trajectory, frames=frames, derivation=derived,
+                           derivation_error=error, paper=paper,
+                           stage=lambda name, f: done(name, computed + (1.0 - computed) * f))
+    timings["total"] = time.perf_counter() - started
+    report.timings = timings
+    return report
+
+
+# -- the derivation -------------------------------------------------------------------------------
+
+def derivation_document(system: System, methods: str | Sequence[str] = ALL, *,
+                        format: str = "text",  # noqa: A002 - mirrors --format
+                        symbols: bool = False) -> tuple[str, CrossCheck]:
+    """``system`` derived step by step by ``methods`` (``"all"`` or names of
+    :data:`rollspring.analysis.derivation.METHODS`; with ``symbols`` the parameters are symbols),
+    rendered as ``format`` (``text``, ``markdown`` or ``latex``, a complete document), and the
+    cross-check of the methods."""
+    derivation = derive(system, methods, symbols=symbols)
+    return derivation.render(format), derivation.cross_check
+
+
+# -- the paper's claims ---------------------------------------------------------------------------
+
+def paper_checks() -> tuple[ClaimCheck, ...]:
+    """Every quantitative claim of the paper with its computed verdict (once per process)."""
+    return check_paper()
+
+
+def figure_claims(system: System) -> tuple[str, tuple[ClaimCheck, ...]] | None:
+    """The paper's claims about ``system`` with their verdicts, as ``(label of the paper's
+    figure, checks)``, when ``system`` is one of the paper's systems
+    (:func:`rollspring.analysis.paper_check.paper_figure`); None otherwise."""
+    figure = paper_figure(system)
+    if figure is None:
+        return None
+    label, keys = figure
+    claims = [c for c in paper_claims() if keys & {key.strip() for key in c.system.split(",")}]
+    return label, check_claims(claims)
+
+
+def claims_json(checks: Iterable[ClaimCheck]) -> list[dict[str, Any]]:
+    """The checks as ``rollspring paper-check --json`` prints them: ``location``, ``claim``
+    (LaTeX), ``verdict``, ``correction`` (LaTeX or None), ``reason``."""
+    return [check.to_dict() for check in checks]
+
+
+# -- worksheets -----------------------------------------------------------------------------------
+
+def worksheet(level: int, seed: int) -> Worksheet:
+    """The exercise sheet of ``level`` (1-4) drawn with ``seed`` (a non-negative integer; the
+    same seed gives the same sheet): a random system of the level, its analysis, questions and
+    answers; the derivation its solutions show (Lagrange, the parameters as symbols) is made
+    when the solutions first need it."""
+    if isinstance(level, bool) or not isinstance(level, int) or level not in LEVELS:
+        raise WorksheetError(f"--level: must be 1, 2, 3 or 4 (got {level})")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise WorksheetError(f"--seed: must be a non-negative integer (got {seed})")
+    variant, data, setting = exercises.draw(level, seed)
+    system = system_from_dict(data)
+    analysis = analyze(system)
+    questions, answers, notes = exercises.questions_and_answers(level, analysis)
+    return Worksheet(level, seed, variant, f"Level {level}: {LEVELS[level]}", data, system,
+                     setting, questions, answers, analysis,
+                     functools.partial(derive, system, ["lagrange"], symbols=True), notes)

@@ -3,12 +3,13 @@
 Each function computes what its document shows, in order (analysis → simulation → derivation →
 the paper's claims), and hands the results to a renderer of :mod:`rollspring.outputs`, which
 computes nothing itself. The CLI (``rollspring report``, ``derive``, ``paper-check``,
-``worksheet``) and the web API (``POST /api/report``) call these functions.
+``worksheet``) and the web API (``POST /api/derive``, ``/api/report``) call these functions.
 
 Public API::
 
     build_report(system, duration=None, derivation=True, progress=None)  # -> Report
     derivation_document(system, ["newton"], format="markdown")    # -> (text, CrossCheck)
+    derivation_payload(system, "all")                             # the JSON of POST /api/derive
     paper_checks()                                                # every claim, with its verdict
     figure_claims(system)                                         # (label, checks) or None
     claims_json(checks)                                           # as paper-check --json
@@ -35,18 +36,21 @@ from rollspring.analysis.paper_check import (
 from rollspring.errors import RollspringError
 from rollspring.model import System, system_from_dict
 from rollspring.outputs.report import (
+    MathConversionError,
     Report,
     ReportError,
     animation_frames,
     default_duration,
+    derivation_sections,
+    latex_to_mathml,
     render_report,
 )
 from rollspring.outputs.worksheet import LEVELS, Worksheet, WorksheetError
 from rollspring.service import exercises
 from rollspring.simulate import simulate
 
-__all__ = ["build_report", "claims_json", "derivation_document", "figure_claims", "paper_checks",
-           "worksheet"]
+__all__ = ["build_report", "claims_json", "derivation_document", "derivation_payload",
+           "figure_claims", "paper_checks", "worksheet"]
 
 
 # -- the report -----------------------------------------------------------------------------------
@@ -113,6 +117,48 @@ def derivation_document(system: System, methods: str | Sequence[str] = ALL, *,
     cross-check of the methods."""
     derivation = derive(system, methods, symbols=symbols)
     return derivation.render(format), derivation.cross_check
+
+
+def derivation_payload(system: System, method: str | Sequence[str] = ALL, *,
+                       symbols: bool = True) -> dict[str, Any]:
+    """The derivation of ``system`` by ``method`` as plain JSON data (``POST /api/derive``).
+
+    ``{"title", "subtitle", "sections": [{"title", "steps": [{"words", "latex", "mathml",
+    "ref"}]}], "cross_check": {"agree", "checks": [{"method", "what", "agree", "residual"}]},
+    "claims"}``: the sections are those the report shows as steps (its symbols, by default;
+    ``symbols=False`` for exact numbers), ``mathml`` the report's MathML of the LaTeX (None
+    where latex2mathml cannot convert it); in ``checks`` ``agree`` is None where SymPy ran out
+    of time and ``residual`` is the SymPy text of the difference (0 when they agree).
+    ``claims``: the paper's claims about the system with their verdicts, as
+    ``rollspring paper-check --json`` gives them, when the system is one of the paper's
+    (:func:`figure_claims`); otherwise None.
+    """
+    derivation = derive(system, method, symbols=symbols)
+    check = derivation.cross_check
+    paper = figure_claims(system)
+    return {
+        "title": derivation.title,
+        "subtitle": derivation.subtitle,
+        "sections": [
+            {"title": section.title,
+             "steps": [{"words": step.words, "latex": step.latex,
+                        "mathml": _mathml(step.latex), "ref": step.ref}
+                       for step in section.steps]}
+            for section in derivation_sections(derivation)],
+        "cross_check": {
+            "agree": check.agree,
+            "checks": [{"method": c.method, "what": c.what, "agree": c.agrees,
+                        "residual": str(c.residual)} for c in check.checks]},
+        "claims": None if paper is None else claims_json(paper[1]),
+    }
+
+
+def _mathml(latex: str) -> str | None:
+    """The MathML of ``latex`` as the report shows it, or None where it cannot be converted."""
+    try:
+        return str(latex_to_mathml(latex))
+    except MathConversionError:
+        return None
 
 
 # -- the paper's claims ---------------------------------------------------------------------------

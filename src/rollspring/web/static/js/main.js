@@ -9,7 +9,8 @@
 //                   frame drawn with the motion computed for it (null before any change);
 //   ready()       → a Promise resolved once the first motion is drawn;
 //   system()      → a copy of the system being edited (the JSON form);
-//   time()        → the clock (s); dt() → the Step interval (s): one output interval.
+//   time()        → the clock (s); dt() → the Step interval (s): one output interval;
+//   settled()     → true when no change waits to be computed or drawn (for tests).
 // Initial displacements are shown relative to where each body was when the system was loaded
 // (the preset, file or link): that is also where Home puts a body back.
 
@@ -36,7 +37,7 @@ const state = {
   preset: "",
   system: null, // the system being edited (JSON form)
   loaded: {}, // body id → x when the system was loaded (Home)
-  show: { spring: false, friction: true, normal: false, markers: true, linear: false },
+  show: { spring: false, friction: true, normal: false, markers: true, linear: false, dots: false },
   onSlip: "stop",
   speed: 1,
   start: null, // {mode, amplitude}: start along a mode instead of the system's x, v
@@ -93,30 +94,39 @@ function loadSystem(system, preset = "") {
 }
 
 let timer = null;
+let inFlight = 0;
 function recompute() {
   clearTimeout(timer);
   timer = setTimeout(recomputeNow, DEBOUNCE_MS);
 }
 
+let errorShown = false;
+
 async function recomputeNow() {
   clearTimeout(timer);
+  timer = null;
   const system = structuredClone(state.system);
   const request = { system, duration: DURATION, outputs: OUTPUTS, on_slip: state.onSlip,
     linear: state.show.linear };
   if (state.start) request.start = state.start;
   setStatus("Computing…");
+  inFlight += 1;
   try {
     const [sim, lin] = await Promise.all([simulate(request), analyze({ system })]);
     if (!sim || !lin) return; // superseded by a newer change
     editor.clearErrors();
     $("#system-error").hidden = true;
+    errorShown = false;
     apply(sim, lin, system);
   } catch (error) {
     showError(error);
+  } finally {
+    inFlight -= 1;
   }
 }
 
 function showError(error) {
+  errorShown = true;
   if (error instanceof ApiError) {
     editor.clearErrors();
     if (!editor.showError(error.path, error.message)) {
@@ -239,8 +249,9 @@ function moveBody(id, x, phase) {
   if (phase === "end") edited("commit");
 }
 
+/** The attachment dot under canvas point q, when dragging them is switched on (at t = 0). */
 function dotAt(q) {
-  if (playing || state.t !== 0 || !state.system) return null;
+  if (!state.show.dots || playing || state.t !== 0 || !state.system) return null;
   const dots = attachmentDotsNow();
   return dots.find((d) => Math.hypot(d.p.x - q.x, d.p.y - q.y) <= 7) || null;
 }
@@ -612,6 +623,7 @@ window.rollspringPage = {
   system: () => structuredClone(state.system),
   time: () => state.t,
   dt,
+  settled: () => timer === null && inFlight === 0 && (pendingChange === null || errorShown),
 };
 
 async function main() {

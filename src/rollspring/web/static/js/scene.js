@@ -123,7 +123,7 @@ function drawSpring(ctx, view, frame, spring, s) {
   zigzag(a, b, { coils: 9, width: 7, lead: 10 }).forEach((p, i) =>
     (i ? ctx.lineTo(p.x, p.y) : ctx.moveTo(p.x, p.y)));
   ctx.stroke();
-  for (const p of [a, b]) dot(ctx, p, 4, "#fff", INK);
+  for (const p of [a, b]) dot(ctx, p, frame.show.dots ? 6 : 4, "#fff", INK);
 }
 
 function drawBody(ctx, view, frame, body, i) {
@@ -309,18 +309,4 @@ function label(ctx, text, x, y) {
 
 function tint(hex) {
   return `${hex}33`;
-}
-
-/** Canvas position of every spring end on a body at the current instant, for hit-testing the
- * attachment dots: [{spring, end, body, p}]. */
-export function attachmentDots(view, system, pose) {
-  const dots = [];
-  system.springs.forEach((spring, s) => {
-    const ends = springEnds(system, spring, pose);
-    spring.ends.forEach((id, j) => {
-      const body = system.bodies.find((b) => b.id === id);
-      if (body && body.shape !== "slider") dots.push({ spring: s, end: j, body, p: view.toCanvas(ends[j]) });
-    });
-  });
-  return dots;
 }

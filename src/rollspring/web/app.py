@@ -17,10 +17,12 @@ from pathlib import Path
 from typing import Any, Literal
 
 from fastapi import FastAPI, Request
+from fastapi.exception_handlers import http_exception_handler
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
 from pydantic import BaseModel, ConfigDict, Field, model_validator
+from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from rollspring.errors import RollspringError
 from rollspring.model import System, system_to_json, validation_errors
@@ -172,6 +174,10 @@ class SimulateResponse(BaseModel):
     linear: dict[str, Series] | None
 
 
+#: A JSON object answer, documented as one (its fields: docs/web-api.md and the README).
+_OBJECT: dict[int | str, dict[str, Any]] = {
+    200: {"content": {"application/json": {"schema": {"type": "object"}}}}}
+
 _ERRORS: dict[int | str, dict[str, Any]] = {
     422: {"model": InvalidRequest, "description": "An invalid request."},
     503: {"model": Unavailable, "description": "Over the time budget, or at capacity."},
@@ -216,6 +222,13 @@ def create_app(system: System | None = None, *, preset: str | None = None,
     async def invalid(request: Request, exc: RequestValidationError) -> JSONResponse:
         return _invalid_response(exc.errors(), getattr(exc, "body", None))
 
+    @app.exception_handler(StarletteHTTPException)
+    async def unreadable(request: Request, exc: StarletteHTTPException) -> Response:
+        if exc.status_code == 400:  # a body FastAPI cannot even decode (not UTF-8, not JSON)
+            return _problem(["body"], f"body: cannot be read as JSON ({exc.detail})",
+                            "json_invalid")
+        return await http_exception_handler(request, exc)
+
     def compute(job: str, request: dict[str, Any], media: type[Response] = JSONBytes,
                 **kwargs: Any) -> Response:
         try:
@@ -255,7 +268,7 @@ def create_app(system: System | None = None, *, preset: str | None = None,
             return resolved
         return system_forms(resolved)
 
-    @app.post("/api/analyze", response_class=JSONBytes, responses=_ERRORS,
+    @app.post("/api/analyze", response_class=JSONBytes, responses={**_OBJECT, **_ERRORS},
               summary="Linear analysis (= rollspring analyze --json)")
     def analyze(request: SystemRequest) -> Response:
         resolved = _resolve(request)
@@ -289,7 +302,7 @@ def create_app(system: System | None = None, *, preset: str | None = None,
         return compute("simulate_csv", job, Response, media_type="text/csv",
                        headers={"Content-Disposition": 'attachment; filename="trajectory.csv"'})
 
-    @app.post("/api/derive", response_class=JSONBytes, responses=_ERRORS,
+    @app.post("/api/derive", response_class=JSONBytes, responses={**_OBJECT, **_ERRORS},
               summary="The derivation by the paper's five methods, as MathML and LaTeX")
     def derive(request: DeriveRequest) -> Response:
         resolved = _resolve(request)

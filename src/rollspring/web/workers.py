@@ -26,7 +26,7 @@ from typing import Any
 __all__ = ["PRELOAD", "ComputePool", "JobFailed", "OverBudget", "Overloaded"]
 
 #: Modules the forkserver imports once, so that every worker starts with them loaded.
-PRELOAD = ["rollspring.web.jobs"]
+PRELOAD = ["rollspring.web.jobs", "rollspring.service.documents"]
 
 
 class Overloaded(Exception):

@@ -1,0 +1,136 @@
+"""The web API against its own OpenAPI schema, on the real server: Schemathesis generates
+requests from ``/openapi.json`` (valid and invalid ones) and checks that none gets a 5xx, that
+every status code and content type is one the schema documents, and that every response body
+fits its documented schema; and uvicorn's concurrency limit answers overload with 503 at once.
+"""
+
+from __future__ import annotations
+
+import re
+import signal
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+import requests
+import schemathesis
+from hypothesis import HealthCheck, given, settings
+from schemathesis import GenerationMode, checks
+
+SERVE = str(Path(sys.executable).with_name("rollspring"))
+
+
+class Server:
+    """``rollspring serve`` started from its command line on a free loopback port."""
+
+    def __init__(self, *options: str) -> None:
+        self.process = subprocess.Popen([SERVE, "serve", "--port", "0", *options],
+                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                        text=True)
+        try:
+            self.url = self._wait()
+        except BaseException:
+            self.stop()
+            raise
+
+    def _wait(self) -> str:
+        assert self.process.stdout is not None
+        line = self.process.stdout.readline()
+        found = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
+        assert found, f"no URL in {line!r}"
+        url = found.group(1)
+        deadline = time.monotonic() + 60
+        while True:  # it answers once its worker processes are started
+            try:
+                if requests.get(url + "api/start", timeout=5).status_code == 200:
+                    return url
+            except requests.ConnectionError:
+                pass
+            assert time.monotonic() < deadline, "the server did not answer within 60 s"
+            time.sleep(0.2)
+
+    def stop(self) -> str:
+        """Stop it as Ctrl-C does; what it printed on stderr."""
+        self.process.send_signal(signal.SIGINT)
+        try:
+            _, errors = self.process.communicate(timeout=20)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            _, errors = self.process.communicate()
+        return errors
+
+
+@pytest.fixture(scope="module")
+def server() -> Iterator[Server]:
+    running = Server("--budget", "5")
+    yield running
+    errors = running.stop()
+    assert "Traceback" not in errors, errors
+
+
+#: No 5xx, documented status codes and content types, bodies that fit their schema, and
+#: schema-invalid requests rejected with a 4xx.
+CHECKS = [checks.not_a_server_error, checks.status_code_conformance,
+          checks.content_type_conformance, checks.response_schema_conformance,
+          checks.negative_data_rejection]
+
+#: Examples per operation and generation mode; the symbolic ones (derive, report: seconds
+#: each) get fewer.
+EXAMPLES = {"/api/derive": 6, "/api/report": 4}
+
+
+@pytest.mark.parametrize("mode", list(GenerationMode), ids=lambda mode: mode.value)
+def test_the_api_keeps_its_schema_and_never_fails(server: Server, mode: GenerationMode) -> None:
+    """Every operation of ``/openapi.json``, with requests generated from its schema (valid
+    ones, and with ``negative`` invalid ones)."""
+    schema = schemathesis.openapi.from_url(server.url + "openapi.json")
+    operations = [result.ok() for result in schema.get_all_operations()]
+    assert {op.path for op in operations} >= {"/api/analyze", "/api/simulate", "/api/derive"}
+    seen = 0
+    for operation in operations:
+        if mode is GenerationMode.NEGATIVE and operation.method.upper() == "GET":
+            continue  # no parameters: nothing to make invalid
+
+        @given(case=operation.as_strategy(generation_mode=mode))
+        @settings(max_examples=EXAMPLES.get(operation.path, 40), deadline=None,
+                  derandomize=True, database=None, suppress_health_check=list(HealthCheck))
+        def call(case) -> None:
+            nonlocal seen
+            case.call_and_validate(base_url=server.url.rstrip("/"), checks=CHECKS, timeout=30)
+            seen += 1
+
+        call()
+    assert seen > 100
+
+
+def test_overload_is_answered_503_at_once() -> None:
+    """With room for two connections, a third gets 503 at once while two are served (a
+    connection counts itself: a limit of 1 would refuse everything)."""
+    busy = Server("--limit-concurrency", "2", "--workers", "1", "--budget", "30")
+    try:
+        three = requests.get(busy.url + "api/presets", timeout=10).json()
+        chain = next(p["system"] for p in three if p["name"] == "three-bodies")
+        slow: dict[str, object] = {}
+
+        def derive() -> None:  # a symbolic derivation: seconds of work
+            slow["response"] = requests.post(busy.url + "api/derive", json={"system": chain},
+                                             timeout=60)
+
+        worker = threading.Thread(target=derive)
+        worker.start()
+        time.sleep(0.5)
+        refused = requests.get(busy.url + "api/presets", timeout=10)
+        worker.join()
+        assert refused.status_code == 503
+        assert slow["response"].status_code == 200  # type: ignore[attr-defined]
+        # and once the connections have closed, it serves again
+        deadline = time.monotonic() + 10
+        while requests.get(busy.url + "api/presets", timeout=10).status_code != 200:
+            assert time.monotonic() < deadline, "still refusing after the load was gone"
+            time.sleep(0.1)
+    finally:
+        busy.stop()

@@ -80,13 +80,16 @@ export function energySeries(run) {
   };
 }
 
-/** The energy bars at sample i: kinetic, potential and lost (initial total − current total). */
+/** The energy bars at sample i: kinetic, potential and lost (initial total − current total;
+ * below 1e-9 of the total it is rounding, shown as 0), each with the bars' common scale. */
 export function energyBars(run, i) {
   const e = run.energy;
+  const scale = Math.max(...e.total.filter((v) => v != null), 1e-12);
+  const lost = e.total[0] - e.total[i];
   return {
     kinetic: e.kinetic[i],
     potential: e.potential[i],
-    lost: e.total[0] - e.total[i],
-    scale: Math.max(...e.total.filter((v) => v != null), 1e-12),
+    lost: Math.abs(lost) < 1e-9 * scale ? 0 : lost,
+    scale,
   };
 }

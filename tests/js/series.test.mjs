@@ -1,0 +1,72 @@
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { energyBars, energySeries, forceSeries, positionSeries, ratioSeries }
+  from "../../src/rollspring/web/static/js/series.js";
+import { fieldPath } from "../../src/rollspring/web/static/js/api.js";
+import { getPath, parseField, setPath } from "../../src/rollspring/web/static/js/editor.js";
+
+const run = {
+  t: [0, 1, 2],
+  bodies: {
+    hoop: { x: [0, 0.1, 0.2], friction: [0.5, 0, -0.5], normal: [9.81, 9.81, 9.81], friction_ratio: [0.05, 0, 0.05] },
+    cylinder: { x: [0.5, 0.4, 0.3], friction: [-0.3, 0, 0.3], normal: [9.81, 9.81, 9.81], friction_ratio: [0.03, 0, 0.03] },
+  },
+  cm_x: [0.25, 0.25, 0.25], stationary_x: [0.2, 0.2, 0.2],
+  energy: { kinetic: [0, 0.004, 0], potential: [0.005, 0.001, 0.004], total: [0.005, 0.005, 0.004] },
+  linear: { hoop: [0, 0.1, 0.19], cylinder: [0.5, 0.4, 0.31] },
+};
+const system = { bodies: [{ id: "hoop", mu_static: 1 }, { id: "cylinder", mu_static: "inf" }] };
+
+test("positions: each centre, the CM, X̂ and the dashed linear solution", () => {
+  const { data, series } = positionSeries(run);
+  assert.deepEqual(series.map((s) => s.label), ["hoop x", "cylinder x", "CM", "X̂", "hoop linear", "cylinder linear"]);
+  assert.equal(data.length, series.length + 1);
+  assert.deepEqual(data[0], run.t);
+  assert.ok(series.at(-1).dash);
+  const plain = positionSeries({ ...run, stationary_x: null, linear: null });
+  assert.deepEqual(plain.series.map((s) => s.label), ["hoop x", "cylinder x", "CM"]);
+});
+
+test("forces: f and N per body, the ±μs N band only where μs is finite", () => {
+  const { data, series } = forceSeries(run, system);
+  assert.deepEqual(series.map((s) => s.label),
+    ["hoop f", "hoop N", "hoop +μs N", "hoop −μs N", "cylinder f", "cylinder N"]);
+  assert.deepEqual(data[3], [9.81, 9.81, 9.81]);
+  assert.deepEqual(data[4], [-9.81, -9.81, -9.81]);
+});
+
+test("friction ratio with the slip line at 1; energies", () => {
+  const ratio = ratioSeries(run);
+  assert.deepEqual(ratio.data.at(-1), [1, 1, 1]);
+  assert.deepEqual(energySeries(run).series.map((s) => s.label), ["kinetic", "potential", "total"]);
+});
+
+test("energy bars: lost = initial total − current total; rounding noise shows as 0", () => {
+  const bars = energyBars(run, 2);
+  assert.equal(bars.kinetic, 0);
+  assert.equal(bars.potential, 0.004);
+  assert.ok(Math.abs(bars.lost - 0.001) < 1e-15);
+  assert.equal(bars.scale, 0.005);
+  const noisy = { ...run, energy: { ...run.energy, total: [0.005, 0.005 + 1e-18, 0.005] } };
+  assert.equal(energyBars(noisy, 1).lost, 0);
+});
+
+test("a 422's loc names the field the page shows the message next to", () => {
+  assert.equal(fieldPath(["body", "system", "bodies", 0, "mass"]), "bodies.0.mass");
+  assert.equal(fieldPath(["body", "toml"]), "toml");
+  assert.equal(fieldPath([]), "");
+});
+
+test("fields: dotted paths into the system; numbers, inf, empty optional values", () => {
+  const s = { bodies: [{ mass: 1 }] };
+  assert.equal(getPath(s, "bodies.0.mass"), 1);
+  setPath(s, "springs", []);
+  setPath(s, "bodies.0.mu_kinetic", 0.3);
+  assert.equal(s.bodies[0].mu_kinetic, 0.3);
+  setPath(s, "bodies.0.mu_kinetic", undefined);
+  assert.ok(!("mu_kinetic" in s.bodies[0]));
+  assert.equal(parseField(" -1 "), -1);
+  assert.equal(parseField("inf", { allowInf: true }), "inf");
+  assert.equal(parseField("", { optional: true }), undefined);
+  assert.equal(parseField("abc"), "abc");
+});

@@ -263,7 +263,6 @@ export function largestForce(run, show) {
   return max;
 }
 
-export { FORCE_COLOURS };
 
 function arrow(ctx, p, d, colour) {
   const length = Math.hypot(d.x, d.y);

@@ -33,7 +33,7 @@ def test_every_step_has_its_mathml(hoop_cylinder: dict) -> None:
     assert len(sections) >= 6
     assert "Euler-Lagrange equations" in {s["title"] for s in sections}
     for section in sections:
-        assert set(section) == {"title", "steps"}
+        assert set(section) == {"title", "note", "steps"}
         assert section["steps"], section["title"]  # every method applies to Fig. 2
         for step in section["steps"]:
             assert set(step) == STEP_KEYS
@@ -45,7 +45,8 @@ def test_every_step_has_its_mathml(hoop_cylinder: dict) -> None:
 
 def test_the_cross_check_agrees(hoop_cylinder: dict) -> None:
     check = hoop_cylinder["cross_check"]
-    assert set(check) == {"agree", "checks"}
+    assert set(check) == {"agree", "applied", "not_applicable", "checks"}
+    assert check["not_applicable"] == {}  # every method applies to Fig. 2
     assert check["agree"] is True
     assert len(check["checks"]) >= 5
     methods = {c["method"] for c in check["checks"]}
@@ -77,3 +78,13 @@ def test_no_claims_for_a_system_that_is_none_of_the_papers() -> None:
     assert payload["claims"] is None
     assert [s["title"] for s in payload["sections"]][1] == "Euler-Lagrange equations"
     assert payload["cross_check"]["agree"] is True
+
+
+def test_a_method_that_does_not_apply_says_why() -> None:
+    """The conservation method needs a zero mode; a chain tied to a wall has none."""
+    payload = derivation_payload(load_system("wall-hoop-cylinder"), "conservation")
+    reason = payload["cross_check"]["not_applicable"]["conservation"]
+    assert "conservation" not in payload["cross_check"]["applied"]
+    assert reason
+    notes = [s["note"] for s in payload["sections"] if not s["steps"]]
+    assert any(reason in note or note in reason for note in notes if note), notes

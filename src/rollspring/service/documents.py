@@ -123,9 +123,11 @@ def derivation_payload(system: System, method: str | Sequence[str] = ALL, *,
                        symbols: bool = True) -> dict[str, Any]:
     """The derivation of ``system`` by ``method`` as plain JSON data (``POST /api/derive``).
 
-    ``{"title", "subtitle", "sections": [{"title", "steps": [{"words", "latex", "mathml",
-    "ref"}]}], "cross_check": {"agree", "checks": [{"method", "what", "agree", "residual"}]},
-    "claims"}``: the sections are those the report shows as steps (its symbols, by default;
+    ``{"title", "subtitle", "sections": [{"title", "note", "steps": [{"words", "latex",
+    "mathml", "ref"}]}], "cross_check": {"agree", "applied", "not_applicable", "checks":
+    [{"method", "what", "agree", "residual"}]}, "claims"}``: ``note`` says why a section has
+    no steps (a method that does not apply), ``not_applicable`` maps each such method to the
+    reason; the sections are those the report shows as steps (its symbols, by default;
     ``symbols=False`` for exact numbers), ``mathml`` the report's MathML of the LaTeX (None
     where latex2mathml cannot convert it); in ``checks`` ``agree`` is None where SymPy ran out
     of time and ``residual`` is the SymPy text of the difference (0 when they agree).
@@ -140,13 +142,15 @@ def derivation_payload(system: System, method: str | Sequence[str] = ALL, *,
         "title": derivation.title,
         "subtitle": derivation.subtitle,
         "sections": [
-            {"title": section.title,
+            {"title": section.title, "note": section.note,
              "steps": [{"words": step.words, "latex": step.latex,
                         "mathml": _mathml(step.latex), "ref": step.ref}
                        for step in section.steps]}
             for section in derivation_sections(derivation)],
         "cross_check": {
             "agree": check.agree,
+            "applied": list(check.applied),
+            "not_applicable": dict(check.not_applicable),
             "checks": [{"method": c.method, "what": c.what, "agree": c.agrees,
                         "residual": str(c.residual)} for c in check.checks]},
         "claims": None if paper is None else claims_json(paper[1]),

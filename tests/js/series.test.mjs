@@ -49,6 +49,12 @@ test("energy bars: lost = initial total − current total; rounding noise shows 
   assert.equal(bars.scale, 0.005);
   const noisy = { ...run, energy: { ...run.energy, total: [0.005, 0.005 + 1e-18, 0.005] } };
   assert.equal(energyBars(noisy, 1).lost, 0);
+  // the integrator's energy error (here 4e-9 of the total, within rtol 1e-8) is not a loss
+  const drift = { ...run, energy: { ...run.energy, total: [0.005, 0.005 + 2e-11, 0.005] } };
+  assert.equal(energyBars(drift, 1).lost, 0);
+  // a real loss (stick-slip, damping) is shown
+  const damped = { ...run, energy: { ...run.energy, total: [0.005, 0.00499, 0.005] } };
+  assert.ok(Math.abs(energyBars(damped, 1).lost - 1e-5) < 1e-15);
 });
 
 test("a 422's loc names the field the page shows the message next to", () => {

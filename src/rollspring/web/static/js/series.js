@@ -81,7 +81,8 @@ export function energySeries(run) {
 }
 
 /** The energy bars at sample i: kinetic, potential and lost (initial total − current total;
- * below 1e-9 of the total it is rounding, shown as 0), each with the bars' common scale. */
+ * below 1e-6 of the total it is the integrator's error, far below what a bar or a 3-digit
+ * label can show, and shown as 0), each with the bars' common scale. */
 export function energyBars(run, i) {
   const e = run.energy;
   const scale = Math.max(...e.total.filter((v) => v != null), 1e-12);
@@ -89,7 +90,7 @@ export function energyBars(run, i) {
   return {
     kinetic: e.kinetic[i],
     potential: e.potential[i],
-    lost: Math.abs(lost) < 1e-9 * scale ? 0 : lost,
+    lost: Math.abs(lost) < 1e-6 * scale ? 0 : lost,
     scale,
   };
 }

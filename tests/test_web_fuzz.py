@@ -6,14 +6,9 @@ fits its documented schema; and uvicorn's concurrency limit answers overload wit
 
 from __future__ import annotations
 
-import re
-import signal
-import subprocess
-import sys
 import threading
 import time
 from collections.abc import Iterator
-from pathlib import Path
 
 import pytest
 import requests
@@ -21,47 +16,7 @@ import schemathesis
 from hypothesis import HealthCheck, given, settings
 from schemathesis import GenerationMode, checks
 
-SERVE = str(Path(sys.executable).with_name("rollspring"))
-
-
-class Server:
-    """``rollspring serve`` started from its command line on a free loopback port."""
-
-    def __init__(self, *options: str) -> None:
-        self.process = subprocess.Popen([SERVE, "serve", "--port", "0", *options],
-                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                        text=True)
-        try:
-            self.url = self._wait()
-        except BaseException:
-            self.stop()
-            raise
-
-    def _wait(self) -> str:
-        assert self.process.stdout is not None
-        line = self.process.stdout.readline()
-        found = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
-        assert found, f"no URL in {line!r}"
-        url = found.group(1)
-        deadline = time.monotonic() + 60
-        while True:  # it answers once its worker processes are started
-            try:
-                if requests.get(url + "api/start", timeout=5).status_code == 200:
-                    return url
-            except requests.ConnectionError:
-                pass
-            assert time.monotonic() < deadline, "the server did not answer within 60 s"
-            time.sleep(0.2)
-
-    def stop(self) -> str:
-        """Stop it as Ctrl-C does; what it printed on stderr."""
-        self.process.send_signal(signal.SIGINT)
-        try:
-            _, errors = self.process.communicate(timeout=20)
-        except subprocess.TimeoutExpired:
-            self.process.kill()
-            _, errors = self.process.communicate()
-        return errors
+from tests.serving import Server
 
 
 @pytest.fixture(scope="module")

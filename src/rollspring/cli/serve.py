@@ -52,10 +52,10 @@ def serve(
     if limit_concurrency < 1:
         raise ServeError(f"--limit-concurrency: must be at least 1, got {limit_concurrency}")
     model = load_system(system)
+    listener = _listen(host, port)
     if not _is_loopback(host):
         _say(f"warning: serving on {host}, reachable from other machines; the page has no "
              "log-in, anyone who reaches it can use it")
-    listener = _listen(host, port)
     bound = listener.getsockname()[1]
     shown = f"[{host}]" if ":" in host else host
     url = f"http://{shown}:{bound}/"

@@ -1,0 +1,57 @@
+"""The real server for tests: ``rollspring serve`` started from its command line."""
+
+from __future__ import annotations
+
+import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import requests
+
+__all__ = ["Server"]
+
+SERVE = str(Path(sys.executable).with_name("rollspring"))
+
+
+class Server:
+    """``rollspring serve`` started from its command line on a free port (``options`` added)."""
+
+    def __init__(self, *options: str) -> None:
+        self.process = subprocess.Popen([SERVE, "serve", "--port", "0", *options],
+                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                        text=True)
+        try:
+            self.url = self._wait()
+        except BaseException:
+            self.stop()
+            raise
+
+    def _wait(self) -> str:
+        assert self.process.stdout is not None
+        line = self.process.stdout.readline()
+        found = re.search(r"http://(\S+):(\d+)/", line)
+        assert found, f"no URL in {line!r}"
+        host = found.group(1)
+        url = f"http://{'127.0.0.1' if host == '0.0.0.0' else host}:{found.group(2)}/"
+        deadline = time.monotonic() + 60
+        while True:  # it answers once its worker processes are started
+            try:
+                if requests.get(url + "api/start", timeout=5).status_code == 200:
+                    return url
+            except requests.ConnectionError:
+                pass
+            assert time.monotonic() < deadline, "the server did not answer within 60 s"
+            time.sleep(0.2)
+
+    def stop(self) -> str:
+        """Stop it as Ctrl-C does; what it printed on stderr."""
+        self.process.send_signal(signal.SIGINT)
+        try:
+            _, errors = self.process.communicate(timeout=20)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            _, errors = self.process.communicate()
+        return errors

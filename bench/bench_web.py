@@ -613,6 +613,8 @@ def main() -> int:
             print(f"server {server.stop_note}, exit status {server.returncode}; "
                   f"{len(errors)} error lines in its log"
                   + (f" (first: {errors[0]!r}; log {server.log.name})" if errors else ""))
+            if not errors:
+                Path(server.log.name).unlink(missing_ok=True)
     args.json.parent.mkdir(parents=True, exist_ok=True)
     args.json.write_text(json.dumps(record, indent=2, default=str) + "\n")
     print(f"figures written to {args.json}")

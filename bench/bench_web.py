@@ -111,10 +111,11 @@ class Server:
         reader.start()
         reader.join(timeout)
         if not found:
+            exited = self.process.poll()
             self.stop()
-            raise Broken(f"the server printed no URL within {timeout:g} s "
-                         f"(exit status {self.process.poll()}); its stderr: "
-                         f"{self.stderr()[-2000:]}")
+            why = (f"exited with status {exited} before printing its URL" if exited is not None
+                   else f"printed no URL within {timeout:g} s")
+            raise Broken(f"the server {why}; its stderr: {self.stderr()[-2000:]}")
         return found[0]
 
     def _drain(self) -> None:

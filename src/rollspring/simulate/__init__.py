@@ -10,10 +10,14 @@ import sys
 import types
 
 from rollspring.simulate.batch import BatchResult, simulate_batch
+from rollspring.simulate.integrators import Integrator
 from rollspring.simulate.run import INTEGRATORS, Trajectory, choose_scheme, simulate
+from rollspring.simulate.status import Status
 
-__all__ = ["INTEGRATORS", "BatchResult", "Trajectory", "choose_scheme", "simulate",
-           "simulate_batch"]
+# ``INTEGRATORS`` here is the tuple of names ``simulate`` accepts; the integrator objects are
+# ``rollspring.simulate.integrators.INTEGRATORS``.
+__all__ = ["INTEGRATORS", "BatchResult", "Integrator", "Status", "Trajectory", "choose_scheme",
+           "simulate", "simulate_batch"]
 
 
 class _CallableModule(types.ModuleType):

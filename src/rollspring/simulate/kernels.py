@@ -32,6 +32,8 @@ import numpy as np
 from numba import njit
 
 from rollspring.physics import SystemArrays
+from rollspring.simulate.integrators import INTEGRATORS
+from rollspring.simulate.status import Status
 
 __all__ = [
     "SCHEMES",
@@ -52,30 +54,16 @@ __all__ = [
     "slipping_derivatives",
 ]
 
-STATUS_FINISHED = 0
-STATUS_NONFINITE = 1
-STATUS_SLIP = 2
-STATUS_LIFTOFF = 3
-
-_Y4 = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))
-_Y6 = (0.784513610477560, 0.235573213359357, -1.17767998417887)
-_KL8 = (0.74167036435061295345, -0.40910082580003159400, 0.19075471029623837995,
-        -0.57386247111608226666, 0.29906418130365592384, 0.33462491824529818378,
-        0.31529309239676659663)
-
-
-def _symmetric(outer: tuple[float, ...]) -> np.ndarray:
-    """Weights w_1..w_m, w_0 = 1 - 2 sum w, w_m..w_1 of a symmetric composition."""
-    return np.array([*outer, 1.0 - 2.0 * sum(outer), *outer[::-1]])
-
+STATUS_FINISHED = int(Status.FINISHED)
+STATUS_NONFINITE = int(Status.NONFINITE)
+STATUS_SLIP = int(Status.SLIP)
+STATUS_LIFTOFF = int(Status.LIFTOFF)
 
 #: name -> (order p, stage weights, C_p): the relative frequency error is C_p (omega h)^p
-#: (measured on the harmonic oscillator; Verlet's 1/24 is exact).
+#: (:data:`rollspring.simulate.integrators.INTEGRATORS`, as the kernels take them).
 SCHEMES: dict[str, tuple[int, np.ndarray, float]] = {
-    "verlet": (2, np.array([1.0]), 1.0 / 24.0),
-    "yoshida4": (4, _symmetric((_Y4,)), 0.0662),
-    "yoshida6": (6, _symmetric(_Y6), 0.00377),
-    "kahanli8": (8, _symmetric(_KL8), 4.8e-6),
+    name: (scheme.order, scheme.weights, scheme.error_constant)
+    for name, scheme in INTEGRATORS.items()
 }
 
 

@@ -32,16 +32,17 @@ from rollspring.errors import SimulationError
 from rollspring.model import System
 from rollspring.physics import SystemArrays, mass_matrix, stiffness_matrix, system_arrays
 from rollspring.physics.arrays import FloatArray
-from rollspring.simulate import kernels
+from rollspring.simulate import arguments, kernels
+from rollspring.simulate.arguments import ON_SLIP
+from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
 from rollspring.simulate.kernels import SCHEMES
+from rollspring.simulate.status import Status
 
 __all__ = ["INTEGRATORS", "Trajectory", "simulate"]
 
-#: Accepted values of ``integrator``.
-INTEGRATORS = ("auto", *SCHEMES, "dop853")
-ON_SLIP = ("stop", "continue")
-#: Largest omega*h allowed for any scheme (well inside every scheme's stability interval).
-_MAX_OMEGA_STEP = 0.5
+#: Accepted values of ``integrator`` (the symplectic schemes are
+#: :data:`rollspring.simulate.integrators.INTEGRATORS`).
+INTEGRATORS = ("auto", *SCHEME_REGISTRY, "dop853")
 #: The quintic Hermite interpolant of a step errs by at most (omega h)^6 / 46080 of the amplitude
 #: in position and (omega h)^5 / 13420 of the velocity amplitude in velocity (measured on sin t).
 _HERMITE_POSITION, _HERMITE_VELOCITY = 46080.0, 13420.0
@@ -182,25 +183,16 @@ class _Segment:
     start: _Start | None = None
 
 
-def _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_tolerance) -> None:
-    def bad(name: str, reason: str) -> SimulationError:
-        return SimulationError(f"{name}: {reason}")
-
-    if not isinstance(duration, int | float) or not math.isfinite(duration) or duration <= 0:
-        raise bad("duration", f"must be a positive number of seconds, got {duration!r}")
-    if not isinstance(rtol, int | float) or not math.isfinite(rtol) or not 0 < rtol < 1:
-        raise bad("rtol", f"must be a number in (0, 1), got {rtol!r}")
-    if integrator not in INTEGRATORS:
-        raise bad("integrator", f"unknown integrator {integrator!r}; choose one of "
-                  f"{', '.join(INTEGRATORS)}")
-    if on_slip not in ON_SLIP:
-        raise bad("on_slip", f"must be 'stop' or 'continue', got {on_slip!r}")
-    if n_output is not None and (not isinstance(n_output, int) or n_output < 2):
-        raise bad("n_output", f"must be an integer >= 2, got {n_output!r}")
-    if energy_tolerance is not None and not (
-        isinstance(energy_tolerance, int | float) and energy_tolerance > 0
-    ):
-        raise bad("energy_tolerance", f"must be a positive number, got {energy_tolerance!r}")
+def _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_tolerance,
+                     step=None) -> tuple[float, float, float | None]:
+    """The shared validator (:mod:`rollspring.simulate.arguments`): (duration, rtol, step)."""
+    duration = arguments.check_duration(duration)
+    rtol = arguments.check_rtol(rtol)
+    arguments.check_choice("integrator", integrator, INTEGRATORS, "integrator")
+    arguments.check_choice("on_slip", on_slip, ON_SLIP, "on_slip")
+    arguments.check_count("n_output", n_output, 2, optional=True)
+    arguments.check_positive("energy_tolerance", energy_tolerance, optional=True)
+    return duration, rtol, arguments.check_step(step, duration)
 
 
 def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = "auto"):
@@ -213,16 +205,16 @@ def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = 
     names = list(SCHEMES) if integrator == "auto" else [integrator]
     best = None
     for name in names:
-        order, weights, constant = SCHEMES[name]
+        scheme = SCHEME_REGISTRY[name]
         if omega <= 0:
             step = duration
         else:
             radians = max(omega * duration, 2 * math.pi)
-            omega_step = min((rtol / (constant * radians)) ** (1.0 / order), _MAX_OMEGA_STEP,
+            omega_step = min(scheme.omega_step(rtol, radians),
                              (_HERMITE_POSITION * rtol) ** (1.0 / 6.0),
                              (_HERMITE_VELOCITY * rtol) ** (1.0 / 5.0))
             step = omega_step / omega
-        cost = len(weights) * duration / step
+        cost = scheme.stages * duration / step
         if best is None or cost < best[2]:
             best = (name, step, cost)
     return best[0], best[1]
@@ -253,11 +245,9 @@ def simulate(
     (``auto`` then means Yoshida-4; rounded down so that whole steps fill each rolling
     stretch); ``progress`` is called with the fraction done.
     """
-    _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_tolerance)
-    if step is not None and not (isinstance(step, int | float) and math.isfinite(step)
-                                 and 0 < step <= duration):
-        raise SimulationError(f"step: must be a positive number of seconds up to the duration, "
-                              f"got {step!r}")
+    duration, rtol, step = _check_arguments(duration, rtol, integrator, on_slip, n_output,
+                                            energy_tolerance, step)
+    n_output = None if n_output is None else int(n_output)
     clock = time.perf_counter()
     duration = float(duration)
     arrays = system_arrays(system)
@@ -342,7 +332,7 @@ class _Run:
         self.times: list[float] = []
         self.segments: list[_Segment] = []
         self.events: list[dict[str, Any]] = []
-        self.status = "finished"
+        self.status = Status.FINISHED.label
         self.message = ""
         self.n_steps = 0
         self.integrate_time = 0.0
@@ -389,7 +379,7 @@ class _Run:
             done = self._event(kind, body, 0.0, state, slipping, sign)
             if done:
                 return
-        while t < self.grid[-1] and self.status == "finished":
+        while t < self.grid[-1] and self.status == Status.FINISHED.label:
             if not slipping.any() and not self.damped and self.scheme != "dop853":
                 t, state, slipping, sign = self._rolling_segment(t, state)
             else:
@@ -444,12 +434,12 @@ class _Run:
         name = self.arrays.ids[body]
         self.events.append({"kind": kind, "time": t, "body": name})
         if kind == "liftoff":
-            self.status = "liftoff"
+            self.status = Status.LIFTOFF.label
             self.message = (f"'{name}' leaves its track at t = {t:.12g} s (N = 0); flight is "
                             f"not modelled, the run ends here")
             return True
         if kind == "slip" and self.on_slip == "stop":
-            self.status = "slip"
+            self.status = Status.SLIP.label
             self.message = (f"'{name}' starts to slip at t = {t:.12g} s (|f| = mu_s N); "
                             f"the run ends here (on_slip='continue' runs on with kinetic "
                             f"friction)")
@@ -543,7 +533,7 @@ class _Run:
                 self._offer_steps(model, x0, extremes, extreme_states, crossing,
                                   crossing_states, h)
                 if status == kernels.STATUS_NONFINITE:
-                    self.status = "nonfinite"
+                    self.status = Status.NONFINITE.label
                     self.message = (f"the state became non-finite at t = {t_before + h:.6g} s "
                                     f"('{self.arrays.ids[body]}'); the step cannot resolve the "
                                     f"motion")
@@ -598,11 +588,11 @@ class _Run:
         scale = max(abs(self.e0), 1e-300)
         error = float(np.max(np.abs(energy - self.e_segment))) / scale
         if not np.isfinite(error):
-            self.status = "nonfinite"
+            self.status = Status.NONFINITE.label
             self.message = "the energy became non-finite; the step cannot resolve the motion"
             return False
         if error > self.tolerance and abs(self.e0) > 0:
-            self.status = "energy_error"
+            self.status = Status.ENERGY_ERROR.label
             self.message = (f"the energy error {error:.3g} exceeds its tolerance "
                             f"{self.tolerance:.3g} (at t = {float(self.times[-1][-1]):.6g} s): "
                             f"the step "
@@ -670,7 +660,7 @@ class _Run:
             if best is None or root < best[0]:
                 best = (root, j)
         if best is None:  # non-finite state
-            self.status = "nonfinite"
+            self.status = Status.NONFINITE.label
             self.message = f"the state became non-finite near t = {t_before:.6g} s"
             return t_before, self.general_state(q, v, x0), slipping, sign
         root, j = best
@@ -728,7 +718,7 @@ class _Run:
         if solution.sol is not None:  # the adaptive steps taken
             self.n_steps += len(solution.sol.ts) - 1
         if solution.status == -1:
-            self.status = "nonfinite"
+            self.status = Status.NONFINITE.label
             self.message = f"the adaptive integrator failed: {solution.message}"
             return self.grid[-1], state, slipping, sign
         if solution.t.size:

@@ -1,0 +1,92 @@
+"""One validator for the arguments of :func:`~rollspring.simulate.simulate` and
+:func:`~rollspring.simulate.simulate_batch`: every bad value is a
+:class:`~rollspring.errors.SimulationError` whose message starts with the argument's name.
+
+Numbers may be Python or NumPy numbers (``np.float64``, ``np.int64``); booleans are refused
+everywhere (``True`` is not a duration, nor a count).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Iterable
+from typing import Any
+
+import numpy as np
+
+from rollspring.errors import SimulationError
+
+__all__ = ["ON_SLIP", "check_count", "check_choice", "check_duration", "check_positive",
+           "check_rtol", "check_step"]
+
+#: Accepted values of ``on_slip``.
+ON_SLIP = ("stop", "continue")
+
+
+def _bad(name: str, reason: str) -> SimulationError:
+    return SimulationError(f"{name}: {reason}")
+
+
+def _real(value: Any) -> float | None:
+    """``value`` as a float if it is a real number (not a bool), else None."""
+    if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real):
+        return None
+    return float(value)
+
+
+def check_duration(duration: Any) -> float:
+    """A positive, finite number of seconds."""
+    value = _real(duration)
+    if value is None or not math.isfinite(value) or value <= 0:
+        raise _bad("duration", f"must be a positive number of seconds, got {duration!r}")
+    return value
+
+
+def check_rtol(rtol: Any) -> float:
+    """A number in (0, 1)."""
+    value = _real(rtol)
+    if value is None or not math.isfinite(value) or not 0 < value < 1:
+        raise _bad("rtol", f"must be a number in (0, 1), got {rtol!r}")
+    return value
+
+
+def check_step(step: Any, duration: float) -> float | None:
+    """None, or a positive number of seconds up to ``duration``."""
+    if step is None:
+        return None
+    value = _real(step)
+    if value is None or not math.isfinite(value) or not 0 < value <= duration:
+        raise _bad("step", f"must be a positive number of seconds up to the duration, "
+                   f"got {step!r}")
+    return value
+
+
+def check_count(name: str, value: Any, minimum: int, *, optional: bool = False) -> int | None:
+    """An integer (Python or NumPy, not a bool) of at least ``minimum``; None if ``optional``."""
+    if value is None and optional:
+        return None
+    if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Integral) \
+            or value < minimum:
+        raise _bad(name, f"must be an integer >= {minimum}, got {value!r}")
+    return int(value)
+
+
+def check_choice(name: str, value: Any, choices: Iterable[str], what: str) -> str:
+    """One of ``choices`` (``what`` names the kind, for the message)."""
+    choices = tuple(choices)
+    if not isinstance(value, str) or value not in choices:
+        if name == "on_slip":
+            raise _bad(name, f"must be {' or '.join(repr(c) for c in choices)}, got {value!r}")
+        raise _bad(name, f"unknown {what} {value!r}; choose one of {', '.join(choices)}")
+    return value
+
+
+def check_positive(name: str, value: Any, *, optional: bool = False) -> float | None:
+    """A positive number (None if ``optional``)."""
+    if value is None and optional:
+        return None
+    number = _real(value)
+    if number is None or not number > 0 or math.isnan(number):
+        raise _bad(name, f"must be a positive number, got {value!r}")
+    return number

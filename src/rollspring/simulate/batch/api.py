@@ -1,0 +1,411 @@
+"""``simulate_batch`` and its result, :class:`BatchResult`."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from rollspring.errors import ModelError
+from rollspring.model import System
+from rollspring.physics.arrays import FloatArray
+from rollspring.simulate import arguments
+from rollspring.simulate.batch import cache
+from rollspring.simulate.batch.codegen import BLOCK, OUT_BODY, OUT_EVENT_TIME, Source
+from rollspring.simulate.batch.parameters import parse_parameters
+from rollspring.simulate.batch.plan import (
+    MAX_STEPS,
+    check_runs,
+    choose_step,
+    make_plan,
+    metric_every_for,
+    omega_limit,
+    probe,
+    run_omegas,
+    steps_needed,
+)
+from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
+from rollspring.simulate.integrators import MAX_OMEGA_STEP
+from rollspring.simulate.status import Status
+
+__all__ = ["INTEGRATORS", "BatchResult", "simulate_batch"]
+
+#: Accepted values of ``integrator``.
+INTEGRATORS = ("auto", *SCHEME_REGISTRY)
+
+
+@dataclass
+class BatchResult:
+    r"""Per-run summary of a batch (arrays of length ``n_runs``; per body: ``(n_runs, n_bodies)``,
+    columns in the order of ``ids``). SI units.
+
+    * ``status`` (int8): the values of :class:`~rollspring.simulate.status.Status`:
+      ``FINISHED`` (0: rolled throughout), ``SLIP`` (2) or ``LIFTOFF`` (3) (the run's first
+      event), ``NONFINITE`` (1: the state overflowed, which overrides an earlier event),
+      ``UNRESOLVED`` (5: the run alone would need more than
+      :data:`~rollspring.simulate.batch.plan.MAX_STEPS` steps at ``rtol``; left out of the
+      step choice and not integrated) or ``INVALID`` (6: its values overflow double precision;
+      not integrated); ``status_names`` gives the names and ``messages`` says, per run, why a
+      run was not integrated ("" for the others). The metrics of a run that was not integrated
+      are NaN (``first_slip_body`` -1).
+    * ``first_slip_time``, ``first_slip_body``: instant (s) and body index of the first slip
+      or lift-off (whichever ``status`` says; the margin :math:`|f| - \mu_s N` or :math:`-N`
+      interpolated linearly between steps); NaN and -1 if none. With ``stop_on_slip`` the run
+      stops there and its metrics cover the motion up to the end of the step in which it
+      happened (so ``max_friction_ratio`` may exceed :math:`\mu_s` and ``min_normal_force`` be
+      negative by that step's overshoot); without, the run continues with rolling enforced.
+    * ``period_measured``: mean interval between upward zero crossings of the rate of change of
+      the first spring's length (the instants of its minima; for a single-mode motion the same
+      as the upward crossings of the length through its mean), linearly interpolated between
+      samples; NaN with fewer than two crossings or no spring.
+    * ``cm_amplitude``: half of max - min of the centre-of-mass position
+      :math:`X = \sum m_i x_i/\sum m_i` over the run.
+    * ``stationary_amplitude``: the same for :math:`\hat X - \hat V t`,
+      :math:`\hat X = \sum w_i x_i/\sum w_i`, :math:`w_i = (1+\gamma_i) m_i` (a slider: m), with
+      its uniform motion :math:`\hat V = \sum w_i v_{i0}/\sum w_i` removed. Exactly stationary
+      when every spring joins two centres and there are no anchors or forces (M11); for other
+      systems it is this weighted mean, not the zero mode of (M14).
+    * ``max_friction_ratio``: max over the samples of :math:`|f_i|/N_i` ((M8), (M9); 0 for a
+      slider, inf if :math:`N_i` reached 0 with :math:`f_i \ne 0`); ``min_normal_force``: min
+      :math:`N_i`.
+    * ``energy_error``: max over the samples of :math:`|E - E_0|/|E_0|`,
+      :math:`E = \sum \tfrac12 J_i\dot\varphi_i^2 + \sum\tfrac12 k(l-L_0)^2 - \sum F\cdot(P-P_0)`
+      (0 if E stayed exactly at :math:`E_0 = 0`, inf if it left it).
+    * ``final_x``, ``final_v``: centre positions and velocities at the end (for a run that
+      stopped: at the end of the step in which it stopped).
+    * ``t`` (n_output,) and ``x`` (n_runs, n_output, n_bodies) with ``keep_trajectories``:
+      centre positions at evenly spaced times (NaN after a run stopped); otherwise None.
+
+    ``parameters`` holds the broadcast parameter arrays; ``integrator``, ``step`` (s),
+    ``n_steps`` and ``metric_every`` (steps between metric samples) describe the integration;
+    ``omega_max`` is the highest linear frequency over the integrated runs (rad/s) the step was
+    chosen for and ``omega`` each run's own (inf where not finite);
+    ``timings`` (s): ``prepare`` (parameters, plan, step), ``compile`` (generating, compiling or
+    loading the kernel), ``integrate``, ``total``. :meth:`columns`, :meth:`to_dict` and
+    :meth:`summary_table` give flat, JSON and text views.
+    """
+
+    ids: tuple[str, ...]
+    parameters: dict[str, FloatArray]
+    duration: float
+    integrator: str
+    step: float
+    n_steps: int
+    metric_every: int
+    omega_max: float
+    status: np.ndarray
+    first_slip_time: FloatArray
+    first_slip_body: np.ndarray
+    period_measured: FloatArray
+    cm_amplitude: FloatArray
+    stationary_amplitude: FloatArray
+    max_friction_ratio: FloatArray
+    min_normal_force: FloatArray
+    energy_error: FloatArray
+    final_x: FloatArray
+    final_v: FloatArray
+    t: FloatArray | None = None
+    x: FloatArray | None = None
+    timings: dict[str, float] = field(default_factory=dict)
+    omega: FloatArray | None = None
+    messages: np.ndarray | None = None
+
+    @property
+    def n_runs(self) -> int:
+        """Number of runs."""
+        return int(self.status.shape[0])
+
+    @property
+    def status_names(self) -> np.ndarray:
+        """``status`` as names (:attr:`Status.label <rollspring.simulate.status.Status.label>`:
+        ``finished``, ``slip``, ``liftoff``, ``nonfinite``, ``unresolved``, ``invalid``)."""
+        names = np.array([s.label for s in Status], dtype=object)
+        return names[self.status]
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Every per-run quantity as a flat column (per-body quantities as ``<id>.<name>``),
+        parameters first; the rows are the runs."""
+        out: dict[str, np.ndarray] = dict(self.parameters)
+        out["status"] = self.status_names
+        if self.messages is not None:
+            out["message"] = self.messages
+        out["first_slip_time"] = self.first_slip_time
+        out["first_slip_body"] = np.array(
+            [self.ids[b] if b >= 0 else "" for b in self.first_slip_body], dtype=object)
+        out["period_measured"] = self.period_measured
+        out["cm_amplitude"] = self.cm_amplitude
+        out["stationary_amplitude"] = self.stationary_amplitude
+        out["energy_error"] = self.energy_error
+        for i, name in enumerate(self.ids):
+            out[f"{name}.max_friction_ratio"] = self.max_friction_ratio[:, i]
+            out[f"{name}.min_normal_force"] = self.min_normal_force[:, i]
+            out[f"{name}.final_x"] = self.final_x[:, i]
+            out[f"{name}.final_v"] = self.final_v[:, i]
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form: the integration settings and every column as a list."""
+        def plain(values: np.ndarray) -> list[Any]:
+            """Numbers as floats/ints (None where not finite), names as strings."""
+            if values.dtype.kind in "iu":
+                return [int(v) for v in values]
+            if values.dtype.kind == "f":
+                return [float(v) if math.isfinite(v) else None for v in values]
+            return [str(v) for v in values]
+
+        return {
+            "ids": list(self.ids),
+            "n_runs": self.n_runs,
+            "duration": self.duration,
+            "integrator": self.integrator,
+            "step": self.step,
+            "n_steps": self.n_steps,
+            "metric_every": self.metric_every,
+            "omega_max": self.omega_max,
+            "columns": {name: plain(np.asarray(values)) for name, values in self.columns().items()},
+        }
+
+    def summary_table(self, max_rows: int = 20) -> str:
+        """A plain-text table of the first ``max_rows`` runs (parameters, status, period,
+        amplitudes, friction ratios, energy error)."""
+        cols = self.columns()
+        keep = [*self.parameters, "status", "first_slip_time", "period_measured",
+                "cm_amplitude", "stationary_amplitude",
+                *(f"{i}.max_friction_ratio" for i in self.ids), "energy_error"]
+        rows = min(self.n_runs, max_rows)
+
+        def cell(v: Any) -> str:
+            return v if isinstance(v, str) else f"{v:.6g}"
+
+        table = [keep] + [[cell(cols[k][r]) for k in keep] for r in range(rows)]
+        widths = [max(len(row[c]) for row in table) for c in range(len(keep))]
+        lines = ["  ".join(s.rjust(w) for s, w in zip(row, widths, strict=True)) for row in table]
+        if rows < self.n_runs:
+            lines.append(f"... {self.n_runs - rows} more runs")
+        return "\n".join(lines)
+
+
+
+
+def simulate_batch(
+    system: System,
+    parameters: Mapping[str, ArrayLike],
+    duration: float,
+    *,
+    rtol: float = 1e-8,
+    integrator: str = "auto",
+    step: float | None = None,
+    keep_trajectories: bool = False,
+    n_output: int = 201,
+    stop_on_slip: bool = True,
+    metric_every: int | None = None,
+) -> BatchResult:
+    r"""Run ``system`` once per set of parameter values, all runs in parallel, for ``duration`` s.
+
+    ``parameters`` maps paths to numbers or 1-D arrays, broadcast to one run count:
+    ``"bodies.<id>.mass"``, ``.radius``, ``.mu_static``, ``.mu_kinetic``, ``.x`` (initial centre
+    position), ``.v`` (initial centre velocity); ``"springs.<index>.stiffness"``,
+    ``.rest_length`` (springs numbered in file order); ``"gravity"``. Every one may vary,
+    radii included: a radius moves the centre height, the ``height`` attachments (their distance
+    from the centre) and the inertia. A spring without a ``rest_length`` in the system keeps its
+    default, the initial length, in every run. The topology (bodies, shapes, springs, anchors,
+    attachments, forces) is the system's. Unknown paths, wrong lengths and invalid values raise
+    :class:`~rollspring.errors.ModelError` naming the key; damped springs are refused (the
+    batch integrators are symplectic: use :func:`rollspring.simulate`).
+
+    Each run starts at the system's placement (``phi = 0``) with its velocities and follows the
+    rolling equations (M7) with an integrator of
+    :data:`rollspring.simulate.integrators.INTEGRATORS` (``"verlet"``, ``"yoshida4"``,
+    ``"yoshida6"``, ``"kahanli8"``); ``"auto"`` picks the cheapest for the accuracy. The step is
+    common to all runs, chosen from the highest linear frequency over the runs :math:`\omega` so
+    that the phase error :math:`C_p(\omega h)^p\,\omega T` is at most ``rtol``
+    (:math:`\omega h\le 0.5`), and rounded so that ``duration`` is a whole number of steps;
+    ``step`` fixes it instead (``auto`` then means Yoshida-4). Every step checks every run for
+    slip (:math:`|f_i|\ge\mu_s N_i`) and lift-off (:math:`N_i < 0`); with ``stop_on_slip`` a
+    run stops at its first event, without it the run continues with rolling enforced (the event
+    is still reported). A run whose state overflows (a step far too long, a diverging system)
+    ends with status ``nonfinite`` and meaningless metrics.
+
+    **Runs are independent.** A run whose values overflow double precision (a frequency or an
+    inertia that is not finite) gets status ``invalid``; with the step chosen from ``rtol``, a
+    run that alone would need more than :data:`~rollspring.simulate.batch.plan.MAX_STEPS` steps
+    gets ``unresolved`` (``messages`` says which value and what range works). Neither is
+    integrated nor takes part in the choice of the step. The summary metrics are sampled every
+    ``metric_every`` steps (by default so that the fastest resolved mode turns by at most
+    :data:`~rollspring.simulate.batch.plan.METRIC_PHASE` rad). Given the same ``step``,
+    ``integrator`` and ``metric_every``, every run's result is bit for bit that of the same run
+    alone: ``simulate_batch(system, {k: [v_i]}, T, step=r.step, integrator=r.integrator,
+    metric_every=r.metric_every)`` equals row i of ``r`` (the kernel depends on the keys, never
+    on the other runs' values), so a sweep can fix them once for a whole grid.
+
+    ``keep_trajectories`` also returns the centre positions at ``n_output`` evenly spaced times
+    (the number of steps is then rounded up to a multiple of ``n_output - 1``). Returns a
+    :class:`BatchResult` of per-run metrics.
+
+    The kernel is generated for the system, the set of parameter keys (not their values) and
+    ``stop_on_slip``; the first call for a new combination compiles it (several seconds, see
+    ``timings["compile"]``), later calls, in this process or another, load it from the cache
+    (:mod:`rollspring.simulate.batch.cache`, ``ROLLSPRING_CACHE_DIR``).
+
+    Example::
+
+        system = rollspring.load_system("hoop-cylinder")
+        k = np.linspace(50.0, 150.0, 100_000)
+        result = simulate_batch(system, {"springs.0.stiffness": k,
+                                         "bodies.hoop.mu_static": 0.04}, 10.0)
+        result.period_measured, result.first_slip_time, result.status_names
+    """
+    clock = time.perf_counter()
+    duration = arguments.check_duration(duration)
+    rtol = arguments.check_rtol(rtol)
+    arguments.check_choice("integrator", integrator, INTEGRATORS, "integrator")
+    step = arguments.check_step(step, duration)
+    n_output = arguments.check_count("n_output", n_output, 2)
+    metric_every = arguments.check_count("metric_every", metric_every, 1, optional=True)
+    if not isinstance(system, System):
+        raise ModelError(f"system: must be a rollspring System, got {type(system).__name__}")
+    damped = [k for k, s in enumerate(system.springs) if s.damping > 0]
+    if damped:
+        raise ModelError(f"springs[{damped[0]}].damping: batch runs need undamped springs "
+                         "(symplectic integrators); use rollspring.simulate")
+    with np.errstate(all="ignore"):  # extreme values are found below, run by run
+        runs = parse_parameters(system, parameters)
+        topology, given = probe(system, runs.targets)
+        plan = make_plan(system, runs, topology)
+        omegas = run_omegas(plan)
+        invalid, reasons = check_runs(plan, omegas)
+    n_runs = runs.n_runs
+    status = np.zeros(n_runs, dtype=np.int8)
+    messages = np.array(reasons, dtype=object)
+    status[invalid] = Status.INVALID
+
+    def describe(run: int) -> str:
+        values = ", ".join(f"{key} = {float(v[run]):g}" for key, v in runs.parameters.items())
+        return f"run {run}" + (f" ({values})" if values else "")
+
+    for run in np.flatnonzero(invalid):
+        messages[run] = (f"{describe(run)}: {reasons[run]}; its values overflow double "
+                         "precision (not integrated)")
+    if step is None:
+        need = steps_needed(np.where(invalid, 0.0, omegas), duration, rtol, integrator)
+        unresolved = ~invalid & (need > MAX_STEPS)
+        if np.any(unresolved):
+            limit = omega_limit(duration, rtol, integrator)
+            for run in np.flatnonzero(unresolved):
+                messages[run] = (
+                    f"{describe(run)}: its linear frequency {float(omegas[run]):.4g} rad/s "
+                    f"would need {float(need[run]):.3g} steps over {duration:g} s at rtol "
+                    f"{rtol:g} (at most {MAX_STEPS:.0e}; frequencies up to {limit:.4g} rad/s "
+                    "are resolved); not integrated, or pass step= to force it")
+            status[unresolved] = Status.UNRESOLVED
+    included = np.flatnonzero(status == 0)
+    omega = float(np.max(omegas[included])) if included.size else 0.0
+    name, n_steps = choose_step(omega, duration, rtol, integrator, step)
+    if keep_trajectories:
+        n_steps = math.ceil(n_steps / (n_output - 1)) * (n_output - 1)
+    h = duration / n_steps
+    if metric_every is None:
+        # the fastest run a step of h can sample (a run beyond omega h = 0.5 cannot be sampled
+        # meaningfully and must not make its neighbours sample every step)
+        sampled = omegas[included][omegas[included] * h <= MAX_OMEGA_STEP]
+        every = metric_every_for(float(np.max(sampled)) if sampled.size else omega, h, n_steps)
+    else:
+        every = metric_every
+    weights = SCHEME_REGISTRY[name].weights
+    drift = weights * h
+    kick = np.append(0.5 * (weights[:-1] + weights[1:]) * h, 0.5 * weights[-1] * h)
+
+    n = plan.n
+    n_live = included.size
+    n_blocks = -(-n_live // BLOCK)
+    n_pad = n_blocks * BLOCK
+    varying, constant = [], []
+    for key in sorted(plan.fields):
+        values = plan.fields[key][included]
+        per_run = given is None or key in given or (values.size and np.any(values != values[0]))
+        (varying if per_run else constant).append(key)
+    P = np.empty((len(varying), n_pad))
+    for r, key in enumerate(varying):
+        if n_live:
+            P[r, :n_live] = plan.fields[key][included]
+            P[r, n_live:] = plan.fields[key][included[-1]]
+    C = np.array([plan.fields[key][included[0]] if n_live else 0.0 for key in constant],
+                 dtype=np.float64)
+    source = Source(plan, varying, constant, bool(stop_on_slip)).module() if n_live else ""
+    prepared = time.perf_counter()
+
+    out_live = np.full((n_pad, OUT_BODY + 5 * n), np.nan)
+    outi_live = np.zeros((n_pad, 2), dtype=np.int64)
+    outi_live[:, 1] = -1
+    stride = n_steps // (n_output - 1) if keep_trajectories else 0
+    traj_live = np.full((n_pad, n_output, n) if keep_trajectories else (1, 1, 1), np.nan)
+    if n_live:
+        kernel = cache.load_kernel(source)
+        args = (n_blocks, P, C, drift, kick, h, n_steps, every, stride, traj_live, out_live,
+                outi_live)
+        if not kernel.signatures:
+            import numba
+
+            kernel.compile(tuple(numba.typeof(a) for a in args))
+        compiled = time.perf_counter()
+        kernel(*args)
+    else:
+        compiled = time.perf_counter()
+    finished = time.perf_counter()
+
+    out = np.full((n_runs, OUT_BODY + 5 * n), np.nan)
+    out[included] = out_live[:n_live]
+    outi = np.zeros((n_runs, 2), dtype=np.int64)
+    outi[:, 1] = -1
+    outi[included] = outi_live[:n_live]
+    status[included] = outi[included, 0]
+    with np.errstate(all="ignore"):
+        count = out[:, 9]
+        period = np.where(count >= 2, (out[:, 8] - out[:, 7]) / np.maximum(count - 1, 1), np.nan)
+        e0, de = np.abs(out[:, 1]), out[:, 2]
+        energy_error = np.where(e0 > 0, de / np.where(e0 > 0, e0, 1.0),
+                                np.where(de == 0, 0.0, np.inf))
+        energy_error = np.where(np.isnan(de), np.nan, energy_error)
+        fb = out[:, OUT_BODY::5][:, :n]
+        nb = out[:, OUT_BODY + 1::5][:, :n]
+        ratio = np.where(fb == 0, 0.0, np.where(nb > 0, fb / np.where(nb > 0, nb, 1.0), np.inf))
+        ratio = np.where(np.isnan(fb) | np.isnan(nb), np.nan, ratio)
+        ratio[np.ix_(included, ~np.array(plan.rolls))] = 0.0
+        cm_amplitude = 0.5 * (out[:, 4] - out[:, 3])
+        stationary_amplitude = 0.5 * (out[:, 6] - out[:, 5])
+    if keep_trajectories:
+        traj = np.full((n_runs, n_output, n), np.nan)
+        traj[included] = traj_live[:n_live]
+    t_out = np.linspace(0.0, duration, n_output) if keep_trajectories else None
+    return BatchResult(
+        ids=tuple(b.id for b in system.bodies),
+        parameters=runs.parameters,
+        duration=duration,
+        integrator=name,
+        step=h,
+        n_steps=n_steps,
+        metric_every=every,
+        omega_max=omega,
+        status=status,
+        first_slip_time=out[:, OUT_EVENT_TIME].copy(),
+        first_slip_body=outi[:, 1].copy(),
+        period_measured=period,
+        cm_amplitude=cm_amplitude,
+        stationary_amplitude=stationary_amplitude,
+        max_friction_ratio=ratio,
+        min_normal_force=out[:, OUT_BODY + 2::5][:, :n].copy(),
+        energy_error=energy_error,
+        final_x=out[:, OUT_BODY + 3::5][:, :n].copy(),
+        final_v=out[:, OUT_BODY + 4::5][:, :n].copy(),
+        t=t_out,
+        x=traj if keep_trajectories else None,
+        timings={"prepare": prepared - clock, "compile": compiled - prepared,
+                 "integrate": finished - compiled, "total": time.perf_counter() - clock},
+        omega=omegas,
+        messages=messages,
+    )

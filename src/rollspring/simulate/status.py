@@ -1,0 +1,72 @@
+"""The status of a run: one enum, with a message, for single runs, batches and sweep stores.
+
+``Trajectory.status`` is the status's :attr:`Status.label` (a string, ``"finished"`` …),
+``BatchResult.status`` an int8 array of its values and a sweep store's ``status`` variable the same
+codes with the CF attributes ``flag_values`` / ``flag_meanings`` (:data:`FLAG_VALUES`,
+:data:`FLAG_MEANINGS`).
+"""
+
+from __future__ import annotations
+
+from enum import IntEnum
+
+__all__ = ["FLAG_MEANINGS", "FLAG_VALUES", "Status"]
+
+
+class Status(IntEnum):
+    """How a run ended. The values are stable (they are stored in files)."""
+
+    #: every body rolled to the end
+    FINISHED = 0
+    #: the state overflowed (a step far too long, a diverging system); metrics meaningless
+    NONFINITE = 1
+    #: a body's needed friction reached mu_s N (the first event of the run)
+    SLIP = 2
+    #: a body's normal force fell below 0 (the first event of the run)
+    LIFTOFF = 3
+    #: the energy error exceeded its tolerance (single runs)
+    ENERGY_ERROR = 4
+    #: the run's linear frequency is beyond what the (common) step can resolve; not integrated
+    UNRESOLVED = 5
+    #: the run's values overflow double precision (e.g. a frequency or an inertia that is not
+    #: finite); not integrated
+    INVALID = 6
+
+    @property
+    def label(self) -> str:
+        """The status as a lower-case name: ``finished``, ``nonfinite``, ``slip``, ``liftoff``,
+        ``energy_error``, ``unresolved``, ``invalid``."""
+        return self.name.lower()
+
+    @property
+    def message(self) -> str:
+        """What the status means, in one sentence."""
+        return _MESSAGES[self]
+
+    @classmethod
+    def from_label(cls, label: str) -> Status:
+        """The status named ``label`` (``"slip"`` -> :attr:`SLIP`)."""
+        try:
+            return cls[label.upper()]
+        except KeyError:
+            raise ValueError(f"unknown status {label!r}; one of "
+                             f"{', '.join(s.label for s in cls)}") from None
+
+
+_MESSAGES = {
+    Status.FINISHED: "every body rolled to the end",
+    Status.NONFINITE: "the state became non-finite: the step cannot resolve the motion (or the "
+                      "system diverges); the metrics are meaningless",
+    Status.SLIP: "a body's needed friction reached mu_s N: it starts to slip",
+    Status.LIFTOFF: "a body's normal force fell below zero: it lifts off",
+    Status.ENERGY_ERROR: "the energy error exceeded its tolerance: the step does not resolve "
+                         "the motion",
+    Status.UNRESOLVED: "the run's linear frequency is beyond what the step can resolve; it was "
+                       "not integrated",
+    Status.INVALID: "the run's values overflow double precision; it was not integrated",
+}
+
+#: CF ``flag_values`` of a stored status variable (every code, in order).
+FLAG_VALUES: tuple[int, ...] = tuple(int(s) for s in Status)
+#: CF ``flag_meanings``: the labels, space-separated, in the order of :data:`FLAG_VALUES`.
+FLAG_MEANINGS: str = " ".join(s.label for s in Status)

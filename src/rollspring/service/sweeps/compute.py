@@ -1,0 +1,553 @@
+r"""One chunk of a sweep: a pure function of (the sweep's plan, the chunk's index) -> arrays.
+
+:func:`compute_chunk` is what runs in-process or as a task on a Dask worker; it reads nothing
+but its arguments and writes nothing, so the result of a chunk does not depend on where, when or
+next to which other chunks it runs.
+
+* **The simulated metrics** come from :func:`rollspring.simulate_batch` with the plan's one
+  integrator and step for the whole grid (``step=``, and ``metric_every=`` when the batch
+  accepts it). Without ``metric_every=`` the batch picks its metric sampling from the highest
+  linear frequency among the runs *of the call*; a *sentinel* run is then appended to every
+  call — a run of the call with all masses scaled so that its frequency is the grid's highest
+  (:math:`\omega\propto 1/\sqrt{m}`) — so the sampling is the grid's in every chunk, and
+  dropped from the result (runs are independent in a batch).
+* **The first slip / lift-off instant**: the batch interpolates the contact margin linearly
+  between steps (error about :math:`c\,h^2`); with ``refine_slip`` every run that slipped or
+  lifted off is run again alone by :func:`rollspring.simulate` (``on_slip="stop"``, which
+  root-finds the instant on the step), and its instant and body are stored.
+* **``on_slip="continue"``**: the batch cannot go on after a slip with kinetic friction, so
+  every run goes through :func:`rollspring.simulate` (``on_slip="continue"``), one by one.
+* **The linear metrics** (``omega``, ``stationary_weight``, ``required_mu_linear``) are
+  :func:`rollspring.analyze` of each run's starting system, once per distinct linear
+  configuration in the chunk (the friction coefficients do not enter the linear analysis).
+"""
+
+from __future__ import annotations
+
+import copy
+import functools
+import inspect
+import json
+import math
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from rollspring.analysis import analyze
+from rollspring.errors import RollspringError
+from rollspring.model import System, rolled, system_from_dict
+from rollspring.service.sweeps.grid import Grid, apply_values, path_kind
+from rollspring.simulate import simulate, simulate_batch
+
+__all__ = [
+    "STATUS_CODES",
+    "SweepPlan",
+    "compute_chunk",
+    "plan_omega",
+    "prepare_worker",
+]
+
+#: Status code of a run -> its name (the store's ``flag_values`` / ``flag_meanings``).
+STATUS_CODES = {"finished": 0, "nonfinite": 1, "slip": 2, "liftoff": 3, "energy_error": 4,
+                "invalid": 5}
+
+#: Duration and step of the one-step calls that only read the batch's highest frequency.
+_TINY = 1e-9
+
+
+def _batch_accepts_metric_every() -> bool:
+    return "metric_every" in inspect.signature(simulate_batch).parameters
+
+
+@dataclass(frozen=True)
+class SweepPlan:
+    """Everything a chunk needs (picklable; the system travels as its JSON form)."""
+
+    system: dict[str, Any]
+    grid: Grid
+    duration: float
+    rtol: float
+    on_slip: str
+    metrics: tuple[str, ...]
+    refine_slip: bool
+    integrator: str = "auto"  # the user's; ``scheme`` is the one chosen for the grid
+    scheme: str = ""
+    step: float = 0.0
+    metric_every: int = 0
+    omega_max: float = 0.0
+    numba_threads: int = 0  # 0: leave Numba's thread count alone
+
+
+@functools.lru_cache(maxsize=8)
+def _system_of(text: str) -> System:
+    return system_from_dict(json.loads(text))
+
+
+def plan_system(plan: SweepPlan) -> System:
+    return _system_of(json.dumps(plan.system, sort_keys=True))
+
+
+# --------------------------------------------------------------------------------------------
+# per-run systems
+
+
+_MU = ("mu_static", "mu_kinetic")
+
+
+class _Runs:
+    """The runs of one chunk: their values, starting systems and linear analyses (cached per
+    distinct linear configuration)."""
+
+    def __init__(self, plan: SweepPlan, index: int) -> None:
+        self.plan = plan
+        self.system = plan_system(plan)
+        self.local, self.values = plan.grid.chunk_values(index)
+        self.n = int(np.prod(self.local))
+        self.kinds = {p: path_kind(self.system, p) for p in plan.grid.paths}
+        self.structural = any(k != "batch" for k, _ in self.kinds.values())
+        self._starts: dict[tuple[float, ...], tuple[System | None, Any, str]] = {}
+
+    def linear_key(self, r: int) -> tuple[float, ...]:
+        return tuple(float(self.values[p][r]) for p in self.plan.grid.paths
+                     if p.split(".")[-1] not in _MU)
+
+    def start(self, r: int, *, linear: bool) -> tuple[System | None, Any, str]:
+        """(starting system without the varied friction coefficients, its analysis or None,
+        problem or '') of run ``r``."""
+        key = self.linear_key(r)
+        cached = self._starts.get(key)
+        if cached is not None and (cached[1] is not None or not linear or cached[0] is None):
+            return cached
+        scalars = {p: self.values[p][r] for p in self.plan.grid.paths
+                   if self.kinds[p][0] != "mode" and p.split(".")[-1] not in _MU}
+        modes = {self.kinds[p][1][0]: float(self.values[p][r]) for p in self.plan.grid.paths
+                 if self.kinds[p][0] == "mode"}
+        try:
+            system = apply_values(self.plan.system, self.system, scalars)
+            if modes:
+                analysis = analyze(system)
+                if not analysis.equilibrium.found:
+                    raise RollspringError(f"no equilibrium: {analysis.equilibrium.reason}")
+                q = analysis.equilibrium.q.copy()
+                for n, amplitude in modes.items():
+                    mode = analysis.modes[n]
+                    if mode.kind != "oscillating":
+                        raise RollspringError(f"mode {n} is a {mode.kind} mode")
+                    q = q + amplitude * mode.shape_q
+                system = rolled(system, q, velocities=np.zeros(len(system.bodies)))
+            result = (system, analyze(system) if linear else None, "")
+        except RollspringError as exc:
+            result = (None, None, str(exc))
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+            result = (None, None, f"{type(exc).__name__}: {exc}")
+        self._starts[key] = result
+        return result
+
+    def run_system(self, r: int) -> System | None:
+        """Run ``r``'s full system (start placement and its friction coefficients)."""
+        system, _, _ = self.start(r, linear=False)
+        if system is None:
+            return None
+        mu = {p: self.values[p][r] for p in self.plan.grid.paths if p.split(".")[-1] in _MU}
+        if not mu:
+            return system
+        from rollspring.model import system_to_json
+
+        try:
+            return apply_values(system_to_json(system), system, mu)
+        except RollspringError:
+            return None
+
+
+# --------------------------------------------------------------------------------------------
+# batch calls
+
+
+_BODY_FIELDS = ("mass", "radius", "mu_static", "x", "v")
+
+
+def _full_parameters(system: System, varied: set[str]) -> list[str]:
+    """Every scalar batch path of ``system`` (for structural sweeps, where each run's system
+    is one of several): all bodies' and springs' numbers and gravity (``mu_kinetic`` only
+    when varied: its default follows ``mu_static``)."""
+    keys = [f"bodies.{b.id}.{q}" for b in system.bodies for q in _BODY_FIELDS]
+    keys += [f"bodies.{b.id}.mu_kinetic" for b in system.bodies
+             if f"bodies.{b.id}.mu_kinetic" in varied]
+    keys += [f"springs.{k}.{q}" for k in range(len(system.springs))
+             for q in ("stiffness", "rest_length")]
+    return [*keys, "gravity"]
+
+
+def _value_of(system: System, key: str) -> float:
+    parts = key.split(".")
+    if parts[0] == "gravity":
+        return float(system.gravity)
+    if parts[0] == "bodies":
+        body = system.body_map[parts[1]]
+        value = getattr(body, parts[2])
+        if value is None:  # mu_kinetic default
+            return float(body.mu_static) if math.isfinite(body.mu_static) else 0.0
+        return float(value)
+    k = int(parts[1])
+    if parts[2] == "rest_length":
+        return float(system.rest_lengths[k])
+    return float(getattr(system.springs[k], parts[2]))
+
+
+def _structure_key(system: System, keys: list[str]) -> str:
+    """The system with every number given per run removed: runs with equal keys share a
+    batch call."""
+    from rollspring.model import system_to_json
+
+    data = system_to_json(system)
+    for key in keys:
+        parts = key.split(".")
+        if parts[0] == "gravity":
+            data.pop("gravity", None)
+        elif parts[0] == "bodies":
+            for body in data["bodies"]:
+                if body["id"] == parts[1]:
+                    body.pop(parts[2], None)
+        else:
+            data["springs"][int(parts[1])].pop(parts[2], None)
+    return json.dumps(data, sort_keys=True, default=str)
+
+
+def _batch(plan: SweepPlan, system: System, params: dict[str, np.ndarray], *,
+           duration: float, step: float, scheme: str, metric_every: int | None,
+           sentinel: bool) -> Any:
+    """One :func:`simulate_batch` call (with the sentinel run appended when asked)."""
+    kwargs: dict[str, Any] = {"rtol": plan.rtol, "integrator": scheme, "step": step,
+                              "stop_on_slip": True}
+    if metric_every is not None and _batch_accepts_metric_every():
+        kwargs["metric_every"] = metric_every
+        sentinel = False
+    if sentinel and plan.omega_max > 0:
+        first = {k: v[:1] for k, v in params.items()}
+        omega = simulate_batch(system, first, _TINY, step=_TINY, integrator=scheme,
+                               stop_on_slip=True).omega_max
+        if omega > 0:
+            scale = (omega / plan.omega_max) ** 2
+            extra = {}
+            for key, values in params.items():
+                value = values[0] * scale if key.endswith(".mass") else values[0]
+                extra[key] = np.append(values, value)
+            params = extra
+    return simulate_batch(system, params, duration, **kwargs)
+
+
+def _groups(runs: _Runs, alive: np.ndarray) -> list[tuple[System, np.ndarray, dict[str,
+                                                                                    np.ndarray]]]:
+    """The batch calls of a chunk: (system, run indices, parameters)."""
+    plan, system = runs.plan, runs.system
+    if not runs.structural:
+        keys = list(plan.grid.paths)  # and every mass: a sentinel run scales them
+        keys += [f"bodies.{b.id}.mass" for b in system.bodies
+                 if f"bodies.{b.id}.mass" not in keys]
+        idx = np.flatnonzero(alive)
+        params = {}
+        for key in keys:
+            if key in runs.values:
+                params[key] = np.asarray(runs.values[key][idx], dtype=np.float64)
+            else:
+                params[key] = np.full(idx.size, _value_of(system, key))
+        return [(system, idx, params)] if idx.size else []
+    keys = _full_parameters(system, set(plan.grid.paths))
+    by_key: dict[str, tuple[System, list[int]]] = {}
+    for r in np.flatnonzero(alive):
+        run_system = runs.run_system(int(r))
+        if run_system is None:
+            continue
+        key = _structure_key(run_system, keys)
+        by_key.setdefault(key, (run_system, []))[1].append(int(r))
+    out = []
+    for group_system, members in by_key.values():
+        systems = [runs.run_system(r) for r in members]
+        params = {key: np.array([_value_of(s, key) for s in systems]) for key in keys}
+        out.append((group_system, np.array(members, dtype=np.int64), params))
+    return out
+
+
+def plan_omega(plan: SweepPlan, index: int) -> tuple[float, Any]:
+    """The highest linear frequency the batch sees among the runs of chunk ``index`` (its
+    initial placements), and a (system, parameters) of one run of that group, for the step of
+    the whole grid."""
+    runs = _Runs(plan, index)
+    best: tuple[float, Any] = (0.0, None)
+    alive = np.ones(runs.n, dtype=bool)
+    for system, _, params in _groups(runs, alive):
+        try:
+            omega = simulate_batch(system, params, _TINY, step=_TINY, integrator="yoshida4",
+                                   stop_on_slip=True).omega_max
+        except RollspringError:
+            omega = 0.0
+            for r in range(next(iter(params.values())).size):
+                one = {k: v[r:r + 1] for k, v in params.items()}
+                try:
+                    value = simulate_batch(system, one, _TINY, step=_TINY,
+                                           integrator="yoshida4", stop_on_slip=True).omega_max
+                except RollspringError:
+                    continue
+                if value > omega:
+                    omega = value
+        if omega > best[0] or best[1] is None:
+            best = (omega, (system, {k: v[:1] for k, v in params.items()}))
+    return best
+
+
+# --------------------------------------------------------------------------------------------
+# the chunk
+
+
+def _empty(plan: SweepPlan, n: int, n_bodies: int) -> dict[str, np.ndarray]:
+    def f(*shape: int) -> np.ndarray:
+        return np.full((n, *shape), np.nan)
+
+    out = {
+        "omega": f(n_bodies), "stationary_weight": f(n_bodies),
+        "required_mu_linear": f(n_bodies), "period_measured": f(),
+        "max_friction_ratio": f(n_bodies), "min_normal_force": f(n_bodies),
+        "first_slip_time": f(), "first_slip_body": np.full(n, -1, dtype=np.int16),
+        "first_liftoff_time": f(), "cm_amplitude": f(), "stationary_amplitude": f(),
+        "energy_error": f(), "status": np.full(n, STATUS_CODES["invalid"], dtype=np.int8),
+    }
+    if plan.on_slip == "continue":
+        out["energy_dissipated"] = f()
+        out["time_slipping"] = f()
+    return out
+
+
+def compute_chunk(plan: SweepPlan, index: int) -> dict[str, np.ndarray]:
+    """The variables of chunk ``index``, each shaped as its region (plus ``mode``/``body``)."""
+    prepare_worker(plan.numba_threads)
+    runs = _Runs(plan, index)
+    ids = [b.id for b in runs.system.bodies]
+    nb = len(ids)
+    out = _empty(plan, runs.n, nb)
+    linear = bool({"omega", "stationary_weight", "required_mu_linear"} & set(plan.metrics))
+    alive = np.ones(runs.n, dtype=bool)
+    if linear or runs.structural:
+        for r in range(runs.n):
+            system, analysis, _ = runs.start(r, linear=linear)
+            if system is None:
+                alive[r] = False
+                continue
+            if analysis is not None:
+                _linear_metrics(out, r, analysis)
+    if plan.on_slip == "continue":
+        for r in np.flatnonzero(alive):
+            _single_run(plan, runs, out, int(r), on_slip="continue")
+    else:
+        for system, members, params in _groups(runs, alive):
+            _batch_group(plan, runs, out, system, members, params)
+        if plan.refine_slip:
+            events = (out["status"] == STATUS_CODES["slip"]) \
+                | (out["status"] == STATUS_CODES["liftoff"])
+            for r in np.flatnonzero(events):
+                _refine_event(plan, runs, out, int(r))
+    shaped = {}
+    for name, values in out.items():
+        if name not in plan.metrics and name != "status":
+            continue
+        shaped[name] = values.reshape(*runs.local, *values.shape[1:])
+    return shaped
+
+
+def _linear_metrics(out: dict[str, np.ndarray], r: int, analysis: Any) -> None:
+    omegas = [m.omega for m in analysis.modes]
+    out["omega"][r, :len(omegas)] = omegas
+    if analysis.stationary_weights is not None:
+        out["stationary_weight"][r] = analysis.stationary_weights
+    if analysis.required_mu is not None:
+        out["required_mu_linear"][r] = analysis.required_mu
+
+
+def _batch_group(plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], system: System,
+                 members: np.ndarray, params: dict[str, np.ndarray]) -> None:
+    try:
+        result = _batch(plan, system, params, duration=plan.duration, step=plan.step,
+                        scheme=plan.scheme, metric_every=plan.metric_every, sentinel=True)
+    except RollspringError:
+        if members.size == 1:
+            out["status"][members[0]] = STATUS_CODES["invalid"]
+            return
+        for j, r in enumerate(members):  # one bad combination: find it, run the others
+            _batch_group(plan, runs, out, system, members[j:j + 1],
+                         {k: v[j:j + 1] for k, v in params.items()})
+        return
+    if not math.isclose(result.step, plan.step, rel_tol=1e-12) \
+            or result.integrator != plan.scheme or result.metric_every != plan.metric_every:
+        raise RollspringError(
+            f"internal: the batch ran with {result.integrator}, step {result.step!r}, "
+            f"metric_every {result.metric_every}, not the sweep's {plan.scheme}, "
+            f"{plan.step!r}, {plan.metric_every}")
+    k = members.size
+    status = result.status[:k]
+    out["status"][members] = status
+    event = result.first_slip_time[:k]
+    out["first_slip_time"][members] = np.where(status == STATUS_CODES["slip"], event, np.nan)
+    out["first_slip_body"][members] = np.where(status == STATUS_CODES["slip"],
+                                               result.first_slip_body[:k], -1)
+    out["first_liftoff_time"][members] = np.where(status == STATUS_CODES["liftoff"], event,
+                                                  np.nan)
+    out["period_measured"][members] = result.period_measured[:k]
+    out["cm_amplitude"][members] = result.cm_amplitude[:k]
+    out["stationary_amplitude"][members] = result.stationary_amplitude[:k]
+    out["energy_error"][members] = result.energy_error[:k]
+    out["max_friction_ratio"][members] = result.max_friction_ratio[:k]
+    out["min_normal_force"][members] = result.min_normal_force[:k]
+
+
+def _refine_event(plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], r: int) -> None:
+    """The instant (and body) of run ``r``'s first slip or lift-off, root-found by
+    :func:`rollspring.simulate` on the step (which stops there)."""
+    system = runs.run_system(r)
+    if system is None:
+        return
+    try:
+        trajectory = simulate(system, plan.duration, rtol=plan.rtol, on_slip="stop",
+                              n_output=2)
+    except RollspringError:
+        return
+    ids = [b.id for b in system.bodies]
+    slip, lift = trajectory.summary["first_slip"], trajectory.summary["first_liftoff"]
+    if out["status"][r] == STATUS_CODES["slip"] and slip is not None:
+        out["first_slip_time"][r] = slip["time"]
+        out["first_slip_body"][r] = ids.index(slip["body"])
+    elif out["status"][r] == STATUS_CODES["liftoff"] and lift is not None:
+        out["first_liftoff_time"][r] = lift["time"]
+
+
+def _single_run(plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], r: int, *,
+                on_slip: str) -> None:
+    """Run ``r`` alone through :func:`rollspring.simulate` (stick-slip with kinetic
+    friction)."""
+    system = runs.run_system(r)
+    if system is None:
+        return
+    try:
+        trajectory = simulate(system, plan.duration, rtol=plan.rtol, on_slip=on_slip)
+    except RollspringError:
+        out["status"][r] = STATUS_CODES["invalid"]
+        return
+    summary = trajectory.summary
+    ids = [b.id for b in system.bodies]
+    out["status"][r] = STATUS_CODES.get(trajectory.status, STATUS_CODES["nonfinite"])
+    if summary["first_slip"] is not None:
+        out["first_slip_time"][r] = summary["first_slip"]["time"]
+        out["first_slip_body"][r] = ids.index(summary["first_slip"]["body"])
+    if summary["first_liftoff"] is not None:
+        out["first_liftoff_time"][r] = summary["first_liftoff"]["time"]
+    period = summary["period_measured"]
+    out["period_measured"][r] = np.nan if period is None else period
+    out["energy_error"][r] = summary["energy_error"]
+    for i, name in enumerate(ids):
+        out["max_friction_ratio"][r, i] = summary["max_friction_ratio"].get(name, 0.0)
+        out["min_normal_force"][r, i] = summary["min_normal_force"][name]
+    out["cm_amplitude"][r] = 0.5 * float(np.ptp(trajectory.cm_x))
+    if trajectory.stationary_x is not None:
+        v0 = np.array([b.v for b in system.bodies])
+        analysis = runs.start(r, linear=True)[1]
+        drift = float(analysis.stationary_weights @ v0) \
+            if analysis is not None and analysis.stationary_weights is not None else 0.0
+        out["stationary_amplitude"][r] = 0.5 * float(
+            np.ptp(trajectory.stationary_x - drift * trajectory.t))
+    out["energy_dissipated"][r] = float(trajectory.energy[0] - trajectory.energy[-1])
+    out["time_slipping"][r] = _time_slipping(trajectory.events, ids, float(trajectory.t[-1]))
+
+
+def _time_slipping(events: list[Mapping[str, Any]], ids: list[str], end: float) -> float:
+    """Total time during which at least one body slips (from the exact event instants)."""
+    intervals = []
+    since: dict[str, float] = {}
+    for event in events:
+        if event["kind"] == "slip":
+            since.setdefault(event["body"], float(event["time"]))
+        elif event["kind"] == "stick" and event["body"] in since:
+            intervals.append((since.pop(event["body"]), float(event["time"])))
+    intervals += [(t, end) for t in since.values()]
+    total, reach = 0.0, -math.inf
+    for lo, hi in sorted(intervals):
+        if hi <= reach:
+            continue
+        total += hi - max(lo, reach)
+        reach = hi
+    return total
+
+
+# --------------------------------------------------------------------------------------------
+# worker processes
+
+
+_PREPARED: dict[str, Any] = {}
+
+
+def prepare_worker(numba_threads: int = 0) -> None:
+    """On a Dask worker: give this process its own Numba cache directory (processes sharing
+    one have crashed, numba/numba#4807) — one of a pool of slots, each held by a lock for the
+    process' life, so a restarted worker reuses a compiled slot — and cap Numba's threads
+    (``numba_threads``; several workers on one machine). Idempotent; a no-op outside a
+    worker."""
+    if numba_threads > 0:
+        import numba
+
+        numba.set_num_threads(min(numba_threads, numba.config.NUMBA_NUM_THREADS))
+    if "cache" in _PREPARED:
+        return
+    try:
+        from distributed import get_worker
+
+        get_worker()
+    except (ImportError, ValueError):
+        _PREPARED["cache"] = None
+        return
+    import fcntl
+    import tempfile
+    from pathlib import Path
+
+    base = Path(os.environ.get("ROLLSPRING_WORKER_CACHE")
+                or Path(tempfile.gettempdir()) / f"rollspring-numba-{os.getuid()}")
+    for slot in range(256):
+        folder = base / f"worker-{slot}"
+        folder.mkdir(parents=True, exist_ok=True)
+        handle = open(folder / ".lock", "w")  # noqa: SIM115 - held for the process' life
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            handle.close()
+            continue
+        os.environ["NUMBA_CACHE_DIR"] = str(folder)
+        import numba.core.config
+
+        numba.core.config.reload_config()
+        _PREPARED["cache"] = (folder, handle)
+        return
+    _PREPARED["cache"] = None
+
+
+def warm_up(plan: SweepPlan) -> str:
+    """Prepare this worker and compile (or load) the batch kernel of the sweep: run by
+    ``client.run`` on every worker before the chunks."""
+    prepare_worker(plan.numba_threads)
+    if plan.on_slip != "continue":
+        runs = _Runs(plan, 0)
+        alive = np.zeros(runs.n, dtype=bool)
+        alive[0] = True
+        for system, _, params in _groups(runs, alive):
+            try:
+                simulate_batch(system, params, _TINY, step=_TINY, integrator="yoshida4",
+                               stop_on_slip=True)
+            except RollspringError:
+                pass
+    return os.environ.get("NUMBA_CACHE_DIR", "")
+
+
+def copy_plan(plan: SweepPlan, **changes: Any) -> SweepPlan:
+    """``plan`` with some fields changed."""
+    data = {name: getattr(plan, name) for name in plan.__dataclass_fields__}
+    data.update(changes)
+    data["system"] = copy.deepcopy(data["system"])
+    return SweepPlan(**data)

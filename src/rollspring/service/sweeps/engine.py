@@ -1,0 +1,399 @@
+"""``rollspring.sweep``: a grid of runs of one system, in-process or on a Dask cluster, into a
+Zarr store that a rerun resumes (docs/sweeps.md is the contract).
+
+Order of work: validate the grid; open the store (refuse another sweep's store unless
+``overwrite``; on a rerun read the plan back from its attrs); choose one integrator, step and
+metric sampling for the whole grid (a pass over the chunks reading the highest linear frequency,
+one cheap batch call per chunk); write the template; run the chunks without a done marker —
+in this process one after the other (each batch call uses every core), or as tasks on a Dask
+cluster, a bounded number in flight — writing each into its region as it arrives, then its
+marker.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from rollspring.errors import RollspringError
+from rollspring.model import System, load_system, system_to_json, system_to_toml
+from rollspring.service.sweeps.compute import (
+    STATUS_CODES,
+    SweepPlan,
+    compute_chunk,
+    copy_plan,
+    plan_omega,
+    warm_up,
+)
+from rollspring.service.sweeps.grid import Grid, SweepError, check_grid, chunk_shape, path_kind
+from rollspring.service.sweeps.store import (
+    VARIABLES,
+    StoreMismatchError,
+    done_chunks,
+    fingerprint,
+    mark_done,
+    read_attrs,
+    remove,
+    write_region,
+    write_template,
+)
+
+__all__ = ["DEFAULT_CHUNK", "METRICS", "SweepProgress", "sweep"]
+
+#: Runs per chunk unless ``chunk`` says otherwise.
+DEFAULT_CHUNK = 4096
+#: Metrics (variables) a sweep can store; ``energy_dissipated`` and ``time_slipping`` only
+#: with ``on_slip="continue"``.
+METRICS = tuple(VARIABLES)
+_CONTINUE_ONLY = ("energy_dissipated", "time_slipping")
+
+
+@dataclass
+class SweepProgress:
+    """What a progress callback receives: once before the first chunk (``chunks_run`` 0),
+    then after each chunk. ``chunks_skipped``: chunks a previous run finished."""
+
+    done_runs: int
+    total_runs: int
+    chunks_run: int
+    chunks_to_run: int
+    chunks_skipped: int
+
+
+def _version() -> str:
+    try:
+        from importlib.metadata import version
+
+        return version("rollspring")
+    except Exception:  # noqa: BLE001 - not installed as a distribution
+        return "unknown"
+
+
+def _check_arguments(duration: Any, rtol: Any, on_slip: Any, chunk: Any, step: Any) -> None:
+    if isinstance(duration, bool) or not isinstance(duration, int | float) \
+            or not math.isfinite(duration) or duration <= 0:
+        raise SweepError(f"--duration: must be a positive number of seconds, got {duration!r}")
+    if isinstance(rtol, bool) or not isinstance(rtol, int | float) or not 0 < rtol < 1:
+        raise SweepError(f"--rtol: must be a number in (0, 1), got {rtol!r}")
+    if on_slip not in ("stop", "continue"):
+        raise SweepError(f"--on-slip: must be stop or continue, got {on_slip!r}")
+    if chunk is not None and (isinstance(chunk, bool) or not isinstance(chunk, int)
+                              or chunk < 1):
+        raise SweepError(f"--chunk: must be a whole number of runs >= 1, got {chunk!r}")
+    if step is not None and (isinstance(step, bool) or not isinstance(step, int | float)
+                             or not math.isfinite(step) or not 0 < step <= duration):
+        raise SweepError(f"--step: must be a positive number of seconds up to the duration, "
+                         f"got {step!r}")
+
+
+def _metrics(metrics: Sequence[str] | None, on_slip: str) -> tuple[str, ...]:
+    available = [m for m in METRICS if on_slip == "continue" or m not in _CONTINUE_ONLY]
+    if metrics is None:
+        return tuple(available)
+    if isinstance(metrics, str):
+        metrics = [metrics]
+    for name in metrics:
+        if name in _CONTINUE_ONLY and on_slip != "continue":
+            raise SweepError(f"--metric {name}: only with --on-slip continue")
+        if name not in METRICS:
+            raise SweepError(f"--metric {name}: unknown metric (one of {', '.join(available)})")
+    chosen = set(metrics) | {"status"}
+    return tuple(m for m in METRICS if m in chosen)
+
+
+def sweep(
+    system: System | str,
+    vary: Mapping[str, Sequence[float]],
+    duration: float,
+    *,
+    metrics: Sequence[str] | None = None,
+    on_slip: str = "stop",
+    out: str | os.PathLike[str] | None = None,
+    scheduler: Any = None,
+    chunk: int | None = None,
+    overwrite: bool = False,
+    rtol: float = 1e-8,
+    progress: Callable[[SweepProgress], None] | None = None,
+    step: float | None = None,
+    refine_slip: bool = True,
+) -> Any:
+    r"""Run ``system`` once per point of the grid ``vary`` (``{PATH: values}``, the outer
+    product in the given order) for ``duration`` s and return the metrics as an
+    ``xarray.Dataset`` (docs/sweeps.md: dims named by the PATHs, ``mode``, ``body``).
+
+    ``out``: a Zarr v3 store written chunk by chunk (``xarray.open_zarr(out)`` gives the
+    result, which is also returned, lazily); a rerun with the same arguments runs only the
+    chunks without a done marker, and another sweep's store is refused
+    (:class:`StoreMismatchError`) unless ``overwrite``. ``scheduler``: None (in this process,
+    every core), a Dask scheduler address ``"tcp://host:port"`` or a ``distributed.Client``.
+    ``chunk``: runs per chunk (default :data:`DEFAULT_CHUNK`). ``step`` fixes the integration
+    step of the whole grid (default: chosen from ``rtol`` and the grid's highest frequency);
+    ``refine_slip`` (default True) root-finds each first slip / lift-off instant with a single
+    :func:`rollspring.simulate` run instead of the batch's linear interpolation between steps.
+    ``progress`` is called with a :class:`SweepProgress` after each chunk.
+    """
+    if isinstance(system, str):
+        system = load_system(system)
+    if not isinstance(system, System):
+        raise SweepError(f"system: must be a rollspring System, got {type(system).__name__}")
+    _check_arguments(duration, rtol, on_slip, chunk, step)
+    if any(s.damping > 0 for s in system.springs) and on_slip == "stop":
+        raise SweepError("system: a damped spring needs --on-slip continue (single runs); the "
+                         "batch integrators are symplectic")
+    chosen = _metrics(metrics, on_slip)
+    paths, values = check_grid(system, vary)
+    _check_modes(system, paths)
+    grid = Grid(paths, values, chunk_shape(tuple(len(v) for v in values),
+                                           chunk or DEFAULT_CHUNK))
+    toml = system_to_toml(system)
+    extra = {"refine_slip": bool(refine_slip),
+             "step": None if step is None else float(step).hex()}
+    print_ = fingerprint(toml, grid, duration, rtol, on_slip, chosen, extra)
+    plan = SweepPlan(system=system_to_json(system), grid=grid, duration=float(duration),
+                     rtol=float(rtol), on_slip=on_slip, metrics=chosen,
+                     refine_slip=bool(refine_slip))
+
+    path = None if out is None else Path(out)
+    done: set[int] = set()
+    stored = None
+    if path is not None:
+        attrs = read_attrs(path)
+        if attrs is not None:
+            if attrs.get("grid_fingerprint") != print_ and not overwrite:
+                raise StoreMismatchError(
+                    f"--out {path}: holds another sweep (grid fingerprint "
+                    f"{str(attrs.get('grid_fingerprint'))[:12]}…, this one {print_[:12]}…); "
+                    "use --overwrite to replace it")
+            if overwrite and attrs.get("grid_fingerprint") != print_:
+                remove(path)
+            else:
+                stored = attrs
+                done = done_chunks(path)
+        elif path.exists():
+            if not overwrite:
+                raise StoreMismatchError(f"--out {path}: exists and is not a rollspring sweep "
+                                         "store; use --overwrite to replace it")
+            remove(path)
+    if stored is not None and overwrite and stored.get("grid_fingerprint") == print_:
+        remove(path)
+        stored, done = None, set()
+
+    client, own_client = _client(scheduler)
+    try:
+        if stored is not None:
+            plan = copy_plan(plan, scheme=stored["integrator"], step=float(stored["step"]),
+                             metric_every=int(stored["metric_every"]),
+                             omega_max=float(stored["omega_max"]))
+        else:
+            plan = _choose_step(plan, step)
+        if client is not None:
+            plan = copy_plan(plan, numba_threads=_threads_per_worker(client))
+        ids = [b["id"] for b in plan.system["bodies"]]
+        attrs = {
+            "system": toml,
+            "rollspring_version": _version(),
+            "grid_fingerprint": print_,
+            "duration": float(duration),
+            "rtol": float(rtol),
+            "on_slip": on_slip,
+            "integrator": plan.scheme,
+            "step": plan.step,
+            "metric_every": plan.metric_every,
+            "omega_max": plan.omega_max,
+            "metrics": list(chosen),
+            "chunk": int(math.prod(grid.chunks)),
+            "chunk_shape": list(grid.chunks),
+            "n_chunks": grid.n_chunks,
+            "refine_slip": bool(refine_slip),
+        }
+        if path is not None and stored is None:
+            write_template(path, grid, ids, len(ids), chosen, attrs)
+        todo = [i for i in range(grid.n_chunks) if i not in done]
+        memory = None if path is not None else _memory(grid, chosen, len(ids))
+
+        def store(index: int, arrays: dict[str, np.ndarray]) -> None:
+            if path is not None:
+                write_region(path, grid, index, arrays)
+                mark_done(path, index)
+            else:
+                region = grid.region(index)
+                for name, values in arrays.items():
+                    memory[name][region] = values
+
+        counted = sum(_runs_in(grid, i) for i in done)
+        if progress is not None:
+            progress(SweepProgress(counted, grid.n_runs, 0, len(todo), len(done)))
+        for k, index in enumerate(_results(plan, todo, client)):
+            store(index[0], index[1])
+            counted += _runs_in(grid, index[0])
+            if progress is not None:
+                progress(SweepProgress(counted, grid.n_runs, k + 1, len(todo), len(done)))
+    finally:
+        if own_client and client is not None:
+            client.close()
+    if path is not None:
+        import xarray as xr
+
+        return xr.open_zarr(str(path))
+    return _dataset(grid, chosen, ids, memory, attrs)
+
+
+def _check_modes(system: System, paths: tuple[str, ...]) -> None:
+    modes = [path_kind(system, p)[1][0] for p in paths if path_kind(system, p)[0] == "mode"]
+    if not modes:
+        return
+    from rollspring.analysis import analyze
+
+    analysis = analyze(system)
+    for n in modes:
+        if analysis.modes[n].kind != "oscillating":
+            raise SweepError(f"--vary modes.{n}.amplitude: mode {n} is a "
+                             f"{analysis.modes[n].kind} mode (the oscillating ones: "
+                             f"{', '.join(str(i) for i, m in enumerate(analysis.modes) if m.kind == 'oscillating') or 'none'})")
+
+
+def _runs_in(grid: Grid, index: int) -> int:
+    return math.prod(s.stop - s.start for s in grid.region(index))
+
+
+def _choose_step(plan: SweepPlan, step: float | None) -> SweepPlan:
+    """One integrator, step and metric sampling for the whole grid, from its highest linear
+    frequency (read chunk by chunk): what the batch would choose for a call holding every
+    run."""
+    if plan.on_slip == "continue":
+        return copy_plan(plan, scheme="single runs", step=0.0, metric_every=0, omega_max=0.0)
+    from rollspring.simulate import simulate_batch
+
+    best: tuple[float, Any] = (-1.0, None)
+    for index in range(plan.grid.n_chunks):
+        omega, sample = plan_omega(plan, index)
+        if sample is not None and omega > best[0]:
+            best = (omega, sample)
+    omega, sample = best
+    if sample is None:
+        raise SweepError("--vary: no run of the grid is a valid system")
+    system, params = sample
+    scaled = dict(params)
+    if omega > 0:  # one run of the fastest group, its masses scaled to the highest frequency
+        own = simulate_batch(system, params, 1e-9, step=1e-9, integrator="yoshida4",
+                             stop_on_slip=True).omega_max
+        if own > 0:
+            scale = (own / omega) ** 2
+            scaled = {k: (v * scale if k.endswith(".mass") else v) for k, v in params.items()}
+    result = simulate_batch(system, scaled, plan.duration, rtol=plan.rtol,
+                            integrator=plan.integrator, step=step, stop_on_slip=True)
+    return copy_plan(plan, scheme=result.integrator, step=float(result.step),
+                     metric_every=int(result.metric_every), omega_max=max(omega, 0.0))
+
+
+def _client(scheduler: Any) -> tuple[Any, bool]:
+    if scheduler is None:
+        return None, False
+    try:
+        from distributed import Client
+    except ImportError:  # pragma: no cover - pinned
+        raise SweepError("--scheduler: needs dask[distributed]") from None
+    if isinstance(scheduler, Client):
+        return scheduler, False
+    if not isinstance(scheduler, str) or "://" not in scheduler:
+        raise SweepError(f"--scheduler: expected tcp://HOST:PORT or a distributed.Client, got "
+                         f"{scheduler!r}")
+    try:
+        return Client(scheduler, timeout=30, set_as_default=False), True
+    except (OSError, TimeoutError) as exc:
+        raise SweepError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
+
+
+def _threads_per_worker(client: Any) -> int:
+    """Numba threads per worker: the cores of its machine shared by the workers on it."""
+    from urllib.parse import urlparse
+
+    cores = client.run(os.cpu_count)
+    hosts: dict[str, list[int]] = {}
+    for address, count in cores.items():
+        hosts.setdefault(urlparse(address).hostname or address, []).append(count or 1)
+    shares = [max(1, max(c) // len(c)) for c in hosts.values()]
+    return min(shares) if shares else 1
+
+
+def _results(plan: SweepPlan, todo: list[int], client: Any
+             ) -> Iterator[tuple[int, dict[str, np.ndarray]]]:
+    if client is None:
+        for index in todo:
+            yield index, compute_chunk(plan, index)
+        return
+    from distributed import as_completed
+
+    if not todo:
+        return
+    client.run(warm_up, plan)
+    shared = client.scatter(plan, broadcast=True, hash=False)
+    workers = max(1, len(client.scheduler_info().get("workers", {})))
+    window = 2 * workers + 2
+    pending = iter(todo)
+    futures = {}
+
+    def submit() -> bool:
+        index = next(pending, None)
+        if index is None:
+            return False
+        future = client.submit(compute_chunk, shared, index, pure=False,
+                               key=f"rollspring-sweep-{time.time_ns()}-{index}")
+        futures[future.key] = index
+        queue.add(future)
+        return True
+
+    queue = as_completed()
+    for _ in range(window):
+        if not submit():
+            break
+    for future in queue:
+        arrays = future.result()
+        index = futures.pop(future.key)
+        future.release()
+        submit()
+        yield index, arrays
+
+
+def _memory(grid: Grid, metrics: tuple[str, ...], n_bodies: int) -> dict[str, np.ndarray]:
+    out = {}
+    for name in metrics:
+        extra = VARIABLES[name][0]
+        shape = (*grid.shape, *([n_bodies] if extra else []))
+        if name == "status":
+            out[name] = np.full(shape, STATUS_CODES["invalid"], dtype=np.int8)
+        elif name == "first_slip_body":
+            out[name] = np.full(shape, -1, dtype=np.int16)
+        else:
+            out[name] = np.full(shape, np.nan)
+    return out
+
+
+def _dataset(grid: Grid, metrics: tuple[str, ...], ids: list[str],
+             memory: dict[str, np.ndarray], attrs: dict[str, Any]) -> Any:
+    import xarray as xr
+
+    from rollspring.service.sweeps.grid import unit_of
+
+    coords: dict[str, Any] = {p: (p, np.asarray(v, dtype=np.float64),
+                                  {"units": unit_of(p), "long_name": p})
+                              for p, v in zip(grid.paths, grid.values, strict=True)}
+    coords["mode"] = ("mode", np.arange(len(ids), dtype=np.int64),
+                      {"units": "1", "long_name": "mode, sorted by omega"})
+    coords["body"] = ("body", np.array(ids, dtype=str), {"units": "1", "long_name": "body id"})
+    data = {}
+    for name in metrics:
+        extra, units, long_name = VARIABLES[name]
+        var_attrs = {"units": units, "long_name": long_name}
+        if name == "status":
+            var_attrs["flag_values"] = list(STATUS_CODES.values())
+            var_attrs["flag_meanings"] = " ".join(STATUS_CODES)
+        data[name] = ((*grid.paths, *([extra] if extra else [])), memory[name], var_attrs)
+    return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -1,0 +1,167 @@
+"""The sweep's Zarr v3 store: the template, chunk regions, done markers, the fingerprint.
+
+The template (every variable's metadata, the coordinates and the attrs) is written first by
+``xarray.Dataset.to_zarr(compute=False)`` from lazy Dask arrays (nothing of the grid's size is
+built in memory); each finished chunk is then written into its own region with Zarr directly
+(the regions are the Zarr chunks, so concurrent writers never share a chunk) and followed by its
+done marker ``<store>/.rollspring-done/<chunk index>``, an empty file created atomically. A
+rerun trusts the markers, never the chunks on disk (Zarr skips chunks equal to the fill value,
+and a killed writer can leave a partial chunk).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+import warnings
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from rollspring.service.sweeps.grid import Grid, SweepError, unit_of
+
+__all__ = [
+    "MARKERS",
+    "VARIABLES",
+    "StoreMismatchError",
+    "done_chunks",
+    "fingerprint",
+    "mark_done",
+    "read_attrs",
+    "write_region",
+    "write_template",
+]
+
+MARKERS = ".rollspring-done"
+
+#: name -> (extra dimension or None, units, long_name)
+VARIABLES: dict[str, tuple[str | None, str, str]] = {
+    "omega": ("mode", "rad/s", "linear angular frequency of each mode (zero modes exactly 0)"),
+    "stationary_weight": ("body", "1", "weight of each body in the stationary point X-hat"),
+    "required_mu_linear": ("body", "1", "max |f|/N of the linear response"),
+    "period_measured": (None, "s", "measured period"),
+    "max_friction_ratio": ("body", "1", "max |f|/N over the run"),
+    "min_normal_force": ("body", "N", "min normal force over the run"),
+    "first_slip_time": (None, "s", "instant of the first slip (NaN: none)"),
+    "first_slip_body": (None, "1", "index into body of the first slip (-1: none)"),
+    "first_liftoff_time": (None, "s", "instant of the first lift-off (NaN: none)"),
+    "cm_amplitude": (None, "m", "half the range of the centre of mass"),
+    "stationary_amplitude": (None, "m", "half the range of X-hat, its uniform motion removed"),
+    "energy_error": (None, "1", "max relative energy error"),
+    "status": (None, "1", "how the run ended"),
+    "energy_dissipated": (None, "J", "energy dissipated by kinetic friction"),
+    "time_slipping": (None, "s", "time during which a body slips"),
+}
+_INTEGER = {"first_slip_body": "int16", "status": "int8"}
+
+
+class StoreMismatchError(SweepError):
+    """The store at ``--out`` holds another sweep (its grid fingerprint differs)."""
+
+
+def fingerprint(system_toml: str, grid: Grid, duration: float, rtol: float, on_slip: str,
+                metrics: tuple[str, ...], extra: dict[str, Any]) -> str:
+    """sha256 of everything that decides the store's content."""
+    data = {
+        "system": system_toml,
+        "paths": list(grid.paths),
+        "values": [[float(v).hex() for v in values] for values in grid.values],
+        "duration": float(duration).hex(),
+        "rtol": float(rtol).hex(),
+        "on_slip": on_slip,
+        "metrics": list(metrics),
+        "chunks": list(grid.chunks),
+        **extra,
+    }
+    return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()
+
+
+def read_attrs(path: Path) -> dict[str, Any] | None:
+    """The attrs of the store at ``path``; None when there is no store there."""
+    if not path.exists():
+        return None
+    import zarr
+
+    try:
+        group = zarr.open_group(str(path), mode="r")
+    except Exception as exc:  # noqa: BLE001 - any unreadable store
+        raise StoreMismatchError(f"--out {path}: exists and is not a rollspring sweep store "
+                                 f"({type(exc).__name__}); use --overwrite to replace it"
+                                 ) from None
+    return dict(group.attrs)
+
+
+def remove(path: Path) -> None:
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path)
+    elif path.exists():
+        path.unlink()
+
+
+def write_template(path: Path, grid: Grid, ids: list[str], n_modes: int,
+                   metrics: tuple[str, ...], attrs: dict[str, Any]) -> None:
+    """Every variable's metadata, the coordinates and the attrs (no data)."""
+    import dask.array as da
+    import xarray as xr
+
+    coords: dict[str, Any] = {}
+    for p, values in zip(grid.paths, grid.values, strict=True):
+        coords[p] = (p, np.asarray(values, dtype=np.float64),
+                     {"units": unit_of(p), "long_name": p})
+    coords["mode"] = ("mode", np.arange(n_modes, dtype=np.int64),
+                      {"units": "1", "long_name": "mode, sorted by omega"})
+    coords["body"] = ("body", np.array(ids, dtype=str), {"units": "1", "long_name": "body id"})
+    data = {}
+    encoding = {}
+    for name in metrics:
+        extra, units, long_name = VARIABLES[name]
+        dims = (*grid.paths, *([extra] if extra else []))
+        shape = (*grid.shape, *([n_modes if extra == "mode" else len(ids)] if extra else []))
+        chunks = (*grid.chunks, *([shape[-1]] if extra else []))
+        dtype = _INTEGER.get(name, "float64")
+        fill = -1 if name == "first_slip_body" else (5 if name == "status" else np.nan)
+        var_attrs = {"units": units, "long_name": long_name}
+        if name == "status":
+            from rollspring.service.sweeps.compute import STATUS_CODES
+
+            var_attrs["flag_values"] = list(STATUS_CODES.values())
+            var_attrs["flag_meanings"] = " ".join(STATUS_CODES)
+        data[name] = (dims, da.full(shape, fill, dtype=dtype, chunks=chunks), var_attrs)
+        encoding[name] = {"chunks": chunks}
+        if dtype != "float64":
+            encoding[name]["fill_value"] = fill
+    dataset = xr.Dataset(data, coords=coords, attrs=attrs)
+    with warnings.catch_warnings():
+        # consolidated metadata (fast opening) is not yet in the Zarr v3 specification
+        warnings.simplefilter("ignore")
+        dataset.to_zarr(str(path), mode="w", compute=False, zarr_format=3, encoding=encoding)
+    (path / MARKERS).mkdir(exist_ok=True)
+
+
+def write_region(path: Path, grid: Grid, index: int, arrays: dict[str, np.ndarray]) -> None:
+    """Chunk ``index``'s arrays into their region (the Zarr chunk itself)."""
+    import zarr
+
+    group = zarr.open_group(str(path), mode="r+")
+    region = grid.region(index)
+    for name, values in arrays.items():
+        group[name][region] = values
+
+
+def mark_done(path: Path, index: int) -> None:
+    """The done marker of chunk ``index`` (an empty file, created atomically)."""
+    folder = path / MARKERS
+    tmp = folder / f".{index}.{os.getpid()}.tmp"
+    tmp.touch()
+    os.replace(tmp, folder / str(index))
+
+
+def done_chunks(path: Path) -> set[int]:
+    """Indices of the chunks whose done marker exists."""
+    folder = path / MARKERS
+    if not folder.is_dir():
+        return set()
+    return {int(p.name) for p in folder.iterdir() if p.name.isdigit()}

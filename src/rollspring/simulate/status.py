@@ -26,16 +26,16 @@ class Status(IntEnum):
     LIFTOFF = 3
     #: the energy error exceeded its tolerance (single runs)
     ENERGY_ERROR = 4
-    #: the run's linear frequency is beyond what the (common) step can resolve; not integrated
-    UNRESOLVED = 5
     #: the run's values overflow double precision (e.g. a frequency or an inertia that is not
     #: finite); not integrated
-    INVALID = 6
+    INVALID = 5
+    #: the run's linear frequency is beyond what the (common) step can resolve; not integrated
+    UNRESOLVED = 6
 
     @property
     def label(self) -> str:
         """The status as a lower-case name: ``finished``, ``nonfinite``, ``slip``, ``liftoff``,
-        ``energy_error``, ``unresolved``, ``invalid``."""
+        ``energy_error``, ``invalid``, ``unresolved``."""
         return self.name.lower()
 
     @property
@@ -61,9 +61,9 @@ _MESSAGES = {
     Status.LIFTOFF: "a body's normal force fell below zero: it lifts off",
     Status.ENERGY_ERROR: "the energy error exceeded its tolerance: the step does not resolve "
                          "the motion",
+    Status.INVALID: "the run's values overflow double precision; it was not integrated",
     Status.UNRESOLVED: "the run's linear frequency is beyond what the step can resolve; it was "
                        "not integrated",
-    Status.INVALID: "the run's values overflow double precision; it was not integrated",
 }
 
 #: CF ``flag_values`` of a stored status variable (every code, in order).

@@ -20,6 +20,7 @@ from rollspring.simulate.batch.codegen import BLOCK, OUT_BODY, OUT_EVENT_TIME, S
 from rollspring.simulate.batch.parameters import parse_parameters
 from rollspring.simulate.batch.plan import (
     MAX_STEPS,
+    Plan,
     check_runs,
     choose_step,
     make_plan,
@@ -33,7 +34,7 @@ from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
 from rollspring.simulate.integrators import MAX_OMEGA_STEP
 from rollspring.simulate.status import Status
 
-__all__ = ["INTEGRATORS", "BatchResult", "simulate_batch"]
+__all__ = ["INTEGRATORS", "BatchResult", "kernel_fields", "simulate_batch"]
 
 #: Accepted values of ``integrator``.
 INTEGRATORS = ("auto", *SCHEME_REGISTRY)
@@ -47,10 +48,9 @@ class BatchResult:
     * ``status`` (int8): the values of :class:`~rollspring.simulate.status.Status`:
       ``FINISHED`` (0: rolled throughout), ``SLIP`` (2) or ``LIFTOFF`` (3) (the run's first
       event), ``NONFINITE`` (1: the state overflowed, which overrides an earlier event),
-      ``UNRESOLVED`` (5: the run alone would need more than
-      :data:`~rollspring.simulate.batch.plan.MAX_STEPS` steps at ``rtol``; left out of the
-      step choice and not integrated) or ``INVALID`` (6: its values overflow double precision;
-      not integrated); ``status_names`` gives the names and ``messages`` says, per run, why a
+      ``INVALID`` (5: its values overflow double precision; not integrated) or ``UNRESOLVED``
+      (6: the run alone would need more than :data:`~rollspring.simulate.batch.plan.MAX_STEPS`
+      steps at ``rtol``; left out of the step choice and not integrated); ``status_names`` gives the names and ``messages`` says, per run, why a
       run was not integrated ("" for the others). The metrics of a run that was not integrated
       are NaN (``first_slip_body`` -1).
     * ``first_slip_time``, ``first_slip_body``: instant (s) and body index of the first slip
@@ -123,7 +123,7 @@ class BatchResult:
     @property
     def status_names(self) -> np.ndarray:
         """``status`` as names (:attr:`Status.label <rollspring.simulate.status.Status.label>`:
-        ``finished``, ``slip``, ``liftoff``, ``nonfinite``, ``unresolved``, ``invalid``)."""
+        ``finished``, ``slip``, ``liftoff``, ``nonfinite``, ``invalid``, ``unresolved``)."""
         names = np.array([s.label for s in Status], dtype=object)
         return names[self.status]
 
@@ -190,6 +190,29 @@ class BatchResult:
         return "\n".join(lines)
 
 
+
+
+def kernel_fields(plan: Plan, given: set[str] | None, included: np.ndarray, n_pad: int
+                  ) -> tuple[list[str], list[str], FloatArray, FloatArray]:
+    """The fields the kernel reads per lane (``varying``: those the parameter keys change, see
+    :func:`~rollspring.simulate.batch.plan.probe`) and once per block (``constant``), with
+    their values: ``P`` (n_varying, n_pad) for the runs ``included`` (padded with the last)
+    and ``C`` (n_constant,)."""
+    n_live = included.size
+    varying, constant = [], []
+    for key in sorted(plan.fields):
+        values = plan.fields[key][included]
+        per_run = given is None or key in given or bool(values.size
+                                                        and np.any(values != values[0]))
+        (varying if per_run else constant).append(key)
+    P = np.empty((len(varying), n_pad))
+    for r, key in enumerate(varying):
+        if n_live:
+            P[r, :n_live] = plan.fields[key][included]
+            P[r, n_live:] = plan.fields[key][included[-1]]
+    C = np.array([plan.fields[key][included[0]] if n_live else 0.0 for key in constant],
+                 dtype=np.float64)
+    return varying, constant, P, C
 
 
 def simulate_batch(
@@ -324,18 +347,7 @@ def simulate_batch(
     n_live = included.size
     n_blocks = -(-n_live // BLOCK)
     n_pad = n_blocks * BLOCK
-    varying, constant = [], []
-    for key in sorted(plan.fields):
-        values = plan.fields[key][included]
-        per_run = given is None or key in given or (values.size and np.any(values != values[0]))
-        (varying if per_run else constant).append(key)
-    P = np.empty((len(varying), n_pad))
-    for r, key in enumerate(varying):
-        if n_live:
-            P[r, :n_live] = plan.fields[key][included]
-            P[r, n_live:] = plan.fields[key][included[-1]]
-    C = np.array([plan.fields[key][included[0]] if n_live else 0.0 for key in constant],
-                 dtype=np.float64)
+    varying, constant, P, C = kernel_fields(plan, given, included, n_pad)
     source = Source(plan, varying, constant, bool(stop_on_slip)).module() if n_live else ""
     prepared = time.perf_counter()
 

@@ -47,6 +47,9 @@ def sweep(
     step: Annotated[float | None, typer.Option(
         "--step", help="Fix the integration step of the whole grid, s (default: from --rtol).",
         show_default=False)] = None,
+    integrator: Annotated[str, typer.Option(
+        help="auto, verlet, yoshida4 or yoshida6 (with --step, auto means yoshida4).")]
+    = "auto",
     refine_slip: Annotated[bool, typer.Option(
         "--refine-slip/--no-refine-slip", help="Root-find each first slip instant with a single "
         "run (default) instead of the batch's interpolation between steps.")] = True,
@@ -74,7 +77,8 @@ def sweep(
     with _Bar() as bar:
         dataset = run_sweep(model, grid, duration, metrics=metric, on_slip=on_slip, out=out,
                             scheduler=scheduler, chunk=chunk, overwrite=overwrite, rtol=rtol,
-                            progress=bar, step=step, refine_slip=refine_slip)
+                            progress=bar, step=step, integrator=integrator,
+                            refine_slip=refine_slip)
     first = bar.first
     total = int(dataset.attrs["n_chunks"])
     ran = bar.last.chunks_run if bar.last is not None else 0

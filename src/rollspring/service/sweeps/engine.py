@@ -122,6 +122,7 @@ def sweep(
     rtol: float = 1e-8,
     progress: Callable[[SweepProgress], None] | None = None,
     step: float | None = None,
+    integrator: str = "auto",
     refine_slip: bool = True,
 ) -> Any:
     r"""Run ``system`` once per point of the grid ``vary`` (``{PATH: values}``, the outer
@@ -135,6 +136,8 @@ def sweep(
     every core), a Dask scheduler address ``"tcp://host:port"`` or a ``distributed.Client``.
     ``chunk``: runs per chunk (default :data:`DEFAULT_CHUNK`). ``step`` fixes the integration
     step of the whole grid (default: chosen from ``rtol`` and the grid's highest frequency);
+    ``integrator``: the batch's (``auto``, ``verlet``, ``yoshida4``, ``yoshida6``; with
+    ``step``, ``auto`` means Yoshida-4, as in :func:`rollspring.simulate_batch`);
     ``refine_slip`` (default True) root-finds each first slip / lift-off instant with a single
     :func:`rollspring.simulate` run instead of the batch's linear interpolation between steps.
     ``progress`` is called with a :class:`SweepProgress` after each chunk.
@@ -144,6 +147,9 @@ def sweep(
     if not isinstance(system, System):
         raise SweepError(f"system: must be a rollspring System, got {type(system).__name__}")
     _check_arguments(duration, rtol, on_slip, chunk, step)
+    if integrator not in ("auto", "verlet", "yoshida4", "yoshida6"):
+        raise SweepError(f"--integrator: unknown integrator {integrator!r} (auto, verlet, "
+                         "yoshida4, yoshida6)")
     if any(s.damping > 0 for s in system.springs) and on_slip == "stop":
         raise SweepError("system: a damped spring needs --on-slip continue (single runs); the "
                          "batch integrators are symplectic")
@@ -153,12 +159,12 @@ def sweep(
     grid = Grid(paths, values, chunk_shape(tuple(len(v) for v in values),
                                            chunk or DEFAULT_CHUNK))
     toml = system_to_toml(system)
-    extra = {"refine_slip": bool(refine_slip),
+    extra = {"refine_slip": bool(refine_slip), "integrator": integrator,
              "step": None if step is None else float(step).hex()}
     print_ = fingerprint(toml, grid, duration, rtol, on_slip, chosen, extra)
     plan = SweepPlan(system=system_to_json(system), grid=grid, duration=float(duration),
                      rtol=float(rtol), on_slip=on_slip, metrics=chosen,
-                     refine_slip=bool(refine_slip))
+                     refine_slip=bool(refine_slip), integrator=integrator)
 
     path = None if out is None else Path(out)
     done: set[int] = set()
@@ -338,27 +344,26 @@ def _results(plan: SweepPlan, todo: list[int], client: Any
     workers = max(1, len(client.scheduler_info().get("workers", {})))
     window = 2 * workers + 2
     pending = iter(todo)
-    futures = {}
+    futures: dict[str, int] = {}
 
-    def submit() -> bool:
+    def submit() -> Any:
         index = next(pending, None)
         if index is None:
-            return False
+            return None
         future = client.submit(compute_chunk, shared, index, pure=False,
                                key=f"rollspring-sweep-{time.time_ns()}-{index}")
         futures[future.key] = index
-        queue.add(future)
-        return True
+        return future
 
-    queue = as_completed()
-    for _ in range(window):
-        if not submit():
-            break
+    first = [f for f in (submit() for _ in range(window)) if f is not None]
+    queue = as_completed(first, loop=client.loop)
     for future in queue:
         arrays = future.result()
         index = futures.pop(future.key)
         future.release()
-        submit()
+        following = submit()
+        if following is not None:
+            queue.add(following)
         yield index, arrays
 
 

@@ -1,0 +1,326 @@
+"""rollspring sweep in this process: the store, resuming, refusals, bad arguments, and the
+physics read back from the store (paper eq. QQQ1, the measured period, the first-slip map)."""
+
+from __future__ import annotations
+
+import importlib
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+import rollspring
+from rollspring.model import system_from_dict, system_to_json
+from rollspring.service.sweeps import StoreMismatchError, SweepError, parse_vary_spec, sweep
+
+SYSTEM = "hoop-cylinder"
+
+
+def cli_app():
+    """The rollspring app with the sweep command (registered here until cli/app.py lists it)."""
+    module = importlib.import_module("rollspring.cli.app")
+    if not any(c.name == "sweep" for c in module.app.registered_commands):
+        importlib.import_module("rollspring.cli.sweep").register(module.app)
+    return module.app
+
+
+def same(a: xr.Dataset, b: xr.Dataset) -> None:
+    """Bit for bit: every variable, NaN where NaN."""
+    assert sorted(a.data_vars) == sorted(b.data_vars)
+    for name in a.data_vars:
+        x, y = np.asarray(a[name].values), np.asarray(b[name].values)
+        assert x.dtype == y.dtype and x.shape == y.shape, name
+        assert np.array_equal(x, y, equal_nan=x.dtype.kind == "f"), name
+
+
+@pytest.fixture(scope="module")
+def system():
+    return rollspring.load_system(SYSTEM)
+
+
+# ---------------------------------------------------------------------------------------------
+# the store
+
+
+def test_store_layout_and_chunking_independence(system, tmp_path):
+    vary = {"bodies.hoop.mass": [0.5, 1.0, 2.0], "springs.0.stiffness": [50.0, 100.0, 150.0, 200.0],
+            "bodies.cylinder.mu_static": [0.01, 1.0]}
+    one = sweep(system, vary, 3.0, chunk=5, out=tmp_path / "a.zarr")
+    other = sweep(system, vary, 3.0, chunk=1000)  # in memory, one chunk
+    same(one.load(), other)
+    ds = xr.open_zarr(tmp_path / "a.zarr")
+    assert list(ds["omega"].dims) == [*vary, "mode"]
+    assert list(ds["max_friction_ratio"].dims) == [*vary, "body"]
+    assert list(ds["body"].values) == ["hoop", "cylinder"]
+    assert ds["bodies.hoop.mass"].attrs["units"] == "kg"
+    assert ds["springs.0.stiffness"].attrs["units"] == "N/m"
+    assert ds["bodies.cylinder.mu_static"].attrs["units"] == "1"
+    for name in ds.data_vars:
+        assert ds[name].attrs["units"] and ds[name].attrs["long_name"], name
+    assert ds["status"].attrs["flag_meanings"].split()[:4] == ["finished", "nonfinite", "slip",
+                                                               "liftoff"]
+    attrs = ds.attrs
+    assert rollspring.model.system_from_text(attrs["system"]) == system
+    assert len(attrs["grid_fingerprint"]) == 64
+    assert attrs["chunk"] == 4 and attrs["chunk_shape"] == [1, 2, 2] and attrs["n_chunks"] == 6
+    assert attrs["step"] > 0 and attrs["integrator"] in ("verlet", "yoshida4", "yoshida6")
+    # the low friction coefficient makes the cylinder slip at once (released compressed)
+    slip = ds["status"].sel({"bodies.cylinder.mu_static": 0.01}).values
+    assert np.all(slip == 2)
+    assert np.all(ds["first_slip_body"].sel({"bodies.cylinder.mu_static": 0.01}).values == 1)
+    assert np.all(ds["status"].sel({"bodies.cylinder.mu_static": 1.0}).values == 0)
+    markers = sorted((tmp_path / "a.zarr" / ".rollspring-done").iterdir())
+    assert [p.name for p in markers] == [str(i) for i in range(6)]
+
+
+def test_resume_runs_only_unfinished_chunks(system, tmp_path):
+    vary = {"springs.0.stiffness": np.linspace(50, 200, 6), "bodies.hoop.mass": [0.5, 1.0]}
+    out = tmp_path / "r.zarr"
+    first = sweep(system, vary, 2.0, chunk=2, out=out).load()
+    for index in (1, 4):
+        (out / ".rollspring-done" / str(index)).unlink()
+    seen = []
+    again = sweep(system, vary, 2.0, chunk=2, out=out, progress=seen.append).load()
+    assert seen[0].chunks_skipped == 4 and seen[0].chunks_to_run == 2
+    assert seen[-1].chunks_run == 2 and seen[-1].done_runs == 12
+    same(first, again)
+
+
+def test_fingerprint_mismatch_is_refused(system, tmp_path):
+    out = tmp_path / "f.zarr"
+    sweep(system, {"springs.0.stiffness": [50.0, 100.0]}, 1.0, out=out)
+    with pytest.raises(StoreMismatchError, match="holds another sweep"):
+        sweep(system, {"springs.0.stiffness": [50.0, 101.0]}, 1.0, out=out)
+    with pytest.raises(StoreMismatchError):
+        sweep(system, {"springs.0.stiffness": [50.0, 100.0]}, 1.5, out=out)
+    replaced = sweep(system, {"springs.0.stiffness": [50.0, 101.0]}, 1.0, out=out,
+                     overwrite=True)
+    assert list(replaced["springs.0.stiffness"].values) == [50.0, 101.0]
+    result = CliRunner().invoke(cli_app(), ["sweep", SYSTEM, "--vary",
+                                            "springs.0.stiffness=1,2", "-T", "1", "--out",
+                                            str(out)])
+    assert result.exit_code == 2
+    assert result.output.count("\n") == 1 and "holds another sweep" in result.output
+
+
+def test_not_a_store_is_refused(system, tmp_path):
+    (tmp_path / "x.zarr").write_text("hello")
+    with pytest.raises(StoreMismatchError, match="not a rollspring sweep store"):
+        sweep(system, {"springs.0.stiffness": [50.0]}, 1.0, out=tmp_path / "x.zarr")
+
+
+def test_metric_selection_keeps_status(system):
+    ds = sweep(system, {"springs.0.stiffness": [50.0, 100.0]}, 1.0,
+               metrics=["period_measured"])
+    assert sorted(ds.data_vars) == ["period_measured", "status"]
+    assert ds.attrs["metrics"] == ["period_measured", "status"]
+
+
+def test_on_slip_continue_equals_single_runs(system):
+    vary = {"bodies.cylinder.mu_static": [0.01, 0.02], "bodies.cylinder.v": [0.0, 0.3]}
+    ds = sweep(system, vary, 1.0, on_slip="continue", rtol=1e-8)
+    assert "energy_dissipated" in ds and "time_slipping" in ds
+    base = system_to_json(system)
+    for mu in vary["bodies.cylinder.mu_static"]:
+        for v in vary["bodies.cylinder.v"]:
+            data = system_to_json(system)
+            data["bodies"][1].update(mu_static=mu, v=v)
+            run = rollspring.simulate(system_from_dict(data), 1.0, rtol=1e-8,
+                                      on_slip="continue")
+            point = ds.sel({"bodies.cylinder.mu_static": mu, "bodies.cylinder.v": v})
+            assert float(point["energy_dissipated"]) == pytest.approx(
+                run.energy[0] - run.energy[-1], rel=0, abs=0)
+            assert float(point["first_slip_time"]) == run.summary["first_slip"]["time"]
+            slipping = [(e["kind"], e["time"]) for e in run.events]
+            assert slipping[0][0] == "slip"
+            assert 0 < float(point["time_slipping"]) <= 1.0
+            assert float(point["energy_dissipated"]) > 0
+            assert int(point["status"]) == 0
+    assert base == system_to_json(system)
+
+
+def test_continue_only_metrics_need_continue(system):
+    with pytest.raises(SweepError, match="only with --on-slip continue"):
+        sweep(system, {"springs.0.stiffness": [50.0]}, 1.0, metrics=["energy_dissipated"])
+
+
+def test_mode_amplitude_and_attachment_paths(system):
+    ds = sweep(system, {"modes.1.amplitude": [0.0, 0.002, 0.004]}, 2.0)
+    # released at rest along the mode about the equilibrium: X-hat stays put, the measured
+    # period is the linear one, and the friction needed grows with the amplitude
+    assert np.all(ds["status"].values == 0)
+    omega = ds["omega"].sel(mode=1).values
+    assert np.allclose(omega, 10.801234497346432, rtol=1e-12)
+    period = ds["period_measured"].values[1:]
+    assert np.allclose(period, 2 * np.pi / omega[1:], rtol=1e-6)
+    need = ds["required_mu_linear"].sel(body="hoop").values
+    assert need[0] == pytest.approx(0.0, abs=1e-15)
+    assert need[2] == pytest.approx(2 * need[1], rel=1e-9)
+    raised = sweep(system, {"springs.0.at.1.height": [0.1, 0.15]}, 1.0)
+    assert np.all(raised["status"].values == 0)
+    # the centre attachment (0.1 m = the radius) is the preset itself
+    assert float(raised["omega"].sel(mode=1).values[0]) == pytest.approx(10.801234497346432,
+                                                                          rel=1e-12)
+    assert float(raised["omega"].sel(mode=1).values[1]) != pytest.approx(10.801234497346432,
+                                                                          rel=1e-6)
+
+
+# ---------------------------------------------------------------------------------------------
+# bad arguments: one line, exit 2
+
+
+BAD = [
+    (["--vary", "springs.0.stiffness"], "expected PATH="),
+    (["--vary", "=1,2"], "PATH before '=' is empty"),
+    (["--vary", "springs.0.stiffness="], "no values"),
+    (["--vary", "springs.0.stiffness=1:2"], "START:STOP:NUM"),
+    (["--vary", "springs.0.stiffness=1:2:3:lin"], "can only be 'log'"),
+    (["--vary", "springs.0.stiffness=1:2:0"], "NUM must be a whole number"),
+    (["--vary", "springs.0.stiffness=1:2:x"], "NUM must be a whole number"),
+    (["--vary", "springs.0.stiffness=a,b"], "is not a number"),
+    (["--vary", "springs.0.stiffness=0:2:3:log"], "log range needs"),
+    (["--vary", "springs.0.stiffness=1,1"], "given twice"),
+    (["--vary", "springs.0.stiffness=-5,5"], "stiffness"),
+    (["--vary", "bodies.hoop.mass=0,1"], "mass"),
+    (["--vary", "bodies.wheel.mass=1,2"], "no body 'wheel'"),
+    (["--vary", "bodies.hoop.colour=1,2"], "unknown body quantity"),
+    (["--vary", "springs.3.stiffness=1,2"], "no spring '3'"),
+    (["--vary", "springs.0.length=1,2"], "unknown spring quantity"),
+    (["--vary", "springs.0.at.2.height=1,2"], "no end '2'"),
+    (["--vary", "springs.0.at.0.angle=10,20"], "needs a radius attachment"),
+    (["--vary", "modes.0.amplitude=0.001,0.002"], "zero mode"),
+    (["--vary", "modes.7.amplitude=0.001"], "no mode '7'"),
+    (["--vary", "gravity.x=1"], "unknown PATH"),
+    (["--vary", "foo=1"], "unknown PATH"),
+    (["--vary", "springs.0.stiffness=1,2", "--vary", "springs.0.stiffness=3"],
+     "already varied"),
+    (["--vary", "springs.0.stiffness=inf"], "finite"),
+    (["--vary", "springs.0.stiffness=1,2", "--metric", "colour"], "unknown metric"),
+    (["--vary", "springs.0.stiffness=1,2", "--metric", "time_slipping"], "only with"),
+    (["--vary", "springs.0.stiffness=1,2", "--on-slip", "sometimes"], "--on-slip"),
+    (["--vary", "springs.0.stiffness=1,2", "--chunk", "0"], "--chunk"),
+    (["--vary", "springs.0.stiffness=1,2", "--scheduler", "nowhere"], "--scheduler"),
+    (["--vary", "springs.0.stiffness=1,2", "--integrator", "euler"], "--integrator"),
+]
+
+
+@pytest.mark.parametrize(("args", "words"), BAD, ids=[" ".join(a) for a, _ in BAD])
+def test_bad_arguments_are_one_line_errors(args, words, tmp_path):
+    result = CliRunner().invoke(cli_app(), ["sweep", SYSTEM, *args, "-T", "1", "--out",
+                                            str(tmp_path / "s.zarr")])
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith("error: ") and result.output.count("\n") == 1, result.output
+    assert words in result.output
+    assert not (tmp_path / "s.zarr").exists()
+
+
+@pytest.mark.parametrize(("args", "words"), [
+    ([], "--vary"), (["--vary", "springs.0.stiffness=1"], "--duration"),
+])
+def test_missing_options(args, words, tmp_path):
+    extra = [] if words == "--duration" else ["-T", "1"]
+    result = CliRunner().invoke(cli_app(), ["sweep", SYSTEM, *args, *extra, "--out",
+                                            str(tmp_path / "s.zarr")])
+    assert result.exit_code == 2 and words in result.output
+
+
+def test_parse_vary_spec():
+    assert parse_vary_spec("springs.0.stiffness=1:3:3") == ("springs.0.stiffness",
+                                                            [1.0, 2.0, 3.0])
+    path, values = parse_vary_spec("gravity=1:100:3:log")
+    assert path == "gravity" and values == pytest.approx([1.0, 10.0, 100.0], rel=1e-15)
+    assert parse_vary_spec("bodies.hoop.mu_static=0.1,inf")[1] == [0.1, math.inf]
+
+
+# ---------------------------------------------------------------------------------------------
+# physics on the store
+
+
+M1 = [0.5, 0.8, 1.3, 2.0]
+M2 = [0.4, 1.0, 1.7]
+K = [30.0, 100.0, 250.0]
+
+
+def qqq1(m1, m2, k):
+    """Paper eq. (QQQ1): Omega^2 = k/(2 m1) + 2k/(3 m2)."""
+    return np.sqrt(k / (2 * m1) + 2 * k / (3 * m2))
+
+
+@pytest.fixture(scope="module")
+def mass_grid(system, tmp_path_factory):
+    vary = {"bodies.hoop.mass": M1, "bodies.cylinder.mass": M2, "springs.0.stiffness": K}
+    omega_max = float(qqq1(np.array(M1)[:, None, None], np.array(M2)[None, :, None],
+                           np.array(K)[None, None, :]).max())
+    # one step for the grid with the fastest mode turning 0.016 rad a step: the batch then
+    # samples its metrics every step (it samples every max(1, int(0.03 / (omega h))) steps),
+    # so the period's crossings are interpolated over 0.016 rad at most (see test below)
+    out = tmp_path_factory.mktemp("sweep") / "masses.zarr"
+    sweep(system, vary, 10.0, out=out, integrator="yoshida6", step=0.016 / omega_max, chunk=7)
+    return xr.open_zarr(out)
+
+
+def test_omega_is_paper_qqq1(mass_grid):
+    m1 = mass_grid["bodies.hoop.mass"]
+    m2 = mass_grid["bodies.cylinder.mass"]
+    k = mass_grid["springs.0.stiffness"]
+    expected = np.sqrt(k / (2 * m1) + 2 * k / (3 * m2)).transpose(*mass_grid["status"].dims)
+    stored = mass_grid["omega"].sel(mode=1)
+    assert np.max(np.abs(stored.values / expected.values - 1)) < 1e-12
+    assert np.all(mass_grid["omega"].sel(mode=0).values == 0.0)
+    # X-hat's weights (2 m1, 1.5 m2) normalised (paper eq. (c))
+    w = mass_grid["stationary_weight"].sel(body="hoop")
+    expected_w = (2 * m1 / (2 * m1 + 1.5 * m2)).broadcast_like(w).transpose(*w.dims)
+    assert np.allclose(w.values, expected_w.values, rtol=1e-12)
+
+
+def test_measured_period_is_the_linear_one(mass_grid):
+    """The hoop-cylinder pair joined at the centres is exactly linear while it rolls, so the
+    measured period is 2 pi / omega up to the integration (Yoshida-6 at omega h = 0.016: a
+    frequency error of 6e-14) and the batch's period estimate: the mean spacing of upward
+    zero crossings of the spring's length rate, each linearly interpolated between metric
+    samples (an error growing as the cube of the phase between samples: 3e-9 at the default
+    0.03 rad, 4e-10 at 0.016)."""
+    assert mass_grid.attrs["metric_every"] == 1
+    assert np.all(mass_grid["status"].values == 0)
+    period = mass_grid["period_measured"].values
+    linear = 2 * np.pi / mass_grid["omega"].sel(mode=1).values
+    assert np.max(np.abs(period / linear - 1)) < 1e-9
+
+
+def test_first_slip_map_agrees_with_single_runs(system, tmp_path):
+    """First slip over (mu_s of the cylinder, its initial velocity): released from rest the
+    pair needs the most friction at t = 0 (slip at once or never), so the amplitude varied is
+    the initial velocity, which makes slips happen during the motion."""
+    mu = np.linspace(0.04, 0.13, 12)
+    v = np.linspace(0.05, 0.5, 10)
+    ds = sweep(system, {"bodies.cylinder.mu_static": mu, "bodies.cylinder.v": v}, 2.0,
+               rtol=1e-10, out=tmp_path / "slip.zarr", chunk=16)
+    t_slip = ds["first_slip_time"].values
+    assert (t_slip > 0).sum() > 40 and np.isnan(t_slip).sum() > 5
+    assert np.all((t_slip > 0) | np.isnan(t_slip))
+    rng = np.random.default_rng(2026)
+    points = [(int(i), int(j)) for i, j in zip(rng.integers(0, len(mu), 20),
+                                              rng.integers(0, len(v), 20), strict=True)]
+    for i, j in points:
+        data = system_to_json(system)
+        data["bodies"][1].update(mu_static=float(mu[i]), v=float(v[j]))
+        run = rollspring.simulate(system_from_dict(data), 2.0, rtol=1e-10)
+        first = run.summary["first_slip"]
+        if first is None:
+            assert np.isnan(t_slip[i, j]) and ds["first_slip_body"].values[i, j] == -1
+        else:
+            assert abs(t_slip[i, j] - first["time"]) <= 1e-9
+            assert ds["body"].values[ds["first_slip_body"].values[i, j]] == first["body"]
+
+
+def test_unrefined_slip_instant_is_interpolated_between_steps(system):
+    """Without refinement the batch's instant comes from the contact margin interpolated
+    linearly between steps: an error of order h^2 (5e-6 s at h = 1 ms for this system), far
+    from 1e-9 s — which is why the sweep refines it by default."""
+    vary = {"bodies.cylinder.mu_static": [0.05], "bodies.cylinder.v": [0.3]}
+    raw = sweep(system, vary, 1.0, step=1e-3, integrator="yoshida6", refine_slip=False)
+    fine = sweep(system, vary, 1.0, step=1e-3, integrator="yoshida6")
+    gap = abs(float(raw["first_slip_time"][0, 0]) - float(fine["first_slip_time"][0, 0]))
+    assert 1e-9 < gap < 1e-4

@@ -485,7 +485,7 @@ def _time_slipping(events: list[Mapping[str, Any]], ids: list[str], end: float) 
 _PREPARED: dict[str, Any] = {}
 
 
-def prepare_worker(numba_threads: int = 0) -> None:
+def prepare_worker(numba_threads: int = 0, *, on_worker: bool | None = None) -> None:
     """On a Dask worker: give this process its own Numba cache directory (processes sharing
     one have crashed, numba/numba#4807) — one of a pool of slots, each held by a lock for the
     process' life, so a restarted worker reuses a compiled slot — and cap Numba's threads
@@ -497,12 +497,14 @@ def prepare_worker(numba_threads: int = 0) -> None:
         numba.set_num_threads(min(numba_threads, numba.config.NUMBA_NUM_THREADS))
     if "cache" in _PREPARED:
         return
-    try:
-        from distributed import get_worker
+    if on_worker is None:
+        try:
+            from distributed import get_worker
 
-        get_worker()
-    except (ImportError, ValueError):
-        _PREPARED["cache"] = None
+            get_worker()
+        except (ImportError, ValueError):
+            return
+    elif not on_worker:
         return
     import fcntl
     import tempfile
@@ -528,10 +530,10 @@ def prepare_worker(numba_threads: int = 0) -> None:
     _PREPARED["cache"] = None
 
 
-def warm_up(plan: SweepPlan) -> str:
+def warm_up(plan: SweepPlan, dask_worker: Any = None) -> str:
     """Prepare this worker and compile (or load) the batch kernel of the sweep: run by
     ``client.run`` on every worker before the chunks."""
-    prepare_worker(plan.numba_threads)
+    prepare_worker(plan.numba_threads, on_worker=dask_worker is not None)
     if plan.on_slip != "continue":
         runs = _Runs(plan, 0)
         alive = np.zeros(runs.n, dtype=bool)

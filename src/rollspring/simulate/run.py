@@ -641,11 +641,12 @@ class _Run:
                 break
             q, v, t_before = q1, v1, t_before + h
         mu = self.arrays.mu_static
+        checked = self.rolls & np.isfinite(mu)  # mu_s = inf: never slips (no inf * N)
+        mu_finite = np.where(checked, mu, 0.0)
 
         def margins(tau: float) -> FloatArray:
             _, _, f, nn = kernels.advance(model, self.coeffs, q, v, tau, 1 if tau > 0 else 0)
-            slip = np.where(self.rolls, mu * nn - np.abs(f), np.inf)
-            slip = np.where(np.isinf(mu), np.inf, slip)
+            slip = np.where(checked, mu_finite * nn - np.abs(f), np.inf)
             return np.concatenate([slip, nn])
 
         end = margins(h)

@@ -427,3 +427,27 @@ def test_an_infinite_mu_static_can_be_selected_not_mapped(sweep) -> None:
         prepare_map(infinite, V, MU, "status", sel={KS: 100})
     with pytest.raises(MapError, match="not on the grid"):
         prepare_map(sweep, V, KS, "status", sel={MU: "inf"})
+
+
+def test_a_map_of_a_real_sweep(tmp_path) -> None:
+    """A store written by ``rollspring.sweep``: the map draws, and the simulated slip region
+    lies where the linear theory puts it (this system's motion is linear while it rolls): runs
+    needing under 0.9 μs roll to the end, runs needing over 1.1 μs slip."""
+    from rollspring.service.sweeps import sweep
+
+    store = tmp_path / "real.zarr"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep("hoop-cylinder", {V: np.linspace(0.02, 0.3, 8), MU: np.geomspace(0.01, 0.5, 7)},
+              1.0, out=store, refine_slip=False)
+    dataset = open_sweep(store)
+    ax = sweep_map(dataset, V, MU, "status")
+    assert len(contour_sets(ax)) == 1
+    assert "linear theory: μ needed = μs" in legend_texts(ax)
+    data = prepare_map(dataset, V, MU, "status")
+    status = dataset["status"].attrs
+    names = dict(zip(status["flag_values"], status["flag_meanings"].split(), strict=True))
+    shown = np.vectorize(names.get)(data.values)
+    assert set(shown[data.linear < 0.9]) == {"finished"}
+    assert set(shown[data.linear > 1.1]) == {"slip"}
+    assert (data.linear < 0.9).any() and (data.linear > 1.1).any()

@@ -89,7 +89,7 @@ _LINEAR_STYLE = {"colors": "black", "linestyles": "dashed", "linewidths": 1.6}
 _MAX_LISTED = 12
 #: A white halo under the contour lines of the linear period and their labels (seen on dark
 #: cells too).
-_HALO = [patheffects.Stroke(linewidth=2.8, foreground="white"), patheffects.Normal()]
+_HALO = [patheffects.Stroke(linewidth=2.4, foreground="white"), patheffects.Normal()]
 
 
 class MapError(RollspringError, ValueError):
@@ -168,8 +168,10 @@ def check_sweep(dataset: xr.Dataset, name: str = "dataset") -> None:
 
 
 def grid_dims(dataset: xr.Dataset) -> list[str]:
-    """The varied PATHs (every dimension but ``body`` and ``mode``), in the store's order."""
-    return [str(d) for d in dataset.dims if d not in _EXTRA_DIMS]
+    """The varied PATHs (every dimension but ``body`` and ``mode``), in the grid's order (that of
+    ``status``'s dimensions)."""
+    order = [*dataset["status"].dims, *dataset.dims] if "status" in dataset else [*dataset.dims]
+    return list(dict.fromkeys(str(d) for d in order if d not in _EXTRA_DIMS))
 
 
 def _listing(values: Sequence[Any]) -> str:
@@ -474,6 +476,10 @@ def plot_map(data: MapData, ax: Axes | None = None) -> Axes:
             mesh = _draw_values(ax, data, xe, ye, handles)
             bar = fig.colorbar(mesh, ax=ax, fraction=0.05, pad=0.02)
             bar.set_label(_with_units(data.metric_label, data.units))
+            shown = np.asarray(data.values, float)
+            shown = shown[np.isfinite(shown)]
+            if shown.size and shown.min() == shown.max():  # one value: one tick, no range
+                bar.set_ticks([float(shown[0])])
         if data.x_log:
             ax.set_xscale("log")
         if data.y_log:

@@ -41,6 +41,7 @@ from rollspring.errors import RollspringError
 from rollspring.model import System, rolled, system_from_dict
 from rollspring.service.sweeps.grid import Grid, apply_values, path_kind
 from rollspring.simulate import simulate, simulate_batch
+from rollspring.simulate.status import Status
 
 __all__ = [
     "STATUS_CODES",
@@ -50,9 +51,9 @@ __all__ = [
     "prepare_worker",
 ]
 
-#: Status code of a run -> its name (the store's ``flag_values`` / ``flag_meanings``).
-STATUS_CODES = {"finished": 0, "nonfinite": 1, "slip": 2, "liftoff": 3, "energy_error": 4,
-                "invalid": 5}
+#: Status name -> code (:class:`rollspring.simulate.status.Status`; the store's
+#: ``flag_values`` / ``flag_meanings``).
+STATUS_CODES = {status.label: int(status) for status in Status}
 
 #: Duration and step of the one-step calls that only read the batch's highest frequency.
 _TINY = 1e-9

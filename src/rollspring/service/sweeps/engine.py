@@ -24,6 +24,7 @@ import numpy as np
 
 from rollspring.errors import RollspringError
 from rollspring.model import System, load_system, system_to_json, system_to_toml
+from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 from rollspring.service.sweeps.compute import (
     STATUS_CODES,
     SweepPlan,
@@ -398,7 +399,7 @@ def _dataset(grid: Grid, metrics: tuple[str, ...], ids: list[str],
         extra, units, long_name = VARIABLES[name]
         var_attrs = {"units": units, "long_name": long_name}
         if name == "status":
-            var_attrs["flag_values"] = list(STATUS_CODES.values())
-            var_attrs["flag_meanings"] = " ".join(STATUS_CODES)
+            var_attrs["flag_values"] = list(FLAG_VALUES)
+            var_attrs["flag_meanings"] = FLAG_MEANINGS
         data[name] = ((*grid.paths, *([extra] if extra else [])), memory[name], var_attrs)
     return xr.Dataset(data, coords=coords, attrs=attrs)

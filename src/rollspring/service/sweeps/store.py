@@ -125,10 +125,10 @@ def write_template(path: Path, grid: Grid, ids: list[str], n_modes: int,
         fill = -1 if name == "first_slip_body" else (5 if name == "status" else np.nan)
         var_attrs = {"units": units, "long_name": long_name}
         if name == "status":
-            from rollspring.service.sweeps.compute import STATUS_CODES
+            from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 
-            var_attrs["flag_values"] = list(STATUS_CODES.values())
-            var_attrs["flag_meanings"] = " ".join(STATUS_CODES)
+            var_attrs["flag_values"] = list(FLAG_VALUES)
+            var_attrs["flag_meanings"] = FLAG_MEANINGS
         data[name] = (dims, da.full(shape, fill, dtype=dtype, chunks=chunks), var_attrs)
         encoding[name] = {"chunks": chunks}
         if dtype != "float64":

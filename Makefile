@@ -8,7 +8,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: demo test bench clean system-packages
+.PHONY: demo test bench clean system-packages bench-packages
 
 # Debian packages the tests drive: Chromium (report/browser tests, PDF) and a LaTeX engine
 # (the derivations' LaTeX documents are compiled). Installed only when missing.
@@ -41,8 +41,16 @@ demo: $(STAMP) $(WEB_STAMP)
 test: $(STAMP) $(WEB_STAMP) system-packages
 	$(BIN)/python -m pytest
 
+# the web benchmark's load generator (Debian's wrk), installed only when missing
+bench-packages:
+	@if command -v wrk >/dev/null; then :; \
+	elif command -v apt-get >/dev/null && [ "$$(id -u)" = 0 ]; then \
+		echo "installing Debian packages: wrk"; \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends wrk >/dev/null; \
+	else echo "missing: wrk (install it with your package manager)" >&2; exit 1; fi
+
 # benchmarks (bench/README.md): installs the bench extra (MuJoCo, pymunk), runs every bench/bench_*.py
-bench: $(STAMP) $(WEB_STAMP)
+bench: $(STAMP) $(WEB_STAMP) system-packages bench-packages
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt -e ".[test,bench]"
 	@for script in bench/bench_*.py; do echo "== $$script"; $(BIN)/python $$script || exit 1; done
 

@@ -42,3 +42,12 @@ def make_system(bodies: list[dict[str, Any]], springs: list[dict[str, Any]] | No
                 **extra: Any) -> System:
     """Validate a system from entries."""
     return system_from_dict({"bodies": bodies, "springs": springs or [], **extra})
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Any]:
+    """Debian's Chromium, headless, driven by Playwright (one per test module)."""
+    from tests.serving import launch_chromium
+
+    with launch_chromium() as launched:
+        yield launched

@@ -1,17 +1,42 @@
-"""The real server for tests: ``rollspring serve`` started from its command line."""
+"""Real parts for tests: ``rollspring serve`` started from its command line, and Debian's
+Chromium driven by Playwright (the ``browser`` fixture, shared through conftest.py)."""
 
 from __future__ import annotations
 
+import contextlib
 import re
 import signal
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import requests
 
-__all__ = ["Server"]
+__all__ = ["CHROMIUM_ARGS", "Server", "launch_chromium"]
+
+#: Headless Chromium as root, with nothing that reaches out of this machine.
+CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update",
+                 "--disable-sync"]
+
+
+@contextlib.contextmanager
+def launch_chromium() -> Iterator[Any]:
+    """Debian's Chromium (``rollspring.outputs.report.find_chromium``) under Playwright."""
+    from playwright.sync_api import sync_playwright
+
+    from rollspring.outputs.report import find_chromium
+
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=find_chromium(),
+                                             args=CHROMIUM_ARGS)
+        try:
+            yield browser
+        finally:
+            browser.close()
 
 SERVE = str(Path(sys.executable).with_name("rollspring"))
 

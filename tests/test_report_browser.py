@@ -12,17 +12,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
-from playwright.sync_api import Browser, Page, sync_playwright
+from playwright.sync_api import Browser, Page
 from typer.testing import CliRunner
 
 from rollspring.cli import app
 from rollspring.model import load_system
-from rollspring.outputs.report import find_chromium, write_report
+from rollspring.outputs.report import write_report
 from rollspring.service.documents import build_report
 
 MATHML = "http://www.w3.org/1998/Math/MathML"
-ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 
 
 @pytest.fixture(scope="module")
@@ -30,14 +28,6 @@ def report_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
     path = tmp_path_factory.mktemp("report") / "hoop-cylinder.html"
     write_report(build_report(load_system("hoop-cylinder")), path)
     return path
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Browser]:
-    with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=find_chromium(), args=ARGS)
-        yield launched
-        launched.close()
 
 
 @dataclass

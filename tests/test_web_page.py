@@ -13,75 +13,30 @@ from __future__ import annotations
 import hashlib
 import re
 import shutil
-import socket
-import subprocess
-import sys
-import urllib.request
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
-from playwright.sync_api import Browser, Page, expect, sync_playwright
+from playwright.sync_api import Browser, Page, expect
 
 import rollspring
 from rollspring.model import system_from_dict
-from rollspring.outputs.report import find_chromium
+from tests.serving import Server
 
-ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 REPO = Path(__file__).resolve().parents[1]
 LAPTOP = {"width": 1280, "height": 800}
 PHONE = {"width": 390, "height": 844}
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
 @pytest.fixture(scope="module")
-def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
-    """``rollspring serve`` on a free port of 127.0.0.1; its base URL."""
-    port = free_port()
-    command = [str(Path(sys.executable).with_name("rollspring")), "serve", "--port", str(port)]
-    log_path = tmp_path_factory.mktemp("serve") / "serve.log"
-    log = log_path.open("wb")
-    process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT)
-    base = f"http://127.0.0.1:{port}"
+def server() -> Iterator[str]:
+    """``rollspring serve`` on a free port of 127.0.0.1; its base URL (no trailing slash)."""
+    running = Server()
     try:
-        for _ in range(600):  # up to 60 s for the server (and its workers) to start
-            if process.poll() is not None:
-                pytest.fail(f"rollspring serve exited with {process.returncode}:\n"
-                            f"{log_path.read_text()}")
-            try:
-                with urllib.request.urlopen(f"{base}/api/presets", timeout=1):
-                    break
-            except OSError:
-                try:
-                    process.wait(timeout=0.1)
-                except subprocess.TimeoutExpired:
-                    pass
-        else:
-            pytest.fail("rollspring serve did not answer within 60 s")
-        yield base
+        yield running.url.rstrip("/")
     finally:
-        process.terminate()
-        try:
-            process.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
-        log.close()
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Browser]:
-    with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=find_chromium(), args=ARGS)
-        yield launched
-        launched.close()
+        running.stop()
 
 
 @dataclass

@@ -8,8 +8,9 @@ refused the same way instead of waiting in an unbounded queue (uvicorn's concurr
 refuses the excess at once before that).
 
 Workers are forked from a ``forkserver`` that has already imported the scientific stack and
-rollspring (``PRELOAD``), so a replacement starts in milliseconds; each warms the compiled
-kernels (from Numba's on-disk cache) before its first job.
+rollspring and compiled the kernels (``PRELOAD``), so a replacement starts warm in milliseconds;
+a worker takes jobs only once it has said it is ready, and the pool starts (the server answers)
+only once every first worker has.
 """
 
 from __future__ import annotations
@@ -25,8 +26,11 @@ from typing import Any
 
 __all__ = ["PRELOAD", "ComputePool", "JobFailed", "OverBudget", "Overloaded"]
 
-#: Modules the forkserver imports once, so that every worker starts with them loaded.
-PRELOAD = ["rollspring.web.jobs", "rollspring.service.documents"]
+#: Modules the forkserver imports once, so that every worker starts with them loaded and with
+#: the compiled kernels warm (:mod:`rollspring.web.warm`).
+PRELOAD = ["rollspring.web.warm"]
+#: How long a new worker may take to become ready (a cold Numba cache compiles the kernels).
+READY_TIMEOUT = 300.0
 
 
 class Overloaded(Exception):
@@ -58,6 +62,13 @@ class _Worker:
         self.process.start()
         child.close()
 
+    def wait_ready(self, timeout: float = READY_TIMEOUT) -> bool:
+        """Wait for the worker's "ready" (sent once it is warm); False if it never came."""
+        try:
+            return bool(self.connection.poll(timeout)) and self.connection.recv() == "ready"
+        except (OSError, EOFError):
+            return False
+
     def kill(self) -> None:
         with contextlib.suppress(Exception):
             self.process.kill()
@@ -82,8 +93,12 @@ class ComputePool:
         self._lock = threading.Lock()
         self._closed = False
         self.replaced = 0  # workers killed for running past the budget (or dying)
-        for _ in range(self.size):
-            self._idle.put(self._start())
+        starting = [self._start() for _ in range(self.size)]
+        for worker in starting:  # serve only once warm: no request pays for a compilation
+            if not worker.wait_ready():
+                self.close()
+                raise RuntimeError("a worker process did not start (see its error above)")
+            self._idle.put(worker)
 
     def _start(self) -> _Worker:
         worker = _Worker(self._context)
@@ -98,7 +113,15 @@ class ComputePool:
             self.replaced += 1
             closed = self._closed
         if not closed:
-            self._idle.put(self._start())
+            fresh = self._start()
+            # it joins the idle workers once warm, without holding up the request that failed
+            threading.Thread(target=self._join_when_ready, args=(fresh,), daemon=True).start()
+
+    def _join_when_ready(self, worker: _Worker) -> None:
+        if worker.wait_ready():
+            self._idle.put(worker)
+        else:
+            self._replace(worker)
 
     def run(self, job: str, payload: Any, *, budget: float | None = None) -> Any:
         """Run ``rollspring.web.jobs.<job>(payload)`` in a worker and return its result.
@@ -149,7 +172,8 @@ def _serve(connection: Connection) -> None:
     closes."""
     from rollspring.web import jobs
 
-    jobs.warm_up()
+    jobs.warm_up()  # already warm when forked from the forkserver (PRELOAD): then instant
+    connection.send("ready")
     while True:
         try:
             job, payload = connection.recv()

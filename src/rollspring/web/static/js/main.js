@@ -1,5 +1,6 @@
 // rollspring's interactive page: wires the editor, the canvas, the plots and the panels to the
-// API (docs/web-api.md). Every change sends one debounced POST /api/simulate (+ /api/analyze);
+// API (docs/web-api.md). Every committed change sends one POST /api/simulate (+ /api/analyze)
+// at once, and changes while dragging are debounced;
 // the whole trajectory comes back and is animated here with requestAnimationFrame.
 //
 // For benchmarks and tests the page exposes `window.rollspringPage`:
@@ -282,11 +283,17 @@ function moveDot(dot, q, phase) {
 
 // ---------------------------------------------------------------- edits
 
+// A committed change (a slider released, a field entered, a drag ended) is computed at once;
+// the stream of "input" events while a slider or a body is being dragged is debounced.
 function edited(kind) {
-  if (kind === "commit") pendingChange = performance.now();
   renderInitial();
   draw();
-  recompute();
+  if (kind === "commit") {
+    pendingChange = performance.now();
+    recomputeNow();
+  } else {
+    recompute();
+  }
 }
 
 function playMode(index) {

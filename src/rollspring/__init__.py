@@ -11,6 +11,7 @@ springs to each other and to walls. Quick start::
     rollspring.derive(system).to_markdown()               # five derivations, cross-checked
     rollspring.check_paper()                              # the paper's claims with verdicts
     rollspring.build_report(system)                       # the self-contained HTML report
+    rollspring.sweep(system, {"springs.0.stiffness": k}, 10.0)   # a grid of runs -> xarray
 
 The symbolic and picture parts (SymPy, Matplotlib) load on first use, so ``import rollspring``
 stays light.
@@ -78,6 +79,7 @@ _LAZY = {
     "build_report": "rollspring.service.documents",
     "write_report": "rollspring.outputs.report",
     "worksheet": "rollspring.service.documents",
+    "sweep": "rollspring.service.sweeps",
 }
 
 
@@ -136,6 +138,7 @@ __all__ = [
     "simulate",
     "simulate_batch",
     "spring_state",
+    "sweep",
     "stiffness_matrix",
     "system_arrays",
     "system_from_dict",

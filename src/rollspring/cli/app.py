@@ -228,7 +228,7 @@ def main(argv: list[str] | None = None) -> None:
 #: Modules of further commands; each has ``register(app)``. (Work in progress: a module that
 #: is not written yet is skipped; the list becomes plain imports once all exist.)
 _COMMAND_MODULES = ("export", "derive", "paper_check", "worksheet", "animate", "report",
-                    "serve")
+                    "serve", "sweep", "sweep_plot")
 
 
 def _register_subcommands() -> None:

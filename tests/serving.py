@@ -61,14 +61,17 @@ class Server:
         assert found, f"no URL in {line!r}"
         host = found.group(1)
         url = f"http://{'127.0.0.1' if host == '0.0.0.0' else host}:{found.group(2)}/"
-        deadline = time.monotonic() + 60
-        while True:  # it answers once its worker processes are started
+        # It answers once its worker processes are warm (the socket accepts connections before
+        # that: a request may wait for the warm-up, or time out and be sent again).
+        deadline = time.monotonic() + 180
+        while True:
+            assert self.process.poll() is None, f"rollspring serve exited: {self.stop()}"
             try:
-                if requests.get(url + "api/start", timeout=5).status_code == 200:
+                if requests.get(url + "api/start", timeout=30).status_code == 200:
                     return url
-            except requests.ConnectionError:
+            except requests.RequestException:
                 pass
-            assert time.monotonic() < deadline, "the server did not answer within 60 s"
+            assert time.monotonic() < deadline, "the server did not answer within 180 s"
             time.sleep(0.2)
 
     def stop(self) -> str:

@@ -113,12 +113,18 @@ async function recomputeNow() {
   setStatus("Computing…");
   inFlight += 1;
   try {
-    const [sim, lin] = await Promise.all([simulate(request), analyze({ system })]);
-    if (!sim || !lin) return; // superseded by a newer change
+    // both requests at once; the motion is drawn as soon as it is in, the modes when they are
+    const pending = analyze({ system });
+    pending.catch(() => {}); // its error, if any, is the simulation's too: shown once, below
+    const sim = await simulate(request);
+    if (!sim) return; // superseded by a newer change
     editor.clearErrors();
     $("#system-error").hidden = true;
     errorShown = false;
-    apply(sim, lin, system);
+    applyMotion(sim, system);
+    const lin = await pending;
+    if (!lin || run !== sim) return;
+    applyAnalysis(lin);
   } catch (error) {
     showError(error);
   } finally {
@@ -140,10 +146,10 @@ function showError(error) {
   }
 }
 
-function apply(sim, lin, system) {
+/** A new motion: the animation, the plots, the clock (the modes follow in applyAnalysis). */
+function applyMotion(sim, system) {
   run = sim;
   run.system = system;
-  analysis = lin;
   alerted = false;
   $("#alert").textContent = "";
   const end = run.t[run.t.length - 1];
@@ -160,8 +166,6 @@ function apply(sim, lin, system) {
   slider.step = String(outputInterval(run.t));
   $("#dt").textContent = `${sig(outputInterval(run.t), 4)} s`;
   plots.setRun(run, system);
-  renderModes($("#modes tbody"), analysis, playMode);
-  renderAnalysisNote();
   renderInitial();
   describeRun();
   if (state.start && !playing) play();
@@ -169,6 +173,14 @@ function apply(sim, lin, system) {
   saveUrl();
   if ($("#derivation").open) loadDerivation();
   if ($("#toml-panel").open && !tomlEdited) loadToml();
+}
+
+/** The linear analysis of the system now shown: the modal table, X̂, the displacements. */
+function applyAnalysis(lin) {
+  analysis = lin;
+  renderModes($("#modes tbody"), analysis, playMode);
+  renderAnalysisNote();
+  renderInitial();
 }
 
 function describeRun() {

@@ -1,0 +1,363 @@
+"""Sweeps (issue 11): in-process throughput against the bare batch kernel, scaling from one to
+two Dask workers, and the peak memory of the client and the workers for a sweep of 10^7 runs.
+
+Run: ``.venv/bin/python bench/bench_sweep.py [--runs 65536] [--duration 10] [--repeat 3]
+[--cluster-runs 65536] [--memory-runs 10000000] [--memory-duration 1]
+[--json build/bench/sweep.json] [--parts abc]``; ``--parts ab`` leaves (c) out.
+
+The system is the ``hoop-cylinder`` preset. Parts:
+
+(a) ``sweep(system, vary, duration)`` in-process (all cores, no store) over
+    ``springs.0.stiffness`` x ``bodies.hoop.mu_static`` (``--runs`` runs, about square), against
+    ``simulate_batch`` on exactly the same runs (the flattened grid) with the same integrator and
+    step (read from the store's ``integrator`` and ``step`` attributes). Both whole calls are
+    timed, best of ``--repeat`` after a warm-up (the kernel is compiled or loaded from the disk
+    cache then). Target: the sweep's runs/s >= 90 % of the batch's. The same sweep written to
+    a Zarr store is timed too (reported, no target).
+(b) A real loopback cluster started as a user starts one: ``dask scheduler --host 127.0.0.1``
+    and ``dask worker ADDRESS --nthreads 1 --no-nanny`` (``NUMBA_NUM_THREADS=1``: one core per
+    worker, the machine has two), the sweep given the scheduler's address. Runs/s with one
+    worker, then with a second one started; efficiency = rate(2) / (2 rate(1)), target >= 80 %
+    per worker. Client, scheduler and workers share the two cores, so this is the most this
+    machine can show.
+(c) On that two-worker cluster, a sweep of ``--memory-runs`` runs (default 10^7, a grid of
+    stiffness x mu_static x initial speed of the hoop, ``--memory-duration`` s each) written to
+    a store; the resident set size (psutil) of the client (this process) and of each worker is
+    sampled every 50 ms. Target: each peak < 1 GB. A smaller sweep (a tenth of the runs) is
+    measured the same way first, so that the table shows whether memory grows with the runs.
+
+Every figure is measured in this run; the table prints the targets with ✔/✘ and everything is
+also written as JSON (``--json``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import math
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import psutil
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import rollspring  # noqa: E402
+from common import machine_note, print_table  # noqa: E402
+from rollspring.service.sweeps import sweep  # noqa: E402
+from rollspring.simulate import simulate_batch  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+SYSTEM = "hoop-cylinder"
+GB = 1e9
+#: The metrics the batch kernel itself gives (no linear analysis per run).
+BATCH_METRICS = ["period_measured", "max_friction_ratio", "min_normal_force", "first_slip_time",
+                 "first_slip_body", "first_liftoff_time", "cm_amplitude",
+                 "stationary_amplitude", "energy_error"]
+
+
+def square_grid(runs: int) -> dict[str, np.ndarray]:
+    """Stiffness x hoop mu_static, about sqrt(runs) values each (exactly ``runs`` when it is
+    a product of the two)."""
+    n1 = max(1, int(math.sqrt(runs)))
+    n2 = max(1, runs // n1)
+    return {"springs.0.stiffness": np.linspace(50.0, 150.0, n1),
+            "bodies.hoop.mu_static": np.geomspace(0.1, 1.0, n2)}
+
+
+def cube_grid(runs: int) -> dict[str, np.ndarray]:
+    """Stiffness (100) x hoop mu_static (100) x hoop initial speed (runs / 10^4)."""
+    n3 = max(1, runs // 10_000)
+    return {"springs.0.stiffness": np.linspace(50.0, 150.0, 100),
+            "bodies.hoop.mu_static": np.geomspace(0.02, 1.0, 100),
+            "bodies.hoop.v": np.linspace(0.0, 0.3, n3)}
+
+
+def n_runs(vary: dict[str, np.ndarray]) -> int:
+    return math.prod(len(v) for v in vary.values())
+
+
+def flat(vary: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The grid's runs as flat arrays, C order (last PATH fastest), as the sweep orders them."""
+    grids = np.meshgrid(*vary.values(), indexing="ij")
+    return {path: g.ravel() for path, g in zip(vary, grids, strict=True)}
+
+
+def best(run, repeats: int) -> tuple[float, Any]:
+    """(best wall time, its result) of ``repeats`` calls after one untimed call."""
+    run()
+    timed = []
+    for _ in range(repeats):
+        began = time.perf_counter()
+        result = run()
+        timed.append((time.perf_counter() - began, result))
+    return min(timed, key=lambda pair: pair[0])
+
+
+# -- peak memory ------------------------------------------------------------------------------
+
+
+class PeakRSS:
+    """Sample the resident set size of some processes every ``every`` s in a thread; ``peak``
+    maps each label to its largest sample (bytes)."""
+
+    def __init__(self, processes: dict[str, int], every: float = 0.05) -> None:
+        self.processes = {label: psutil.Process(pid) for label, pid in processes.items()}
+        self.peak = dict.fromkeys(processes, 0)
+        self.samples = 0
+        self.every = every
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            for label, process in self.processes.items():
+                with contextlib.suppress(psutil.Error):
+                    self.peak[label] = max(self.peak[label], process.memory_info().rss)
+            self.samples += 1
+            self._stop.wait(self.every)
+
+    def __enter__(self) -> PeakRSS:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop.set()
+        self._thread.join()
+
+
+# -- a loopback cluster from the command lines -------------------------------------------------
+
+
+class Cluster:
+    """``dask scheduler`` and ``dask worker`` processes on 127.0.0.1, one core per worker."""
+
+    def __init__(self, directory: Path) -> None:
+        self.directory = directory
+        self.dask = str(Path(sys.executable).with_name("dask"))
+        self.env = dict(os.environ, NUMBA_NUM_THREADS="1", OMP_NUM_THREADS="1",
+                        OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1",
+                        PYTHONWARNINGS="ignore")
+        self.workers: list[subprocess.Popen] = []
+        self.logs: list[Any] = []
+        scheduler_file = directory / "scheduler.json"
+        self.scheduler = self._start(
+            [self.dask, "scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
+             "--scheduler-file", str(scheduler_file)], "scheduler")
+        deadline = time.monotonic() + 60
+        while not scheduler_file.exists() or not scheduler_file.read_text().strip():
+            if self.scheduler.poll() is not None or time.monotonic() > deadline:
+                raise RuntimeError(f"dask scheduler did not start; see {directory}/scheduler.log")
+            time.sleep(0.1)
+        time.sleep(0.2)  # the file is written in one go, but let it finish
+        self.address = json.loads(scheduler_file.read_text())["address"]
+        from distributed import Client
+
+        self.client = Client(self.address, timeout="60s")
+
+    def _start(self, command: list[str], name: str) -> subprocess.Popen:
+        log = open(self.directory / f"{name}.log", "w")  # noqa: SIM115 - closed in stop()
+        self.logs.append(log)
+        return subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=self.env,
+                                cwd=self.directory)
+
+    def add_worker(self) -> int:
+        """Start one more worker and wait until the scheduler has it; returns its pid."""
+        name = f"worker-{len(self.workers)}"
+        worker = self._start([self.dask, "worker", self.address, "--nthreads", "1",
+                              "--no-nanny", "--no-dashboard", "--memory-limit", "0",
+                              "--name", name, "--local-directory", str(self.directory)], name)
+        self.workers.append(worker)
+        self.client.wait_for_workers(len(self.workers), timeout=120)
+        return worker.pid
+
+    def stop(self) -> None:
+        with contextlib.suppress(Exception):
+            self.client.close()
+        for process in [*self.workers, self.scheduler]:
+            if process.poll() is None:
+                process.send_signal(signal.SIGINT)
+        for process in [*self.workers, self.scheduler]:
+            try:
+                process.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait()
+        for log in self.logs:
+            log.close()
+
+
+# -- the parts ---------------------------------------------------------------------------------
+
+
+def part_a(system, runs: int, duration: float, repeats: int, scratch: Path) -> dict[str, Any]:
+    vary = square_grid(runs)
+    count = n_runs(vary)
+    sweep(system, {k: v[:2] for k, v in vary.items()}, duration / 100)  # compile
+    t_sweep, dataset = best(lambda: sweep(system, vary, duration), repeats)
+    integrator, step = str(dataset.attrs["integrator"]), float(dataset.attrs["step"])
+    parameters = flat(vary)
+    t_batch, result = best(lambda: simulate_batch(system, parameters, duration,
+                                                  integrator=integrator, step=step), repeats)
+    # the same runs, the same answers: the sweep's status is the batch's
+    same = bool(np.array_equal(np.asarray(dataset["status"].values).ravel(),
+                               np.asarray(result.status)))
+    t_light, _ = best(lambda: sweep(system, vary, duration, metrics=BATCH_METRICS), repeats)
+    store = scratch / "a.zarr"
+
+    def to_store():
+        return sweep(system, vary, duration, out=store, overwrite=True)
+
+    t_store, _ = best(to_store, repeats)
+    shutil.rmtree(store, ignore_errors=True)
+    return {"runs": count, "duration": duration, "integrator": integrator, "step": step,
+            "n_steps": int(result.n_steps), "sweep_s": t_sweep, "batch_s": t_batch,
+            "sweep_store_s": t_store, "sweep_batch_metrics_s": t_light,
+            "sweep_runs_per_s": count / t_sweep,
+            "batch_runs_per_s": count / t_batch, "store_runs_per_s": count / t_store,
+            "ratio": t_batch / t_sweep, "ratio_store": t_batch / t_store,
+            "same_status": same, "batch_integrate_s": result.timings.get("integrate")}
+
+
+def timed_cluster_sweep(system, vary, duration, cluster: Cluster, repeats: int) -> float:
+    """Best wall time of the sweep on the cluster, after a warm-up run of the same grid."""
+    t, _ = best(lambda: sweep(system, vary, duration, scheduler=cluster.client),
+                repeats)
+    return t
+
+
+def part_b(system, cluster: Cluster, runs: int, duration: float, repeats: int
+           ) -> dict[str, Any]:
+    vary = square_grid(runs)
+    count = n_runs(vary)
+    cluster.add_worker()
+    t1 = timed_cluster_sweep(system, vary, duration, cluster, repeats)
+    cluster.add_worker()
+    t2 = timed_cluster_sweep(system, vary, duration, cluster, repeats)
+    rate1, rate2 = count / t1, count / t2
+    return {"runs": count, "duration": duration, "one_worker_s": t1, "two_workers_s": t2,
+            "one_worker_runs_per_s": rate1, "two_workers_runs_per_s": rate2,
+            "speedup": rate2 / rate1, "efficiency": rate2 / (2 * rate1)}
+
+
+def part_c(system, cluster: Cluster, runs: int, duration: float, scratch: Path
+           ) -> list[dict[str, Any]]:
+    out = []
+    for count in (runs // 10, runs):
+        vary = cube_grid(count)
+        store = scratch / f"c-{count}.zarr"
+        processes = {"client": os.getpid()}
+        processes.update({f"worker {i}": w.pid for i, w in enumerate(cluster.workers)})
+        began = time.perf_counter()
+        with PeakRSS(processes) as sampler:
+            dataset = sweep(system, vary, duration, scheduler=cluster.client,
+                                       out=store, overwrite=True)
+        elapsed = time.perf_counter() - began
+        size = sum(p.stat().st_size for p in store.rglob("*") if p.is_file())
+        out.append({"runs": n_runs(vary), "duration": duration, "wall_s": elapsed,
+                    "runs_per_s": n_runs(vary) / elapsed, "store_bytes": size,
+                    "chunk": dataset.attrs.get("chunk"), "samples": sampler.samples,
+                    "peak_rss": dict(sampler.peak)})
+        del dataset
+        shutil.rmtree(store, ignore_errors=True)
+    return out
+
+
+def mark(ok: bool) -> str:
+    return "✔" if ok else "✘"
+
+
+def show_a(a: dict[str, Any], repeats: int) -> None:
+    print_table(
+        f"(a) in-process: {a['runs']:,} runs of {a['duration']:g} s, {a['integrator']} "
+        f"step {a['step']:.4g} s ({a['n_steps']} steps), best of {repeats}",
+        ["call", "wall (s)", "runs/s", "vs batch", "target"],
+        [["simulate_batch (same runs, same step)", a["batch_s"], a["batch_runs_per_s"], 1.0,
+          ""],
+         ["sweep, in memory", a["sweep_s"], a["sweep_runs_per_s"], a["ratio"],
+          f">= 0.90 {mark(a['ratio'] >= 0.9)}"],
+         ["sweep, batch metrics only", a["sweep_batch_metrics_s"],
+          a["runs"] / a["sweep_batch_metrics_s"], a["batch_s"] / a["sweep_batch_metrics_s"],
+          ""],
+         ["sweep, to a Zarr store", a["sweep_store_s"], a["store_runs_per_s"],
+          a["ratio_store"], ""]])
+    print(f"same status in every run: {mark(a['same_status'])}")
+
+
+def show_b(b: dict[str, Any]) -> None:
+    print_table(
+        f"(b) Dask: {b['runs']:,} runs of {b['duration']:g} s on a loopback cluster "
+        "(dask scheduler + dask worker --nthreads 1 --no-nanny, NUMBA_NUM_THREADS=1)",
+        ["workers", "wall (s)", "runs/s", "speed-up", "per worker", "target"],
+        [[1, b["one_worker_s"], b["one_worker_runs_per_s"], 1.0, 1.0, ""],
+         [2, b["two_workers_s"], b["two_workers_runs_per_s"], b["speedup"], b["efficiency"],
+          f">= 0.80 {mark(b['efficiency'] >= 0.8)}"]])
+
+
+def show_c(c: list[dict[str, Any]], duration: float) -> None:
+    rows = []
+    for entry in c:
+        for label, peak in entry["peak_rss"].items():
+            rows.append([f"{entry['runs']:,} runs: {label}", peak / 1e6, entry["wall_s"],
+                         f"< 1000 MB {mark(peak < GB)}"])
+    print_table(f"(c) peak RSS, two workers, runs of {duration:g} s written to a store "
+                "(sampled every 50 ms)", ["process", "peak RSS (MB)", "sweep wall (s)",
+                                          "target"], rows)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=1 << 16)
+    parser.add_argument("--duration", type=float, default=10.0)
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--cluster-runs", type=int, default=1 << 16)
+    parser.add_argument("--memory-runs", type=int, default=10_000_000)
+    parser.add_argument("--memory-duration", type=float, default=1.0)
+    parser.add_argument("--parts", default="abc", help="which parts to run (default abc)")
+    parser.add_argument("--json", default=str(ROOT / "build" / "bench" / "sweep.json"))
+    args = parser.parse_args()
+
+    print(machine_note())
+    system = rollspring.load_system(SYSTEM)
+    report: dict[str, Any] = {"machine": machine_note(), "system": SYSTEM, "args": vars(args)}
+    with tempfile.TemporaryDirectory(prefix="bench-sweep-") as tmp:
+        scratch = Path(tmp)
+        if "a" in args.parts:
+            report["in_process"] = part_a(system, args.runs, args.duration, args.repeat,
+                                          scratch)
+            show_a(report["in_process"], args.repeat)
+        if "b" in args.parts or "c" in args.parts:
+            cluster = Cluster(scratch)
+            try:
+                if "b" in args.parts:
+                    report["dask_scaling"] = part_b(system, cluster, args.cluster_runs,
+                                                    args.duration, args.repeat)
+                    show_b(report["dask_scaling"])
+                if "c" in args.parts:
+                    while len(cluster.workers) < 2:
+                        cluster.add_worker()
+                    report["memory"] = part_c(system, cluster, args.memory_runs,
+                                              args.memory_duration, scratch)
+                    show_c(report["memory"], args.memory_duration)
+            finally:
+                cluster.stop()
+    report["load_average_at_end"] = os.getloadavg()[0]
+    print(f"load average at the end: {report['load_average_at_end']:.2f}")
+    target = Path(args.json)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_text(json.dumps(report, indent=2) + "\n")
+    print(f"\nwrote {target}")
+
+
+if __name__ == "__main__":
+    main()

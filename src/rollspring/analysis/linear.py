@@ -515,9 +515,14 @@ def _mode(
     norm = shape_x[biggest]
     shape_q = vector / norm
     shape_x = shape_x / norm
+    length_scale = float(np.max(np.abs(lever), initial=0.0)) * float(np.max(np.abs(shape_q)))
+    # rounding noise of an exact zero, relative to the largest force change along the mode: a
+    # contact force's, or the springs' (k times the extension; frictionless geometries have
+    # contact forces that vanish to first order, and then only the springs set the scale)
     force_scale = float(np.max(np.abs(np.concatenate([d_friction, d_normal])), initial=0.0))
     force_scale *= float(np.max(np.abs(shape_q)))
-    length_scale = float(np.max(np.abs(lever), initial=0.0)) * float(np.max(np.abs(shape_q)))
+    force_scale = max(force_scale,
+                      float(np.max(arrays.stiffness, initial=0.0)) * length_scale)
     return Mode(
         eigenvalue=float(eigenvalue),
         omega=float(math.sqrt(abs(eigenvalue))),

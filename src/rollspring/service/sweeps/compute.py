@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.analysis import analyze
+from rollspring.analysis import analyze, batch_linear
 from rollspring.errors import RollspringError
 from rollspring.model import System, rolled, system_from_dict
 from rollspring.service.sweeps.grid import Grid, apply_values, path_kind
@@ -47,6 +47,8 @@ __all__ = [
     "STATUS_CODES",
     "SweepPlan",
     "compute_chunk",
+    "compute_chunks",
+    "grid_omega",
     "plan_omega",
     "prepare_worker",
 ]
@@ -102,11 +104,18 @@ class _Runs:
     """The runs of one chunk: their values, starting systems and linear analyses (cached per
     distinct linear configuration)."""
 
-    def __init__(self, plan: SweepPlan, index: int) -> None:
+    def __init__(self, plan: SweepPlan, indices: int | list[int]) -> None:
         self.plan = plan
         self.system = plan_system(plan)
-        self.local, self.values = plan.grid.chunk_values(index)
-        self.n = int(np.prod(self.local))
+        indices = [indices] if isinstance(indices, int) else list(indices)
+        parts = [plan.grid.chunk_values(i) for i in indices]
+        self.locals = [local for local, _ in parts]
+        if len(parts) == 1:
+            self.values = parts[0][1]
+        else:  # several chunks in one call: their runs one after the other
+            self.values = {p: np.concatenate([values[p] for _, values in parts])
+                           for p in plan.grid.paths}
+        self.n = sum(int(np.prod(local)) for local in self.locals)
         self.kinds = {p: path_kind(self.system, p) for p in plan.grid.paths}
         self.structural = any(k != "batch" for k, _ in self.kinds.values())
         self._starts: dict[tuple[float, ...], tuple[System | None, Any, str]] = {}
@@ -299,6 +308,95 @@ def plan_omega(plan: SweepPlan, index: int) -> tuple[float, Any]:
     return best
 
 
+#: Body quantities that do not enter the batch's linear frequencies (``run_omegas``: the
+#: stiffness at the initial placement and the inertias), only fields that stay finite for
+#: moderate values.
+_NO_OMEGA = ("mu_static", "mu_kinetic", "v")
+#: "Moderate": the grid's velocities and every mass within this magnitude.
+_MODERATE = 1e100
+#: Runs per call of the planning shortcut.
+_PLAN_BLOCK = 1 << 16
+
+
+def _batch_omegas(system: System, params: dict[str, np.ndarray]) -> np.ndarray:
+    """Each run's linear frequency as :func:`simulate_batch` computes it before integrating
+    (the same functions in the same order), -inf for a run it would not integrate
+    (``invalid``); its ``omega_max`` with ``step`` given is the largest of these (0 if none)."""
+    from rollspring.simulate.batch.parameters import parse_parameters
+    from rollspring.simulate.batch.plan import check_runs, make_plan, probe, run_omegas
+
+    with np.errstate(all="ignore"):
+        runs = parse_parameters(system, params)
+        topology, _ = probe(system, runs.targets)
+        batch_plan = make_plan(system, runs, topology)
+        omegas = run_omegas(batch_plan)
+        invalid, _ = check_runs(batch_plan, omegas)
+    return np.where(invalid, -np.inf, omegas)
+
+
+def grid_omega(plan: SweepPlan) -> tuple[float, Any] | None:
+    """What the planning pass over the chunks (:func:`plan_omega` of each chunk, the first
+    chunk of the largest ``omega`` kept) finds, ``(omega, sample)``, without a batch call per
+    chunk: the batch's per-run frequencies are computed once on the grid with the axes of
+    velocities and friction coefficients collapsed to their first value (they do not enter
+    them), and each chunk's maximum and first run read from that. None where this shortcut
+    does not apply (structural PATHs, extreme values, a batch refusing a run): then the pass
+    over the chunks decides."""
+    system = plan_system(plan)
+    grid = plan.grid
+    kinds = [path_kind(system, p)[0] for p in grid.paths]
+    if any(kind != "batch" for kind in kinds):
+        return None
+    collapse = [p.startswith("bodies.") and p.split(".")[-1] in _NO_OMEGA for p in grid.paths]
+    masses = [b.mass for b in system.bodies]
+    for p, values in zip(grid.paths, grid.values, strict=True):
+        quantity = p.split(".")[-1]
+        if quantity in ("v", "mass"):
+            masses_or_v = np.asarray(values)
+            if np.any(np.abs(masses_or_v) > _MODERATE):
+                return None
+    if max(masses) > _MODERATE:
+        return None
+    keys = list(grid.paths)
+    keys += [f"bodies.{b.id}.mass" for b in system.bodies if f"bodies.{b.id}.mass" not in keys]
+    sub_shape = tuple(1 if c else n for c, n in zip(collapse, grid.shape, strict=True))
+    n_sub = math.prod(sub_shape)
+    omegas = np.empty(n_sub)
+    for lo in range(0, n_sub, _PLAN_BLOCK):
+        flat = np.arange(lo, min(lo + _PLAN_BLOCK, n_sub))
+        position = np.unravel_index(flat, sub_shape)
+        params = {}
+        for key in keys:
+            if key in grid.paths:
+                d = grid.paths.index(key)
+                params[key] = np.asarray(grid.values[d], dtype=np.float64)[position[d]]
+            else:
+                params[key] = np.full(flat.size, _value_of(system, key))
+        try:
+            omegas[flat] = _batch_omegas(system, params)
+        except RollspringError:
+            return None
+    omegas = omegas.reshape(sub_shape)
+    best: tuple[float, Any] = (-1.0, None)
+    for index in range(grid.n_chunks):
+        region = grid.region(index)
+        part = omegas[tuple(slice(0, 1) if c else s
+                            for c, s in zip(collapse, region, strict=True))]
+        top = float(np.max(part))
+        omega = top if top > -np.inf else 0.0
+        if omega > best[0] or best[1] is None:
+            sample = {}
+            for key in keys:
+                if key in grid.paths:
+                    d = grid.paths.index(key)
+                    sample[key] = np.asarray([grid.values[d][region[d].start]],
+                                             dtype=np.float64)
+                else:
+                    sample[key] = np.full(1, _value_of(system, key))
+            best = (omega, (system, sample))
+    return best
+
+
 # --------------------------------------------------------------------------------------------
 # the chunk
 
@@ -323,21 +421,31 @@ def _empty(plan: SweepPlan, n: int, n_bodies: int) -> dict[str, np.ndarray]:
 
 def compute_chunk(plan: SweepPlan, index: int) -> dict[str, np.ndarray]:
     """The variables of chunk ``index``, each shaped as its region (plus ``mode``/``body``)."""
+    return compute_chunks(plan, [index])[0]
+
+
+def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.ndarray]]:
+    """:func:`compute_chunk` of each of ``indices``, computed together (one batch call for
+    all their runs; every run's numbers are those it has alone, so the result of a chunk does
+    not depend on the chunks computed with it)."""
     prepare_worker(plan.numba_threads)
-    runs = _Runs(plan, index)
+    runs = _Runs(plan, indices)
     ids = [b.id for b in runs.system.bodies]
     nb = len(ids)
     out = _empty(plan, runs.n, nb)
     linear = bool({"omega", "stationary_weight", "required_mu_linear"} & set(plan.metrics))
     alive = np.ones(runs.n, dtype=bool)
+    single = np.ones(runs.n, dtype=bool)  # runs whose start goes through analyze alone
+    if linear and not runs.structural:
+        single = ~_batch_linear_metrics(runs, out)
     if linear or runs.structural:
-        for r in range(runs.n):
-            system, analysis, _ = runs.start(r, linear=linear)
+        for r in np.flatnonzero(single):
+            system, analysis, _ = runs.start(int(r), linear=linear)
             if system is None:
                 alive[r] = False
                 continue
             if analysis is not None:
-                _linear_metrics(out, r, analysis)
+                _linear_metrics(out, int(r), analysis)
     if plan.on_slip == "continue":
         for r in np.flatnonzero(alive):
             _single_run(plan, runs, out, int(r), on_slip="continue")
@@ -349,12 +457,50 @@ def compute_chunk(plan: SweepPlan, index: int) -> dict[str, np.ndarray]:
                 | (out["status"] == STATUS_CODES["liftoff"])
             for r in np.flatnonzero(events):
                 _refine_event(plan, runs, out, int(r))
-    shaped = {}
-    for name, values in out.items():
-        if name not in plan.metrics and name != "status":
-            continue
-        shaped[name] = values.reshape(*runs.local, *values.shape[1:])
-    return shaped
+    results = []
+    offset = 0
+    for local in runs.locals:
+        size = int(np.prod(local))
+        shaped = {}
+        for name, values in out.items():
+            if name not in plan.metrics and name != "status":
+                continue
+            shaped[name] = values[offset:offset + size].reshape(*local, *values.shape[1:])
+        results.append(shaped)
+        offset += size
+    return results
+
+
+def _distinct(columns: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """(a run of each distinct row of ``columns``, the distinct row of each run)."""
+    key = np.zeros(columns[0].size, dtype=np.int64)
+    for column in columns:  # mixed-radix codes (a chunk has far fewer than 2**63 rows)
+        values, codes = np.unique(column, return_inverse=True)
+        key = key * values.size + codes.reshape(-1)
+    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    return first, inverse.reshape(-1)
+
+
+def _batch_linear_metrics(runs: _Runs, out: dict[str, np.ndarray]) -> np.ndarray:
+    """The linear metrics of the runs :func:`rollspring.analysis.batch_linear` handles (the
+    flat centre class), computed once per distinct linear configuration (the friction
+    coefficients left out); returns the mask of the runs it filled."""
+    paths = [p for p in runs.plan.grid.paths if p.split(".")[-1] not in _MU]
+    if paths:
+        first, inverse = _distinct([runs.values[p] for p in paths])
+    else:
+        first, inverse = np.zeros(1, dtype=np.int64), np.zeros(runs.n, dtype=np.int64)
+    try:
+        result = batch_linear(runs.system, {p: runs.values[p][first] for p in paths},
+                              n_runs=first.size)
+    except (ValueError, ArithmeticError, np.linalg.LinAlgError):
+        return np.zeros(runs.n, dtype=bool)
+    handled = result.handled[inverse]
+    n_modes = result.omega.shape[1]
+    out["omega"][handled, :n_modes] = result.omega[inverse[handled]]
+    out["stationary_weight"][handled] = result.stationary_weight[inverse[handled]]
+    out["required_mu_linear"][handled] = result.required_mu[inverse[handled]]
+    return handled
 
 
 def _linear_metrics(out: dict[str, np.ndarray], r: int, analysis: Any) -> None:
@@ -536,7 +682,7 @@ def warm_up(plan: SweepPlan, dask_worker: Any = None) -> str:
     ``client.run`` on every worker before the chunks."""
     prepare_worker(plan.numba_threads, on_worker=dask_worker is not None)
     if plan.on_slip != "continue":
-        runs = _Runs(plan, 0)
+        runs = _Runs(plan, [0])
         alive = np.zeros(runs.n, dtype=bool)
         alive[0] = True
         for system, _, params in _groups(runs, alive):

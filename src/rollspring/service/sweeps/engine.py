@@ -29,7 +29,9 @@ from rollspring.service.sweeps.compute import (
     STATUS_CODES,
     SweepPlan,
     compute_chunk,
+    compute_chunks,
     copy_plan,
+    grid_omega,
     plan_omega,
     warm_up,
 )
@@ -50,6 +52,9 @@ __all__ = ["DEFAULT_CHUNK", "METRICS", "SweepProgress", "sweep"]
 
 #: Runs per chunk unless ``chunk`` says otherwise.
 DEFAULT_CHUNK = 4096
+#: In-process, consecutive chunks are computed together, up to this many runs a batch call
+#: (fewer calls; every run's numbers are those it has alone).
+IN_PROCESS_RUNS = 1 << 16
 #: Metrics (variables) a sweep can store; ``energy_dissipated`` and ``time_slipping`` only
 #: with ``on_slip="continue"``.
 METRICS = tuple(VARIABLES)
@@ -278,11 +283,13 @@ def _choose_step(plan: SweepPlan, step: float | None) -> SweepPlan:
         return copy_plan(plan, scheme="single runs", step=0.0, metric_every=0, omega_max=0.0)
     from rollspring.simulate import simulate_batch
 
-    best: tuple[float, Any] = (-1.0, None)
-    for index in range(plan.grid.n_chunks):
-        omega, sample = plan_omega(plan, index)
-        if sample is not None and omega > best[0]:
-            best = (omega, sample)
+    best: tuple[float, Any] | None = grid_omega(plan)
+    if best is None:
+        best = (-1.0, None)
+        for index in range(plan.grid.n_chunks):
+            omega, sample = plan_omega(plan, index)
+            if sample is not None and omega > best[0]:
+                best = (omega, sample)
     omega, sample = best
     if sample is None:
         raise SweepError("--vary: no run of the grid is a valid system")
@@ -332,9 +339,16 @@ def _threads_per_worker(client: Any) -> int:
 
 def _results(plan: SweepPlan, todo: list[int], client: Any
              ) -> Iterator[tuple[int, dict[str, np.ndarray]]]:
-    if client is None:
-        for index in todo:
-            yield index, compute_chunk(plan, index)
+    if client is None:  # consecutive chunks together, up to IN_PROCESS_RUNS runs a call
+        group: list[int] = []
+        size = 0
+        for position, index in enumerate(todo):
+            group.append(index)
+            size += _runs_in(plan.grid, index)
+            following = todo[position + 1] if position + 1 < len(todo) else None
+            if following is None or size + _runs_in(plan.grid, following) > IN_PROCESS_RUNS:
+                yield from zip(group, compute_chunks(plan, group), strict=True)
+                group, size = [], 0
         return
     from distributed import as_completed
 

@@ -169,97 +169,51 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
     sigma = arrays.incidence[:, 1, :] - arrays.incidence[:, 0, :]  # (S, n): +1 end b, -1 end a
     anchor = arrays.end_body < 0  # (S, 2)
     body = np.where(anchor, 0, arrays.end_body)
+    external = np.zeros((2, n))
+    for force, at_body in zip(arrays.force, arrays.force_body, strict=True):
+        external[:, at_body] += force
     with np.errstate(all="ignore"):
-        m, radius, k = p["mass"], p["radius"], p["stiffness"]
+        # --- per distinct (masses, radii, stiffnesses): everything that does not depend on
+        # the placement, the velocities or gravity (the sign e_s of a spring enters K, the
+        # friction change and |b.v| squared or in absolute value only)
+        first, which = _unique_rows(np.concatenate([p["mass"], p["radius"], p["stiffness"]],
+                                                   axis=1))
+        m, radius, k = p["mass"][first], p["radius"][first], p["stiffness"][first]
         s = np.where(rolls, radius, 1.0)
         inertia = np.where(rolls, (1.0 + arrays.gamma) * m * radius**2, m)
-        # the ends in the initial placement (M1) at their centres or anchors
-        end_x = np.where(anchor, arrays.end_anchor[..., 0], p["x"][:, body])  # (R, S, 2)
-        end_y = np.where(anchor, arrays.end_anchor[..., 1],
-                         (arrays.track + radius)[:, body] + 0.0)
-        d0 = end_x[..., 1] - end_x[..., 0]
-        length0 = np.abs(d0)
-        rest = np.where(np.isnan(p["rest_length"]), length0, p["rest_length"])
-        e0 = np.sign(d0)
-        lever = e0[:, :, None] * sigma * s[:, None, :]  # b_si (R, S, n), constant
-        external = np.zeros((2, n))
-        for force, at_body in zip(arrays.force, arrays.force_body, strict=True):
-            external[:, at_body] += force
-        ok = np.all(end_y[..., 0] == end_y[..., 1], axis=1) & np.all(np.isfinite(d0), axis=1)
-        ok &= np.all(length0 > 0, axis=1)
-        for name in ("mass", "radius", "x", "v", "stiffness"):
-            ok &= np.all(np.isfinite(p[name]), axis=1)
-        ok &= np.all(np.isfinite(rest), axis=1)
-        ok &= np.isfinite(p["gravity"])
-
-        # modes, once per distinct (masses, radii, stiffnesses): K = sum_s k b b^T (M12)
-        key = np.concatenate([m, radius, k], axis=1)
-        first, which = _unique_rows(key)
-        ku, su, ju = k[first], s[first], inertia[first]
-        stiffness_u = np.einsum("us,si,sj->uij", ku, sigma, sigma) * su[:, :, None] \
-            * su[:, None, :]
-        root = np.sqrt(ju)
-        scaled = stiffness_u / root[:, :, None] / root[:, None, :]
+        unsigned = sigma * s[:, None, :]  # |b_si| pattern, (U, S, n)
+        stiffness = np.einsum("us,usi,usj->uij", k, unsigned, unsigned)  # sum k b b^T (M12)
+        root = np.sqrt(inertia)
+        scaled = stiffness / root[:, :, None] / root[:, None, :]
         scaled = 0.5 * (scaled + np.swapaxes(scaled, 1, 2))
-        finite_u = np.all(np.isfinite(scaled), axis=(1, 2))
-        scaled[~finite_u] = 0.0
-        lam_u, vec_u = np.linalg.eigh(scaled)
-        largest = np.max(np.abs(lam_u), axis=1, keepdims=True)
-        zero_u = np.abs(lam_u) < ZERO_MODE_TOLERANCE * largest
-        clear_u = finite_u & (largest[:, 0] > 0) & np.all(
-            (np.abs(lam_u) < _ZERO * largest) | (lam_u >= _CONDITION * largest), axis=1)
-        lam_u = np.where(zero_u, 0.0, lam_u)
-        order = np.argsort(lam_u, axis=1, kind="stable")
-        lam_u = np.take_along_axis(lam_u, order, axis=1)
-        zero_u = np.take_along_axis(zero_u, order, axis=1)
-        vec_u = np.take_along_axis(vec_u, order[:, None, :], axis=2) / root[:, :, None]
-        ok &= clear_u[which]
-        lam, vec, zero, stiffness = lam_u[which], vec_u[which], zero_u[which], stiffness_u[which]
+        finite = np.all(np.isfinite(scaled), axis=(1, 2)) & np.all(np.isfinite(k), axis=1)
+        scaled[~finite] = 0.0
+        lam, vec = np.linalg.eigh(scaled)
+        largest = np.max(np.abs(lam), axis=1, keepdims=True)
+        zero = np.abs(lam) < ZERO_MODE_TOLERANCE * largest
+        clear = finite & (largest[:, 0] > 0) & np.all(
+            (np.abs(lam) < _ZERO * largest) | (lam >= _CONDITION * largest), axis=1)
+        lam = np.where(zero, 0.0, lam)
+        order = np.argsort(lam, axis=1, kind="stable")
+        lam = np.take_along_axis(lam, order, axis=1)
+        zero = np.take_along_axis(zero, order, axis=1)
+        vec = np.take_along_axis(vec, order[:, None, :], axis=2) / root[:, :, None]
         osc = ~zero
-
-        def forces_at(d: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-            """(generalised forces Q, spring x-force on each body, tensions) for spring
-            vectors d: Q = -sum T b + F s (M7), the lever b constant in the class."""
-            tension = k * (np.abs(d) - rest)
-            q_force = -np.einsum("rs,rsi->ri", tension, lever) + external[0] * s
-            pull = -np.einsum("rs,si->ri", tension * np.sign(d), sigma)  # T e on end a
-            return q_force, pull, tension
-
-        q0_force, _, _ = forces_at(d0)
-        # the equilibrium, zero modes held: one Newton step from the placement
-        along = np.einsum("rin,ri->rn", vec, q0_force)
-        step = np.where(osc, along / np.where(osc, lam, 1.0), 0.0)
-        q_eq = np.einsum("rin,rn->ri", vec, step)
-        d_eq = d0 + np.einsum("si,ri->rs", sigma, s * q_eq)
-        ok &= np.all(np.sign(d_eq) == e0, axis=1)
-        q_force, pull, _ = forces_at(d_eq)
-        residual = np.sqrt(np.sum(q_force**2 / inertia, axis=1))
-        initial = np.sqrt(np.sum(q0_force**2 / inertia, axis=1))
-        ok &= residual <= _RESIDUAL * initial
-
-        # the forces at the equilibrium (M8), (M9) and their change (contact_forces_jacobian)
-        contact_scale = (np.sum(m, axis=1) * np.maximum(p["gravity"], 1.0)
-                         + np.sum(k, axis=1) * 1.0)[:, None]
-        friction_eq = m * s * (q_force / inertia) - (pull + external[0])
-        friction_eq = np.where(rolls, friction_eq, 0.0)
-        friction_eq = np.where(np.abs(friction_eq) < 1e-12 * contact_scale, 0.0, friction_eq)
-        normal_eq = m * p["gravity"][:, None] - external[1]
-        d_force_x = -np.einsum("rs,si,rsj->rij", k * e0, sigma, lever)
+        omega_osc = np.sqrt(np.where(osc, lam, 1.0))
+        # the equilibrium step q* = sum_{lambda != 0} v v^T Q0 / lambda, as a matrix
+        newton = np.einsum("uin,un,ujn->uij", vec, np.where(osc, 1.0 / np.where(osc, lam, 1.0),
+                                                           0.0), vec)
+        # friction change per unit of each mode (contact_forces_jacobian): -(m s/J) K - dF_x
+        # with dF_x = -sum_s k e sigma b^T = -K / s for centre springs (e^2 = 1)
+        d_force_x = -np.einsum("us,si,usj->uij", k, sigma, unsigned)
         d_friction = -(m * s / inertia)[:, :, None] * stiffness - d_force_x
         d_friction = np.where(rolls[None, :, None], d_friction, 0.0)
-
-        # the free response from q(0) = 0, qdot(0) = v0/s by modal superposition (_response)
-        eta0 = np.einsum("rin,ri->rn", vec, inertia * -q_eq)
-        etadot0 = np.einsum("rin,ri->rn", vec, inertia * (p["v"] / s))
-        omega_osc = np.sqrt(np.where(osc, lam, 1.0))
-        amplitude = np.where(osc, eta0 - 1j * etadot0 / omega_osc, 0.0)
-        per_mode = np.einsum("rij,rjn->rin", d_friction, vec)  # friction per mode
-        centre = friction_eq + np.einsum("rin,rn->ri", per_mode, np.where(zero, eta0, 0.0))
-        terms = per_mode * amplitude[:, None, :]
+        per_mode = d_friction @ vec  # (U, bodies, modes)
+        lever_mode = np.abs(unsigned @ vec)  # |b_s . v_n|, (U, S, modes)
         # frequency groups, as analyze's _frequency_groups over the oscillating modes
-        group = np.full((count, n), -1)
-        current = np.full(count, -1)
-        start = np.zeros(count)
+        group = np.full((first.size, n), -1)
+        current = np.full(first.size, -1)
+        start = np.zeros(first.size)
         for j in range(n):
             same = (current >= 0) & (np.abs(omega_osc[:, j] - start)
                                      <= _SAME_FREQUENCY * omega_osc[:, j])
@@ -267,12 +221,68 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
             current = np.where(new, current + 1, current)
             start = np.where(new, omega_osc[:, j], start)
             group[:, j] = np.where(osc[:, j], current, -1)
+        n_groups = int(current.max(initial=-1)) + 1
+        omega = np.sqrt(np.abs(lam))
+        # stationary weights from the single zero mode (M14), as stationary_weights
+        single = np.sum(zero, axis=1) == 1
+        raw = inertia * np.einsum("uin,un->ui", vec, np.where(zero, 1.0, 0.0)) / s
+        total = np.sum(raw, axis=1, keepdims=True)
+        weighted = single & (np.abs(total[:, 0]) > 1e-9 * np.sum(np.abs(raw), axis=1))
+        weights = raw / np.where(total != 0, total, 1.0)
+        weights = np.where(np.abs(weights) < 1e-15, 0.0, weights)
+        weights = np.where(weighted[:, None], weights, np.nan)
+
+        # --- per run: the placement, the equilibrium, the response to the initial state
+        m, s, inertia, k = m[which], s[which], inertia[which], k[which]
+        end_x = np.where(anchor, arrays.end_anchor[..., 0], p["x"][:, body])  # (R, S, 2)
+        end_y = np.where(anchor, arrays.end_anchor[..., 1],
+                         (arrays.track + p["radius"])[:, body] + 0.0)
+        d0 = end_x[..., 1] - end_x[..., 0]
+        length0 = np.abs(d0)
+        rest = np.where(np.isnan(p["rest_length"]), length0, p["rest_length"])
+        e0 = np.sign(d0)
+        ok = clear[which] & np.all((end_y[..., 0] == end_y[..., 1]) & (length0 > 0)
+                                   & np.isfinite(d0) & np.isfinite(rest), axis=1)
+        ok &= np.all(np.isfinite(p["v"]), axis=1) & np.isfinite(p["gravity"])
+
+        def forces_at(d: FloatArray) -> tuple[FloatArray, FloatArray]:
+            """(generalised forces Q, horizontal applied force F_x on each body) for spring
+            vectors d: F_x = -sum T e sigma + F (the pull T e on end a), Q = s F_x (M7) for
+            centre attachments (b = e sigma s)."""
+            force_x = (k * (np.abs(d) - rest) * np.sign(d)) @ -sigma + external[0]
+            return s * force_x, force_x
+
+        q0_force, _ = forces_at(d0)
+        q_eq = np.einsum("rij,rj->ri", newton[which], q0_force)
+        d_eq = d0 + (s * q_eq) @ sigma.T
+        ok &= np.all(np.sign(d_eq) == e0, axis=1)
+        q_force, force_x = forces_at(d_eq)
+        residual = np.sum(q_force**2 / inertia, axis=1)
+        ok &= residual <= _RESIDUAL**2 * np.sum(q0_force**2 / inertia, axis=1)
+
+        # the forces at the equilibrium (M8), (M9)
+        contact_scale = (np.sum(m, axis=1) * np.maximum(p["gravity"], 1.0)
+                         + np.sum(k, axis=1) * 1.0)[:, None]
+        friction_eq = np.where(rolls, m * s * (q_force / inertia) - force_x, 0.0)
+        friction_eq = np.where(np.abs(friction_eq) < 1e-12 * contact_scale, 0.0, friction_eq)
+        normal_eq = m * p["gravity"][:, None] - external[1]
+
+        # the free response from q(0) = 0, qdot(0) = v0/s by modal superposition (_response)
+        vec_r = vec[which]
+        eta0 = np.einsum("rin,ri->rn", vec_r, inertia * -q_eq)
+        rate = np.einsum("rin,ri->rn", vec_r, inertia * (p["v"] / s)) / omega_osc[which]
+        osc_r, zero_r, per_mode_r = osc[which], zero[which], per_mode[which]
+        real = np.where(osc_r, eta0, 0.0)  # amplitude_n = eta0_n - i etadot0_n / omega_n
+        imag = np.where(osc_r, rate, 0.0)
+        centre = friction_eq + np.einsum("rin,rn->ri", per_mode_r, np.where(zero_r, eta0, 0.0))
         friction_sum = np.zeros((count, n))
-        for g in range(n):
-            member = (group == g)[:, None, :]
-            friction_sum += np.abs(np.sum(np.where(member, terms, 0.0), axis=-1))
-        extension = np.einsum("rsn,rn->rs", np.abs(np.einsum("rsi,rin->rsn", lever, vec)),
-                              np.abs(amplitude))
+        group_r = group[which]
+        for g in range(n_groups):
+            member = group_r == g
+            a = np.einsum("rin,rn->ri", per_mode_r, np.where(member, real, 0.0))
+            b = np.einsum("rin,rn->ri", per_mode_r, np.where(member, imag, 0.0))
+            friction_sum += np.hypot(a, b)
+        extension = np.einsum("rsn,rn->rs", lever_mode[which], np.hypot(real, imag))
         force_scale = np.max(k * extension, axis=1, initial=0.0)[:, None]
         friction_amplitude = _clean(friction_sum, force_scale)
         centre = _clean(centre, force_scale)
@@ -280,18 +290,7 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
                             / np.where(normal_eq > 0, normal_eq, 1.0), np.inf)
         required = np.where((friction_amplitude == 0.0) & (centre == 0.0), 0.0, required)
         required = np.where(rolls, required, 0.0)
-
-        omega = np.sqrt(np.abs(lam))
-        # stationary weights from the single zero mode (M14), as stationary_weights
-        single = np.sum(zero, axis=1) == 1
-        zero_vec = np.einsum("rin,rn->ri", vec, np.where(zero, 1.0, 0.0))
-        raw = inertia * zero_vec / s
-        total = np.sum(raw, axis=1, keepdims=True)
-        weighted = single & (np.abs(total[:, 0]) > 1e-9 * np.sum(np.abs(raw), axis=1))
-        weights = raw / np.where(total != 0, total, 1.0)
-        weights = np.where(np.abs(weights) < 1e-15, 0.0, weights)
-        weights = np.where(weighted[:, None], weights, np.nan)
-    handled = ok
-    keep = handled[:, None]
-    return BatchLinear(np.where(keep, omega, np.nan), np.where(keep, weights, np.nan),
-                       np.where(keep, required, np.nan), handled)
+    keep = ok[:, None]
+    return BatchLinear(np.where(keep, omega[which], np.nan),
+                       np.where(keep, weights[which], np.nan),
+                       np.where(keep, required, np.nan), ok)

@@ -436,8 +436,17 @@ def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.nda
     linear = bool({"omega", "stationary_weight", "required_mu_linear"} & set(plan.metrics))
     alive = np.ones(runs.n, dtype=bool)
     single = np.ones(runs.n, dtype=bool)  # runs whose start goes through analyze alone
+    overlap = None
     if linear and not runs.structural:
-        single = ~_batch_linear_metrics(runs, out)
+        if plan.on_slip == "stop" and not any(p.split(".")[-1] in _PLACEMENT
+                                              for p in plan.grid.paths):
+            # every run's start is a valid system (no varied value moves a spring end), so
+            # the batch call need not wait for the linear metrics: they are computed in a
+            # thread meanwhile (its NumPy work overlaps the batch's preparation)
+            overlap = _overlap_pool().submit(_batch_linear_metrics, runs, out)
+            single[:] = False
+        else:
+            single = ~_batch_linear_metrics(runs, out)
     if linear or runs.structural:
         for r in np.flatnonzero(single):
             system, analysis, _ = runs.start(int(r), linear=linear)
@@ -457,6 +466,11 @@ def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.nda
                 | (out["status"] == STATUS_CODES["liftoff"])
             for r in np.flatnonzero(events):
                 _refine_event(plan, runs, out, int(r))
+    if overlap is not None:
+        for r in np.flatnonzero(~overlap.result()):
+            system, analysis, _ = runs.start(int(r), linear=True)
+            if system is not None and analysis is not None:
+                _linear_metrics(out, int(r), analysis)
     results = []
     offset = 0
     for local in runs.locals:
@@ -469,6 +483,21 @@ def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.nda
         results.append(shaped)
         offset += size
     return results
+
+
+#: Batch paths that move a spring end in the initial placement (a combination of their values
+#: can make an invalid system).
+_PLACEMENT = ("x", "radius")
+_POOL: list[Any] = []
+
+
+def _overlap_pool() -> Any:
+    """One worker thread of this process for the linear metrics."""
+    if not _POOL:
+        from concurrent.futures import ThreadPoolExecutor
+
+        _POOL.append(ThreadPoolExecutor(1, thread_name_prefix="rollspring-linear"))
+    return _POOL[0]
 
 
 def _distinct(columns: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:

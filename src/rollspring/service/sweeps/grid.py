@@ -219,10 +219,21 @@ def apply_values(base: dict[str, Any], system: System, values: Mapping[str, floa
                  *, source: str = "sweep") -> System:
     """The system ``base`` (its :func:`system_to_json` form) with the batch and attachment
     PATHs in ``values`` set (mode amplitudes are not placements: see the compute module)."""
-    import copy
-
-    data = copy.deepcopy(base)
     index = {b.id: i for i, b in enumerate(system.bodies)}
+    # copy only the containers the values change (validation does not mutate its input)
+    data = dict(base)
+    touched: dict[str, set[int]] = {"bodies": set(), "springs": set()}
+    for path in values:
+        parts = path.split(".")
+        if parts[0] == "bodies":
+            touched["bodies"].add(index[parts[1]])
+        elif parts[0] == "springs":
+            touched["springs"].add(int(parts[1]))
+    for group, members in touched.items():
+        if members:
+            data[group] = list(base[group])
+            for i in members:
+                data[group][i] = dict(base[group][i])
     for path, value in values.items():
         parts = path.split(".")
         value = float(value)

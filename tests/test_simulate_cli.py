@@ -123,3 +123,36 @@ def test_a_write_that_fails_midway_leaves_no_partial_file(tmp_path, monkeypatch)
     assert after["trajectory.npz"] == before["trajectory.npz"]
     assert after["trajectory.csv"] != before["trajectory.csv"]
     assert len(after["trajectory.csv"].decode().splitlines()) == 22
+
+
+@pytest.mark.parametrize("where", ["under-a-file", "a-file", "read-only"])
+def test_an_unwritable_out_fails_at_once_before_the_run(tmp_path, monkeypatch, where) -> None:
+    """--out into a place that cannot be written is a one-line error (exit 2) before any
+    computation: the simulation is never started (it would fail here if it were)."""
+    import os
+
+    import rollspring.service.runs as runs
+
+    blocker = tmp_path / "a-file"
+    blocker.write_text("not a directory")
+    if where == "under-a-file":
+        out = blocker / "run"
+    elif where == "a-file":
+        out = blocker
+    else:
+        if os.geteuid() == 0:
+            pytest.skip("root writes into a read-only directory")
+        locked = tmp_path / "locked"
+        locked.mkdir(mode=0o500)
+        out = locked / "run"
+
+    def never(*args, **kwargs):
+        raise AssertionError("the simulation started before --out was checked")
+
+    monkeypatch.setattr(runs, "run_simulation", never)
+    result = run("simulate", "hoop-cylinder", "--duration", "600", "--out", str(out))
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: --out {out}: cannot write there (")
+    assert len(result.stderr.strip().splitlines()) == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        ["a-file"] + (["locked"] if where == "read-only" else []))  # nothing created

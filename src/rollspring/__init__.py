@@ -13,44 +13,14 @@ springs to each other and to walls. Quick start::
     rollspring.build_report(system)                       # the self-contained HTML report
     rollspring.sweep(system, {"springs.0.stiffness": k}, 10.0)   # a grid of runs -> xarray
 
-The symbolic and picture parts (SymPy, Matplotlib) load on first use, so ``import rollspring``
-stays light.
+Every name loads its part on first use (SciPy for the analysis, the compiled kernels for the
+simulation, SymPy and Matplotlib for derivations and reports), so ``import rollspring`` stays
+light. The core needs NumPy, SciPy, Numba and pydantic; derivations, reports, the web page and
+sweeps need the extras ``symbolic``, ``report``, ``web`` and ``sweep`` (``pip install
+'rollspring[report]'``).
 """
 
-from rollspring.analysis import LinearAnalysis, Mode, analyze, find_equilibrium, normal_modes
 from rollspring.errors import AnalysisError, ModelError, RollspringError, SimulationError
-from rollspring.model import (
-    Anchor,
-    Attachment,
-    Body,
-    ExternalForce,
-    Spring,
-    System,
-    load_system,
-    preset_names,
-    system_from_dict,
-    system_json_schema,
-)
-from rollspring.physics import (
-    SystemArrays,
-    accelerations,
-    centre_of_mass,
-    centre_positions,
-    contact_forces,
-    generalized_forces,
-    kinetic_energy,
-    mass_matrix,
-    potential_energy,
-    spring_state,
-    stiffness_matrix,
-    system_arrays,
-    total_energy,
-)
-
-# rollspring.simulate is the subpackage, and callable: rollspring.simulate(system, duration)
-from rollspring import simulate  # noqa: E402
-from rollspring.simulate import BatchResult, Trajectory, simulate_batch  # noqa: E402
-from rollspring import outputs  # noqa: E402  (registers Trajectory's views)
 
 
 def _register_notebook_display() -> None:
@@ -69,8 +39,21 @@ def _register_notebook_display() -> None:
 
 _register_notebook_display()
 
-#: Loaded on first use (SymPy, Matplotlib): name -> module that defines it.
+#: Everything but the errors loads on first use (``rollspring.analyze`` imports SciPy,
+#: ``rollspring.simulate`` the compiled kernels, ``rollspring.derive`` SymPy, ...), so
+#: ``import rollspring`` and the command line start fast: name -> module that defines it.
 _LAZY = {
+    **dict.fromkeys(("LinearAnalysis", "Mode", "analyze", "find_equilibrium", "normal_modes"),
+                    "rollspring.analysis"),
+    **dict.fromkeys(("Anchor", "Attachment", "Body", "ExternalForce", "Spring", "System",
+                     "load_system", "preset_names", "system_from_dict", "system_json_schema"),
+                    "rollspring.model"),
+    **dict.fromkeys(("SystemArrays", "accelerations", "centre_of_mass", "centre_positions",
+                     "contact_forces", "generalized_forces", "kinetic_energy", "mass_matrix",
+                     "potential_energy", "spring_state", "stiffness_matrix", "system_arrays",
+                     "total_energy"), "rollspring.physics"),
+    # rollspring.simulate is the subpackage, and callable: rollspring.simulate(system, duration)
+    **dict.fromkeys(("BatchResult", "Trajectory", "simulate_batch"), "rollspring.simulate"),
     "derive": "rollspring.analysis.derivation",
     "Derivation": "rollspring.analysis.derivation",
     "symbolic_system": "rollspring.analysis.derivation",
@@ -82,21 +65,52 @@ _LAZY = {
     "sweep": "rollspring.service.sweeps",
 }
 
+#: The subpackages, also loaded on first use (``rollspring.simulate`` is one of them).
+_SUBPACKAGES = frozenset({"analysis", "cli", "model", "outputs", "physics", "service",
+                          "simulate", "web"})
+
+#: Names that need an optional extra (``pip install 'rollspring[extra]'``).
+_EXTRAS = {"derive": "symbolic", "Derivation": "symbolic", "symbolic_system": "symbolic",
+           "check_paper": "symbolic", "paper_claims": "symbolic", "build_report": "report",
+           "write_report": "report", "worksheet": "report", "sweep": "sweep", "web": "web"}
+
+
+def _version() -> str:
+    """The installed distribution's version: single-sourced in pyproject.toml."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("rollspring")
+    except PackageNotFoundError:  # a source tree that is not installed
+        return "0+unknown"
+
 
 def __getattr__(name: str):
-    if name in _LAZY:
-        import importlib
+    import importlib
 
-        value = getattr(importlib.import_module(_LAZY[name]), name)
-        globals()[name] = value
+    if name == "__version__":  # read on first use (importlib.metadata is not free either)
+        globals()[name] = value = _version()
         return value
-    raise AttributeError(f"module 'rollspring' has no attribute {name!r}")
+    if name in _SUBPACKAGES:
+        module_name, attribute = f"rollspring.{name}", None
+    elif name in _LAZY:
+        module_name, attribute = _LAZY[name], name
+    else:
+        raise AttributeError(f"module 'rollspring' has no attribute {name!r}")
+    if name in _EXTRAS:
+        from rollspring.errors import require_extra
+
+        with require_extra(_EXTRAS[name], f"rollspring.{name}"):
+            module = importlib.import_module(module_name)
+    else:
+        module = importlib.import_module(module_name)
+    value = module if attribute is None else getattr(module, attribute)
+    globals()[name] = value
+    return value
 
 
 def __dir__() -> list[str]:
-    return sorted([*globals(), *_LAZY])
-
-__version__ = "0.1.0"
+    return sorted({*globals(), *_LAZY, *_SUBPACKAGES, "__version__"})
 
 __all__ = [
     "AnalysisError",

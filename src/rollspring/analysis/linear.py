@@ -17,7 +17,6 @@ from typing import Any
 
 import numpy as np
 import scipy.linalg
-import scipy.optimize
 
 from rollspring.errors import AnalysisError
 from rollspring.model import System
@@ -138,6 +137,8 @@ def find_equilibrium(
             state, residual = trial, trial_residual
         if residual <= target:
             return state, residual
+        import scipy.optimize  # only when Newton stalls: SciPy's optimizers load on demand
+
         solution = scipy.optimize.least_squares(
             lambda p: forces(p / root_mass) / root_mass,
             state * root_mass,
@@ -701,6 +702,8 @@ def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component)
             grid = rng.uniform(0.0, 2 * math.pi, size=(20000, n_groups))
         values = ratio(grid)
         best = int(np.argmax(values))
+        import scipy.optimize  # loaded on demand (~0.1 s), not by every analysis
+
         res = scipy.optimize.minimize(
             lambda th: -float(ratio(th[None, :])[0]), grid[best], method="Nelder-Mead",
             options={"xatol": 1e-12, "fatol": 1e-15, "maxiter": 2000},

@@ -14,7 +14,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.model import load_system, preset_names
+from rollspring.model import preset_names
 
 # rollspring.outputs.animation (Matplotlib) is imported when the command runs, not when the CLI
 # starts: every other command would pay for it.
@@ -44,6 +44,7 @@ def animate(
     the CM and X-hat on the floor, and a clock."""
     target = _check(out, duration, speed, fps, dpi, on_slip)
     from rollspring.outputs.animation import AnimationError, frame_times, write_animation
+    from rollspring.model import load_system
     from rollspring.simulate import simulate
 
     model = load_system(system)
@@ -125,9 +126,9 @@ class _Bar:
 
 def register(app: typer.Typer) -> None:
     """Add the ``animate`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
 
-    app.command(name="animate")(friendly_errors(animate))
+    app.command(name="animate")(friendly_errors(needs_extra("plot", "animate")(animate)))
 
 
 def _say(line: str) -> None:

@@ -16,16 +16,12 @@ from typing import Annotated, Any, TypeVar
 import typer
 from rich.console import Console
 
-from rollspring.analysis import analyze as run_analysis
-from rollspring.errors import RollspringError
-from rollspring.model import (
-    DEFAULT_PRESET,
-    load_system,
-    preset_names,
-    preset_path,
-    system_json_schema,
-)
-from rollspring.service.runs import analysis_payload
+from rollspring.errors import RollspringError, require_extra
+from rollspring.model import DEFAULT_PRESET, preset_names, preset_path
+
+# Only what every command needs is imported here (Typer, Rich's console, the presets' names):
+# each command imports its own (pydantic's model, SciPy, the compiled kernels, SymPy,
+# Matplotlib, ...), so --help and the light commands start fast.
 
 __all__ = ["app", "main"]
 
@@ -77,6 +73,22 @@ def friendly_errors(command: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
+def needs_extra(extras: str | tuple[str, ...], name: str) -> Callable[[F], F]:
+    """A command that needs an optional extra: before anything else it checks that the extra is
+    installed, else ``error: rollspring NAME needs the 'EXTRA' extra: pip install
+    'rollspring[EXTRA]'`` and exit code 2 (with :func:`friendly_errors`)."""
+
+    def decorate(command: F) -> F:
+        @functools.wraps(command)
+        def wrapper(*args: Any, **kwargs: Any) -> Any:
+            with require_extra(extras, f"rollspring {name}"):
+                return command(*args, **kwargs)
+
+        return wrapper  # type: ignore[return-value]
+
+    return decorate
+
+
 def _stdout() -> Console:
     # a terminal's own width; 110 columns when piped to a file or a pager
     width = None if sys.stdout.isatty() else 110
@@ -100,6 +112,9 @@ def analyze(
     as_json: JsonOpt = False,
 ) -> None:
     """Linear analysis: equilibrium, M and K, normal modes, stationary point, friction needed."""
+    from rollspring.model import load_system
+    from rollspring.service.runs import analysis_payload
+
     model = load_system(system)
     if as_json:
         payload, warnings = analysis_payload(model)
@@ -107,6 +122,7 @@ def analyze(
             _say(f"warning: {warning}")
         _print_json(payload)
         return
+    from rollspring.analysis import analyze as run_analysis
     from rollspring.cli.tables import print_analysis
 
     print_analysis(_stdout(), run_analysis(model))
@@ -116,6 +132,8 @@ def analyze(
 @friendly_errors
 def schema() -> None:
     """Print the JSON Schema of a system file (TOML files have the same structure)."""
+    from rollspring.model import system_json_schema
+
     _print_json(system_json_schema())
 
 
@@ -123,6 +141,8 @@ def schema() -> None:
 @friendly_errors
 def presets(as_json: JsonOpt = False) -> None:
     """List the built-in systems (each is also a file in examples/)."""
+    from rollspring.model import load_system
+
     rows = []
     for name in preset_names():
         system = load_system(name)
@@ -161,6 +181,11 @@ def simulate(
     as_json: JsonOpt = False,
 ) -> None:
     """Integrate the exact nonlinear motion; report energy, period, friction, slip, lift-off."""
+    if out is not None:  # an unwritable --out fails now, not after the run
+        from rollspring.outputs.files import writable_directory
+
+        writable_directory(out)
+    from rollspring.model import load_system
     from rollspring.service.runs import run_simulation
 
     model = load_system(system)

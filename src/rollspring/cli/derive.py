@@ -14,7 +14,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.model import load_system, preset_names
+from rollspring.model import preset_names
 
 # The derivation engine (SymPy) is imported when the command runs, not when the CLI starts.
 #: The names of the methods and formats, for the help text (a test checks them against the
@@ -56,6 +56,8 @@ def derive_command(
         if name != ALL and name not in METHODS:
             raise DerivationError(f"--method: unknown method '{name}' "
                                   f"(methods: {', '.join(METHODS)}, {ALL})")
+    from rollspring.model import load_system  # pydantic: not for --help
+
     rendered, check = derivation_document(load_system(system), methods, format=format,
                                           symbols=symbols)
     if out is None:
@@ -76,9 +78,9 @@ def derive_command(
 
 def register(app: typer.Typer) -> None:
     """Add the ``derive`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
 
-    app.command(name="derive")(friendly_errors(derive_command))
+    app.command(name="derive")(friendly_errors(needs_extra("report", "derive")(derive_command)))
 
 
 def _say(line: str) -> None:

@@ -12,8 +12,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.model import load_system, preset_names
-from rollspring.outputs.mjcf import ExportError, mjcf_warnings, system_to_mjcf, write_mjcf
+from rollspring.model import preset_names
 
 __all__ = ["FORMATS", "export", "register"]
 
@@ -36,10 +35,15 @@ def export(
 ) -> None:
     """Export a system for another simulator: mjcf is a MuJoCo model (planar bodies on planes
     with contact friction, springs as tendons) to compare exact rolling with soft contact."""
+    # here, not at the top: the writer needs the physics layer, which --help does not
+    from rollspring.outputs.mjcf import ExportError, mjcf_warnings, system_to_mjcf, write_mjcf
+
     if format not in FORMATS:
         raise ExportError(f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})")
     if out is None:
         raise ExportError("--out/-o is required: a file path, or '-' for stdout")
+    from rollspring.model import load_system  # pydantic: not for --help
+
     model = load_system(system)
     if out == "-":
         text = system_to_mjcf(model, timestep=timestep)

@@ -241,6 +241,7 @@ def _wrap(text: str) -> str:
 
 def register(app: typer.Typer) -> None:
     """Add the ``paper-check`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
 
-    app.command(name="paper-check")(friendly_errors(paper_check))
+    command = needs_extra("report", "paper-check")(paper_check)
+    app.command(name="paper-check")(friendly_errors(command))

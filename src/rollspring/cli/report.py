@@ -14,7 +14,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.model import DEFAULT_PRESET, load_system, preset_names
+from rollspring.model import DEFAULT_PRESET, preset_names
 
 __all__ = ["FORMATS", "register", "report"]
 
@@ -57,6 +57,8 @@ def report(
     target = Path(out if out is not None else f"report.{format}")
     if format == "pdf":
         find_chromium(chromium)  # fail before the work when Chromium is missing
+    from rollspring.model import load_system  # pydantic: not for --help
+
     model = load_system(system)
     from rollspring.cli.app import _progress_after_a_second
 
@@ -70,9 +72,9 @@ def report(
 
 def register(app: typer.Typer) -> None:
     """Add the ``report`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
 
-    app.command(name="report")(friendly_errors(report))
+    app.command(name="report")(friendly_errors(needs_extra("report", "report")(report)))
 
 
 def _say(line: str) -> None:

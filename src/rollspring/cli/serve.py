@@ -14,7 +14,7 @@ from typing import Annotated
 import typer
 
 from rollspring.errors import RollspringError
-from rollspring.model import DEFAULT_PRESET, load_system, preset_names
+from rollspring.model import DEFAULT_PRESET, preset_names
 
 __all__ = ["ServeError", "register", "serve"]
 
@@ -51,6 +51,8 @@ def serve(
         raise ServeError(f"--workers: must be 0 or more, got {workers}")
     if limit_concurrency < 1:
         raise ServeError(f"--limit-concurrency: must be at least 1, got {limit_concurrency}")
+    from rollspring.model import load_system  # pydantic: not for --help
+
     model = load_system(system)
     listener = _listen(host, port)
     if not _is_loopback(host):
@@ -107,6 +109,6 @@ def _listen(host: str, port: int) -> socket.socket:
 
 def register(app: typer.Typer) -> None:
     """Add the ``serve`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors
+    from rollspring.cli.app import friendly_errors, needs_extra
 
-    app.command(name="serve")(friendly_errors(serve))
+    app.command(name="serve")(friendly_errors(needs_extra("web", "serve")(serve)))

@@ -13,7 +13,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.model import DEFAULT_PRESET, load_system, preset_names
+from rollspring.model import DEFAULT_PRESET, preset_names
 
 __all__ = ["register", "sweep"]
 
@@ -73,6 +73,8 @@ def sweep(
         if path in grid:
             raise SweepError(f"--vary {spec}: {path} is already varied")
         grid[path] = values
+    from rollspring.model import load_system  # pydantic: not for --help
+
     model = load_system(system)
     with _Bar() as bar:
         dataset = run_sweep(model, grid, duration, metrics=metric, on_slip=on_slip, out=out,
@@ -134,9 +136,9 @@ class _Bar:
 
 def register(app: typer.Typer) -> None:
     """Add the ``sweep`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
 
-    app.command(name="sweep")(friendly_errors(sweep))
+    app.command(name="sweep")(friendly_errors(needs_extra("sweep", "sweep")(sweep)))
 
 
 def _say(line: str) -> None:

@@ -80,9 +80,10 @@ def sweep_plot(
 
 def register(app: typer.Typer) -> None:
     """Add the ``sweep-plot`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
 
-    app.command(name="sweep-plot")(friendly_errors(sweep_plot))
+    command = needs_extra(("sweep", "plot"), "sweep-plot")(sweep_plot)
+    app.command(name="sweep-plot")(friendly_errors(command))
 
 
 def _say(line: str) -> None:

@@ -102,9 +102,10 @@ def worksheet_command(
 
 def register(app: typer.Typer) -> None:
     """Add the ``worksheet`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
+    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
 
-    app.command(name="worksheet")(friendly_errors(worksheet_command))
+    command = needs_extra("report", "worksheet")(worksheet_command)
+    app.command(name="worksheet")(friendly_errors(command))
 
 
 def _say(line: str) -> None:

@@ -1,27 +1,60 @@
-"""What a system is: bodies, anchors, springs, forces; validation; files; presets."""
+"""What a system is: bodies, anchors, springs, forces; validation; files; presets.
 
-from rollspring.model.files import (
-    DEFAULT_PRESET,
-    load_system,
-    preset_names,
-    preset_path,
-    system_from_dict,
-    system_from_text,
-    system_json_schema,
-    system_to_json,
-    system_to_toml,
-    validation_errors,
-)
-from rollspring.model.placement import rolled
-from rollspring.model.schema import (
-    INERTIA_FACTORS,
-    Anchor,
-    Attachment,
-    Body,
-    ExternalForce,
-    Spring,
-    System,
-)
+The names load on first use: the presets' catalogue needs nothing, the rest pydantic (so the
+command line's ``--help``, which lists the presets, starts without it).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from rollspring.model.catalog import DEFAULT_PRESET, preset_names, preset_path
+
+if TYPE_CHECKING:
+    from rollspring.model.files import (
+        load_system,
+        system_from_dict,
+        system_from_text,
+        system_json_schema,
+        system_to_json,
+        system_to_toml,
+        validation_errors,
+    )
+    from rollspring.model.placement import rolled
+    from rollspring.model.schema import (
+        INERTIA_FACTORS,
+        Anchor,
+        Attachment,
+        Body,
+        ExternalForce,
+        Spring,
+        System,
+    )
+
+#: name -> the module that defines it, imported on first use
+_LAZY = {
+    **dict.fromkeys(("load_system", "system_from_dict", "system_from_text", "system_json_schema",
+                     "system_to_json", "system_to_toml", "validation_errors"),
+                    "rollspring.model.files"),
+    "rolled": "rollspring.model.placement",
+    **dict.fromkeys(("INERTIA_FACTORS", "Anchor", "Attachment", "Body", "ExternalForce",
+                     "Spring", "System"), "rollspring.model.schema"),
+}
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module 'rollspring.model' has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(_LAZY[name]), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_LAZY})
+
 
 __all__ = [
     "DEFAULT_PRESET",

@@ -5,13 +5,13 @@ from __future__ import annotations
 import json
 import math
 import tomllib
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
 from pydantic import ValidationError
 
 from rollspring.errors import ModelError
+from rollspring.model.catalog import DEFAULT_PRESET, preset_names, preset_path
 from rollspring.model.schema import System
 
 __all__ = [
@@ -26,27 +26,6 @@ __all__ = [
     "system_to_toml",
     "validation_errors",
 ]
-
-#: The built-in default system: the paper's hoop and cylinder joined at their centres (Fig. 2).
-DEFAULT_PRESET = "hoop-cylinder"
-
-_PRESET_DIR = "presets"
-
-
-def preset_names() -> list[str]:
-    """Names of the built-in presets (each is also a file in ``examples/``)."""
-    folder = resources.files("rollspring.model") / _PRESET_DIR
-    return sorted(p.name.removesuffix(".toml") for p in folder.iterdir() if p.name.endswith(".toml"))
-
-
-def preset_path(name: str) -> Path:
-    """Path of a preset's TOML file inside the installed package."""
-    if name not in preset_names():
-        raise ModelError(
-            f"unknown preset '{name}' (presets: {', '.join(preset_names())}; or give a file path)"
-        )
-    return Path(str(resources.files("rollspring.model") / _PRESET_DIR / f"{name}.toml"))
-
 
 def load_system(source: str | Path) -> System:
     """Load a system from a ``.toml`` or ``.json`` file, or by preset name.

@@ -13,7 +13,10 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import IO
 
-__all__ = ["atomic_path", "atomic_write", "atomic_write_bytes", "atomic_write_text"]
+from rollspring.errors import OutputError
+
+__all__ = ["atomic_path", "atomic_write", "atomic_write_bytes", "atomic_write_text",
+           "writable_directory"]
 
 
 @contextlib.contextmanager
@@ -56,3 +59,26 @@ def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
     """Write ``data`` to ``path`` atomically."""
     with atomic_write(path, "wb") as handle:
         handle.write(data)
+
+
+def writable_directory(path: str | os.PathLike[str], option: str = "--out") -> Path:
+    """Check, before any long computation, that files can be written into the directory
+    ``path`` (which may not exist yet: then into its nearest existing ancestor, where it will be
+    created). Creates nothing; raises :class:`~rollspring.errors.OutputError` naming ``option``
+    and the reason."""
+    directory = Path(path)
+    probe = directory.absolute()
+    try:
+        while not probe.exists() and probe.parent != probe:
+            probe = probe.parent
+        if not probe.is_dir():
+            reason = f"{probe} is not a directory" if probe != directory.absolute() else \
+                "it is a file, not a directory"
+            raise OutputError(f"{option} {path}: cannot write there ({reason})")
+        descriptor, temporary = tempfile.mkstemp(prefix=".rollspring-check-", dir=probe)
+    except OSError as exc:
+        raise OutputError(f"{option} {path}: cannot write there "
+                          f"({exc.strerror or exc}: {probe})") from None
+    os.close(descriptor)
+    os.unlink(temporary)
+    return directory

@@ -11,15 +11,16 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from rollspring.analysis import LinearAnalysis, analyze, linear_motion
 from rollspring.errors import SimulationError
 from rollspring.model import System, rolled
-from rollspring.outputs import summary_json
-from rollspring.simulate import Trajectory, simulate
+
+if TYPE_CHECKING:  # the simulation (compiled kernels) loads only when a run is asked for
+    from rollspring.simulate import Trajectory
 
 __all__ = ["ModeStart", "SimulationRun", "analysis_payload", "mode_start", "run_simulation",
            "simulation_payload"]
@@ -80,6 +81,8 @@ def run_simulation(system: System, duration: float, *, rtol: float = 1e-8, outpu
     placement or from a :class:`ModeStart`; with ``linear``, also the linear motion from the
     same start (:func:`rollspring.analysis.linear_motion`; None where the system has no
     equilibrium)."""
+    from rollspring.simulate import simulate
+
     analysis = analyze(system) if start is not None or linear else None
     if start is not None:
         system = mode_start(system, start, analysis)
@@ -97,6 +100,8 @@ def simulation_payload(run: SimulationRun) -> dict[str, Any]:
     output over ``t`` (SI units) as contiguous NumPy arrays — per body, per spring, energies,
     the CM and X̂. :func:`rollspring.outputs.json_ready` turns it into plain JSON values (an
     infinite friction ratio, N <= 0, becomes ``null``); orjson writes it directly."""
+    from rollspring.outputs import summary_json
+
     trajectory = run.trajectory
 
     def column(values: np.ndarray, i: int) -> np.ndarray:

@@ -24,8 +24,6 @@ from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import numpy as np
-import scipy.integrate
-import scipy.optimize
 
 from rollspring.analysis import find_equilibrium, normal_modes, stationary_weights
 from rollspring.errors import SimulationError
@@ -131,17 +129,23 @@ class Trajectory:
 
 
 #: Views of a trajectory that live in a higher layer (tables, animations): the outputs package
-#: registers them when it is imported, as ``import rollspring`` does. Keeps this layer free of
-#: Matplotlib and pandas.
+#: registers them when it is imported (on a trajectory's first view, see :func:`_presenter`).
+#: Keeps this layer free of Matplotlib and pandas.
 PRESENTERS: dict[str, Callable[..., Any]] = {}
 
 
 def _presenter(name: str) -> Callable[..., Any]:
+    if not PRESENTERS:
+        # the outputs layer registers the views when it is imported (``import rollspring`` no
+        # longer imports it, to start fast): load it by name on first use, as a plug-in
+        import importlib
+
+        importlib.import_module("rollspring.outputs")
     try:
         return PRESENTERS[name]
     except KeyError:
         raise SimulationError(f"Trajectory.{name} is provided by rollspring.outputs: "
-                              f"import rollspring (or rollspring.outputs) first") from None
+                              "it was not registered (import rollspring.outputs)") from None
 
 
 class _Observed(NamedTuple):
@@ -652,6 +656,8 @@ class _Run:
         end = margins(h)
         start = margins(0.0)
         best = None
+        import scipy.optimize  # on demand: an event to locate (SciPy's optimizers take ~0.1 s)
+
         for j in np.flatnonzero((end < 0) | ((end == 0) & (start > 0))):
             if not np.isfinite(start[j]) or start[j] <= 0:
                 root = 0.0
@@ -710,6 +716,8 @@ class _Run:
             event.direction = (sign[i] * -1.0) if kind == "stick" else -1.0
         t_eval = self.grid[(self.grid > t + 1e-12 * self.grid[-1])]
         scale = max(float(np.max(np.abs(state))), float(np.max(a.radius)))
+        import scipy.integrate  # on demand: only the general (DOP853) segments need it
+
         began = time.perf_counter()
         solution = scipy.integrate.solve_ivp(
             rhs, (t, self.grid[-1]), state, method="DOP853", t_eval=t_eval,
@@ -986,6 +994,8 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
     upward = np.flatnonzero((values[:-1] < 0) & (values[1:] >= 0))
     if upward.size < 2:
         return None
+    import scipy.optimize  # on demand, as above
+
     crossings = []
     for k in (upward[0], upward[-1]):  # the mean period needs only the first and the last
         lo, hi = float(trajectory.t[k]), float(trajectory.t[k + 1])

@@ -1,12 +1,17 @@
 # rollspring: two commands.
-#   make demo   set up .venv, analyse and simulate the default system (the paper's hoop and cylinder)
-#               and write its report (build/demo/report.html)
-#   make test   set up .venv and run the whole test suite
+#   make demo   set up .venv with what the demo needs (the core and the report extra), analyse
+#               and simulate the default system (the paper's hoop and cylinder) and write its
+#               report (build/demo/report.html)
+#   make test   set up .venv with everything (the test extra: every extra and the test tools)
+#               and run the whole test suite
 #   rollspring serve   (after either) the interactive page at http://127.0.0.1:8000/
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
-STAMP  := $(VENV)/.installed
+PIP    := $(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt
+# one stamp per install: the demo's (core + report) and the full one (test: every extra)
+DEMO_STAMP := $(VENV)/.installed-demo
+STAMP      := $(VENV)/.installed
 
 .PHONY: demo test bench clean system-packages bench-packages
 
@@ -20,11 +25,17 @@ system-packages:
 		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $(SYSTEM_PACKAGES) >/dev/null; \
 	else echo "missing: $(SYSTEM_PACKAGES) (install them with your package manager)" >&2; exit 1; fi
 
-$(STAMP): pyproject.toml constraints.txt
+$(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check --upgrade "pip==26.3"
-	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt -e ".[test]"
-	touch $(STAMP)
+
+$(DEMO_STAMP): pyproject.toml constraints.txt | $(BIN)/python
+	$(PIP) -e ".[report]"
+	touch $(DEMO_STAMP)
+
+$(STAMP): pyproject.toml constraints.txt | $(BIN)/python
+	$(PIP) -e ".[test]"
+	touch $(STAMP) $(DEMO_STAMP)
 
 # the page's front-end libraries (uPlot), pinned in package.json / package-lock.json
 WEB_STATIC := src/rollspring/web/static
@@ -33,7 +44,7 @@ $(WEB_STAMP): $(WEB_STATIC)/package.json $(WEB_STATIC)/package-lock.json
 	npm ci --prefix $(WEB_STATIC) --no-audit --no-fund --loglevel=error
 	touch $(WEB_STAMP)
 
-demo: $(STAMP) $(WEB_STAMP)
+demo: $(DEMO_STAMP)
 	$(BIN)/rollspring analyze hoop-cylinder
 	$(BIN)/rollspring simulate hoop-cylinder --duration 10 --rtol 1e-10
 	$(BIN)/rollspring report hoop-cylinder -o build/demo/report.html
@@ -51,7 +62,7 @@ bench-packages:
 
 # benchmarks (bench/README.md): installs the bench extra (MuJoCo, pymunk), runs every bench/bench_*.py
 bench: $(STAMP) $(WEB_STAMP) system-packages bench-packages
-	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt -e ".[test,bench]"
+	$(PIP) -e ".[test,bench]"
 	@for script in bench/bench_*.py; do echo "== $$script"; $(BIN)/python $$script || exit 1; done
 
 clean:

@@ -11,15 +11,17 @@ import json
 import os
 import sys
 from collections.abc import Callable
-from typing import Annotated, Any, TypeVar
+from typing import TYPE_CHECKING, Annotated, Any, TypeVar
 
 import typer
-from rich.console import Console
 
 from rollspring.errors import RollspringError, require_extra
 from rollspring.model import DEFAULT_PRESET, preset_names, preset_path
 
-# Only what every command needs is imported here (Typer, Rich's console, the presets' names):
+if TYPE_CHECKING:
+    from rich.console import Console
+
+# Only what every command needs is imported here (Typer and the presets' names):
 # each command imports its own (pydantic's model, SciPy, the compiled kernels, SymPy,
 # Matplotlib, ...), so --help and the light commands start fast.
 
@@ -91,6 +93,8 @@ def needs_extra(extras: str | tuple[str, ...], name: str) -> Callable[[F], F]:
 
 def _stdout() -> Console:
     # a terminal's own width; 110 columns when piped to a file or a pager
+    from rich.console import Console
+
     width = None if sys.stdout.isatty() else 110
     return Console(highlight=False, soft_wrap=False, width=width)
 
@@ -233,6 +237,7 @@ class _progress_after_a_second:  # noqa: N801 - used as a context manager
         if self.bar is None:
             if time.perf_counter() - self.started < 1.0:
                 return
+            from rich.console import Console
             from rich.progress import Progress
 
             self.bar = Progress(console=Console(stderr=True), transient=True)

@@ -23,18 +23,42 @@ sweeps need the extras ``symbolic``, ``report``, ``web`` and ``sweep`` (``pip in
 from rollspring.errors import AnalysisError, ModelError, RollspringError, SimulationError
 
 
+#: How a running IPython shows rollspring's objects: (MIME type, the module and class of the
+#: object, the function of rollspring.outputs.jupyter that renders it).
+_DISPLAYS = (
+    ("text/html", "rollspring.model.schema", "System", "system_html"),
+    ("text/html", "rollspring.analysis.linear", "LinearAnalysis", "analysis_html"),
+    ("text/html", "rollspring.analysis.linear", "Mode", "mode_html"),
+    ("text/html", "rollspring.simulate.run", "Trajectory", "trajectory_html"),
+    ("text/latex", "rollspring.analysis.linear", "LinearAnalysis", "analysis_latex"),
+)
+
+
+def _shown_by(function: str):
+    def show(obj):
+        from rollspring.outputs import jupyter
+
+        return getattr(jupyter, function)(obj)
+
+    return show
+
+
 def _register_notebook_display() -> None:
-    """In a running IPython (Jupyter), show System, analyses and trajectories as HTML."""
+    """In a running IPython (Jupyter), show System, analyses and trajectories as HTML. Registered
+    by the classes' names, so nothing (the analysis, the kernels, Matplotlib) loads before such
+    an object is shown."""
     import sys
 
     if "IPython" not in sys.modules:
         return
     from IPython import get_ipython
 
-    if get_ipython() is not None:
-        from rollspring.outputs.jupyter import register_formatters
-
-        register_formatters()
+    shell = get_ipython()
+    if shell is None:
+        return
+    formatters = shell.display_formatter.formatters
+    for mime, module, name, function in _DISPLAYS:
+        formatters[mime].for_type_by_name(module, name, _shown_by(function))
 
 
 _register_notebook_display()

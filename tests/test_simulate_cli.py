@@ -156,3 +156,15 @@ def test_an_unwritable_out_fails_at_once_before_the_run(tmp_path, monkeypatch, w
     assert len(result.stderr.strip().splitlines()) == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
         ["a-file"] + (["locked"] if where == "read-only" else []))  # nothing created
+
+
+@pytest.mark.parametrize("args", [["report", "hoop-cylinder"],
+                                  ["animate", "hoop-cylinder", "-T", "1"]])
+def test_report_and_animate_check_their_out_before_the_work(tmp_path, args) -> None:
+    blocker = tmp_path / "a-file"
+    blocker.write_text("not a directory")
+    out = blocker / ("x.html" if args[0] == "report" else "x.gif")
+    result = run(*args, "--out", str(out))
+    assert result.exit_code == 2, result.output
+    assert result.stderr == (f"error: --out {out}: cannot write there "
+                             f"({blocker} is not a directory)\n")

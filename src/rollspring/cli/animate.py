@@ -92,7 +92,9 @@ def _check(out: str | None, duration: float, speed: float, fps: int, dpi: int,
         raise AnimationError(
             f"--duration: {duration:g} s at --speed {speed:g} and --fps {fps} is {frames} "
             f"frames (at most {MAX_FRAMES}); shorten it, raise --speed or lower --fps")
-    return target
+    from rollspring.outputs.files import writable_file
+
+    return writable_file(target)  # an unwritable --out fails now, not after the work
 
 
 class _Bar:

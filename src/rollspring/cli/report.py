@@ -55,6 +55,9 @@ def report(
     if duration is not None and not duration > 0:
         raise ReportError(f"--duration: must be a positive number of seconds, got {duration:g}")
     target = Path(out if out is not None else f"report.{format}")
+    from rollspring.outputs.files import writable_file
+
+    writable_file(target)  # an unwritable --out fails now, not after the work
     if format == "pdf":
         find_chromium(chromium)  # fail before the work when Chromium is missing
     from rollspring.model import load_system  # pydantic: not for --help

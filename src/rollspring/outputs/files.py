@@ -16,7 +16,7 @@ from typing import IO
 from rollspring.errors import OutputError
 
 __all__ = ["atomic_path", "atomic_write", "atomic_write_bytes", "atomic_write_text",
-           "writable_directory"]
+           "writable_directory", "writable_file"]
 
 
 @contextlib.contextmanager
@@ -61,24 +61,36 @@ def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
         handle.write(data)
 
 
-def writable_directory(path: str | os.PathLike[str], option: str = "--out") -> Path:
+def writable_directory(path: str | os.PathLike[str], option: str = "--out", *,
+                       named: str | os.PathLike[str] | None = None) -> Path:
     """Check, before any long computation, that files can be written into the directory
     ``path`` (which may not exist yet: then into its nearest existing ancestor, where it will be
-    created). Creates nothing; raises :class:`~rollspring.errors.OutputError` naming ``option``
-    and the reason."""
+    created). Creates nothing; raises :class:`~rollspring.errors.OutputError` naming ``option``,
+    the path (``named``, default ``path``) and the reason."""
     directory = Path(path)
+    shown = path if named is None else named
     probe = directory.absolute()
     try:
         while not probe.exists() and probe.parent != probe:
             probe = probe.parent
         if not probe.is_dir():
-            reason = f"{probe} is not a directory" if probe != directory.absolute() else \
+            reason = f"{probe} is not a directory" if Path(shown).absolute() != probe else \
                 "it is a file, not a directory"
-            raise OutputError(f"{option} {path}: cannot write there ({reason})")
+            raise OutputError(f"{option} {shown}: cannot write there ({reason})")
         descriptor, temporary = tempfile.mkstemp(prefix=".rollspring-check-", dir=probe)
     except OSError as exc:
-        raise OutputError(f"{option} {path}: cannot write there "
+        raise OutputError(f"{option} {shown}: cannot write there "
                           f"({exc.strerror or exc}: {probe})") from None
     os.close(descriptor)
     os.unlink(temporary)
     return directory
+
+
+def writable_file(path: str | os.PathLike[str], option: str = "--out") -> Path:
+    """Check, before any long computation, that the file ``path`` can be written (its directory,
+    as :func:`writable_directory`; the path itself not a directory)."""
+    target = Path(path)
+    if target.is_dir():
+        raise OutputError(f"{option} {path}: cannot write there (it is a directory)")
+    writable_directory(target.parent, option, named=path)
+    return target

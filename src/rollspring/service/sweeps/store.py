@@ -129,7 +129,9 @@ def write_template(path: Path, grid: Grid, ids: list[str], n_modes: int,
 
             var_attrs["flag_values"] = list(FLAG_VALUES)
             var_attrs["flag_meanings"] = FLAG_MEANINGS
-        data[name] = (dims, da.full(shape, fill, dtype=dtype, chunks=chunks), var_attrs)
+        # one Dask chunk for the whole variable: never computed (compute=False), and a graph
+        # of one task instead of one per Zarr chunk (which grew the client with the grid)
+        data[name] = (dims, da.full(shape, fill, dtype=dtype, chunks=shape), var_attrs)
         encoding[name] = {"chunks": chunks}
         if dtype != "float64":
             encoding[name]["fill_value"] = fill

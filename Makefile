@@ -65,5 +65,19 @@ bench: $(STAMP) $(WEB_STAMP) system-packages bench-packages
 	$(PIP) -e ".[test,bench]"
 	@for script in bench/bench_*.py; do echo "== $$script"; $(BIN)/python $$script || exit 1; done
 
+# the documentation site (docs/README.md): the docs extra, and MathJax from npm (pinned in
+# docs/package-lock.json) so the site renders math without a CDN; warnings are errors
+.PHONY: docs
+DOCS_STAMP     := $(VENV)/.docs-installed
+DOCS_NPM_STAMP := docs/node_modules/.installed
+$(DOCS_STAMP): pyproject.toml constraints.txt | $(BIN)/python
+	$(PIP) -e ".[docs]"
+	touch $(DOCS_STAMP)
+$(DOCS_NPM_STAMP): docs/package.json docs/package-lock.json
+	npm ci --prefix docs --no-audit --no-fund --loglevel=error
+	touch $(DOCS_NPM_STAMP)
+docs: $(DOCS_STAMP) $(DOCS_NPM_STAMP)
+	$(BIN)/sphinx-build -W --keep-going -q -b html docs build/docs/html
+
 clean:
 	rm -rf $(VENV) .pytest_cache .hypothesis build src/*.egg-info $(WEB_STATIC)/node_modules

@@ -393,8 +393,9 @@ def analyze(system: System) -> LinearAnalysis:
     (PHYSICS.md (M12)), the normal modes, the zero modes and the stationary point they imply
     (M14), the exact linear response to the initial conditions (modal superposition): the
     amplitude of every body, of the CM and of :math:`\hat X`, the friction and normal-force
-    amplitudes, the static friction coefficient the motion needs (max |f|/N), for two bodies the
-    paper's split of the spring into :math:`k_1, k_2`, and each spring's tilt and tension.
+    amplitudes, the static friction coefficient the motion needs (:math:`\max |f|/N`), for two
+    bodies the paper's split of the spring into :math:`k_1, k_2`, and each spring's tilt and
+    tension.
     """
     arrays = system_arrays(system)
     n = arrays.n_bodies

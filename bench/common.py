@@ -68,7 +68,7 @@ class HoopCylinder:
 
     @property
     def omega(self) -> float:
-        """Omega^2 = k/(2 m1) + 2k/(3 m2) (PHYSICS.md 7.1), rad/s."""
+        """Omega^2 = k/(2 m1) + 2k/(3 m2) (docs/physics.md 7.1), rad/s."""
         return math.sqrt(self.k / (2 * self.m1) + 2 * self.k / (3 * self.m2))
 
     @property

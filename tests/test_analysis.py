@@ -26,7 +26,7 @@ from tests.conftest import body, make_system, spring
        st.floats(-0.05, 0.05), st.sampled_from(["hoop", "cylinder", "sphere"]))
 def test_equilibrium_holds_the_zero_mode_of_an_off_centre_pair(r1, a1, r2, a2, strain, shape):
     """Q(q*) = 0 and the zero-mode coordinate of the initial placement is kept:
-    V0(q*)^T M (q* - 0) = 0, so the motion oscillates about q* (PHYSICS.md (M14)).
+    V0(q*)^T M (q* - 0) = 0, so the motion oscillates about q* (docs/physics.md (M14)).
     Springs up to 5 cm from their rest length on 0.1 m bodies (rolls of up to ~1 rad); far
     larger deformations can have the nearest equilibrium several radians away, where "nearest"
     stops being well defined."""

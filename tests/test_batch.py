@@ -56,7 +56,7 @@ def pair_parameters(m1, m2, k, *, compression=0.0, v_rel=0.0, mu=10.0):
 
 
 def pair_omega(m1, m2, k):
-    """PHYSICS.md 7.1: Omega^2 = k/(2 m1) + 2k/(3 m2)."""
+    """docs/physics.md 7.1: Omega^2 = k/(2 m1) + 2k/(3 m2)."""
     return np.sqrt(k / (2 * m1) + 2 * k / (3 * m2))
 
 
@@ -100,7 +100,7 @@ def test_centre_pair_batch_matches_the_exact_modal_solution():
     np.testing.assert_allclose(result.final_x, result.x[:, -1, :], rtol=0, atol=1e-15)
     # the measured period (minima of the spring length, interpolated) is 2 pi / Omega
     np.testing.assert_allclose(result.period_measured, 2 * np.pi / omega, rtol=1e-9)
-    # X-hat is stationary (M11); the CM swings by m1 m2 A / ((m1+m2)(4m1+3m2)) (PHYSICS 7.1)
+    # X-hat is stationary (M11); the CM swings by m1 m2 A / ((m1+m2)(4m1+3m2)) (docs/physics.md 7.1)
     assert np.all(result.stationary_amplitude <= 1e-9 * compression)  # rounding only
     cm = m1 * m2 * compression / ((m1 + m2) * (4 * m1 + 3 * m2))
     assert np.all(result.cm_amplitude <= cm * (1 + 1e-9))

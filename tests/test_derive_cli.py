@@ -207,7 +207,7 @@ def test_the_cross_check_shows_each_residual_not_a_truth_value():
                                                ("hoop-cylinder", False)])
 def test_the_stationary_point_is_called_the_centre_of_mass_only_when_it_is(preset, is_cm):
     """Equal inertia factors give weights (1 + gamma) m_i proportional to m_i: X-hat is the CM
-    (PHYSICS.md (M14)); a hoop and a cylinder weigh 2 m1 : 1.5 m2, not the CM."""
+    (docs/physics.md (M14)); a hoop and a cylinder weigh 2 m1 : 1.5 m2, not the CM."""
     from rollspring.analysis.derivation import derive
     from rollspring.model import load_system
 

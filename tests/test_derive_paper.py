@@ -2,7 +2,7 @@
 
 Every expected expression below is typed from the paper (G. Nyitray, *On the edge of
 complexity*, arXiv 2508.01379; labels are its LaTeX labels), corrected where the review
-(docs/paper-review-notes.md, PHYSICS.md) found it wrong; the paper's literal form is then shown
+(docs/paper-review-notes.md, docs/physics.md) found it wrong; the paper's literal form is then shown
 to differ. Symbols are the engine's: m_1, m_2, R (equal radii) or R_1, R_2, k.
 """
 

@@ -157,7 +157,7 @@ def test_fig2_exact_for_random_parameters(m1: float, m2: float, radius: float, k
 
 
 def test_geometric_stiffness_of_a_pretensioned_hoop_between_walls() -> None:
-    """PHYSICS.md section 7: a hoop point at alpha = 90 deg between two walls, both springs at
+    """docs/physics.md section 7: a hoop point at alpha = 90 deg between two walls, both springs at
     tension T: K = (kL + kR) R^2 + T r^2 (1/lL + 1/lR) (the path-curvature terms cancel)."""
     system = make_system(
         [body("h", "hoop", x=0.0)],

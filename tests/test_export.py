@@ -480,7 +480,7 @@ def test_mujoco_contacts_join_each_body_to_its_own_track_with_its_friction() -> 
 def test_mujoco_runs_the_hoop_and_cylinder_with_the_linear_period() -> None:
     """The paper's Fig. 2 system (hoop and cylinder of equal radius, centres joined, released
     from a compressed spring) oscillates with Omega^2 = k/(2 m1) + 2k/(3 m2), exactly at any
-    amplitude while rolling (PHYSICS.md section 8). MuJoCo's contact is soft: the bodies sink
+    amplitude while rolling (docs/physics.md section 8). MuJoCo's contact is soft: the bodies sink
     about 0.1 mm into the floor and the friction constraint lets the contact point creep
     (~30 micrometres over 2 s against 4-6 mm amplitudes), so the period is not exact. With the
     default contact and 1e-4 s steps the measured periods differ by about 0.02 %; a 1 %

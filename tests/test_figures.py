@@ -219,7 +219,7 @@ def test_every_figure_of_every_preset_renders_without_warnings(name, caplog) -> 
 
 
 def test_bodies_are_drawn_where_the_trajectory_puts_them(paper) -> None:
-    """Radius mark from (x, h + R) to (x + R sin(phi), h + R + R cos(phi)), PHYSICS.md (M1),
+    """Radius mark from (x, h + R) to (x + R sin(phi), h + R + R cos(phi)), docs/physics.md (M1),
     at an output time of the trajectory."""
     _, _, trajectory = paper
     k = 150

@@ -56,7 +56,7 @@ def test_fig2_frequency_positions_and_stationary_point(m1, m2, radius, k, a) -> 
     v1 = a * math.sqrt(3 * k * m2 / (2 * m1 * (4 * m1 + 3 * m2)))
     v2 = a * math.sqrt(8 * k * m1 / (3 * m2 * (4 * m1 + 3 * m2)))
     np.testing.assert_allclose(result.velocity_amplitude, [v1, v2], rtol=1e-9)
-    # the CM is not stationary: amplitude m1 m2 A / ((m1 + m2)(4 m1 + 3 m2)) (PHYSICS.md 7.1)
+    # the CM is not stationary: amplitude m1 m2 A / ((m1 + m2)(4 m1 + 3 m2)) (docs/physics.md 7.1)
     assert result.cm_amplitude == pytest.approx(m1 * m2 * a / ((m1 + m2) * (4 * m1 + 3 * m2)),
                                                 rel=1e-9)
     # in the mode the bodies move in phase opposition (eq. (g))
@@ -68,7 +68,7 @@ def test_fig2_frequency_positions_and_stationary_point(m1, m2, radius, k, a) -> 
 def test_fig2_friction_amplitudes_are_f_over_2_and_f_over_3_opposite(m1, m2, radius, k, a):
     result = analyze(hoop_cylinder(m1, m2, radius, k, a))
     force = k * a  # amplitude of the spring force
-    # Appendix A / PHYSICS.md (M10): hoop -F/2, cylinder -F/3 for a centre pull
+    # Appendix A / docs/physics.md (M10): hoop -F/2, cylinder -F/3 for a centre pull
     np.testing.assert_allclose(result.friction_amplitude, [force / 2, force / 3], rtol=1e-9)
     (mode,) = result.oscillating
     # f1/f2 = -3/2: the paper's "f1/f2 = 3/2" is a ratio of magnitudes
@@ -108,7 +108,7 @@ def test_equal_shapes_make_the_stationary_point_the_cm(shape, m1, m2, radius, k,
                                rtol=1e-12)
     assert result.cm_amplitude == pytest.approx(0.0, abs=1e-12 * a)
     gamma = INERTIA_FACTORS[shape]
-    # Omega^2 = k/((1+gamma)) (1/m1 + 1/m2) (PHYSICS.md (M15) with eta = R)
+    # Omega^2 = k/((1+gamma)) (1/m1 + 1/m2) (docs/physics.md (M15) with eta = R)
     assert result.oscillating[0].eigenvalue == pytest.approx(
         k / (1 + gamma) * (1 / m1 + 1 / m2), rel=1e-12)
 
@@ -167,7 +167,7 @@ def test_fig3_r1_equal_r2_over_2_on_one_floor_tilts_the_spring_and_says_so() -> 
     assert result.spring_tilt_deg[0] == pytest.approx(tilt, rel=1e-12)
     # friction still vanishes to first order (both ends at percussion points) ...
     np.testing.assert_allclose(result.oscillating[0].friction, 0.0, atol=1e-9)
-    # ... but Omega^2 is scaled by cos^2(tilt) (PHYSICS.md 7.1) and the analysis warns
+    # ... but Omega^2 is scaled by cos^2(tilt) (docs/physics.md 7.1) and the analysis warns
     cos2 = math.cos(math.radians(tilt)) ** 2
     assert result.oscillating[0].eigenvalue == pytest.approx(cos2 * (2 * 100 / 1 + 150), rel=1e-12)
     assert any("R1 = R2/2" in w and "tilted" in w and "level" in w for w in result.warnings)

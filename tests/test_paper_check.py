@@ -1,7 +1,7 @@
 """``rollspring paper-check``: every quantitative claim of the paper, with its computed verdict.
 
 Each expected verdict below is justified from the paper (G. Nyitray, arXiv 2508.01379; labels
-are its LaTeX labels) and PHYSICS.md, independently of the code: the test fails if the
+are its LaTeX labels) and docs/physics.md, independently of the code: the test fails if the
 derivation engine reaches a different verdict.
 """
 
@@ -45,7 +45,7 @@ EXPECTED = {
     "angular-momentum": H,
     # mode phi ~ (b1/J1, b2/J2) with b = (-R, R) (M15): opposite signs.
     "phase-opposition": V,
-    # in the mode xdot2/xdot1 = -J1/J2 = -4 m1/(3 m2): the CM moves (PHYSICS.md 7.1).
+    # in the mode xdot2/xdot1 = -J1/J2 = -4 m1/(3 m2): the CM moves (docs/physics.md 7.1).
     "cm-moves": V,
     # X-hat weights are (1 + gamma_i) m_i (M11); I'_i = J_i only for equal radii (review notes).
     "stationary-point": H,
@@ -62,7 +62,7 @@ EXPECTED = {
     # counted against F, exact (review notes: "exact at every instant").
     "fric": V,
     "fric-coupled": V,
-    # y* = (1 + gamma) R: 2R (hoop), 1.5R (cylinder) (PHYSICS.md 5).
+    # y* = (1 + gamma) R: 2R (hoop), 1.5R (cylinder) (docs/physics.md 5).
     "zero-friction-heights": V,
     # a horizontal spring needs h1 + 2R1 = 1.5 R2: R1 = R2/2 needs the hoop's track raised by
     # R1 (centres level); on one floor R1 = 0.75 R2 (review notes; README table).
@@ -73,9 +73,9 @@ EXPECTED = {
     # = 0 (J1 = 2 m1 R1^2, J2 = 1.5 m2 R2^2).
     "fig3-cm-acceleration": V,
     # the conserved total momentum is zero only for a start from rest (and the CM is at rest
-    # only to first order, PHYSICS.md 8).
+    # only to first order, docs/physics.md 8).
     "fig3-cm-at-rest": H,
-    # friction vanishes only to first order: O(phi^3) for a horizontal spring (PHYSICS.md 8,
+    # friction vanishes only to first order: O(phi^3) for a horizontal spring (docs/physics.md 8,
     # review notes).
     "fig3-no-friction": H,
     # no external torque to first order: L about a fixed point is conserved, so "L is not a
@@ -93,7 +93,7 @@ EXPECTED = {
     "energy": V,
     # (nu) has a minus sign where (rel1) has a plus: it holds for magnitudes (review notes).
     "nu": H,
-    # v_i = Omega A_i with A1/A = 3m2/(4m1 + 3m2) (PHYSICS.md 7.1, README table).
+    # v_i = Omega A_i with A1/A = 3m2/(4m1 + 3m2) (docs/physics.md 7.1, README table).
     "speeds": V,
     "omega-from-speeds": V,
     "amplitudes": V,
@@ -106,7 +106,7 @@ EXPECTED = {
     "lagrange-equations": H,
     "ga": H,
     "de": H,
-    # k_i = k Omega^2/Omega_i^2 (PHYSICS.md 7.1), 1/k = 1/k1 + 1/k2.
+    # k_i = k Omega^2/Omega_i^2 (docs/physics.md 7.1), 1/k = 1/k1 + 1/k2.
     "spring-parts": V,
     "k1-k2": V,
     "k-equal-masses": V,
@@ -115,25 +115,25 @@ EXPECTED = {
     "xhat-three-sevenths": V,
     # (M15): Omega^2 = Omega_1^2 + Omega_2^2 for two bodies and one spring.
     "sum-rule": V,
-    # with walls or chains only the trace identity holds (PHYSICS.md 7.2, review notes 4.4).
+    # with walls or chains only the trace identity holds (docs/physics.md 7.2, review notes 4.4).
     "sum-rule-general": H,
     # App. B: alpha_i = J_i, beta_i = k R^2, Omega_i^2 = k b_i^2/J_i (M15).
     "alpha-beta": V,
     "omega1-omega2": V,
-    # Fig. 3 (centres level, horizontal spring): Omega^2 = 2k/m1 + 3k/(2m2) (PHYSICS.md 7.1).
+    # Fig. 3 (centres level, horizontal spring): Omega^2 = 2k/m1 + 3k/(2m2) (docs/physics.md 7.1).
     "omega2-fig3": V,
     "omega3-omega4": V,
     # (l), (k), (h), (k0), (k02): the same sign convention as Sec. 4.3; in one orientation
-    # c = (-1/sqrt2, +sqrt(2/3)) (PHYSICS.md 7.1, review notes 4.4 (k), (k0)).
+    # c = (-1/sqrt2, +sqrt(2/3)) (docs/physics.md 7.1, review notes 4.4 (k), (k0)).
     "lagrangian-hamilton": H,
     "hamiltonian": H,
     "hamilton-equations": H,
     "canonical-ratio": H,
     "potential-fig2": H,
     "potential-fig3": H,
-    # q_i = sqrt(J_i/m_i) phi_i: q1 = sqrt2 R phi1, q2 = sqrt(3/2) R phi2 (PHYSICS.md 7.1).
+    # q_i = sqrt(J_i/m_i) phi_i: q1 = sqrt2 R phi1, q2 = sqrt(3/2) R phi2 (docs/physics.md 7.1).
     "canonical-coordinates": V,
-    # |c_i| = Omega_i/sqrt(k/m_i) (PHYSICS.md 7.1).
+    # |c_i| = Omega_i/sqrt(k/m_i) (docs/physics.md 7.1).
     "potential-coefficients": V,
     # -pdot1 = m1 Omega^2 q1 in the mode: k(1/2 + 2m1/(3m2)) q1.
     "hamilton-motion": V,

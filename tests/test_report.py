@@ -182,7 +182,7 @@ def test_stationary_point_weights_are_analyze_and_the_papers(report: Report, pag
     values = {row[0][0]: row[1] for row in page.tables["stationary-point-values"][1:]}
     assert values["X̂ is the centre of mass"][0] == "no"
     assert values["CM amplitude, linear (m)"][1] == analysis.cm_amplitude
-    # CM amplitude m1 m2 A / ((m1 + m2)(4 m1 + 3 m2)) = A/14 (PHYSICS.md 7.1)
+    # CM amplitude m1 m2 A / ((m1 + m2)(4 m1 + 3 m2)) = A/14 (docs/physics.md 7.1)
     assert values["CM amplitude, linear (m)"][1] == pytest.approx(
         p["m1"] * p["m2"] * p["A"] / ((p["m1"] + p["m2"]) * (4 * p["m1"] + 3 * p["m2"])),
         rel=1e-9)

@@ -182,7 +182,7 @@ def wall_cylinder(stretch: float, mu_s: float, mu_k: float):
 
 
 def slipping_from_release(stretch, mu_k, t):
-    """PHYSICS.md section 9: a cylinder on a wall spring slipping from release:
+    """docs/physics.md section 9: a cylinder on a wall spring slipping from release:
     x = x_e + (x0 - x_e) cos(w0 t), phi = -mu_k g t^2/R, x_e = x_rest + mu_k m g/k (m = 1 kg,
     k = 100 N/m, R = 0.1 m), and the contact point's velocity x' - R phi'."""
     w0 = 10.0
@@ -342,7 +342,7 @@ def test_a_step_that_cannot_resolve_the_motion_is_reported_not_printed():
 
 
 def test_a_slipping_hoop_matches_an_independent_solve_ivp_of_the_slipping_equations():
-    """Hoop slipping, cylinder rolling, centre spring (PHYSICS.md (M19)), written out by hand:
+    """Hoop slipping, cylinder rolling, centre spring (docs/physics.md (M19)), written out by hand:
     m1 x1'' = F1 + f, I1 phi1'' = -R f, f = -mu_k m1 g sign(v_s); 1.5 m2 x2'' = -F1."""
     from scipy.integrate import solve_ivp
 

@@ -30,7 +30,8 @@ def physics_warnings(analysis: LinearAnalysis) -> list[str]:
 
 
 def _contact_warnings(analysis: LinearAnalysis) -> list[str]:
-    """Slipping and lift-off, at equilibrium and in the linear motion (PHYSICS.md section 9)."""
+    """Slipping and lift-off, at equilibrium and in the linear motion (docs/physics.md
+    section 9)."""
     arrays = analysis.arrays
     out = []
     for i, body in enumerate(arrays.ids):
@@ -76,7 +77,8 @@ def percussion_attachments(analysis: LinearAnalysis) -> list[tuple[int, int, int
 
     The percussion point S lies on the vertical through the centre at height (1 + gamma) R above
     the contact; a force whose line passes through it needs no static friction, whatever its
-    direction (lambda = 1, PHYSICS.md (M10)); the paper's y1 = 2R (hoop) and y2 = 1.5R (cylinder).
+    direction (lambda = 1, docs/physics.md (M10)); the paper's y1 = 2R (hoop) and y2 = 1.5R
+    (cylinder).
     """
     arrays = analysis.arrays
     position, _, _ = end_kinematics(arrays, analysis.equilibrium.q)
@@ -162,7 +164,7 @@ def _geometry_warnings(analysis: LinearAnalysis) -> list[str]:
 
 
 def is_exactly_linear(analysis: LinearAnalysis) -> bool:
-    """True when the equations of motion are linear at any amplitude (PHYSICS.md section 8):
+    """True when the equations of motion are linear at any amplitude (docs/physics.md section 8):
     every spring attached at centres (or anchors) and horizontal, external forces at centres."""
     arrays = analysis.arrays
     centres = bool(np.all(arrays.end_r == 0)) and bool(np.all(arrays.force_r == 0))

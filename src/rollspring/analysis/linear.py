@@ -2,7 +2,7 @@ r"""Linear analysis: equilibrium, normal modes, the stationary point, the exact 
 
 About an equilibrium :math:`q^*` (:math:`\nabla U = 0`) the motion obeys
 :math:`M\ddot u + K u = 0` with the constant diagonal :math:`M` and the exact Hessian :math:`K`
-(geometric stiffness of pre-tensioned and tilted springs included), PHYSICS.md (M12)-(M14).
+(geometric stiffness of pre-tensioned and tilted springs included), docs/physics.md (M12)-(M14).
 Its solution for given initial conditions is a sum of normal modes; every quantity that depends
 linearly on the state (centre positions, the CM, friction, normal forces, spring lengths) is then
 a constant plus a sum of sinusoids, whose amplitudes are reported here.
@@ -84,7 +84,7 @@ def find_equilibrium(
     2. Where the equilibrium has zero modes :math:`V_0` (a valley of equilibria), Newton on the
        bordered system :math:`Q(q) + M V_0\mu = 0,\; V_0^T M q = 0`: the point of the valley
        whose zero-mode coordinates equal those of the initial placement. The motion released
-       from the initial placement conserves :math:`V_0^T M \dot q` (PHYSICS.md (M14)), so it
+       from the initial placement conserves :math:`V_0^T M \dot q` (docs/physics.md (M14)), so it
        oscillates about this point.
 
     ``forces`` may replace :func:`~rollspring.physics.generalized_forces` of ``system`` by an
@@ -192,7 +192,7 @@ def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness
     r"""Phase 2: the point of the valley of equilibria M-nearest to the initial placement.
 
     On the valley the tangent directions are the zero modes :math:`V_0(q)`; the M-nearest point
-    has :math:`g(q) = V_0^T M q = 0` (PHYSICS.md (M14): the released motion conserves
+    has :math:`g(q) = V_0^T M q = 0` (docs/physics.md (M14): the released motion conserves
     :math:`V_0^T M \dot q`, so it oscillates about this point). Newton in the valley's own
     coordinates: move along :math:`V_0` by :math:`\alpha`, re-descend onto the valley, with the
     Jacobian :math:`\partial g/\partial\alpha` from finite differences (a straight valley, e.g.
@@ -309,7 +309,7 @@ def normal_modes(
 
 def stationary_weights(system: SystemArrays, vectors: FloatArray,
                        kinds: np.ndarray) -> FloatArray | None:
-    r"""Weights of the generalised stationary point (PHYSICS.md (M14)),
+    r"""Weights of the generalised stationary point (docs/physics.md (M14)),
     :math:`w_i = J_i v_{0i}/s_i` normalised to :math:`\sum w = 1`, from the single zero mode
     :math:`v_0` among ``vectors`` (columns, kinds from :func:`normal_modes`); None when there is
     no zero mode, more than one, or its weights sum to zero (no point is stationary)."""
@@ -390,7 +390,7 @@ def analyze(system: System) -> LinearAnalysis:
     r"""Linear analysis of a system about the equilibrium nearest its initial placement.
 
     Finds the equilibrium (:func:`find_equilibrium`), builds :math:`M` and :math:`K`
-    (PHYSICS.md (M12)), the normal modes, the zero modes and the stationary point they imply
+    (docs/physics.md (M12)), the normal modes, the zero modes and the stationary point they imply
     (M14), the exact linear response to the initial conditions (modal superposition): the
     amplitude of every body, of the CM and of :math:`\hat X`, the friction and normal-force
     amplitudes, the static friction coefficient the motion needs (:math:`\max |f|/N`), for two
@@ -626,7 +626,7 @@ def linear_motion(analysis: LinearAnalysis, t: FloatArray) -> FloatArray:
     (len(t), n_bodies).
 
     With :math:`u = q - q^*`, M-orthonormal modes :math:`v_n` (:math:`K v_n = \lambda_n M v_n`,
-    PHYSICS.md (M12)) and :math:`\eta_n = v_n^T M u`, each mode moves on its own:
+    docs/physics.md (M12)) and :math:`\eta_n = v_n^T M u`, each mode moves on its own:
     :math:`\eta_n(t) = \eta_{n0}\cos\omega_n t + \dot\eta_{n0}\sin(\omega_n t)/\omega_n`
     (oscillating), :math:`\eta_{n0} + \dot\eta_{n0} t` (zero mode, (M14)),
     :math:`\eta_{n0}\cosh\kappa_n t + \dot\eta_{n0}\sinh(\kappa_n t)/\kappa_n` (unstable,
@@ -730,7 +730,7 @@ def _spring_split(
     :math:`\Omega_i^2 = k b_i^2/J_i` (body i alone, the other clamped, paper's Appendix B),
     :math:`\Omega^2 = \Omega_1^2 + \Omega_2^2`; body i's share of the deformation is
     :math:`\sigma_i = \Omega_i^2/\Omega^2` and :math:`k_i = k/\sigma_i`
-    (paper eqs. (k1), (k2); :math:`1/k = 1/k_1 + 1/k_2`, eq. (part)). PHYSICS.md section 7.1.
+    (paper eqs. (k1), (k2); :math:`1/k = 1/k_1 + 1/k_2`, eq. (part)). docs/physics.md section 7.1.
     """
     if arrays.n_bodies != 2 or arrays.n_springs != 1 or np.any(arrays.end_body < 0):
         return None

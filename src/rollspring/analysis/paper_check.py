@@ -22,7 +22,7 @@ from rest, an angle counted the other way, small angles, ...) and the two agree 
 ``"holds-only-if"``; otherwise ``"wrong"``, with the derived expression as the correction.
 Nothing in a verdict is typed in: the words (``reason``) explain, the engine decides.
 
-Sign conventions (PHYSICS.md): :math:`\varphi_i` clockwise positive (rolling to the right), in
+Sign conventions (docs/physics.md): :math:`\varphi_i` clockwise positive (rolling to the right), in
 one common orientation for all bodies, measured from the equilibrium; friction :math:`f_i` is
 the force of the floor on body i, positive along +x.
 """
@@ -263,7 +263,7 @@ class _Bench:
         return self._cached(("friction", key), build)
 
     def weights(self, key: str) -> list[sp.Expr]:
-        """Stationary-point weights w_i = J_i v0_i / s_i, normalised (PHYSICS.md (M14))."""
+        """Stationary-point weights w_i = J_i v0_i / s_i, normalised (docs/physics.md (M14))."""
         def build() -> list[sp.Expr]:
             sym = self.sym(key)
             v0 = self.zero_mode(key)
@@ -559,7 +559,7 @@ def _stationary_general(b: _Bench) -> Derived:
                    condition="the radii are equal (R_1 = R_2, as in Fig. 2)",
                    value_if=_subs(w, {R2: R1}), paper_if=lambda e: _subs(e, {R2: R1}),
                    why="for different radii the weights are (1 + gamma_i) m_i = J_i/R_i^2, not "
-                   "I'_i = J_i (PHYSICS.md (M11))")
+                   "I'_i = J_i (docs/physics.md (M11))")
 
 
 def _stationary(key: str) -> Callable[[_Bench], Derived]:

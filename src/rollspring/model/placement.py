@@ -3,7 +3,7 @@ r"""The same system placed somewhere else along its rolling motion.
 A system file gives every body's initial placement, and attachment points are fixed in the
 bodies *in that placement*. Rolling body :math:`i` by an angle :math:`q_i` (clockwise) moves its
 centre by :math:`s_i q_i` (:math:`s_i = R_i`; a slider's :math:`q_i` is its displacement in
-metres) and turns every point fixed in it by :math:`q_i` about the centre (PHYSICS.md (M1)):
+metres) and turns every point fixed in it by :math:`q_i` about the centre (docs/physics.md (M1)):
 a point at distance :math:`r` and angle :math:`\alpha` from straight up is then at
 :math:`\alpha + q_i`. :func:`rolled` writes that configuration as a new system file, so a run
 can start anywhere along the rolling motion (a normal mode displaced from the equilibrium, a body
@@ -25,7 +25,7 @@ def rolled(system: System, q: Sequence[float], *, velocities: Sequence[float] | 
            ) -> System:
     r"""``system`` with body :math:`i` rolled by :math:`q_i` (rad, clockwise; metres for a
     slider) from its initial placement: centre :math:`x_i + R_i q_i`, attachment points and the
-    points of application of forces turned by :math:`q_i` about the centre (PHYSICS.md (M1)),
+    points of application of forces turned by :math:`q_i` about the centre (docs/physics.md (M1)),
     every spring's rest length kept (written explicitly). ``velocities`` (m/s, centre
     velocities) replace the initial velocities when given."""
     angles = [float(value) for value in q]

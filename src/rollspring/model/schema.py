@@ -24,7 +24,7 @@ __all__ = [
     "System",
 ]
 
-#: Central moment of inertia I = gamma m R^2 for each built-in shape (PHYSICS.md section 1).
+#: Central moment of inertia I = gamma m R^2 for each built-in shape (docs/physics.md section 1).
 INERTIA_FACTORS: dict[str, float] = {
     "hoop": 1.0,
     "cylinder": 0.5,
@@ -172,7 +172,7 @@ class Body(_Strict):
 
     @property
     def contact_inertia(self) -> float:
-        r"""Inertia of the coordinate: :math:`J = I + m R^2` about the contact line (PHYSICS.md
+        r"""Inertia of the coordinate: :math:`J = I + m R^2` about the contact line (docs/physics.md
         (M4), the paper's :math:`I'` by Steiner's theorem); a slider's coordinate is x, J = m."""
         if not self.rolls:
             return self.mass

@@ -4,7 +4,7 @@ Every function takes a result and an optional ``ax`` (or ``fig`` for multi-panel
 returns it; nothing here recomputes physics: positions, forces, modes, the CM and
 :math:`\hat X` are read from the model, :class:`~rollspring.analysis.LinearAnalysis` and
 :class:`~rollspring.simulate.Trajectory` objects (drawing a body point from ``x`` and ``phi``,
-PHYSICS.md (M1), is geometry). No pyplot: figures are :class:`matplotlib.figure.Figure` objects
+docs/physics.md (M1), is geometry). No pyplot: figures are :class:`matplotlib.figure.Figure` objects
 with an Agg canvas, so nothing needs a display and no global state changes. Every figure is
 built and saved inside :func:`theme` (Matplotlib's defaults, DejaVu Sans, fixed DPI, fixed SVG
 hash salt, no dates in metadata), so the same input gives the same pixels.
@@ -185,7 +185,7 @@ def figure_rgba(fig: Figure) -> np.ndarray:
     return np.array(canvas.buffer_rgba())
 
 
-# -- geometry (PHYSICS.md (M1)) ----------------------------------------------------------------
+# -- geometry (docs/physics.md (M1)) -----------------------------------------------------------
 
 
 @dataclass(frozen=True)
@@ -619,7 +619,7 @@ class SystemScene:
                 d = ends[s, 1] - ends[s, 0]
                 length = math.hypot(float(d[0]), float(d[1]))
                 e = d / length if length > 0 else np.zeros(2)
-                pull = float(state.tension[s]) * e  # on end a; -pull on end b (PHYSICS.md §2)
+                pull = float(state.tension[s]) * e  # on end a; -pull on end b (docs/physics.md §2)
                 for j, sign in ((0, 1.0), (1, -1.0)):
                     if a.end_body[s, j] >= 0:
                         put(self.arrows["spring"][k], ends[s, j], sign * pull * scale.horizontal)

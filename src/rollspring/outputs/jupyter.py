@@ -132,7 +132,7 @@ def _matrix_latex(matrix: np.ndarray, digits: int = 6) -> str:
 
 def analysis_latex(analysis: LinearAnalysis) -> str:
     r"""The linearised equations as LaTeX: :math:`M\ddot u + K u = 0` with the numbers of
-    :math:`M = \mathrm{diag}(J_i)` and the exact Hessian :math:`K` (PHYSICS.md (M12)), the
+    :math:`M = \mathrm{diag}(J_i)` and the exact Hessian :math:`K` (docs/physics.md (M12)), the
     coordinates, and the frequencies :math:`\omega_n`."""
     coordinates = ", ".join(
         (r"\varphi" if rolls else "x") + r"_{\mathrm{" + name.replace("_", r"\_") + "}}"

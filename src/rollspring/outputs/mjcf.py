@@ -30,7 +30,7 @@ Mapping (SI units on both sides)
 * **Tracks and contact.** One infinite plane per distinct track height, each with its own
   contact bit: a track plane has ``contype = bit, conaffinity = 0`` and the geoms of the bodies
   on it ``contype = 0, conaffinity = bit``, so a body touches its own track only and bodies
-  never touch each other (PHYSICS.md section 1 models no collisions). At most 31 distinct
+  never touch each other (docs/physics.md section 1 models no collisions). At most 31 distinct
   track heights can be exported. Body geoms have ``priority = 1``, so a contact uses the
   body's friction and ``condim = 3`` (sliding friction only: no rolling resistance, as in our
   model). **Friction coefficient = mu_static**: MuJoCo has one friction coefficient (no
@@ -61,7 +61,7 @@ What cannot be exported (and why)
   approximately; see the tunable settings in the file's comments (``solref``, ``solimp``,
   ``cone="elliptic"``, ``impratio``, ``noslip_iterations``).
 * ``mu_kinetic`` when it differs from ``mu_static`` (one coefficient in MuJoCo), and the
-  re-sticking rule of PHYSICS.md section 9: MuJoCo's friction cone decides slip by itself.
+  re-sticking rule of docs/physics.md section 9: MuJoCo's friction cone decides slip by itself.
   Such cases are listed by :func:`mjcf_warnings`.
 """
 

@@ -7,7 +7,7 @@ slider its displacement (m). Both are written with one formula by two per-body c
 
 .. math:: x_i = x_{i0} + s_i q_i, \qquad \theta = \alpha + \rho_i q_i
 
-with :math:`s_i = R_i, \rho_i = 1` for a rolling body (no slip, PHYSICS.md section 2) and
+with :math:`s_i = R_i, \rho_i = 1` for a rolling body (no slip, docs/physics.md section 2) and
 :math:`s_i = 1, \rho_i = 0` for a slider (it translates without turning).
 """
 

@@ -2,7 +2,7 @@ r"""Exact rolling mechanics: pure, vectorised functions of a system and a state.
 
 The state is ``q`` (shape ``(..., n)``; rotation angles of rolling bodies, displacements of
 sliders, see :mod:`rollspring.physics.arrays`) and, where velocities matter, ``qdot``. Nothing
-here uses a small-angle approximation. Equation tags (M1)... refer to ``PHYSICS.md``; "paper"
+here uses a small-angle approximation. Equation tags (M1)... refer to ``docs/physics.md``; "paper"
 is G. Nyitray, *On the edge of complexity* (arXiv 2508.01379).
 
 Sign conventions: ``x`` right, ``y`` up; rotations clockwise positive; the static friction ``f``
@@ -76,7 +76,7 @@ def end_kinematics(
         \frac{dP}{dq_i} = (s_i + \rho_i r\cos\theta,\; -\rho_i r\sin\theta),\quad
         \frac{d^2P}{dq_i^2} = -\rho_i^2 (r\sin\theta,\; r\cos\theta)
 
-    PHYSICS.md (M1)-(M3). An anchor end is fixed: its derivatives are zero.
+    docs/physics.md (M1)-(M3). An anchor end is fixed: its derivatives are zero.
     Shapes: ``q`` (..., n) -> three arrays (..., S, 2 ends, 2 components).
     """
     q = _as_state(system, q)
@@ -130,7 +130,7 @@ def spring_state(
     .. math:: T_s = k_s (l_s - L_{0s}) + c_s \dot l_s, \qquad
               b_{si} = \frac{\partial l_s}{\partial q_i} = e_s\cdot\Delta_{si}
 
-    PHYSICS.md section 2 and (M7): :math:`b_{si}` is the signed lever arm of spring s about the
+    docs/physics.md section 2 and (M7): :math:`b_{si}` is the signed lever arm of spring s about the
     contact point of body i (for a slider, the x-component of ``e``). The damping term needs
     ``qdot``; without it the tension is the elastic one.
     """
@@ -157,8 +157,8 @@ def generalized_forces(
     .. math:: Q_i = -\sum_s T_s b_{si} + \sum_{\text{forces on } i} F\cdot\frac{dP}{dq_i}
 
     For a rolling body :math:`Q_i` is the clockwise torque of the applied forces about its contact
-    point :math:`K_i` (N m), PHYSICS.md (M7); for a slider the horizontal force (N). The paper's
-    eqs. (e), (f) and (a), (b) are special cases.
+    point :math:`K_i` (N m), docs/physics.md (M7); for a slider the horizontal force (N). The
+    paper's eqs. (e), (f) and (a), (b) are special cases.
     """
     q = _as_state(system, q)
     springs = spring_state(system, q, qdot)
@@ -172,7 +172,8 @@ def generalized_forces(
 
 
 def mass_matrix(system: SystemArrays) -> FloatArray:
-    r"""The constant diagonal mass matrix :math:`M = \mathrm{diag}(J_i)`, PHYSICS.md (M4), (M12).
+    r"""The constant diagonal mass matrix :math:`M = \mathrm{diag}(J_i)`, docs/physics.md (M4),
+    (M12).
 
     :math:`J_i = (1+\gamma_i) m_i R_i^2` (kg m^2) for a rolling body (the paper's :math:`I'`,
     e.g. :math:`2m_1R^2` for the hoop and :math:`\tfrac32 m_2R^2` for the cylinder), ``m`` (kg)
@@ -186,7 +187,7 @@ def accelerations(
 ) -> FloatArray:
     r"""Exact equations of motion while every body rolls: :math:`\ddot q_i = Q_i / J_i`.
 
-    PHYSICS.md (M7), from the Lagrangian (M5): :math:`J_i\ddot\varphi_i = -\partial U/\partial
+    docs/physics.md (M7), from the Lagrangian (M5): :math:`J_i\ddot\varphi_i = -\partial U/\partial
     \varphi_i`.
     """
     return generalized_forces(system, q, qdot) / system.inertia
@@ -198,7 +199,7 @@ def body_forces(
     r"""Resultant applied force :math:`F_i = (F_{ix}, F_{iy})` on every body (springs and external
     forces; not gravity, friction or the normal force). Shape (..., n, 2), newtons.
 
-    A spring pulls its end a with :math:`+T e` and its end b with :math:`-T e` (PHYSICS.md
+    A spring pulls its end a with :math:`+T e` and its end b with :math:`-T e` (docs/physics.md
     section 2).
     """
     q = _as_state(system, q)
@@ -219,7 +220,7 @@ def contact_forces(
     .. math:: f_i = m_i R_i \ddot\varphi_i - F_{ix} = \frac{Q_i}{(1+\gamma_i)R_i} - F_{ix},
               \qquad N_i = m_i g - F_{iy}
 
-    PHYSICS.md (M8), (M9); reproduces the paper's eq. (fric), :math:`f = F(1 - mRy/(I+mR^2))`
+    docs/physics.md (M8), (M9); reproduces the paper's eq. (fric), :math:`f = F(1 - mRy/(I+mR^2))`
     (the paper counts f opposite to F; here ``f`` is positive along +x). A slider is on a
     frictionless floor: its ``f`` is 0. Velocities enter only through spring damping.
     Shapes: ``q`` (..., n) -> two arrays (..., n), newtons.
@@ -242,7 +243,7 @@ def stiffness_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
         (H_s)_{ij} = \frac{\Delta_i\cdot\Delta_j - (e\cdot\Delta_i)(e\cdot\Delta_j)}{l}
                      + \delta_{ij}\, e\cdot DD_i
 
-    PHYSICS.md (M12), (M13): :math:`T_s H_s` is the geometric stiffness of a pre-tensioned
+    docs/physics.md (M12), (M13): :math:`T_s H_s` is the geometric stiffness of a pre-tensioned
     spring. For the paper's Fig. 2 it is :math:`kR^2\begin{pmatrix}1&-1\\-1&1\end{pmatrix}`.
     Shape: ``q`` (n,) -> (n, n), in N m/rad (rolling) or N/m (sliders).
     """
@@ -286,7 +287,7 @@ def body_forces_jacobian(system: SystemArrays, q: FloatArray) -> FloatArray:
     For a displacement ``v``, the force on end a of a spring changes by
     :math:`\delta F_a = k\,\delta l\, e + T(\delta d - e(e\cdot\delta d))/l` with
     :math:`\delta d = \sum_i\Delta_i v_i`, :math:`\delta l = b\cdot v`
-    (PHYSICS.md section 7), and :math:`\delta F_b = -\delta F_a`. Constant external forces do
+    (docs/physics.md section 7), and :math:`\delta F_b = -\delta F_a`. Constant external forces do
     not change.
     """
     q = _as_state(system, q)
@@ -309,7 +310,7 @@ def contact_forces_jacobian(system: SystemArrays, q: FloatArray) -> tuple[FloatA
               - \frac{\partial F_{ix}}{\partial q_j},\qquad
               \frac{\partial N_i}{\partial q_j} = -\frac{\partial F_{iy}}{\partial q_j}
 
-    Differentiates (M8), (M9) with :math:`\ddot q = -M^{-1}K\,\delta q` (PHYSICS.md section 7,
+    Differentiates (M8), (M9) with :math:`\ddot q = -M^{-1}K\,\delta q` (docs/physics.md section 7,
     "linear forces along a displacement").
     """
     k_matrix = stiffness_matrix(system, q)
@@ -340,13 +341,13 @@ def potential_energy(system: SystemArrays, q: FloatArray) -> FloatArray:
 
 def kinetic_energy(system: SystemArrays, qdot: FloatArray) -> FloatArray:
     r"""Kinetic energy :math:`T = \sum_i \tfrac12 J_i \dot q_i^2` (J), König's theorem with
-    rolling, PHYSICS.md (M4)-(M5); the paper's :math:`\tfrac12 I'_1\dot\varphi_1^2 + \dots`."""
+    rolling, docs/physics.md (M4)-(M5); the paper's :math:`\tfrac12 I'_1\dot\varphi_1^2 + \dots`."""
     qdot = _as_state(system, qdot)
     return 0.5 * np.sum(system.inertia * qdot**2, axis=-1)
 
 
 def total_energy(system: SystemArrays, q: FloatArray, qdot: FloatArray) -> FloatArray:
-    """Mechanical energy H = T + U (J), conserved while every body rolls, PHYSICS.md (M6)."""
+    """Mechanical energy H = T + U (J), conserved while every body rolls, docs/physics.md (M6)."""
     return kinetic_energy(system, qdot) + potential_energy(system, q)
 
 

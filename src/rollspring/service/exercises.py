@@ -150,7 +150,8 @@ def _level4(rng: np.random.Generator) -> tuple[str, dict, list[str]]:
     ids = ["b1", "b2"]
     speed = _pick(rng, (0.02, 0.03, 0.04, 0.05))
     if variant == "pair":
-        # zero pseudo-momentum: sum w_i v_i = 0 with w_i = (1 + gamma_i) m_i R_i (PHYSICS.md M16)
+        # zero pseudo-momentum: sum w_i v_i = 0 with w_i = (1 + gamma_i) m_i R_i
+        # (docs/physics.md M16)
         gammas = [Fraction(g).limit_denominator(10) for g in (1.0, 0.5, 0.4)]
         factor = dict(zip(("hoop", "cylinder", "sphere"), gammas, strict=True))
         w = [(1 + factor[s]) * Fraction(str(m)) * Fraction(str(r))

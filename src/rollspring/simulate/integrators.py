@@ -1,7 +1,7 @@
 r"""The explicit symplectic integrators, shared by single runs, batches and sweeps.
 
 While every body rolls the Hamiltonian is separable with a constant diagonal mass matrix
-(PHYSICS.md (M6)), so symmetric compositions of the kick-drift-kick leapfrog with stage weights
+(docs/physics.md (M6)), so symmetric compositions of the kick-drift-kick leapfrog with stage weights
 :math:`w_k` are explicit and symplectic (Yoshida 1990; Kahan and Li 1997). Each
 :class:`Integrator` carries its order :math:`p` and the constant :math:`C_p` of its relative
 frequency error :math:`C_p(\omega h)^p` (Verlet's 1/24 exact; the others measured on the

@@ -1,7 +1,8 @@
 r"""Compiled (Numba) kernels: the exact rolling equations and explicit symplectic integrators.
 
 While every body rolls the Hamiltonian is separable, :math:`H = \sum p_i^2/(2J_i) + U(q)` with a
-constant diagonal mass matrix (PHYSICS.md (M6)), so compositions of the kick-drift-kick leapfrog
+constant diagonal mass matrix (docs/physics.md (M6)), so compositions of the kick-drift-kick
+leapfrog
 
 .. math:: v \mathrel{+}= \tfrac{h_k}{2} Q(q)/J,\quad q \mathrel{+}= h_k v,\quad
           v \mathrel{+}= \tfrac{h_k}{2} Q(q)/J, \qquad h_k = w_k h
@@ -111,7 +112,8 @@ def _point(bodies, i, r, alpha, x, phi):
 def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
     r"""Resultant force and clockwise torque about each centre of springs and constant forces;
     each spring's length and tension :math:`T = k(l - L_0) + c\,\dot l` (``damped``: include
-    :math:`c\,\dot l`). Force on end a: :math:`+T e`, on end b: :math:`-T e` (PHYSICS.md §2)."""
+    :math:`c\,\dot l`). Force on end a: :math:`+T e`, on end b: :math:`-T e`
+    (docs/physics.md §2)."""
     bodies, springs, ends, forces, force_body = model[0], model[1], model[2], model[3], model[4]
     for i in range(x.shape[0]):
         fx[i] = 0.0
@@ -491,7 +493,7 @@ def signal_zero(model, coeffs, h, q0, v0, weights, q_ref):
 
 @njit(cache=True, error_model="numpy")
 def slipping_derivatives(model, state, slipping, sign, damped, out):
-    r"""Time derivative of the general state ``[x, phi, u, omega]`` (4n), PHYSICS.md (M19).
+    r"""Time derivative of the general state ``[x, phi, u, omega]`` (4n), docs/physics.md (M19).
 
     Rolling body: :math:`J\dot\omega = R F_x + \tau`, :math:`\dot u = R\dot\omega`; slider:
     :math:`m\dot u = F_x`; slipping body (``slipping[i]``, slip direction ``sign[i]`` = sign of

@@ -5,7 +5,7 @@ symplectic composition (:data:`~rollspring.simulate.kernels.SCHEMES`) compiled w
 a fixed step chosen from the highest linear frequency :math:`\omega` and ``rtol``: the relative
 frequency error of an order-p scheme is :math:`C_p(\omega h)^p`, so over the run the phase
 error is :math:`\omega T C_p (\omega h)^p \le \mathrm{rtol}`. Damped springs, a slipping body
-(PHYSICS.md (M19)) or ``integrator="dop853"`` use SciPy's adaptive DOP853 on the general state
+(docs/physics.md (M19)) or ``integrator="dop853"`` use SciPy's adaptive DOP853 on the general state
 :math:`[x, \varphi, u, \omega]`.
 
 Events are found to the instant: after every step the friction each body needs and its normal
@@ -238,7 +238,7 @@ def simulate(
 ) -> Trajectory:
     r"""Integrate the exact nonlinear equations of ``system`` for ``duration`` seconds.
 
-    :math:`J_i\ddot\varphi_i = Q_i(\varphi)` while every body rolls (PHYSICS.md (M7)); a body
+    :math:`J_i\ddot\varphi_i = Q_i(\varphi)` while every body rolls (docs/physics.md (M7)); a body
     whose needed friction reaches :math:`\mu_s N` slips ((M19), with ``on_slip="continue"``;
     ``"stop"`` ends the run at that instant); lift-off (:math:`N < 0`) ends the run.
     ``rtol`` bounds the relative phase (hence position) error over the run; the energy error is

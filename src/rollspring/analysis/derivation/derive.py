@@ -172,7 +172,7 @@ def setup_section(sym: SymbolicSystem) -> Section:
     section.add(sp.Matrix([[b.q, b.m, b.R if b.rolls else sp.Integer(0), b.gamma]
                            for b in sym.bodies]),
                 "Bodies " + "; ".join(rows) + ". Columns: coordinate, mass, radius, inertia "
-                "factor gamma (I = gamma m R^2).", "PHYSICS.md Sec. 1")
+                "factor gamma (I = gamma m R^2).", "docs/physics.md Sec. 1")
     if sym.symbolic and sym.values:
         section.add([sp.Eq(s, sp.Float(v, 6)) for s, v in sorted(sym.values.items(),
                                                                   key=lambda p: p[0].name)],

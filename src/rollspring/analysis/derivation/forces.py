@@ -1,4 +1,4 @@
-r"""Friction and normal forces, symbolically (PHYSICS.md (M8)-(M10); paper App. A).
+r"""Friction and normal forces, symbolically (docs/physics.md (M8)-(M10); paper App. A).
 
 * :func:`contact_force_section`: for a system, :math:`f_i = m_iR_i\ddot\varphi_i - F_{ix}`
   (M8), :math:`N_i = m_i g - F_{iy}` (M9), the same with the equations of motion substituted

@@ -1,4 +1,4 @@
-r"""Normal frequencies in closed form: :math:`\det(K - \Omega^2 M) = 0` (PHYSICS.md section 7).
+r"""Normal frequencies in closed form: :math:`\det(K - \Omega^2 M) = 0` (docs/physics.md section 7).
 
 With the constant diagonal :math:`M` the characteristic polynomial is that of
 :math:`A = M^{-1}K` (:math:`A_{ij} = K_{ij}/J_i`). One body: :math:`\Omega^2 = K/J`. Two bodies

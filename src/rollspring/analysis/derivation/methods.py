@@ -368,7 +368,7 @@ def newton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     equations = linear_equations(sym)
     if _is_linear(sym):
         section.add(equations, "The equations are linear in the angles: exact at any "
-                    "amplitude while the bodies roll.", "PHYSICS.md Sec. 8")
+                    "amplitude while the bodies roll.", "docs/physics.md Sec. 8")
     else:
         section.add(equations, "Linearised about the equilibrium (small angles): the "
                     "stiffness matrix K = d2V/dq2 at q = 0.", "(M12), (M13)")

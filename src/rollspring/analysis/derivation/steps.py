@@ -2,7 +2,7 @@ r"""Steps and sections of a derivation: a displayed equation with one line of wo
 
 A :class:`Step` holds the SymPy object (an ``Eq``, an expression, a list of them or a matrix),
 its LaTeX, the words, and where it comes from (``ref``: the paper's equation label or a
-PHYSICS.md tag). A :class:`Section` is a titled list of steps.
+docs/physics.md tag). A :class:`Section` is a titled list of steps.
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ def matrix_equation(name: str, matrix: sp.MatrixBase) -> sp.Eq:
 @dataclass(frozen=True)
 class Step:
     """One step: ``equation`` (SymPy), its ``latex``, one line of ``words``, and ``ref`` (the
-    paper's label such as ``"paper (QQQ1)"`` or a PHYSICS.md tag such as ``"(M7)"``)."""
+    paper's label such as ``"paper (QQQ1)"`` or a docs/physics.md tag such as ``"(M7)"``)."""
 
     equation: Any
     latex: str

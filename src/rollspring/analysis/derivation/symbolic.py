@@ -38,7 +38,7 @@ there is none. So the paper's constraint reads :math:`x_i = R_i\varphi_i` (origi
 reference), and for springs at rest length there :math:`V = \tfrac12\sum_s k_s(l_s-\ell_s)^2`
 with :math:`\ell_s` the spring's length at the reference.
 
-Geometry, exactly (PHYSICS.md (M1)): spring s has the vector :math:`d_s = P_b - P_a` with
+Geometry, exactly (docs/physics.md (M1)): spring s has the vector :math:`d_s = P_b - P_a` with
 :math:`d_s(0) = \ell_s(\cos\beta_s, \sin\beta_s)` at the reference (:math:`\beta_s` its tilt)
 and each body end moves by
 
@@ -131,7 +131,7 @@ class SymbolicBody:
 
     ``q`` is the plain Symbol of its coordinate (:math:`\varphi_i`, or :math:`x_i` for a slider),
     ``function`` the same as a function of time. :math:`I = \gamma m R^2`,
-    :math:`J = I + mR^2 = (1+\gamma)mR^2` (Steiner, PHYSICS.md (M4); the paper's :math:`I'`);
+    :math:`J = I + mR^2 = (1+\gamma)mR^2` (Steiner, docs/physics.md (M4); the paper's :math:`I'`);
     for a slider :math:`J = m`. ``s`` is :math:`dx/dq` (R or 1), ``rho`` 1 (rolling) or 0.
     """
 
@@ -454,7 +454,7 @@ class SymbolicSystem:
     @cached_property
     def stiffness_matrix(self) -> sp.Matrix:
         r""":math:`K = \partial^2 V/\partial q^2` at the reference :math:`q = 0`, in closed form
-        spring by spring (PHYSICS.md (M12), (M13)): with :math:`\Delta_i = \pm dP/dq_i`,
+        spring by spring (docs/physics.md (M12), (M13)): with :math:`\Delta_i = \pm dP/dq_i`,
         :math:`DD_i = \pm d^2P/dq_i^2` of the spring's ends on body i, :math:`e = d_0/\ell`,
         :math:`b_i = e\cdot\Delta_i`, :math:`T = k(\ell - L)`:
 
@@ -631,7 +631,7 @@ class SymbolicSystem:
     def body_force_jacobian(self) -> list[list[tuple[sp.Expr, sp.Expr]]]:
         r""":math:`\partial F_i/\partial q_j` at the reference, in closed form: along a
         displacement the force on end a changes by :math:`k\,\delta l\,e + T(\delta d -
-        e(e\cdot\delta d))/\ell` (PHYSICS.md section 7); ``[i][j] = (dF_ix, dF_iy)``."""
+        e(e\cdot\delta d))/\ell` (docs/physics.md section 7); ``[i][j] = (dF_ix, dF_iy)``."""
         n = self.n
         out = [[(sp.Integer(0), sp.Integer(0)) for _ in range(n)] for _ in range(n)]
         for spring in self.springs:

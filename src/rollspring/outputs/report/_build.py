@@ -333,7 +333,7 @@ class _Page:
             (r"\varphi_{" if arrays.rolls[i] else "x_{") + _tex_id(b) + "}"
             for i, b in enumerate(arrays.ids))
         equations = Markup(
-            "<p>Linearised about the equilibrium (PHYSICS.md (M12)), with the coordinates "
+            "<p>Linearised about the equilibrium (docs/physics.md (M12)), with the coordinates "
             + self.math(r"q = (" + coords + ")", display=False)
             + " (rad for rolling bodies, m for sliders):</p>"
             + '<div class="formula">'
@@ -418,8 +418,8 @@ class _Page:
             terms = " + ".join(rf"{_tex_number(float(wi))}\,x_{{{_tex_id(b)}}}"
                                for wi, b in zip(w, ids, strict=True))
             parts.append(Markup(
-                "<p>The zero mode v₀ conserves Σ wᵢ ẋᵢ with wᵢ = Jᵢ v₀ᵢ / sᵢ (PHYSICS.md (M14)); "
-                "for centre springs wᵢ ∝ (1+γᵢ) mᵢ, the paper's eq. (c):</p>"
+                "<p>The zero mode v₀ conserves Σ wᵢ ẋᵢ with wᵢ = Jᵢ v₀ᵢ / sᵢ "
+                "(docs/physics.md (M14)); for centre springs wᵢ ∝ (1+γᵢ) mᵢ, the paper's eq. (c):</p>"
                 + '<div class="formula">'
                 + self.math(r"\hat{X} = \frac{\sum_i w_i x_i}{\sum_i w_i} = " + terms) + "</div>"))
             parts.append(table(

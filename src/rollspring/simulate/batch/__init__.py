@@ -1,8 +1,8 @@
 r"""``simulate_batch``: one topology, arrays of parameter values, many runs at once.
 
-Every run is the exact rolling motion :math:`J_i\ddot\varphi_i = Q_i(\varphi)` (PHYSICS.md (M7))
-of the same system with some scalar parameters changed (masses, radii, friction coefficients,
-initial positions and velocities, stiffnesses, rest lengths, gravity). The runs are integrated
+Every run is the exact rolling motion :math:`J_i\ddot\varphi_i = Q_i(\varphi)`
+(docs/physics.md (M7)) of the same system with some scalar parameters changed (masses, radii,
+friction coefficients, initial positions and velocities, stiffnesses, rest lengths, gravity). The runs are integrated
 by an explicit symplectic kick-drift-kick composition (valid because the mass matrix
 :math:`\mathrm{diag}(J_i)` is constant, (M6)) with one fixed step for all runs, compiled with
 Numba and spread over all cores. Each run keeps a handful of summary metrics, not its
@@ -24,7 +24,7 @@ spring's tension (a body on one horizontal centre spring: :math:`|f| = \gamma/(1
 lane) or common (held in registers). Sine and cosine are evaluated by a vectorisable
 polynomial (:data:`_SINCOS`) since ``math.sin`` would keep a loop scalar.
 
-Each step checks every run (PHYSICS.md section 5): slip (:math:`|f_i| \ge \mu_s N_i`, compared
+Each step checks every run (docs/physics.md section 5): slip (:math:`|f_i| \ge \mu_s N_i`, compared
 without division) and lift-off (:math:`N_i < 0`). An OR over the block says whether anything
 happened; only then a scalar pass finds the lane, the body and the instant, interpolating the
 margins linearly between the step and the previous one (reconstructed by a step backwards: the

@@ -168,7 +168,7 @@ class Source:
                     ex, ey = f"ex{k}", f"ey{k}"
             if energy:
                 energy_terms.append(f"+ 0.5 * {stiff} * ext{k} * ext{k}")
-            # force on end a: +T e, on end b: -T e (PHYSICS.md section 2)
+            # force on end a: +T e, on end b: -T e (docs/physics.md section 2)
             for i, sign, ox, oy in ((ia, "+", aox, aoy), (ib, "-", box, boy)):
                 if i < 0:
                     continue

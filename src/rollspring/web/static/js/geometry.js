@@ -1,6 +1,6 @@
 // Pure geometry of the drawn scene (no DOM): attachment points, spring zigzags and the
 // world-to-canvas view. World: x right, y up, metres; angles clockwise from straight up
-// (PHYSICS.md (M1)); canvas: x right, y down, CSS pixels.
+// (docs/physics.md (M1)); canvas: x right, y down, CSS pixels.
 
 const DEG = Math.PI / 180;
 

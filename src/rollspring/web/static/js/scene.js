@@ -231,7 +231,8 @@ function drawForces(ctx, view, frame) {
       const t = frame.tensions[s] || 0;
       spring.ends.forEach((id, j) => {
         if (!frame.system.bodies.some((b) => b.id === id)) return;
-        const sign = j === 0 ? 1 : -1; // force on end a: +T e, on end b: −T e (PHYSICS.md §2)
+        // force on end a: +T e, on end b: −T e (docs/physics.md §2)
+        const sign = j === 0 ? 1 : -1;
         const p = view.toCanvas(ends[j]);
         arrow(ctx, p, { x: sign * t * dx / l * k, y: -sign * t * dy / l * k }, FORCE_COLOURS.spring);
       });

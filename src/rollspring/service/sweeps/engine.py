@@ -44,7 +44,7 @@ from rollspring.service.sweeps.store import (
     mark_done,
     read_attrs,
     remove,
-    write_region,
+    write_regions,
     write_template,
 )
 
@@ -230,23 +230,28 @@ def sweep(
         todo = [i for i in range(grid.n_chunks) if i not in done]
         memory = None if path is not None else _memory(grid, chosen, len(ids))
 
-        def store(index: int, arrays: dict[str, np.ndarray]) -> None:
-            if path is not None:
-                write_region(path, grid, index, arrays)
-                mark_done(path, index)
+        def store(items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
+            if path is not None:  # each chunk's data written before its marker
+                write_regions(path, grid, items)
+                for index, _ in items:
+                    mark_done(path, index)
             else:
-                region = grid.region(index)
-                for name, values in arrays.items():
-                    memory[name][region] = values
+                for index, arrays in items:
+                    region = grid.region(index)
+                    for name, values in arrays.items():
+                        memory[name][region] = values
 
         counted = sum(_runs_in(grid, i) for i in done)
         if progress is not None:
             progress(SweepProgress(counted, grid.n_runs, 0, len(todo), len(done)))
-        for k, index in enumerate(_results(plan, todo, client)):
-            store(index[0], index[1])
-            counted += _runs_in(grid, index[0])
-            if progress is not None:
-                progress(SweepProgress(counted, grid.n_runs, k + 1, len(todo), len(done)))
+        k = 0
+        for items in _results(plan, todo, client):
+            store(items)
+            for index, _ in items:
+                counted += _runs_in(grid, index)
+                k += 1
+                if progress is not None:
+                    progress(SweepProgress(counted, grid.n_runs, k, len(todo), len(done)))
     finally:
         if own_client and client is not None:
             client.close()
@@ -338,7 +343,9 @@ def _threads_per_worker(client: Any) -> int:
 
 
 def _results(plan: SweepPlan, todo: list[int], client: Any
-             ) -> Iterator[tuple[int, dict[str, np.ndarray]]]:
+             ) -> Iterator[list[tuple[int, dict[str, np.ndarray]]]]:
+    """Finished chunks, (index, arrays), a list at a time: in-process the chunks computed
+    together, on Dask one as each task completes."""
     if client is None:  # consecutive chunks together, up to IN_PROCESS_RUNS runs a call
         group: list[int] = []
         size = 0
@@ -347,7 +354,7 @@ def _results(plan: SweepPlan, todo: list[int], client: Any
             size += _runs_in(plan.grid, index)
             following = todo[position + 1] if position + 1 < len(todo) else None
             if following is None or size + _runs_in(plan.grid, following) > IN_PROCESS_RUNS:
-                yield from zip(group, compute_chunks(plan, group), strict=True)
+                yield list(zip(group, compute_chunks(plan, group), strict=True))
                 group, size = [], 0
         return
     from distributed import as_completed
@@ -379,7 +386,7 @@ def _results(plan: SweepPlan, todo: list[int], client: Any
         following = submit()
         if following is not None:
             queue.add(following)
-        yield index, arrays
+        yield [(index, arrays)]
 
 
 def _memory(grid: Grid, metrics: tuple[str, ...], n_bodies: int) -> dict[str, np.ndarray]:

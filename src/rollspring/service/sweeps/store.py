@@ -32,6 +32,7 @@ __all__ = [
     "mark_done",
     "read_attrs",
     "write_region",
+    "write_regions",
     "write_template",
 ]
 
@@ -151,6 +152,33 @@ def write_region(path: Path, grid: Grid, index: int, arrays: dict[str, np.ndarra
     region = grid.region(index)
     for name, values in arrays.items():
         group[name][region] = values
+
+
+def write_regions(path: Path, grid: Grid, items: list[tuple[int, dict[str, np.ndarray]]]
+                  ) -> None:
+    """Several chunks' arrays into their regions: one write per variable when the regions
+    tile a box (consecutive chunks), else chunk by chunk."""
+    if len(items) == 1:
+        write_region(path, grid, items[0][0], items[0][1])
+        return
+    regions = [grid.region(index) for index, _ in items]
+    box = tuple(slice(min(r[d].start for r in regions), max(r[d].stop for r in regions))
+                for d in range(len(grid.shape)))
+    size = int(np.prod([s.stop - s.start for s in box]))
+    if size != sum(int(np.prod([s.stop - s.start for s in r])) for r in regions):
+        for index, arrays in items:
+            write_region(path, grid, index, arrays)
+        return
+    import zarr
+
+    group = zarr.open_group(str(path), mode="r+")
+    for name, first in items[0][1].items():
+        whole = np.empty((*(s.stop - s.start for s in box), *first.shape[len(box):]),
+                         dtype=first.dtype)
+        for region, (_, arrays) in zip(regions, items, strict=True):
+            whole[tuple(slice(r.start - b.start, r.stop - b.start)
+                        for r, b in zip(region, box, strict=True))] = arrays[name]
+        group[name][box] = whole
 
 
 def mark_done(path: Path, index: int) -> None:

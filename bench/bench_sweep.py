@@ -7,24 +7,28 @@ Run: ``.venv/bin/python bench/bench_sweep.py [--runs 65536] [--duration 10] [--r
 
 The system is the ``hoop-cylinder`` preset. Parts:
 
-(a) ``sweep(system, vary, duration)`` in-process (all cores, no store) over
-    ``springs.0.stiffness`` x ``bodies.hoop.mu_static`` (``--runs`` runs, about square), against
+(a) ``sweep(system, vary, duration)`` in-process (all cores, no store) on two grids of
+    ``--runs`` runs (about square): ``springs.0.stiffness`` x ``bodies.hoop.mu_static`` (the
+    linear metrics shared along the friction axis) and ``springs.0.stiffness`` x
+    ``bodies.cylinder.v`` (every run its own linear configuration), each against
     ``simulate_batch`` on exactly the same runs (the flattened grid) with the same integrator and
-    step (read from the store's ``integrator`` and ``step`` attributes). Both whole calls are
+    step (read from the result's ``integrator`` and ``step`` attributes). Both whole calls are
     timed, best of ``--repeat`` after a warm-up (the kernel is compiled or loaded from the disk
-    cache then). Target: the sweep's runs/s >= 90 % of the batch's. The same sweep written to
-    a Zarr store is timed too (reported, no target).
+    cache then). Target: the sweep's runs/s >= 90 % of the batch's. The sweep with only the
+    batch's own metrics and the sweep written to a Zarr store are timed too (no target).
 (b) A real loopback cluster started as a user starts one: ``dask scheduler --host 127.0.0.1``
     and ``dask worker ADDRESS --nthreads 1 --no-nanny`` (``NUMBA_NUM_THREADS=1``: one core per
     worker, the machine has two), the sweep given the scheduler's address. Runs/s with one
     worker, then with a second one started; efficiency = rate(2) / (2 rate(1)), target >= 80 %
     per worker. Client, scheduler and workers share the two cores, so this is the most this
     machine can show.
-(c) On that two-worker cluster, a sweep of ``--memory-runs`` runs (default 10^7, a grid of
-    stiffness x mu_static x initial speed of the hoop, ``--memory-duration`` s each) written to
-    a store; the resident set size (psutil) of the client (this process) and of each worker is
-    sampled every 50 ms. Target: each peak < 1 GB. A smaller sweep (a tenth of the runs) is
-    measured the same way first, so that the table shows whether memory grows with the runs.
+(c) On that two-worker cluster, sweeps of a hundredth, a tenth and all of ``--memory-runs``
+    runs (default 10^7; a grid of stiffness (100) x mu_static (100) x initial speed of the hoop,
+    ``--memory-duration`` s each, no slip refinement: the single-run refinement of the quarter of
+    the runs that slip would take hours at 10^7 and holds nothing between runs) written to a
+    store; the resident set size (psutil) of the client (this process) and of each worker is
+    sampled every 50 ms, and its peak reported for the whole sweep and for the first and the
+    second half of the samples. Target: each peak < 1 GB, and flat in the run count.
 
 Every figure is measured in this run; the table prints the targets with ✔/✘ and everything is
 also written as JSON (``--json``).
@@ -73,6 +77,19 @@ def square_grid(runs: int) -> dict[str, np.ndarray]:
     n2 = max(1, runs // n1)
     return {"springs.0.stiffness": np.linspace(50.0, 150.0, n1),
             "bodies.hoop.mu_static": np.geomspace(0.1, 1.0, n2)}
+
+
+def speed_grid(runs: int) -> dict[str, np.ndarray]:
+    """Stiffness x the cylinder's initial speed, about sqrt(runs) values each: every run has
+    its own linear configuration (the linear metrics cannot be shared along a friction
+    axis)."""
+    n1 = max(1, int(math.sqrt(runs)))
+    n2 = max(1, runs // n1)
+    return {"springs.0.stiffness": np.linspace(50.0, 150.0, n1),
+            "bodies.cylinder.v": np.linspace(0.0, 0.3, n2)}
+
+
+GRIDS = {"k x mu_s": square_grid, "k x v": speed_grid}
 
 
 def cube_grid(runs: int) -> dict[str, np.ndarray]:
@@ -217,7 +234,12 @@ class Cluster:
 
 
 def part_a(system, runs: int, duration: float, repeats: int, scratch: Path) -> dict[str, Any]:
-    vary = square_grid(runs)
+    return {label: part_a_grid(system, make(runs), duration, repeats, scratch)
+            for label, make in GRIDS.items()}
+
+
+def part_a_grid(system, vary: dict[str, np.ndarray], duration: float, repeats: int,
+                scratch: Path) -> dict[str, Any]:
     count = n_runs(vary)
     sweep(system, {k: v[:2] for k, v in vary.items()}, duration / 100)  # compile
     t_sweep, dataset = best(lambda: sweep(system, vary, duration), repeats)
@@ -309,9 +331,15 @@ def mark(ok: bool) -> str:
     return "✔" if ok else "✘"
 
 
-def show_a(a: dict[str, Any], repeats: int) -> None:
+def show_a(results: dict[str, dict[str, Any]], repeats: int) -> None:
+    for label, a in results.items():
+        show_a_grid(label, a, repeats)
+
+
+def show_a_grid(label: str, a: dict[str, Any], repeats: int) -> None:
     print_table(
-        f"(a) in-process: {a['runs']:,} runs of {a['duration']:g} s, {a['integrator']} "
+        f"(a) in-process, grid {label}: {a['runs']:,} runs of {a['duration']:g} s, "
+        f"{a['integrator']} "
         f"step {a['step']:.4g} s ({a['n_steps']} steps), best of {repeats}",
         ["call", "wall (s)", "runs/s", "vs batch", "target"],
         [["simulate_batch (same runs, same step)", a["batch_s"], a["batch_runs_per_s"], 1.0,

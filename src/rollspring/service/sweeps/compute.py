@@ -17,9 +17,21 @@ next to which other chunks it runs.
   root-finds the instant on the step), and its instant and body are stored.
 * **``on_slip="continue"``**: the batch cannot go on after a slip with kinetic friction, so
   every run goes through :func:`rollspring.simulate` (``on_slip="continue"``), one by one.
-* **The linear metrics** (``omega``, ``stationary_weight``, ``required_mu_linear``) are
-  :func:`rollspring.analyze` of each run's starting system, once per distinct linear
-  configuration in the chunk (the friction coefficients do not enter the linear analysis).
+* **The linear metrics** (``omega``, ``stationary_weight``, ``required_mu_linear``) are those
+  of :func:`rollspring.analyze` of each run's starting system: computed for all the runs of a
+  call at once by :func:`rollspring.analysis.batch_linear` (once per distinct linear
+  configuration, the friction coefficients left out; to 1e-12 of ``analyze``) for the runs of
+  its flat centre class, and by ``analyze`` run by run (once per distinct configuration) for
+  the others (off-centre attachments, tilted springs, mode amplitudes, no equilibrium, ...).
+  When no varied value moves a spring end (every run's start is then a valid system) they are
+  computed in a thread while the batch runs.
+* **Several chunks in one call** (:func:`compute_chunks`, in-process): their runs are
+  concatenated into one batch call and split again; every run's numbers are those it has alone,
+  so each chunk's arrays equal :func:`compute_chunk`'s.
+* **The step of the grid** (:func:`grid_omega`): the batch's per-run linear frequencies
+  (``run_omegas``, the functions :func:`simulate_batch` uses) on the grid with its velocity and
+  friction axes collapsed (they do not enter them), read chunk by chunk as the pass of
+  :func:`plan_omega` over the chunks would, without a batch call per chunk.
 """
 
 from __future__ import annotations

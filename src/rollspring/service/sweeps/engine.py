@@ -3,11 +3,12 @@ Zarr store that a rerun resumes (docs/sweeps.md is the contract).
 
 Order of work: validate the grid; open the store (refuse another sweep's store unless
 ``overwrite``; on a rerun read the plan back from its attrs); choose one integrator, step and
-metric sampling for the whole grid (a pass over the chunks reading the highest linear frequency,
-one cheap batch call per chunk); write the template; run the chunks without a done marker —
-in this process one after the other (each batch call uses every core), or as tasks on a Dask
-cluster, a bounded number in flight — writing each into its region as it arrives, then its
-marker.
+metric sampling for the whole grid (from the batch's linear frequencies of every run, computed
+once on the grid with its velocity and friction axes collapsed; a pass over the chunks with one
+cheap batch call each where that does not apply); write the template; run the chunks without a
+done marker — in this process consecutive chunks together, up to ``IN_PROCESS_RUNS`` runs a
+batch call (each call uses every core), or as tasks on a Dask cluster, a bounded number in
+flight — writing each into its region as it arrives, then its marker.
 """
 
 from __future__ import annotations

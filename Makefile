@@ -49,7 +49,8 @@ demo: $(DEMO_STAMP)
 	$(BIN)/rollspring simulate hoop-cylinder --duration 10 --rtol 1e-10
 	$(BIN)/rollspring report hoop-cylinder -o build/demo/report.html
 
-test: $(STAMP) $(WEB_STAMP) system-packages
+# every test, and the documentation site built with warnings as errors (its examples run)
+test: $(STAMP) $(WEB_STAMP) system-packages docs
 	$(BIN)/python -m pytest
 
 # the web benchmark's load generator (Debian's wrk), installed only when missing
@@ -80,4 +81,5 @@ docs: $(DOCS_STAMP) $(DOCS_NPM_STAMP)
 	$(BIN)/sphinx-build -W --keep-going -q -b html docs build/docs/html
 
 clean:
-	rm -rf $(VENV) .pytest_cache .hypothesis build src/*.egg-info $(WEB_STATIC)/node_modules
+	rm -rf $(VENV) .pytest_cache .hypothesis build src/*.egg-info $(WEB_STATIC)/node_modules \
+		docs/node_modules docs/_generated docs/gallery docs/tutorial

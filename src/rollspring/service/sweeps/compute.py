@@ -58,6 +58,7 @@ from rollspring.simulate.status import Status
 __all__ = [
     "STATUS_CODES",
     "SweepPlan",
+    "batch_omegas",
     "compute_chunk",
     "compute_chunks",
     "grid_omega",
@@ -330,7 +331,7 @@ _MODERATE = 1e100
 _PLAN_BLOCK = 1 << 16
 
 
-def _batch_omegas(system: System, params: dict[str, np.ndarray]) -> np.ndarray:
+def batch_omegas(system: System, params: dict[str, np.ndarray]) -> np.ndarray:
     """Each run's linear frequency as :func:`simulate_batch` computes it before integrating
     (the same functions in the same order), -inf for a run it would not integrate
     (``invalid``); its ``omega_max`` with ``step`` given is the largest of these (0 if none)."""
@@ -385,7 +386,7 @@ def grid_omega(plan: SweepPlan) -> tuple[float, Any] | None:
             else:
                 params[key] = np.full(flat.size, _value_of(system, key))
         try:
-            omegas[flat] = _batch_omegas(system, params)
+            omegas[flat] = batch_omegas(system, params)
         except RollspringError:
             return None
     omegas = omegas.reshape(sub_shape)

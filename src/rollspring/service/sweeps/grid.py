@@ -265,6 +265,39 @@ def apply_values(base: dict[str, Any], system: System, values: Mapping[str, floa
     return system_from_dict(data, source=source)
 
 
+#: Quantities whose value only its own body or spring validates (no check of the whole system
+#: looks at them: not the placement, lengths or attachments), with that model.
+_OWN_CHECK = {("bodies", "mass"), ("bodies", "mu_static"), ("bodies", "mu_kinetic"),
+              ("bodies", "v"), ("springs", "stiffness")}
+
+
+def _part_of(base: dict[str, Any], system: System, path: str) -> dict[str, Any] | None:
+    """The JSON form of the body or spring a PATH's value is checked by alone, or None."""
+    parts = path.split(".")
+    if len(parts) != 3 or (parts[0], parts[2]) not in _OWN_CHECK:
+        return None
+    if parts[0] == "bodies":
+        index = [b.id for b in system.bodies].index(parts[1])
+        return base["bodies"][index]
+    return base["springs"][int(parts[1])]
+
+
+def _part_valid(part: dict[str, Any], path: str, value: float) -> bool:
+    """Whether the body or spring with ``value`` validates (a refusal is re-checked on the
+    whole system, which words the message)."""
+    from pydantic import ValidationError
+
+    from rollspring.model import Body, Spring
+
+    data = dict(part)
+    data[path.split(".")[-1]] = value
+    try:
+        (Body if path.startswith("bodies.") else Spring).model_validate(data)
+    except (ValidationError, ValueError):
+        return False
+    return True
+
+
 def check_grid(system: System, vary: Mapping[str, Sequence[float]]) -> tuple[
         tuple[str, ...], tuple[tuple[float, ...], ...]]:
     """Validate the PATHs and each value (each alone applied to ``system``): one-line
@@ -297,7 +330,10 @@ def check_grid(system: System, vary: Mapping[str, Sequence[float]]) -> tuple[
             if np.any(array < 0):
                 raise SweepError(f"--vary {path}: an amplitude must be >= 0")
         else:
+            part = _part_of(base, system, path)
             for value in array:
+                if part is not None and _part_valid(part, path, float(value)):
+                    continue
                 try:
                     apply_values(base, system, {path: float(value)}, source=f"--vary {path}")
                 except SweepError:

@@ -20,7 +20,57 @@ sweeps need the extras ``symbolic``, ``report``, ``web`` and ``sweep`` (``pip in
 'rollspring[report]'``).
 """
 
+from typing import TYPE_CHECKING
+
 from rollspring.errors import AnalysisError, ModelError, RollspringError, SimulationError
+
+if TYPE_CHECKING:  # what the names below load on first use, for type checkers and editors
+    from rollspring import (
+        analysis,
+        cli,
+        model,
+        outputs,
+        physics,
+        service,
+        simulate,
+        web,
+    )
+    from rollspring.analysis import LinearAnalysis, Mode, analyze, find_equilibrium, normal_modes
+    from rollspring.analysis.derivation import Derivation, derive, symbolic_system
+    from rollspring.analysis.paper_check import check_paper, paper_claims
+    from rollspring.model import (
+        Anchor,
+        Attachment,
+        Body,
+        ExternalForce,
+        Spring,
+        System,
+        load_system,
+        preset_names,
+        system_from_dict,
+        system_json_schema,
+    )
+    from rollspring.outputs.report import write_report
+    from rollspring.physics import (
+        SystemArrays,
+        accelerations,
+        centre_of_mass,
+        centre_positions,
+        contact_forces,
+        generalized_forces,
+        kinetic_energy,
+        mass_matrix,
+        potential_energy,
+        spring_state,
+        stiffness_matrix,
+        system_arrays,
+        total_energy,
+    )
+    from rollspring.service.documents import build_report, worksheet
+    from rollspring.service.sweeps import sweep
+    from rollspring.simulate import BatchResult, Trajectory, simulate_batch
+
+    __version__: str
 
 
 #: How a running IPython shows rollspring's objects: (MIME type, the module and class of the
@@ -99,21 +149,13 @@ _EXTRAS = {"derive": "symbolic", "Derivation": "symbolic", "symbolic_system": "s
            "write_report": "report", "worksheet": "report", "sweep": "sweep", "web": "web"}
 
 
-def _version() -> str:
-    """The installed distribution's version: single-sourced in pyproject.toml."""
-    from importlib.metadata import PackageNotFoundError, version
-
-    try:
-        return version("rollspring")
-    except PackageNotFoundError:  # a source tree that is not installed
-        return "0+unknown"
-
-
 def __getattr__(name: str):
     import importlib
 
     if name == "__version__":  # read on first use (importlib.metadata is not free either)
-        globals()[name] = value = _version()
+        from rollspring._version import version
+
+        globals()[name] = value = version()
         return value
     if name in _SUBPACKAGES:
         module_name, attribute = f"rollspring.{name}", None

@@ -673,7 +673,9 @@ class _Page:
     # -- the document ------------------------------------------------------------------------
 
     def document(self, sections: list[Markup]) -> str:
-        from rollspring import __version__
+        from rollspring._version import version
+
+        __version__ = version()
 
         system = self.system
         title = system.name or "system"

@@ -20,10 +20,9 @@ sweeps need the extras ``symbolic``, ``report``, ``web`` and ``sweep`` (``pip in
 'rollspring[report]'``).
 """
 
-from typing import TYPE_CHECKING
-
 from rollspring.errors import AnalysisError, ModelError, RollspringError, SimulationError
 
+TYPE_CHECKING = False  # as typing.TYPE_CHECKING, without importing typing (10 ms)
 if TYPE_CHECKING:  # what the names below load on first use, for type checkers and editors
     from rollspring import (
         analysis,
@@ -71,6 +70,7 @@ if TYPE_CHECKING:  # what the names below load on first use, for type checkers a
     from rollspring.simulate import BatchResult, Trajectory, simulate_batch
 
     __version__: str
+del TYPE_CHECKING
 
 
 #: How a running IPython shows rollspring's objects: (MIME type, the module and class of the

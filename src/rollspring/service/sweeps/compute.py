@@ -528,7 +528,11 @@ def _batch_linear_metrics(runs: _Runs, out: dict[str, np.ndarray]) -> np.ndarray
     flat centre class), computed once per distinct linear configuration (the friction
     coefficients left out); returns the mask of the runs it filled."""
     paths = [p for p in runs.plan.grid.paths if p.split(".")[-1] not in _MU]
-    if paths:
+    if paths and len(paths) == len(runs.plan.grid.paths):
+        # no friction axis: the runs are points of an outer product of distinct values, so
+        # every run is a distinct linear configuration
+        first = inverse = np.arange(runs.n)
+    elif paths:
         first, inverse = _distinct([runs.values[p] for p in paths])
     else:
         first, inverse = np.zeros(1, dtype=np.int64), np.zeros(runs.n, dtype=np.int64)

@@ -29,8 +29,8 @@ from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 from rollspring.service.sweeps.compute import (
     STATUS_CODES,
     SweepPlan,
-    compute_chunk,
     batch_omegas,
+    compute_chunk,
     compute_chunks,
     copy_plan,
     grid_omega,

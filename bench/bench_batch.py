@@ -54,13 +54,13 @@ def minimal_kernel(stiffness, dx, rest, a1, a2, drift, kick, n_steps, out):
         y2 = np.zeros(B)
         u1 = np.zeros(B)
         u2 = np.zeros(B)
-        k = stiffness[lo:lo + B].copy()
+        k = stiffness[lo : lo + B].copy()
         _stage(y1, y2, u1, u2, k, dx, rest, a1, a2, 0.0, 0.5 * drift[0])  # opening half-kick
         for _ in range(n_steps):
             for s in range(m):
                 _stage(y1, y2, u1, u2, k, dx, rest, a1, a2, drift[s], kick[s])
-        out[0, lo:lo + B] = y1
-        out[1, lo:lo + B] = y2
+        out[0, lo : lo + B] = y1
+        out[1, lo : lo + B] = y2
 
 
 def _coefficients(name: str, h: float) -> tuple[np.ndarray, np.ndarray]:
@@ -92,12 +92,16 @@ def main() -> None:
     padded = np.resize(stiffness, n_pad)
 
     # (label, simulate_batch arguments): the given step, and what auto picks for rtol 1e-8
-    cases = [("verlet", {"duration": n_steps * h, "integrator": "verlet", "step": h}),
-             ("yoshida4", {"duration": n_steps * h, "integrator": "yoshida4", "step": h}),
-             ("auto 1e-8", {"duration": 10.0, "rtol": 1e-8})]
+    cases = [
+        ("verlet", {"duration": n_steps * h, "integrator": "verlet", "step": h}),
+        ("yoshida4", {"duration": n_steps * h, "integrator": "yoshida4", "step": h}),
+        ("auto 1e-8", {"duration": 10.0, "rtol": 1e-8}),
+    ]
     print(f"hoop-cylinder, {n_runs} runs, each with its own stiffness; best of {args.repeat}")
-    header = (f"{'case':>10}  {'scheme':>8}  {'omega h':>7}  {'steps':>6}  {'sampled':>7}  "
-              f"{'simulate_batch':>14}  {'minimal kernel':>14}  {'ratio':>5}")
+    header = (
+        f"{'case':>10}  {'scheme':>8}  {'omega h':>7}  {'steps':>6}  {'sampled':>7}  "
+        f"{'simulate_batch':>14}  {'minimal kernel':>14}  {'ratio':>5}"
+    )
     print(header)
     print("-" * len(header))
     for label, kwargs in cases:
@@ -117,11 +121,15 @@ def main() -> None:
             best_batch = min(best_batch, result.timings["integrate"])
         rate_batch = n_runs * steps / best_batch
         rate_minimal = n_runs * steps / best_minimal
-        print(f"{label:>10}  {name:>8}  {probe.omega_max * step:>7.4f}  {steps:>6}  "
-              f"{'1/' + str(probe.metric_every):>7}  {rate_batch / 1e9:>10.3f} G/s  "
-              f"{rate_minimal / 1e9:>10.3f} G/s  {rate_batch / rate_minimal:>5.2f}")
-    print("(system-steps per second: runs x steps / wall time of the integration; 'sampled':\n"
-          " steps with a metric sample, see rollspring.simulate.batch.METRIC_PHASE)")
+        print(
+            f"{label:>10}  {name:>8}  {probe.omega_max * step:>7.4f}  {steps:>6}  "
+            f"{'1/' + str(probe.metric_every):>7}  {rate_batch / 1e9:>10.3f} G/s  "
+            f"{rate_minimal / 1e9:>10.3f} G/s  {rate_batch / rate_minimal:>5.2f}"
+        )
+    print(
+        "(system-steps per second: runs x steps / wall time of the integration; 'sampled':\n"
+        " steps with a metric sample, see rollspring.simulate.batch.METRIC_PHASE)"
+    )
 
 
 if __name__ == "__main__":

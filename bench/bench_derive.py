@@ -53,10 +53,17 @@ LIMIT = 30.0  # seconds: SymPy mechanics stops doubling N after a run longer tha
 
 def chain(n: int) -> System:
     """N alternating hoops and cylinders, centres joined by springs at rest length 0.5 m."""
-    bodies = [{"id": f"b{i + 1}", "shape": "hoop" if i % 2 == 0 else "cylinder",
-               "mass": 1.0 + 0.1 * i, "radius": 0.1, "x": 0.5 * i} for i in range(n)]
-    springs = [{"ends": [f"b{i + 1}", f"b{i + 2}"], "stiffness": 100.0 + i}
-               for i in range(n - 1)]
+    bodies = [
+        {
+            "id": f"b{i + 1}",
+            "shape": "hoop" if i % 2 == 0 else "cylinder",
+            "mass": 1.0 + 0.1 * i,
+            "radius": 0.1,
+            "x": 0.5 * i,
+        }
+        for i in range(n)
+    ]
+    springs = [{"ends": [f"b{i + 1}", f"b{i + 2}"], "stiffness": 100.0 + i} for i in range(n - 1)]
     return system_from_dict({"name": f"chain of {n}", "bodies": bodies, "springs": springs})
 
 
@@ -128,8 +135,9 @@ def lagrange_route(n: int):
     method = LagrangesMethod(lagrangian, q)
     equations = method.form_lagranges_equations()
     mass = method.mass_matrix
-    stiffness = -method.forcing.jacobian(q).subs({qi: 0 for qi in q}).subs(
-        {qi.diff(): 0 for qi in q})
+    stiffness = (
+        -method.forcing.jacobian(q).subs({qi: 0 for qi in q}).subs({qi.diff(): 0 for qi in q})
+    )
     return equations, mass, stiffness
 
 
@@ -158,15 +166,21 @@ def compare(n: int, ours, theirs) -> float:
     m = sp.symbols(f"m1:{n + 1}", positive=True)
     k = sp.symbols(f"k1:{n}", positive=True)
     R, L = sp.symbols("R L", positive=True)
-    theirs_values = {**dict(zip(m, values_m, strict=True)), **dict(zip(k, values_k, strict=True)),
-                     R: radius, L: length}
+    theirs_values = {
+        **dict(zip(m, values_m, strict=True)),
+        **dict(zip(k, values_k, strict=True)),
+        R: radius,
+        L: length,
+    }
 
     def num(matrix, values):
         return np.array(sp.matrix2numpy(matrix.xreplace(values).evalf()), dtype=float)
 
     worst = 0.0
-    for a, b in ((num(mass, mine), num(their_mass, theirs_values)),
-                 (num(stiffness, mine), num(sp.Matrix(their_stiffness), theirs_values))):
+    for a, b in (
+        (num(mass, mine), num(their_mass, theirs_values)),
+        (num(stiffness, mine), num(sp.Matrix(their_stiffness), theirs_values)),
+    ):
         worst = max(worst, float(np.max(np.abs(a - b)) / np.max(np.abs(b))))
     return worst
 
@@ -185,14 +199,23 @@ def power_law(points: list[tuple[int, float]]) -> tuple[float, float] | None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--limit", type=float, default=LIMIT,
-                        help="seconds after which SymPy mechanics stops doubling N")
-    parser.add_argument("--full", action="store_true",
-                        help="run SymPy mechanics at every N (no extrapolation; ~10 minutes)")
+    parser.add_argument(
+        "--limit",
+        type=float,
+        default=LIMIT,
+        help="seconds after which SymPy mechanics stops doubling N",
+    )
+    parser.add_argument(
+        "--full",
+        action="store_true",
+        help="run SymPy mechanics at every N (no extrapolation; ~10 minutes)",
+    )
     args = parser.parse_args()
     print(machine_note())
-    print("Symbolic EoM + M + K for chains of alternating hoops and cylinders (parameters as "
-          "symbols); SymPy cache cleared before each run.\n")
+    print(
+        "Symbolic EoM + M + K for chains of alternating hoops and cylinders (parameters as "
+        "symbols); SymPy cache cleared before each run.\n"
+    )
     measured: dict[str, list[tuple[int, float]]] = {"KanesMethod": [], "LagrangesMethod": []}
     going = {"KanesMethod": True, "LagrangesMethod": True}
     ours_times: dict[int, float] = {}
@@ -230,8 +253,10 @@ def main() -> None:
                 continue
             a, p = fit
             seconds = a * largest**p
-            how = (f"EXTRAPOLATED from t = {a:.3g} N^{p:.2f} fitted to its runs at N = "
-                   f"{', '.join(str(n) for n, _ in points if n >= 16)} (measured in this run)")
+            how = (
+                f"EXTRAPOLATED from t = {a:.3g} N^{p:.2f} fitted to its runs at N = "
+                f"{', '.join(str(n) for n, _ in points if n >= 16)} (measured in this run)"
+            )
         ratio = seconds / ours_times[largest]
         print(f"  {name}: {seconds:.1f} s ({how}); rollspring is {ratio:.0f}x faster")
         verdict = "met" if ratio >= 100 else "NOT met"

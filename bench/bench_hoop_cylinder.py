@@ -40,11 +40,16 @@ CASE = HoopCylinder()
 #: the criteria of "reaching" the target: the fitted frequency error, and the phase error that
 #: rollspring's rtol bounds (max |phase error| over the run <= TARGET * Omega * DURATION)
 CRITERIA = {
-    "freq": ("fitted frequency error <= 1e-9",
-             lambda e: abs(e.frequency) <= TARGET, lambda e: abs(e.frequency)),
-    "phase": ("max phase error <= 1e-9 * Omega T",
-              lambda e: e.phase <= TARGET * CASE.omega * DURATION,
-              lambda e: e.phase / (CASE.omega * DURATION)),
+    "freq": (
+        "fitted frequency error <= 1e-9",
+        lambda e: abs(e.frequency) <= TARGET,
+        lambda e: abs(e.frequency),
+    ),
+    "phase": (
+        "max phase error <= 1e-9 * Omega T",
+        lambda e: e.phase <= TARGET * CASE.omega * DURATION,
+        lambda e: e.phase / (CASE.omega * DURATION),
+    ),
 }
 
 
@@ -66,8 +71,19 @@ class Run:
     def row(self) -> list:
         e = self.errors
         met = "+".join(name for name in CRITERIA if self.meets(name)) or "no"
-        return [self.engine, self.setting, self.wall, self.steps, self.steps / self.wall,
-                self.evals, e.position, e.frequency, e.phase, e.energy, met]
+        return [
+            self.engine,
+            self.setting,
+            self.wall,
+            self.steps,
+            self.steps / self.wall,
+            self.evals,
+            e.position,
+            e.frequency,
+            e.phase,
+            e.energy,
+            met,
+        ]
 
 
 @dataclass
@@ -79,8 +95,9 @@ class Choice:
     extrapolated_wall: float | None = None  # to the target, when not reached
 
 
-def climb(run, params, criteria=tuple(CRITERIA), retime: int = 3,
-          retime_below: float = 5.0) -> tuple[list[Run], dict[str, Choice]]:
+def climb(
+    run, params, criteria=tuple(CRITERIA), retime: int = 3, retime_below: float = 5.0
+) -> tuple[list[Run], dict[str, Choice]]:
     """Run ``run(p)`` for ``params`` from the cheapest until every criterion is met; the first
     setting meeting each is re-timed (best of ``retime``; runs over ``retime_below`` s are timed
     once). A criterion not met takes the run with the smallest error and an extrapolated wall
@@ -110,13 +127,13 @@ def climb(run, params, criteria=tuple(CRITERIA), retime: int = 3,
         tail = [r for _, r in ladder][-3:]
         steps = np.log([r.steps for r in tail])
         order = -np.polyfit(steps, np.log([error(r.errors) for r in tail]), 1)[0]
-        wall = (best.wall * (error(best.errors) / TARGET) ** (1 / order)
-                if order > 0 else math.inf)
+        wall = best.wall * (error(best.errors) / TARGET) ** (1 / order) if order > 0 else math.inf
         choices[name] = Choice(best, False, wall)
     return [r for _, r in ladder], choices
 
 
 # -- rollspring --------------------------------------------------------------------------------
+
 
 def rollspring_runs(repeats: int = 30) -> list[Run]:
     """rtol from the documented relation (relative frequency error ~ rtol / (omega T)); the
@@ -124,27 +141,46 @@ def rollspring_runs(repeats: int = 30) -> list[Run]:
     best of ``repeats``; with the default 2001 outputs and with 201 (a longer step fits)."""
     system = load_system("hoop-cylinder")
     a = system_arrays(system)
-    assert (tuple(a.mass), tuple(a.radius), float(a.stiffness[0]), float(a.rest_length[0]),
-            tuple(a.x0)) == ((CASE.m1, CASE.m2), (CASE.radius,) * 2, CASE.k, CASE.rest_length,
-                             CASE.x0), "the preset is not the benchmark's hoop-cylinder"
+    assert (
+        tuple(a.mass),
+        tuple(a.radius),
+        float(a.stiffness[0]),
+        float(a.rest_length[0]),
+        tuple(a.x0),
+    ) == ((CASE.m1, CASE.m2), (CASE.radius,) * 2, CASE.k, CASE.rest_length, CASE.x0), (
+        "the preset is not the benchmark's hoop-cylinder"
+    )
     rtol = TARGET * CASE.omega * DURATION
     runs = []
     for n_output in (2001, 201):
-        timed = repeat(lambda n=n_output: simulate(system, DURATION, rtol=rtol, n_output=n),
-                       repeats, warmup=2)
+        timed = repeat(
+            lambda n=n_output: simulate(system, DURATION, rtol=rtol, n_output=n), repeats, warmup=2
+        )
         call, trajectory = min(timed, key=lambda pair: pair[0])
         integrate = min(tr.timings["integrate"] for _, tr in timed)
         errors = modal_errors(CASE, trajectory.t, trajectory.x, trajectory.v, trajectory.energy)
         evals = trajectory.n_steps * len(SCHEMES[trajectory.integrator][1])
         period = trajectory.summary["period_measured"]
-        note = (f"rtol={rtol:.3g}: {trajectory.integrator}, step {trajectory.step:.4g} s; "
-                f"summary period_measured rel. error {period * CASE.omega / (2 * math.pi) - 1:.2e}"
-                f", energy_error {trajectory.summary['energy_error']:.1e}")
+        note = (
+            f"rtol={rtol:.3g}: {trajectory.integrator}, step {trajectory.step:.4g} s; "
+            f"summary period_measured rel. error {period * CASE.omega / (2 * math.pi) - 1:.2e}"
+            f", energy_error {trajectory.summary['energy_error']:.1e}"
+        )
         setting = f"n_output={n_output}"
-        runs.append(Run("rollspring integrate", setting, integrate, trajectory.n_steps, evals,
-                        errors, note))
-        runs.append(Run("rollspring simulate()", setting, call, trajectory.n_steps, evals,
-                        errors, "whole call: setup, integration, outputs, summary"))
+        runs.append(
+            Run("rollspring integrate", setting, integrate, trajectory.n_steps, evals, errors, note)
+        )
+        runs.append(
+            Run(
+                "rollspring simulate()",
+                setting,
+                call,
+                trajectory.n_steps,
+                evals,
+                errors,
+                "whole call: setup, integration, outputs, summary",
+            )
+        )
     return runs
 
 
@@ -152,9 +188,11 @@ def rollspring_runs(repeats: int = 30) -> list[Run]:
 
 #: contact settings of the tuned runs
 TUNED_SOLIMP = (0.9999, 0.9999, 0.001, 0.5, 2.0)
-TUNED_NOTE = ("MuJoCo tuned: elliptic friction cone, geom solref = (2 dt, 1) (the stiffest "
-              "contact MuJoCo allows at that step), solimp = (0.9999, 0.9999, 0.001, 0.5, 2); "
-              "other options at their defaults (impratio, noslip_iterations did not help)")
+TUNED_NOTE = (
+    "MuJoCo tuned: elliptic friction cone, geom solref = (2 dt, 1) (the stiffest "
+    "contact MuJoCo allows at that step), solimp = (0.9999, 0.9999, 0.001, 0.5, 2); "
+    "other options at their defaults (impratio, noslip_iterations did not help)"
+)
 
 
 def mujoco_run(timestep: float, integrator: str, tuned: bool) -> Run:
@@ -165,8 +203,10 @@ def mujoco_run(timestep: float, integrator: str, tuned: bool) -> Run:
 
     model = mujoco.MjModel.from_xml_string(hoop_cylinder_mjcf(CASE))
     model.opt.timestep = timestep
-    model.opt.integrator = {"Euler": mujoco.mjtIntegrator.mjINT_EULER,
-                            "RK4": mujoco.mjtIntegrator.mjINT_RK4}[integrator]
+    model.opt.integrator = {
+        "Euler": mujoco.mjtIntegrator.mjINT_EULER,
+        "RK4": mujoco.mjtIntegrator.mjINT_RK4,
+    }[integrator]
     setting = f"{integrator}, dt={timestep:.4g}"
     if tuned:  # see TUNED_NOTE
         model.opt.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
@@ -197,21 +237,33 @@ def mujoco_run(timestep: float, integrator: str, tuned: bool) -> Run:
     inertia = np.array([CASE.m1, 0.5 * CASE.m2]) * CASE.radius**2
     mass = np.array([CASE.m1, CASE.m2])
     length = np.hypot(x[:, 1] - x[:, 0], z[:, 1] - z[:, 0])
-    energy = (0.5 * (mass * (v**2 + qvel[:, [1, 4]] ** 2) + inertia * qvel[:, [2, 5]] ** 2).sum(1)
-              + 0.5 * CASE.k * (length - CASE.rest_length) ** 2)  # gravity left out
+    energy = (
+        0.5 * (mass * (v**2 + qvel[:, [1, 4]] ** 2) + inertia * qvel[:, [2, 5]] ** 2).sum(1)
+        + 0.5 * CASE.k * (length - CASE.rest_length) ** 2
+    )  # gravity left out
     evals = n_steps * (4 if integrator == "RK4" else 1)
-    return Run("MuJoCo tuned" if tuned else "MuJoCo", setting, wall, n_steps, evals,
-               modal_errors(CASE, times, x, v, energy))
+    return Run(
+        "MuJoCo tuned" if tuned else "MuJoCo",
+        setting,
+        wall,
+        n_steps,
+        evals,
+        modal_errors(CASE, times, x, v, energy),
+    )
 
 
 def mujoco_tuned_ladder() -> tuple[list[Run], dict[str, Choice]]:
     """RK4 with tuned contact at timesteps 5 ms / j (whole steps between outputs), from the
     longest."""
-    return climb(lambda j: mujoco_run(SPACING / j, "RK4", tuned=True),
-                 (2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 20, 25), retime=5)
+    return climb(
+        lambda j: mujoco_run(SPACING / j, "RK4", tuned=True),
+        (2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 20, 25),
+        retime=5,
+    )
 
 
 # -- pymunk ------------------------------------------------------------------------------------
+
 
 def pymunk_run(dt: float) -> Run:
     """Circles with their moments of inertia (hoop m R^2, cylinder m R^2 / 2) on a static
@@ -240,8 +292,13 @@ def pymunk_run(dt: float) -> Run:
 
     def record(j: int) -> None:
         for i, b in enumerate((hoop, cylinder)):
-            state[j, i, :5] = (b.position.x, b.position.y, b.velocity.x, b.velocity.y,
-                               b.angular_velocity)
+            state[j, i, :5] = (
+                b.position.x,
+                b.position.y,
+                b.velocity.x,
+                b.velocity.y,
+                b.angular_velocity,
+            )
 
     record(0)
     step = space.step
@@ -256,10 +313,18 @@ def pymunk_run(dt: float) -> Run:
     mass = np.array([hoop.mass, cylinder.mass])
     inertia = np.array([hoop.moment, cylinder.moment])
     length = np.hypot(x[:, 1] - x[:, 0], state[:, 1, 1] - state[:, 0, 1])
-    energy = (0.5 * (mass * (v**2 + state[:, :, 3] ** 2) + inertia * state[:, :, 4] ** 2).sum(1)
-              + 0.5 * CASE.k * (length - CASE.rest_length) ** 2)
-    return Run("pymunk", f"dt={dt:g}", wall, (n_rows - 1) * per,
-               (n_rows - 1) * per, modal_errors(CASE, times, x, v, energy))
+    energy = (
+        0.5 * (mass * (v**2 + state[:, :, 3] ** 2) + inertia * state[:, :, 4] ** 2).sum(1)
+        + 0.5 * CASE.k * (length - CASE.rest_length) ** 2
+    )
+    return Run(
+        "pymunk",
+        f"dt={dt:g}",
+        wall,
+        (n_rows - 1) * per,
+        (n_rows - 1) * per,
+        modal_errors(CASE, times, x, v, energy),
+    )
 
 
 def pymunk_ladder() -> tuple[list[Run], dict[str, Choice]]:
@@ -268,6 +333,7 @@ def pymunk_ladder() -> tuple[list[Run], dict[str, Choice]]:
 
 
 # -- SciPy -------------------------------------------------------------------------------------
+
 
 def reduced_rhs():
     """J phi'' = Q(phi) of the hoop-cylinder, by hand (scalar Python, the fastest for SciPy's
@@ -297,49 +363,79 @@ def scipy_run(method: str, rtol: float, rhs) -> Run:
 
     grid = np.linspace(0.0, DURATION, round(DURATION / SPACING) + 1)
     began = time.perf_counter()
-    solution = scipy.integrate.solve_ivp(rhs, (0.0, DURATION), [0.0, 0.0, 0.0, 0.0],
-                                         method=method, t_eval=grid, rtol=rtol,
-                                         atol=rtol * 1e-2)
+    solution = scipy.integrate.solve_ivp(
+        rhs,
+        (0.0, DURATION),
+        [0.0, 0.0, 0.0, 0.0],
+        method=method,
+        t_eval=grid,
+        rtol=rtol,
+        atol=rtol * 1e-2,
+    )
     wall = time.perf_counter() - began
     # the number of steps, from an untimed run with the dense output (same steps)
-    steps = len(scipy.integrate.solve_ivp(rhs, (0.0, DURATION), [0.0] * 4, method=method,
-                                          rtol=rtol, atol=rtol * 1e-2).t) - 1
+    steps = (
+        len(
+            scipy.integrate.solve_ivp(
+                rhs, (0.0, DURATION), [0.0] * 4, method=method, rtol=rtol, atol=rtol * 1e-2
+            ).t
+        )
+        - 1
+    )
     r = CASE.radius
     x = np.stack([CASE.x0[0] + r * solution.y[0], CASE.x0[1] + r * solution.y[1]], axis=1)
     v = r * solution.y[2:].T
     j = np.array([2 * CASE.m1, 1.5 * CASE.m2]) * r * r
-    energy = (0.5 * (j * solution.y[2:].T ** 2).sum(1)
-              + 0.5 * CASE.k * (x[:, 1] - x[:, 0] - CASE.rest_length) ** 2)
-    return Run(f"SciPy {method}", f"rtol={rtol:g}", wall, steps,
-               int(solution.nfev), modal_errors(CASE, grid, x, v, energy))
+    energy = (
+        0.5 * (j * solution.y[2:].T ** 2).sum(1)
+        + 0.5 * CASE.k * (x[:, 1] - x[:, 0] - CASE.rest_length) ** 2
+    )
+    return Run(
+        f"SciPy {method}",
+        f"rtol={rtol:g}",
+        wall,
+        steps,
+        int(solution.nfev),
+        modal_errors(CASE, grid, x, v, energy),
+    )
 
 
 def scipy_ladder(method: str, rhs) -> tuple[list[Run], dict[str, Choice]]:
     """rtol = 1e-6, 1e-7, ... 1e-13 (atol = rtol / 100)."""
-    return climb(lambda exponent: scipy_run(method, 10.0**-exponent, rhs), range(6, 14),
-                 retime=5)
+    return climb(lambda exponent: scipy_run(method, 10.0**-exponent, rhs), range(6, 14), retime=5)
 
 
 # -- the report --------------------------------------------------------------------------------
 
-HEADERS = ["engine", "setting", "wall [s]", "steps", "steps/s", "force evals",
-           "max|x-x_ex|/A", "freq. error", "max|phase err|", "energy change", "meets"]
+HEADERS = [
+    "engine",
+    "setting",
+    "wall [s]",
+    "steps",
+    "steps/s",
+    "force evals",
+    "max|x-x_ex|/A",
+    "freq. error",
+    "max|phase err|",
+    "energy change",
+    "meets",
+]
 
 
 def main() -> None:
-    print("hoop-cylinder, 10 s (the paper's Fig. 2): every engine against the exact modal "
-          "solution")
+    print("hoop-cylinder, 10 s (the paper's Fig. 2): every engine against the exact modal solution")
     print(machine_note())
-    print(f"Omega = {CASE.omega:.6f} rad/s, {CASE.omega * DURATION / (2 * math.pi):.1f} periods;"
-          f" target: relative frequency error <= {TARGET:g}, two readings:")
+    print(
+        f"Omega = {CASE.omega:.6f} rad/s, {CASE.omega * DURATION / (2 * math.pi):.1f} periods;"
+        f" target: relative frequency error <= {TARGET:g}, two readings:"
+    )
     for name, (text, _, _) in CRITERIA.items():
         print(f"  {name}: {text}")
 
     began = time.perf_counter()
     rolls = rollspring_runs()
     # MuJoCo: its defaults, the RK4 setting rollspring's MJCF export uses, then tuned
-    default = min((mujoco_run(0.002, "Euler", tuned=False) for _ in range(3)),
-                  key=lambda r: r.wall)
+    default = min((mujoco_run(0.002, "Euler", tuned=False) for _ in range(3)), key=lambda r: r.wall)
     exported = mujoco_run(1e-4, "RK4", tuned=False)
     # first-order Euler with the tuned contact, for comparison (RK4 is far cheaper at 1e-9)
     euler = [mujoco_run(dt, "Euler", tuned=True) for dt in (1e-3, 2.5e-4)]
@@ -348,27 +444,44 @@ def main() -> None:
     for method in ("DOP853", "RK45"):
         engines[f"SciPy {method}"] = scipy_ladder(method, rhs)
 
-    print_table("All runs. wall: 'rollspring integrate' = time in the compiled stepping kernel "
-                "(timings['integrate']), 'simulate()' = the whole call, both best of 30; others = "
-                "their stepping loop, timed once on the ladders (the chosen settings are re-timed: "
-                "next table)", HEADERS,
-                [r.row() for r in rolls] + [default.row(), exported.row()]
-                + [r.row() for r in euler]
-                + [r.row() for ladder, _ in engines.values() for r in ladder])
+    print_table(
+        "All runs. wall: 'rollspring integrate' = time in the compiled stepping kernel "
+        "(timings['integrate']), 'simulate()' = the whole call, both best of 30; others = "
+        "their stepping loop, timed once on the ladders (the chosen settings are re-timed: "
+        "next table)",
+        HEADERS,
+        [r.row() for r in rolls]
+        + [default.row(), exported.row()]
+        + [r.row() for r in euler]
+        + [r.row() for ladder, _ in engines.values() for r in ladder],
+    )
     for r in rolls[::2]:
         print(f"  rollspring {r.setting}: {r.note}")
     print(f"  {TUNED_NOTE}")
 
     # -- the key figure ---------------------------------------------------------------------
     walls = {(r.engine.split()[1], r.setting): r.wall for r in rolls}
-    bases = [walls["integrate", "n_output=2001"], walls["simulate()", "n_output=2001"],
-             walls["integrate", "n_output=201"], walls["simulate()", "n_output=201"]]
+    bases = [
+        walls["integrate", "n_output=2001"],
+        walls["simulate()", "n_output=2001"],
+        walls["integrate", "n_output=201"],
+        walls["simulate()", "n_output=201"],
+    ]
     rows = []
     for r in rolls:
         meets = "+".join(name for name in CRITERIA if r.meets(name))
-        rows.append([r.engine, "-", r.setting, r.wall, meets or "no",
-                     f"{r.errors.frequency:.1e}", f"{r.errors.phase:.1e}",
-                     *["1" if r.wall == b else "" for b in bases]])
+        rows.append(
+            [
+                r.engine,
+                "-",
+                r.setting,
+                r.wall,
+                meets or "no",
+                f"{r.errors.frequency:.1e}",
+                f"{r.errors.phase:.1e}",
+                *["1" if r.wall == b else "" for b in bases],
+            ]
+        )
     for name, (_, choices) in engines.items():
         shown: dict[int, list] = {}
         for criterion, choice in choices.items():
@@ -380,37 +493,68 @@ def main() -> None:
                 wall, ratios = f"{run.wall:.3g}", [f"{run.wall / b:.3g}" for b in bases]
             else:
                 wall = f"{run.wall:.3g} (~{choice.extrapolated_wall:.2g})"
-                ratios = [f"{run.wall / b:.3g} (~{choice.extrapolated_wall / b:.2g})"
-                          for b in bases]
-            rows.append([name, criterion, run.setting, wall, choice.reached,
-                         f"{run.errors.frequency:.1e}", f"{run.errors.phase:.1e}", *ratios])
+                ratios = [
+                    f"{run.wall / b:.3g} (~{choice.extrapolated_wall / b:.2g})" for b in bases
+                ]
+            rows.append(
+                [
+                    name,
+                    criterion,
+                    run.setting,
+                    wall,
+                    choice.reached,
+                    f"{run.errors.frequency:.1e}",
+                    f"{run.errors.phase:.1e}",
+                    *ratios,
+                ]
+            )
             shown[id(run)] = rows[-1]
     print_table(
         "Wall time [s] to reach the target over 10 s, per criterion: the cheapest setting found "
         "(re-timed), or if not reached ('no') the best one, with in brackets '~' the time "
         "extrapolated to the target; and the ratio to rollspring's integration / whole call, "
         "with 2001 and with 201 outputs",
-        ["engine", "criterion", "setting", "wall [s]", "reached", "freq. error",
-         "max|phase err|", "x integ.(2001)", "x call(2001)", "x integ.(201)", "x call(201)"],
-        rows)
+        [
+            "engine",
+            "criterion",
+            "setting",
+            "wall [s]",
+            "reached",
+            "freq. error",
+            "max|phase err|",
+            "x integ.(2001)",
+            "x call(2001)",
+            "x integ.(201)",
+            "x call(201)",
+        ],
+        rows,
+    )
 
     # -- the issue's targets ------------------------------------------------------------------
     print("\nThe issue's targets (criterion 'freq'; ratios with 2001 outputs, [201 outputs]):")
     for name in ("MuJoCo tuned", "pymunk"):
         choice = engines[name][1]["freq"]
         wall = choice.run.wall
-        qualifier = "" if choice.reached else (
-            f" (which only reaches {abs(choice.run.errors.frequency):.2e}; measured wall)")
-        for what, target, b_full, b_short in (("integration", 1000, bases[0], bases[2]),
-                                              ("whole simulate() call", 100, bases[1],
-                                               bases[3])):
-            print(f"  {what} >= {target}x faster than {name}{qualifier}: "
-                  f"{wall / b_full:.0f}x [{wall / b_short:.0f}x] -> "
-                  f"{'met' if wall / b_full >= target else 'NOT met'} "
-                  f"[{'met' if wall / b_short >= target else 'NOT met'}]")
-    print(f"\nMuJoCo defaults over 10 s: energy change {default.errors.energy:+.2e}, frequency "
-          f"error {default.errors.frequency:+.2e}; RK4 at dt=1e-4 with default contact: "
-          f"{exported.errors.energy:+.2e}, {exported.errors.frequency:+.2e}")
+        qualifier = (
+            ""
+            if choice.reached
+            else (f" (which only reaches {abs(choice.run.errors.frequency):.2e}; measured wall)")
+        )
+        for what, target, b_full, b_short in (
+            ("integration", 1000, bases[0], bases[2]),
+            ("whole simulate() call", 100, bases[1], bases[3]),
+        ):
+            print(
+                f"  {what} >= {target}x faster than {name}{qualifier}: "
+                f"{wall / b_full:.0f}x [{wall / b_short:.0f}x] -> "
+                f"{'met' if wall / b_full >= target else 'NOT met'} "
+                f"[{'met' if wall / b_short >= target else 'NOT met'}]"
+            )
+    print(
+        f"\nMuJoCo defaults over 10 s: energy change {default.errors.energy:+.2e}, frequency "
+        f"error {default.errors.frequency:+.2e}; RK4 at dt=1e-4 with default contact: "
+        f"{exported.errors.energy:+.2e}, {exported.errors.frequency:+.2e}"
+    )
     print(f"benchmark time {time.perf_counter() - began:.0f} s")
 
 

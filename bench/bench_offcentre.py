@@ -32,16 +32,36 @@ TARGET_RATIO = 0.30
 
 def off_centre_system():
     """Hoop and sphere joined off-centre (the system of the nonlinear tests)."""
-    return system_from_dict({
-        "bodies": [
-            {"id": "hoop", "shape": "hoop", "mass": 1.0, "radius": 0.1, "x": 0.0,
-             "mu_static": math.inf},
-            {"id": "ball", "shape": "sphere", "mass": 1.0, "radius": 0.1, "x": 0.46, "v": 0.3,
-             "mu_static": math.inf},
-        ],
-        "springs": [{"ends": ["hoop", "ball"], "stiffness": 100.0,
-                     "at": [{"radius": 0.07, "angle": 40.0}, {"radius": 0.05, "angle": -120.0}]}],
-    })
+    return system_from_dict(
+        {
+            "bodies": [
+                {
+                    "id": "hoop",
+                    "shape": "hoop",
+                    "mass": 1.0,
+                    "radius": 0.1,
+                    "x": 0.0,
+                    "mu_static": math.inf,
+                },
+                {
+                    "id": "ball",
+                    "shape": "sphere",
+                    "mass": 1.0,
+                    "radius": 0.1,
+                    "x": 0.46,
+                    "v": 0.3,
+                    "mu_static": math.inf,
+                },
+            ],
+            "springs": [
+                {
+                    "ends": ["hoop", "ball"],
+                    "stiffness": 100.0,
+                    "at": [{"radius": 0.07, "angle": 40.0}, {"radius": 0.05, "angle": -120.0}],
+                }
+            ],
+        }
+    )
 
 
 # -- the hand-written kernel -------------------------------------------------------------------
@@ -101,10 +121,22 @@ def kernel_parameters(system):
     assert a.n_bodies == 2 and a.n_springs == 1 and tuple(a.end_body[0]) == (0, 1)
     assert np.all(a.rolls == 1.0) and not a.force.shape[0] and not np.any(a.damping)
     cy = a.track + a.radius
-    return (float(a.x0[0]), float(a.x0[1]), float(a.radius[0]), float(a.radius[1]),
-            float(cy[0]), float(cy[1]), float(a.end_r[0, 0]), float(a.end_alpha[0, 0]),
-            float(a.end_r[0, 1]), float(a.end_alpha[0, 1]), float(a.stiffness[0]),
-            float(a.rest_length[0]), float(1.0 / a.inertia[0]), float(1.0 / a.inertia[1]))
+    return (
+        float(a.x0[0]),
+        float(a.x0[1]),
+        float(a.radius[0]),
+        float(a.radius[1]),
+        float(cy[0]),
+        float(cy[1]),
+        float(a.end_r[0, 0]),
+        float(a.end_alpha[0, 0]),
+        float(a.end_r[0, 1]),
+        float(a.end_alpha[0, 1]),
+        float(a.stiffness[0]),
+        float(a.rest_length[0]),
+        float(1.0 / a.inertia[0]),
+        float(1.0 / a.inertia[1]),
+    )
 
 
 def hand_trajectory(p, q0, v0, h, n_rows, stride):
@@ -114,26 +146,37 @@ def hand_trajectory(p, q0, v0, h, n_rows, stride):
     v = np.empty((n_rows, 2))
     q[0], v[0] = q0, v0
     for j in range(1, n_rows):
-        q1, q2, v1, v2 = yoshida4_steps(q[j - 1, 0], q[j - 1, 1], v[j - 1, 0], v[j - 1, 1], h,
-                                        stride, p, w)
+        q1, q2, v1, v2 = yoshida4_steps(
+            q[j - 1, 0], q[j - 1, 1], v[j - 1, 0], v[j - 1, 1], h, stride, p, w
+        )
         q[j], v[j] = (q1, q2), (v1, v2)
     return q, v
 
 
 def main() -> None:
-    print("off-centre hoop + sphere, nonlinear: rollspring's compiled stepping vs a minimal "
-          "hand-written Numba kernel (both Yoshida-4, the same fixed step)")
+    print(
+        "off-centre hoop + sphere, nonlinear: rollspring's compiled stepping vs a minimal "
+        "hand-written Numba kernel (both Yoshida-4, the same fixed step)"
+    )
     print(machine_note())
     system = off_centre_system()
     omega = max(m.omega for m in analyze(system).modes)
     step = 0.15 / omega
     duration = N_STEPS * step
-    print(f"highest linear frequency {omega:.4f} rad/s; step 0.15/omega = {step:.4g} s; "
-          f"{N_STEPS:,} steps = {duration:.1f} s of motion; best of {REPEATS} after warm-up")
+    print(
+        f"highest linear frequency {omega:.4f} rad/s; step 0.15/omega = {step:.4g} s; "
+        f"{N_STEPS:,} steps = {duration:.1f} s of motion; best of {REPEATS} after warm-up"
+    )
 
     def rollspring_run():
-        return simulate(system, duration, integrator="yoshida4", step=step, n_output=N_OUTPUT,
-                        energy_tolerance=1e-3)
+        return simulate(
+            system,
+            duration,
+            integrator="yoshida4",
+            step=step,
+            n_output=N_OUTPUT,
+            energy_tolerance=1e-3,
+        )
 
     timed = repeat(rollspring_run, REPEATS, warmup=1)
     trajectory = timed[0][1]
@@ -167,25 +210,50 @@ def main() -> None:
     energy = trajectory.summary["energy_error"]
 
     rows = [
-        ["rollspring: compiled stepping (timings['integrate'])", integrate, steps,
-         steps / integrate, 1e9 * integrate / steps, steps / integrate / (steps / hand)],
-        ["rollspring: whole simulate() call", call, steps, steps / call, 1e9 * call / steps,
-         steps / call / (steps / hand)],
-        ["hand-written Numba kernel (this file)", hand, steps, steps / hand, 1e9 * hand / steps,
-         1.0],
+        [
+            "rollspring: compiled stepping (timings['integrate'])",
+            integrate,
+            steps,
+            steps / integrate,
+            1e9 * integrate / steps,
+            steps / integrate / (steps / hand),
+        ],
+        [
+            "rollspring: whole simulate() call",
+            call,
+            steps,
+            steps / call,
+            1e9 * call / steps,
+            steps / call / (steps / hand),
+        ],
+        [
+            "hand-written Numba kernel (this file)",
+            hand,
+            steps,
+            steps / hand,
+            1e9 * hand / steps,
+            1.0,
+        ],
     ]
-    print_table("Steps per second (3 force evaluations per step)",
-                ["code", "wall [s]", "steps", "steps/s", "ns/step", "speed vs hand"], rows)
+    print_table(
+        "Steps per second (3 force evaluations per step)",
+        ["code", "wall [s]", "steps", "steps/s", "ns/step", "speed vs hand"],
+        rows,
+    )
     same = " (bit for bit the same)" if phi_error == x_error == omega_error == 0.0 else ""
-    print(f"\nagreement over the run at {N_OUTPUT} rows (bodies turned by up to {spread:.0f} rad)"
-          f": max |phi diff| {phi_error:.2e} rad, max |x diff| {x_error:.2e} m, "
-          f"max |omega diff| {omega_error:.2e} rad/s{same}; rollspring's energy error "
-          f"{energy:.1e} (the step is long: omega h = 0.15)")
+    print(
+        f"\nagreement over the run at {N_OUTPUT} rows (bodies turned by up to {spread:.0f} rad)"
+        f": max |phi diff| {phi_error:.2e} rad, max |x diff| {x_error:.2e} m, "
+        f"max |omega diff| {omega_error:.2e} rad/s{same}; rollspring's energy error "
+        f"{energy:.1e} (the step is long: omega h = 0.15)"
+    )
     if x_error > 1e-10:
         print("WARNING: the two codes disagree by more than 1e-10 m")
     ratio = hand / integrate
-    print(f"rollspring's stepping runs at {ratio:.0%} of the hand kernel's speed (target >= "
-          f"{TARGET_RATIO:.0%}): {'met' if ratio >= TARGET_RATIO else 'NOT met'}")
+    print(
+        f"rollspring's stepping runs at {ratio:.0%} of the hand kernel's speed (target >= "
+        f"{TARGET_RATIO:.0%}): {'met' if ratio >= TARGET_RATIO else 'NOT met'}"
+    )
 
 
 if __name__ == "__main__":

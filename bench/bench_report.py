@@ -33,8 +33,12 @@ EXECUTABLE = Path(sys.executable).with_name("rollspring")
 
 def command(out: Path) -> None:
     """One ``rollspring report`` process; raises if it fails."""
-    done = subprocess.run([str(EXECUTABLE), "report", "hoop-cylinder", "-o", str(out)],
-                          capture_output=True, text=True, check=False)
+    done = subprocess.run(
+        [str(EXECUTABLE), "report", "hoop-cylinder", "-o", str(out)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     if done.returncode != 0 or not out.exists():
         raise SystemExit(f"rollspring report failed ({done.returncode}): {done.stderr.strip()}")
 
@@ -56,18 +60,28 @@ def main() -> None:
         except Exception as exc:  # noqa: BLE001 - the PDF row is optional
             print(f"(no PDF row: {exc})")
         system = load_system("hoop-cylinder")
-        cases.append(("in-process build + write",
-                      lambda: write_report(build_report(system), html)))
+        cases.append(("in-process build + write", lambda: write_report(build_report(system), html)))
         for label, run in cases:
             times = [t for t, _ in repeat(run, RUNS, warmup=1)]
             print(f"{label}: " + ", ".join(f"{t:.2f}" for t in times) + " s", flush=True)
             median = statistics.median(times)
-            rows.append([label, f"{median:.2f}", f"{min(times):.2f}", f"{max(times):.2f}",
-                         f"{median / TARGET:.2f}", "yes" if median < TARGET else "NO"])
+            rows.append(
+                [
+                    label,
+                    f"{median:.2f}",
+                    f"{min(times):.2f}",
+                    f"{max(times):.2f}",
+                    f"{median / TARGET:.2f}",
+                    "yes" if median < TARGET else "NO",
+                ]
+            )
         size = html.stat().st_size
         built = build_report(system)
-    print_table(f"rollspring report hoop-cylinder: {RUNS} runs each after a warm-up",
-                ["what", "median (s)", "best (s)", "worst (s)", "median / 10 s", "< 10 s"], rows)
+    print_table(
+        f"rollspring report hoop-cylinder: {RUNS} runs each after a warm-up",
+        ["what", "median (s)", "best (s)", "worst (s)", "median / 10 s", "< 10 s"],
+        rows,
+    )
     stages = ", ".join(f"{stage} {seconds:.2f}" for stage, seconds in built.timings.items())
     print(f"HTML size {size / 1e6:.2f} MB; in-process stages (s): {stages}")
 

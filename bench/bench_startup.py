@@ -37,22 +37,35 @@ CASES: list[tuple[str, list[str], float | None]] = [
     ("python -c pass", [PYTHON, "-c", "pass"], None),
     ("import rollspring", [PYTHON, "-c", "import rollspring"], 0.3),
     ("rollspring --help", [EXECUTABLE, "--help"], 0.3),
-    ("rollspring analyze hoop-cylinder --json",
-     [EXECUTABLE, "analyze", "hoop-cylinder", "--json"], 0.6),
-    ("rollspring simulate hoop-cylinder -T 10",
-     [EXECUTABLE, "simulate", "hoop-cylinder", "-T", "10"], 1.0),
+    (
+        "rollspring analyze hoop-cylinder --json",
+        [EXECUTABLE, "analyze", "hoop-cylinder", "--json"],
+        0.6,
+    ),
+    (
+        "rollspring simulate hoop-cylinder -T 10",
+        [EXECUTABLE, "simulate", "hoop-cylinder", "-T", "10"],
+        1.0,
+    ),
 ]
 
 
 def run_once(argv: list[str]) -> float:
     """Wall time of one process; raises if it fails."""
     began = time.perf_counter()
-    done = subprocess.run(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, check=False,
-                          env={**os.environ, "COLUMNS": "110"})
+    done = subprocess.run(
+        argv,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        check=False,
+        env={**os.environ, "COLUMNS": "110"},
+    )
     elapsed = time.perf_counter() - began
     if done.returncode != 0:
-        raise SystemExit(f"{' '.join(argv)} failed ({done.returncode}): "
-                         f"{done.stderr.decode(errors='replace').strip()}")
+        raise SystemExit(
+            f"{' '.join(argv)} failed ({done.returncode}): "
+            f"{done.stderr.decode(errors='replace').strip()}"
+        )
     return elapsed
 
 
@@ -63,40 +76,73 @@ def main() -> None:
     args = parser.parse_args()
 
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"machine: {platform.machine()}, {os.cpu_count()} CPUs, Python "
-          f"{platform.python_version()}, load average {load:.2f} at start; "
-          f"median of {args.runs} runs after one warm-up")
+    print(
+        f"machine: {platform.machine()}, {os.cpu_count()} CPUs, Python "
+        f"{platform.python_version()}, load average {load:.2f} at start; "
+        f"median of {args.runs} runs after one warm-up"
+    )
     results = []
     for label, argv, target in CASES:
         run_once(argv)  # warm-up: byte-code and Numba caches
         times = [run_once(argv) for _ in range(args.runs)]
-        results.append({"case": label, "argv": [Path(argv[0]).name, *argv[1:]],
-                        "median_s": statistics.median(times), "best_s": min(times),
-                        "times_s": times, "target_s": target})
+        results.append(
+            {
+                "case": label,
+                "argv": [Path(argv[0]).name, *argv[1:]],
+                "median_s": statistics.median(times),
+                "best_s": min(times),
+                "times_s": times,
+                "target_s": target,
+            }
+        )
     bare = results[0]["median_s"]
     for row in results:
         row["multiple_of_bare_python"] = row["median_s"] / bare
-        row["meets_target"] = None if row["target_s"] is None else row["median_s"] <= row["target_s"]
+        row["meets_target"] = (
+            None if row["target_s"] is None else row["median_s"] <= row["target_s"]
+        )
 
     headers = ("case", "median (s)", "best (s)", "× python", "target (s)", "")
     cells = [headers] + [
-        (r["case"], f"{r['median_s']:.3f}", f"{r['best_s']:.3f}",
-         f"{r['multiple_of_bare_python']:.1f}",
-         "-" if r["target_s"] is None else f"≤ {r['target_s']:g}",
-         "" if r["meets_target"] is None else ("✔" if r["meets_target"] else "✘"))
-        for r in results]
+        (
+            r["case"],
+            f"{r['median_s']:.3f}",
+            f"{r['best_s']:.3f}",
+            f"{r['multiple_of_bare_python']:.1f}",
+            "-" if r["target_s"] is None else f"≤ {r['target_s']:g}",
+            "" if r["meets_target"] is None else ("✔" if r["meets_target"] else "✘"),
+        )
+        for r in results
+    ]
     widths = [max(len(row[i]) for row in cells) for i in range(len(headers))]
     for n, row in enumerate(cells):
-        print("  ".join(c.ljust(w) if i == 0 else c.rjust(w)
-                        for i, (c, w) in enumerate(zip(row, widths, strict=True))))
+        print(
+            "  ".join(
+                c.ljust(w) if i == 0 else c.rjust(w)
+                for i, (c, w) in enumerate(zip(row, widths, strict=True))
+            )
+        )
         if n == 0:
             print("  ".join("-" * w for w in widths))
 
     args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text(json.dumps({
-        "machine": {"arch": platform.machine(), "cpus": os.cpu_count(),
-                    "python": platform.python_version(), "load_average": load},
-        "runs": args.runs, "bare_python_s": bare, "cases": results}, indent=2) + "\n")
+    args.out.write_text(
+        json.dumps(
+            {
+                "machine": {
+                    "arch": platform.machine(),
+                    "cpus": os.cpu_count(),
+                    "python": platform.python_version(),
+                    "load_average": load,
+                },
+                "runs": args.runs,
+                "bare_python_s": bare,
+                "cases": results,
+            },
+            indent=2,
+        )
+        + "\n"
+    )
     print(f"wrote {args.out.relative_to(ROOT) if args.out.is_relative_to(ROOT) else args.out}")
 
 

@@ -70,8 +70,15 @@ SWEEP = [80.0 + 2.0 * i for i in range(21)] + [118.0 - 2.0 * i for i in range(20
 TARGET_A_P95 = 20.0  # ms, one client's round trip
 TARGET_FPS = 55.0
 TARGET_UPDATE_P95 = 50.0  # ms, slider change -> new motion on screen
-ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
 
 
 class Broken(Exception):
@@ -80,16 +87,27 @@ class Broken(Exception):
 
 # -- the server ---------------------------------------------------------------------------------
 
+
 class Server:
     """``rollspring serve`` in a subprocess (its own session), stopped with SIGINT."""
 
     def __init__(self, *extra: str) -> None:
-        self.log = tempfile.NamedTemporaryFile(prefix="bench-web-server-", suffix=".log",
-                                               delete=False)
-        self.command = [str(EXECUTABLE), "serve", PRESET, "--host", "127.0.0.1", "--port", "0",
-                        *extra]
-        self.process = subprocess.Popen(self.command, stdout=subprocess.PIPE, stderr=self.log,
-                                        text=True, start_new_session=True)
+        self.log = tempfile.NamedTemporaryFile(
+            prefix="bench-web-server-", suffix=".log", delete=False
+        )
+        self.command = [
+            str(EXECUTABLE),
+            "serve",
+            PRESET,
+            "--host",
+            "127.0.0.1",
+            "--port",
+            "0",
+            *extra,
+        ]
+        self.process = subprocess.Popen(
+            self.command, stdout=subprocess.PIPE, stderr=self.log, text=True, start_new_session=True
+        )
         self.stop_note = ""
         self.returncode: int | None = None
         self.stdout: list[str] = []
@@ -113,8 +131,11 @@ class Server:
         if not found:
             exited = self.process.poll()
             self.stop()
-            why = (f"exited with status {exited} before printing its URL" if exited is not None
-                   else f"printed no URL within {timeout:g} s")
+            why = (
+                f"exited with status {exited} before printing its URL"
+                if exited is not None
+                else f"printed no URL within {timeout:g} s"
+            )
             raise Broken(f"the server {why}; its stderr: {self.stderr()[-2000:]}")
         return found[0]
 
@@ -140,8 +161,10 @@ class Server:
             except OSError:
                 pass
             if not self.alive() or time.perf_counter() - began > timeout:
-                raise Broken(f"the server at {self.url} did not answer within {timeout:g} s; "
-                             f"its stderr: {self.stderr()[-2000:]}")
+                raise Broken(
+                    f"the server at {self.url} did not answer within {timeout:g} s; "
+                    f"its stderr: {self.stderr()[-2000:]}"
+                )
             time.sleep(0.2)
 
     def _session_processes(self) -> list[int]:
@@ -200,8 +223,9 @@ def get_json(url: str) -> Any:
 
 def post_json(url: str, body: bytes) -> tuple[int, Any, float]:
     """``(status, decoded body, seconds)`` of one POST."""
-    request = urllib.request.Request(url, data=body, method="POST",
-                                     headers={"Content-Type": "application/json"})
+    request = urllib.request.Request(
+        url, data=body, method="POST", headers={"Content-Type": "application/json"}
+    )
     began = time.perf_counter()
     try:
         with urllib.request.urlopen(request, timeout=60) as answer:
@@ -299,21 +323,35 @@ def lua_script(bodies: list[str]) -> str:
     return LUA % {"bodies": ",\n".join("  " + long_string(b) for b in bodies)}
 
 
-def run_wrk(url: str, script: Path, *, threads: int, connections: int, seconds: int,
-            timeout: int) -> dict[str, Any]:
+def run_wrk(
+    url: str, script: Path, *, threads: int, connections: int, seconds: int, timeout: int
+) -> dict[str, Any]:
     """One wrk run; the figures its ``done()`` printed, with wrk's own text."""
-    command = ["wrk", f"-t{threads}", f"-c{connections}", f"-d{seconds}s", "--latency",
-               f"--timeout={timeout}s", "-s", str(script), url]
-    done = subprocess.run(command, capture_output=True, text=True, check=False,
-                          timeout=seconds + timeout + 60)
+    command = [
+        "wrk",
+        f"-t{threads}",
+        f"-c{connections}",
+        f"-d{seconds}s",
+        "--latency",
+        f"--timeout={timeout}s",
+        "-s",
+        str(script),
+        url,
+    ]
+    done = subprocess.run(
+        command, capture_output=True, text=True, check=False, timeout=seconds + timeout + 60
+    )
     line = next((ln for ln in done.stdout.splitlines() if ln.startswith("WRK_JSON ")), None)
     if done.returncode != 0 or line is None:
-        raise Broken(f"wrk failed ({done.returncode}): {done.stderr.strip()[:1000]} "
-                     f"{done.stdout.strip()[-1000:]}")
-    figures = json.loads(line[len("WRK_JSON "):])
+        raise Broken(
+            f"wrk failed ({done.returncode}): {done.stderr.strip()[:1000]} "
+            f"{done.stdout.strip()[-1000:]}"
+        )
+    figures = json.loads(line[len("WRK_JSON ") :])
     figures["command"] = " ".join(command[:-3] + ["<script.lua>", url])
-    figures["wrk_output"] = [ln for ln in done.stdout.splitlines()
-                             if not ln.startswith("WRK_JSON ")]
+    figures["wrk_output"] = [
+        ln for ln in done.stdout.splitlines() if not ln.startswith("WRK_JSON ")
+    ]
     return summarise(figures)
 
 
@@ -322,32 +360,38 @@ def summarise(figures: dict[str, Any]) -> dict[str, Any]:
     statuses = figures["statuses"]
     ok = sum(n for key, n in statuses.items() if key[:1] == "2")
     designed = statuses.get("503 app", 0) + statuses.get("503 limit", 0)
-    other_5xx = sum(n for key, n in statuses.items()
-                    if key[:1] == "5" and key not in ("503 app", "503 limit"))
+    other_5xx = sum(
+        n for key, n in statuses.items() if key[:1] == "5" and key not in ("503 app", "503 limit")
+    )
     other = sum(n for key, n in statuses.items() if key[:1] not in "25")
     errors = figures["errors"]
     socket_errors = errors["connect"] + errors["read"] + errors["write"] + errors["timeout"]
     latency = figures["latency_us"]
-    figures.update({
-        "requests_per_s": figures["requests"] / (figures["duration_us"] / 1e6),
-        "p50_ms": latency["percentiles"]["50"] / 1e3,
-        "p95_ms": latency["percentiles"]["95"] / 1e3,
-        "p99_ms": latency["percentiles"]["99"] / 1e3,
-        "max_ms": latency["max"] / 1e3,
-        "ok_2xx": ok,
-        "designed_503": designed,
-        "other_5xx": other_5xx,
-        "other_non_2xx": other,
-        "socket_errors": socket_errors,
-    })
+    figures.update(
+        {
+            "requests_per_s": figures["requests"] / (figures["duration_us"] / 1e6),
+            "p50_ms": latency["percentiles"]["50"] / 1e3,
+            "p95_ms": latency["percentiles"]["95"] / 1e3,
+            "p99_ms": latency["percentiles"]["99"] / 1e3,
+            "max_ms": latency["max"] / 1e3,
+            "ok_2xx": ok,
+            "designed_503": designed,
+            "other_5xx": other_5xx,
+            "other_non_2xx": other,
+            "socket_errors": socket_errors,
+        }
+    )
     return figures
 
 
 def print_run(label: str, figures: dict[str, Any]) -> None:
-    print(f"  {label}: {figures['requests']} requests, {figures['requests_per_s']:.1f}/s, "
-          f"p50 {figures['p50_ms']:.2f} ms, p95 {figures['p95_ms']:.2f} ms, "
-          f"p99 {figures['p99_ms']:.2f} ms, max {figures['max_ms']:.1f} ms; "
-          f"statuses {figures['statuses']}; socket errors {figures['errors']}", flush=True)
+    print(
+        f"  {label}: {figures['requests']} requests, {figures['requests_per_s']:.1f}/s, "
+        f"p50 {figures['p50_ms']:.2f} ms, p95 {figures['p95_ms']:.2f} ms, "
+        f"p99 {figures['p99_ms']:.2f} ms, max {figures['max_ms']:.1f} ms; "
+        f"statuses {figures['statuses']}; socket errors {figures['errors']}",
+        flush=True,
+    )
 
 
 # -- the page in Chromium -----------------------------------------------------------------------
@@ -413,6 +457,7 @@ def measure_page(url: str, *, seconds: float = 5.0, changes: int = 20) -> dict[s
         return {"skipped": f"Playwright is not installed ({exc})"}
     try:
         from rollspring.outputs.report import find_chromium
+
         chromium = find_chromium()
     except Exception:  # noqa: BLE001 - fall back to Debian's path
         chromium = "/usr/bin/chromium"
@@ -426,30 +471,45 @@ def measure_page(url: str, *, seconds: float = 5.0, changes: int = 20) -> dict[s
         browser = playwright.chromium.launch(executable_path=chromium, args=ARGS)
         try:
             page = browser.new_page(viewport={"width": 1280, "height": 900})
-            page.on("console", lambda m: problems.append(f"console: {m.text}")
-                    if m.type == "error" else None)
+            page.on(
+                "console",
+                lambda m: problems.append(f"console: {m.text}") if m.type == "error" else None,
+            )
             page.on("pageerror", lambda e: problems.append(f"page error: {e}"))
-            page.on("response", lambda r: failed.append(f"{r.status} {r.request.method} "
-                                                         f"{r.url}") if r.status >= 400 else None)
+            page.on(
+                "response",
+                lambda r: (
+                    failed.append(f"{r.status} {r.request.method} {r.url}")
+                    if r.status >= 400
+                    else None
+                ),
+            )
             began = time.perf_counter()
             answer = page.goto(url, wait_until="load")
             status = answer.status if answer is not None else None
             try:
-                page.wait_for_function("() => window.rollspringPage !== undefined",
-                                       timeout=10_000)
+                page.wait_for_function("() => window.rollspringPage !== undefined", timeout=10_000)
             except PlaywrightError:
-                why = (f"GET / answered {status}" if status != 200 else
-                       "the page has no window.rollspringPage")
-                return {"skipped": f"{why} (the page or its benchmark hooks are not there "
-                        f"yet); (c) not measured", "problems": problems + failed}
+                why = (
+                    f"GET / answered {status}"
+                    if status != 200
+                    else "the page has no window.rollspringPage"
+                )
+                return {
+                    "skipped": f"{why} (the page or its benchmark hooks are not there "
+                    f"yet); (c) not measured",
+                    "problems": problems + failed,
+                }
             try:
                 page.evaluate("async () => { await window.rollspringPage.ready(); }")
                 result["ready_ms"] = (time.perf_counter() - began) * 1e3
                 result.update(_frame_rate(page, seconds))
                 result.update(_slider_updates(page, changes))
             except PlaywrightError as exc:
-                raise Broken(f"the page could not be driven: {str(exc).splitlines()[0]}; "
-                             f"page problems: {problems + failed}") from None
+                raise Broken(
+                    f"the page could not be driven: {str(exc).splitlines()[0]}; "
+                    f"page problems: {problems + failed}"
+                ) from None
         finally:
             browser.close()
     result["problems"] = problems + failed
@@ -482,31 +542,38 @@ def _frame_rate(page: Any, seconds: float) -> dict[str, Any]:
     now = start
     while now < end:  # frameTimes() holds the recent frames only: gathered every 0.25 s
         page.wait_for_timeout(250)
-        got = page.evaluate("() => [performance.now(), "
-                            "Array.from(window.rollspringPage.frameTimes())]")
+        got = page.evaluate(
+            "() => [performance.now(), Array.from(window.rollspringPage.frameTimes())]"
+        )
         now = got[0]
         stamps.update(float(t) for t in got[1])
     times = sorted(t for t in stamps if start <= t <= end)
     if len(times) < 3:
-        raise Broken(f"frameTimes() gave {len(times)} frames over {seconds:g} s after Play "
-                     f"({clicked})")
+        raise Broken(
+            f"frameTimes() gave {len(times)} frames over {seconds:g} s after Play ({clicked})"
+        )
     gaps = [b - a for a, b in zip(times, times[1:], strict=False) if b > a]
     rates = [1e3 / gap for gap in gaps]
-    return {"play_button": clicked, "frames": len(times),
-            "frame_window_ms": times[-1] - times[0],
-            "fps_mean": (len(times) - 1) / (times[-1] - times[0]) * 1e3,
-            "fps_p5": percentile(rates, 5),
-            "frame_interval_p50_ms": percentile(gaps, 50),
-            "frame_interval_p95_ms": percentile(gaps, 95),
-            "frame_interval_max_ms": max(gaps)}
+    return {
+        "play_button": clicked,
+        "frames": len(times),
+        "frame_window_ms": times[-1] - times[0],
+        "fps_mean": (len(times) - 1) / (times[-1] - times[0]) * 1e3,
+        "fps_p5": percentile(rates, 5),
+        "frame_interval_p50_ms": percentile(gaps, 50),
+        "frame_interval_p95_ms": percentile(gaps, 95),
+        "frame_interval_max_ms": max(gaps),
+    }
 
 
 def _slider_updates(page: Any, changes: int) -> dict[str, Any]:
     sliders = page.evaluate(FIND_SLIDERS)
     slider = stiffness_slider(sliders)
     if slider is None:
-        raise Broken("no visible range input labelled for the spring stiffness among "
-                     f"{[s['text'] for s in sliders]}")
+        raise Broken(
+            "no visible range input labelled for the spring stiffness among "
+            f"{[s['text'] for s in sliders]}"
+        )
     element = page.locator("input[type=range]").nth(slider["index"])
     delays: list[float] = []
     stages: list[dict[str, float | None]] = []
@@ -516,8 +583,9 @@ def _slider_updates(page: Any, changes: int) -> dict[str, Any]:
     for i in range(changes):
         key = "ArrowRight" if (i // 5) % 2 == 0 else "ArrowLeft"  # 5 up, 5 down, ...
         before = page.evaluate("() => window.rollspringPage.lastUpdate()") or {}
-        playing += page.evaluate("() => /pause/i.test(document.querySelector('#play')"
-                                 "?.getAttribute('aria-label') || '')")
+        playing += page.evaluate(
+            "() => /pause/i.test(document.querySelector('#play')?.getAttribute('aria-label') || '')"
+        )
         value = element.input_value()
         element.focus()
         if method == "keyboard":
@@ -531,12 +599,16 @@ def _slider_updates(page: Any, changes: int) -> dict[str, Any]:
                      el.value = String(Number(el.value) + (up ? step : -step));
                      el.dispatchEvent(new Event('input', {bubbles: true}));
                      el.dispatchEvent(new Event('change', {bubbles: true}));
-                   }""", key == "ArrowRight")
+                   }""",
+                key == "ArrowRight",
+            )
         page.wait_for_function(
             """before => { const u = window.rollspringPage.lastUpdate();
                  return u && u.changed != null && u.drawn != null
                    && u.changed !== (before && before.changed) && u.drawn >= u.changed; }""",
-            arg=before, timeout=10_000)
+            arg=before,
+            timeout=10_000,
+        )
         update = page.evaluate("() => window.rollspringPage.lastUpdate()")
         delays.append(float(update["drawn"]) - float(update["changed"]))
         stages.append(page.evaluate(STAGES, update))
@@ -544,16 +616,24 @@ def _slider_updates(page: Any, changes: int) -> dict[str, Any]:
     breakdown = {}
     for key in ("wait", "requests", "client", "simulate", "analyze"):
         known = [s[key] for s in stages if s.get(key) is not None]
-        breakdown[key] = ({"p50": percentile(known, 50), "p95": percentile(known, 95)}
-                          if known else None)
-    return {"slider": {k: slider[k] for k in ("id", "text", "min", "max", "step")},
-            "slider_method": method, "changes_while_playing": playing, "update_ms": delays, "update_stages_ms": stages,
-            "update_breakdown_ms": breakdown,
-            "update_p50_ms": percentile(delays, 50), "update_p95_ms": percentile(delays, 95),
-            "update_max_ms": max(delays)}
+        breakdown[key] = (
+            {"p50": percentile(known, 50), "p95": percentile(known, 95)} if known else None
+        )
+    return {
+        "slider": {k: slider[k] for k in ("id", "text", "min", "max", "step")},
+        "slider_method": method,
+        "changes_while_playing": playing,
+        "update_ms": delays,
+        "update_stages_ms": stages,
+        "update_breakdown_ms": breakdown,
+        "update_p50_ms": percentile(delays, 50),
+        "update_p95_ms": percentile(delays, 95),
+        "update_max_ms": max(delays),
+    }
 
 
 # -- the report ---------------------------------------------------------------------------------
+
 
 def spread(values: list[float], spec: str = ".1f", unit: str = "") -> str:
     """'median (min–max)' of the runs (just the value for one run)."""
@@ -574,29 +654,46 @@ def main() -> int:
     parser.add_argument("--many-seconds", type=int, default=20, help="length of each (b) run")
     parser.add_argument("--clients", type=int, default=16, help="connections of (b)")
     parser.add_argument("--no-browser", action="store_true", help="leave (c) out")
-    parser.add_argument("--json", type=Path, default=ROOT / "build" / "bench" / "web.json",
-                        help="where to write the figures")
+    parser.add_argument(
+        "--json",
+        type=Path,
+        default=ROOT / "build" / "bench" / "web.json",
+        help="where to write the figures",
+    )
     args = parser.parse_args()
     print(machine_note())
     if shutil.which("wrk") is None:
-        print("wrk is not installed (Debian: apt-get install wrk); nothing measured",
-              file=sys.stderr)
+        print(
+            "wrk is not installed (Debian: apt-get install wrk); nothing measured", file=sys.stderr
+        )
         return 1
-    version = subprocess.run(["wrk", "--version"], capture_output=True, text=True,
-                             check=False).stdout.splitlines()
-    print(f"load generator: {version[0] if version else 'wrk'}; {os.cpu_count()} CPUs shared "
-          "by the load generator, the server and its workers, and the browser")
-    record: dict[str, Any] = {"machine": machine_note(), "wrk": version[:1],
-                              "runs": args.runs, "targets": {
-                                  "single_p95_ms": TARGET_A_P95, "fps": TARGET_FPS,
-                                  "update_p95_ms": TARGET_UPDATE_P95,
-                                  "many_5xx_other_than_503": 0}}
+    version = subprocess.run(
+        ["wrk", "--version"], capture_output=True, text=True, check=False
+    ).stdout.splitlines()
+    print(
+        f"load generator: {version[0] if version else 'wrk'}; {os.cpu_count()} CPUs shared "
+        "by the load generator, the server and its workers, and the browser"
+    )
+    record: dict[str, Any] = {
+        "machine": machine_note(),
+        "wrk": version[:1],
+        "runs": args.runs,
+        "targets": {
+            "single_p95_ms": TARGET_A_P95,
+            "fps": TARGET_FPS,
+            "update_p95_ms": TARGET_UPDATE_P95,
+            "many_5xx_other_than_503": 0,
+        },
+    }
     status = 0
     server = None
     try:
         server = Server()
-        record["server"] = {"command": " ".join(server.command[1:]), "url": server.url,
-                            "ready_s": server.wait_ready()}
+        record["server"] = {
+            "command": " ".join(server.command[1:]),
+            "url": server.url,
+            "ready_s": server.wait_ready(),
+        }
         print(f"server: {' '.join(server.command[1:])} -> {server.url}", flush=True)
         status = measure(server, args, record)
     except Broken as exc:
@@ -606,14 +703,23 @@ def main() -> int:
     finally:
         if server is not None:
             server.stop()
-            errors = [ln for ln in server.stderr().splitlines()
-                      if re.search(r"Traceback|ERROR|Exception|Error:", ln)]
-            record.setdefault("server", {}).update({
-                "stop": server.stop_note, "exit_status": server.returncode,
-                "stderr_error_lines": errors[:50]})
-            print(f"server {server.stop_note}, exit status {server.returncode}; "
-                  f"{len(errors)} error lines in its log"
-                  + (f" (first: {errors[0]!r}; log {server.log.name})" if errors else ""))
+            errors = [
+                ln
+                for ln in server.stderr().splitlines()
+                if re.search(r"Traceback|ERROR|Exception|Error:", ln)
+            ]
+            record.setdefault("server", {}).update(
+                {
+                    "stop": server.stop_note,
+                    "exit_status": server.returncode,
+                    "stderr_error_lines": errors[:50],
+                }
+            )
+            print(
+                f"server {server.stop_note}, exit status {server.returncode}; "
+                f"{len(errors)} error lines in its log"
+                + (f" (first: {errors[0]!r}; log {server.log.name})" if errors else "")
+            )
             if not errors:
                 Path(server.log.name).unlink(missing_ok=True)
     args.json.parent.mkdir(parents=True, exist_ok=True)
@@ -632,12 +738,13 @@ def measure(server: Server, args: argparse.Namespace, record: dict[str, Any]) ->
         bodies.append(json.dumps({"system": varied, "duration": 10, "outputs": 600}))
     # one request by hand: the answer is what the page needs (600 outputs, 10 s, finished)
     code, answer, seconds = post_json(server.url + "api/simulate", bodies[0].encode())
-    if code != 200 or len(answer.get("t", [])) != 600 or answer["summary"]["status"] != \
-            "finished":
+    if code != 200 or len(answer.get("t", [])) != 600 or answer["summary"]["status"] != "finished":
         raise Broken(f"POST /api/simulate answered {code}: {str(answer)[:300]}")
     size = len(json.dumps(answer))
-    print(f"one request: 200, {len(answer['t'])} outputs, about {size / 1e3:.0f} kB of JSON, "
-          f"{seconds * 1e3:.1f} ms (cold)")
+    print(
+        f"one request: 200, {len(answer['t'])} outputs, about {size / 1e3:.0f} kB of JSON, "
+        f"{seconds * 1e3:.1f} ms (cold)"
+    )
     record["response_kB"] = size / 1e3
 
     with tempfile.TemporaryDirectory(prefix="bench-web-") as folder:
@@ -647,14 +754,30 @@ def measure(server: Server, args: argparse.Namespace, record: dict[str, Any]) ->
         single = []
         print(f"(a) one client, {args.single_seconds} s each:", flush=True)
         for i in range(args.runs):
-            single.append(run_wrk(server.url, script, threads=1, connections=1,
-                                  seconds=args.single_seconds, timeout=15))
+            single.append(
+                run_wrk(
+                    server.url,
+                    script,
+                    threads=1,
+                    connections=1,
+                    seconds=args.single_seconds,
+                    timeout=15,
+                )
+            )
             print_run(f"run {i + 1}", single[-1])
         many = []
         print(f"(b) {args.clients} clients, {args.many_seconds} s each:", flush=True)
         for i in range(args.runs):
-            many.append(run_wrk(server.url, script, threads=1, connections=args.clients,
-                                seconds=args.many_seconds, timeout=30))
+            many.append(
+                run_wrk(
+                    server.url,
+                    script,
+                    threads=1,
+                    connections=args.clients,
+                    seconds=args.many_seconds,
+                    timeout=30,
+                )
+            )
             print_run(f"run {i + 1}", many[-1])
     if not server.alive():
         raise Broken(f"the server died under load; its stderr: {server.stderr()[-2000:]}")
@@ -670,14 +793,22 @@ def measure(server: Server, args: argparse.Namespace, record: dict[str, Any]) ->
     if "skipped" in page:
         print(f"(c) SKIPPED: {page['skipped']}")
     else:
-        print(f"(c) {page['frames']} frames over {page['frame_window_ms'] / 1e3:.1f} s; "
-              f"slider changes ({page['slider_method']}, slider {page['slider']['text']!r}, "
-              f"{page['changes_while_playing']} while playing): "
-              + ", ".join(f"{d:.1f}" for d in page["update_ms"]) + " ms")
-        parts = [f"{key} p50 {v['p50']:.1f} / p95 {v['p95']:.1f} ms"
-                 for key, v in page["update_breakdown_ms"].items() if v]
-        print("    where it goes (change → first API request sent, → last answer in, → frame "
-              "drawn): " + "; ".join(parts))
+        print(
+            f"(c) {page['frames']} frames over {page['frame_window_ms'] / 1e3:.1f} s; "
+            f"slider changes ({page['slider_method']}, slider {page['slider']['text']!r}, "
+            f"{page['changes_while_playing']} while playing): "
+            + ", ".join(f"{d:.1f}" for d in page["update_ms"])
+            + " ms"
+        )
+        parts = [
+            f"{key} p50 {v['p50']:.1f} / p95 {v['p95']:.1f} ms"
+            for key, v in page["update_breakdown_ms"].items()
+            if v
+        ]
+        print(
+            "    where it goes (change → first API request sent, → last answer in, → frame "
+            "drawn): " + "; ".join(parts)
+        )
     if page.get("problems"):
         print(f"(c) page problems: {page['problems'][:10]}")
 
@@ -688,39 +819,83 @@ def measure(server: Server, args: argparse.Namespace, record: dict[str, Any]) ->
     other_fail = sum(r["other_non_2xx"] + r["socket_errors"] for r in many)
     rows = [
         ["(a) 1 client: round trip p50", spread(p50a, ".2f", " ms"), "-", "-"],
-        ["(a) 1 client: round trip p95", spread(p95a, ".2f", " ms"),
-         f"≤ {TARGET_A_P95:g} ms", mark(statistics.median(p95a) <= TARGET_A_P95)],
+        [
+            "(a) 1 client: round trip p95",
+            spread(p95a, ".2f", " ms"),
+            f"≤ {TARGET_A_P95:g} ms",
+            mark(statistics.median(p95a) <= TARGET_A_P95),
+        ],
         ["(a) 1 client: requests/s", spread([r["requests_per_s"] for r in single]), "-", "-"],
-        ["(a) 1 client: not 2xx", str(sum(r["requests"] - r["ok_2xx"] for r in single)),
-         "0", mark(all(r["requests"] == r["ok_2xx"] for r in single))],
-        [f"(b) {args.clients} clients: requests/s",
-         spread([r["requests_per_s"] for r in many]), "-", "-"],
-        [f"(b) {args.clients} clients: round trip p50",
-         spread([r["p50_ms"] for r in many], ".1f", " ms"), "-", "-"],
+        [
+            "(a) 1 client: not 2xx",
+            str(sum(r["requests"] - r["ok_2xx"] for r in single)),
+            "0",
+            mark(all(r["requests"] == r["ok_2xx"] for r in single)),
+        ],
+        [
+            f"(b) {args.clients} clients: requests/s",
+            spread([r["requests_per_s"] for r in many]),
+            "-",
+            "-",
+        ],
+        [
+            f"(b) {args.clients} clients: round trip p50",
+            spread([r["p50_ms"] for r in many], ".1f", " ms"),
+            "-",
+            "-",
+        ],
         [f"(b) {args.clients} clients: round trip p95", spread(p95b, ".1f", " ms"), "-", "-"],
-        [f"(b) {args.clients} clients: designed 503s",
-         str(sum(r["designed_503"] for r in many)), "-", "-"],
+        [
+            f"(b) {args.clients} clients: designed 503s",
+            str(sum(r["designed_503"] for r in many)),
+            "-",
+            "-",
+        ],
         [f"(b) {args.clients} clients: other 5xx", str(other_5xx), "0", mark(other_5xx == 0)],
-        [f"(b) {args.clients} clients: other failures (4xx, socket errors, timeouts)",
-         str(other_fail - other_5xx), "0", mark(other_fail == other_5xx)],
+        [
+            f"(b) {args.clients} clients: other failures (4xx, socket errors, timeouts)",
+            str(other_fail - other_5xx),
+            "0",
+            mark(other_fail == other_5xx),
+        ],
     ]
     if "skipped" in page:
         rows.append(["(c) page", "skipped", "-", "-"])
     else:
         rows += [
-            ["(c) frame rate, mean", f"{page['fps_mean']:.1f} fps", f"≥ {TARGET_FPS:g} fps",
-             mark(page["fps_mean"] >= TARGET_FPS)],
-            ["(c) frame rate, 5th percentile of 1/Δt", f"{page['fps_p5']:.1f} fps",
-             f"≥ {TARGET_FPS:g} fps", mark(page["fps_p5"] >= TARGET_FPS)],
-            ["(c) slider change → new motion drawn, p50", f"{page['update_p50_ms']:.1f} ms",
-             "-", "-"],
-            ["(c) slider change → new motion drawn, p95", f"{page['update_p95_ms']:.1f} ms",
-             f"≤ {TARGET_UPDATE_P95:g} ms", mark(page["update_p95_ms"] <= TARGET_UPDATE_P95)],
+            [
+                "(c) frame rate, mean",
+                f"{page['fps_mean']:.1f} fps",
+                f"≥ {TARGET_FPS:g} fps",
+                mark(page["fps_mean"] >= TARGET_FPS),
+            ],
+            [
+                "(c) frame rate, 5th percentile of 1/Δt",
+                f"{page['fps_p5']:.1f} fps",
+                f"≥ {TARGET_FPS:g} fps",
+                mark(page["fps_p5"] >= TARGET_FPS),
+            ],
+            [
+                "(c) slider change → new motion drawn, p50",
+                f"{page['update_p50_ms']:.1f} ms",
+                "-",
+                "-",
+            ],
+            [
+                "(c) slider change → new motion drawn, p95",
+                f"{page['update_p95_ms']:.1f} ms",
+                f"≤ {TARGET_UPDATE_P95:g} ms",
+                mark(page["update_p95_ms"] <= TARGET_UPDATE_P95),
+            ],
         ]
     runs = f"{args.runs} run{'s' if args.runs > 1 else ''}"
-    print_table(f"rollspring serve {PRESET} (workers = cores, limit-concurrency 64): "
-                f"POST /api/simulate 10 s, 600 outputs, stiffness swept; median (range) of "
-                f"{runs}", ["measurement", "measured", "target", "met"], rows)
+    print_table(
+        f"rollspring serve {PRESET} (workers = cores, limit-concurrency 64): "
+        f"POST /api/simulate 10 s, 600 outputs, stiffness swept; median (range) of "
+        f"{runs}",
+        ["measurement", "measured", "target", "met"],
+        rows,
+    )
     record["table"] = rows
     return 0
 

@@ -41,11 +41,14 @@ def best_of(run: Callable[[], Any], repeats: int, *, warmup: int = 1) -> tuple[f
 def machine_note() -> str:
     """One line on the machine and its load (other work on it makes timings noisy)."""
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    return (f"machine: {platform.machine()}, {os.cpu_count()} CPUs, Python "
-            f"{platform.python_version()}, load average {load:.2f} at start")
+    return (
+        f"machine: {platform.machine()}, {os.cpu_count()} CPUs, Python "
+        f"{platform.python_version()}, load average {load:.2f} at start"
+    )
 
 
 # -- the paper's hoop-cylinder system (preset "hoop-cylinder") ---------------------------------
+
 
 @dataclass(frozen=True)
 class HoopCylinder:
@@ -111,8 +114,9 @@ class ModalErrors:
     energy: float  # mean energy over the last period / initial energy - 1
 
 
-def modal_errors(case: HoopCylinder, t: np.ndarray, x: np.ndarray, v: np.ndarray,
-                 energy: np.ndarray) -> ModalErrors:
+def modal_errors(
+    case: HoopCylinder, t: np.ndarray, x: np.ndarray, v: np.ndarray, energy: np.ndarray
+) -> ModalErrors:
     r"""Position, frequency and energy errors of a run sampled at times ``t`` (centres ``x``,
     velocities ``v``, shape (len(t), 2); ``energy`` the mechanical energy without gravity).
 
@@ -140,11 +144,11 @@ def modal_errors(case: HoopCylinder, t: np.ndarray, x: np.ndarray, v: np.ndarray
     frequency = float(slope / omega)
     last = t >= t[-1] - 2 * math.pi / omega
     energy_change = float(np.mean(energy[last]) / case.energy - 1.0)
-    return ModalErrors(position, frequency, float(np.max(np.abs(drift - drift[0]))),
-                       energy_change)
+    return ModalErrors(position, frequency, float(np.max(np.abs(drift - drift[0]))), energy_change)
 
 
 # -- MuJoCo ------------------------------------------------------------------------------------
+
 
 def hoop_cylinder_mjcf(case: HoopCylinder) -> str:
     """MJCF of the hoop-cylinder system with MuJoCo's default options and contact.
@@ -159,8 +163,10 @@ def hoop_cylinder_mjcf(case: HoopCylinder) -> str:
     """
     r, mu = case.radius, case.mu
     bodies = []
-    for name, mass, gamma, x in (("hoop", case.m1, 1.0, case.x0[0]),
-                                 ("cylinder", case.m2, 0.5, case.x0[1])):
+    for name, mass, gamma, x in (
+        ("hoop", case.m1, 1.0, case.x0[0]),
+        ("cylinder", case.m2, 0.5, case.x0[1]),
+    ):
         inertia = gamma * mass * r * r
         bodies.append(f"""
     <body name="{name}" pos="{x!r} 0 {r!r}">
@@ -177,7 +183,7 @@ def hoop_cylinder_mjcf(case: HoopCylinder) -> str:
   <option gravity="0 0 {-case.gravity!r}"/>
   <worldbody>
     <geom name="floor" type="plane" size="0 0 1" condim="3" friction="{mu!r} 0.005 0.0001"/>
-    {''.join(bodies)}
+    {"".join(bodies)}
   </worldbody>
   <contact><exclude body1="hoop" body2="cylinder"/></contact>
   <tendon>
@@ -192,6 +198,7 @@ def hoop_cylinder_mjcf(case: HoopCylinder) -> str:
 
 
 # -- output ------------------------------------------------------------------------------------
+
 
 def fmt(value: Any, spec: str = ".3g") -> str:
     """A table cell: numbers with ``spec``, None as '-', text as is."""
@@ -212,8 +219,10 @@ def print_table(title: str, headers: Sequence[str], rows: Sequence[Sequence[Any]
     widths = [max(len(row[i]) for row in cells) for i in range(len(headers))]
 
     def line(row: Sequence[str]) -> str:
-        return "  ".join(c.ljust(w) if i == 0 else c.rjust(w)
-                         for i, (c, w) in enumerate(zip(row, widths, strict=True)))
+        return "  ".join(
+            c.ljust(w) if i == 0 else c.rjust(w)
+            for i, (c, w) in enumerate(zip(row, widths, strict=True))
+        )
 
     print(f"\n{title}")
     print(line(cells[0]))

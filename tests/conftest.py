@@ -27,8 +27,15 @@ def strict_numerics() -> Iterator[None]:
         yield
 
 
-def body(id: str, shape: str = "hoop", *, mass: float = 1.0, radius: float = 0.1,
-         x: float = 0.0, **extra: Any) -> dict[str, Any]:
+def body(
+    id: str,
+    shape: str = "hoop",
+    *,
+    mass: float = 1.0,
+    radius: float = 0.1,
+    x: float = 0.0,
+    **extra: Any,
+) -> dict[str, Any]:
     """A body entry of a system file."""
     return {"id": id, "shape": shape, "mass": mass, "radius": radius, "x": x, **extra}
 
@@ -38,8 +45,9 @@ def spring(a: str, b: str, *, stiffness: float = 100.0, **extra: Any) -> dict[st
     return {"ends": [a, b], "stiffness": stiffness, **extra}
 
 
-def make_system(bodies: list[dict[str, Any]], springs: list[dict[str, Any]] | None = None,
-                **extra: Any) -> System:
+def make_system(
+    bodies: list[dict[str, Any]], springs: list[dict[str, Any]] | None = None, **extra: Any
+) -> System:
     """Validate a system from entries."""
     return system_from_dict({"bodies": bodies, "springs": springs or [], **extra})
 

@@ -18,9 +18,15 @@ import requests
 __all__ = ["CHROMIUM_ARGS", "Server", "launch_chromium"]
 
 #: Headless Chromium as root, with nothing that reaches out of this machine.
-CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update",
-                 "--disable-sync"]
+CHROMIUM_ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
 
 
 @contextlib.contextmanager
@@ -31,12 +37,12 @@ def launch_chromium() -> Iterator[Any]:
     from rollspring.outputs.report import find_chromium
 
     with sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=find_chromium(),
-                                             args=CHROMIUM_ARGS)
+        browser = playwright.chromium.launch(executable_path=find_chromium(), args=CHROMIUM_ARGS)
         try:
             yield browser
         finally:
             browser.close()
+
 
 SERVE = str(Path(sys.executable).with_name("rollspring"))
 
@@ -45,9 +51,12 @@ class Server:
     """``rollspring serve`` started from its command line on a free port (``options`` added)."""
 
     def __init__(self, *options: str) -> None:
-        self.process = subprocess.Popen([SERVE, "serve", "--port", "0", *options],
-                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                        text=True)
+        self.process = subprocess.Popen(
+            [SERVE, "serve", "--port", "0", *options],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         try:
             self.url = self._wait()
         except BaseException:

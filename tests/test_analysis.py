@@ -22,8 +22,14 @@ from tests.conftest import body, make_system, spring
 
 
 @settings(max_examples=40, deadline=None)
-@given(st.floats(0.0, 0.1), st.floats(-180, 180), st.floats(0.0, 0.1), st.floats(-180, 180),
-       st.floats(-0.05, 0.05), st.sampled_from(["hoop", "cylinder", "sphere"]))
+@given(
+    st.floats(0.0, 0.1),
+    st.floats(-180, 180),
+    st.floats(0.0, 0.1),
+    st.floats(-180, 180),
+    st.floats(-0.05, 0.05),
+    st.sampled_from(["hoop", "cylinder", "sphere"]),
+)
 def test_equilibrium_holds_the_zero_mode_of_an_off_centre_pair(r1, a1, r2, a2, strain, shape):
     """Q(q*) = 0 and the zero-mode coordinate of the initial placement is kept:
     V0(q*)^T M (q* - 0) = 0, so the motion oscillates about q* (docs/physics.md (M14)).
@@ -31,8 +37,9 @@ def test_equilibrium_holds_the_zero_mode_of_an_off_centre_pair(r1, a1, r2, a2, s
     larger deformations can have the nearest equilibrium several radians away, where "nearest"
     stops being well defined."""
     ends = [{"radius": r1, "angle": a1}, {"radius": r2, "angle": a2}]
-    placed = make_system([body("a", "hoop", x=0.0), body("b", shape, x=0.5)],
-                         [spring("a", "b", at=ends)])
+    placed = make_system(
+        [body("a", "hoop", x=0.0), body("b", shape, x=0.5)], [spring("a", "b", at=ends)]
+    )
     length = float(spring_state(system_arrays(placed), np.zeros(2)).length[0])
     system = make_system(
         [body("a", "hoop", x=0.0), body("b", shape, x=0.5)],
@@ -51,8 +58,11 @@ def test_equilibrium_holds_the_zero_mode_of_an_off_centre_pair(r1, a1, r2, a2, s
 
 
 def test_no_equilibrium_gives_no_response_and_says_why() -> None:
-    system = make_system([body("h", "hoop", x=0.0), body("c", "cylinder", x=0.5)],
-                         [spring("h", "c")], forces=[{"body": "h", "fx": 1.0}])
+    system = make_system(
+        [body("h", "hoop", x=0.0), body("c", "cylinder", x=0.5)],
+        [spring("h", "c")],
+        forces=[{"body": "h", "fx": 1.0}],
+    )
     result = analyze(system)
     assert not result.equilibrium.found
     assert result.amplitude is None and result.required_mu is None
@@ -64,9 +74,11 @@ def test_no_equilibrium_gives_no_response_and_says_why() -> None:
 def test_modal_damping_ratio_of_a_damped_wall_spring() -> None:
     """One body on a wall spring at centre height: K = k R^2, C = c R^2, zeta = c R/(2 sqrt(k J))."""
     k, c, m, radius = 80.0, 1.5, 0.9, 0.2
-    system = make_system([body("c", "cylinder", mass=m, radius=radius, x=0.0)],
-                         [spring("wall", "c", stiffness=k, damping=c)],
-                         anchors=[{"id": "wall", "x": -0.5, "y": radius}])
+    system = make_system(
+        [body("c", "cylinder", mass=m, radius=radius, x=0.0)],
+        [spring("wall", "c", stiffness=k, damping=c)],
+        anchors=[{"id": "wall", "x": -0.5, "y": radius}],
+    )
     result = analyze(system)
     inertia = 1.5 * m * radius**2
     (mode,) = result.modes
@@ -77,26 +89,35 @@ def test_modal_damping_ratio_of_a_damped_wall_spring() -> None:
 
 def test_zero_gravity_with_enforced_rolling_is_quiet() -> None:
     system = make_system(
-        [body("h", "hoop", x=0.0, mu_static=math.inf), body("c", "cylinder", x=0.49,
-                                                             mu_static=math.inf)],
-        [spring("h", "c", rest_length=0.5)], gravity=0.0)
+        [
+            body("h", "hoop", x=0.0, mu_static=math.inf),
+            body("c", "cylinder", x=0.49, mu_static=math.inf),
+        ],
+        [spring("h", "c", rest_length=0.5)],
+        gravity=0.0,
+    )
     result = analyze(system)
     assert result.warnings == []
     assert np.all(np.isinf(result.required_mu))  # N = 0 while friction is needed
 
 
 def test_zero_gravity_without_enforced_rolling_slips() -> None:
-    system = make_system([body("h", "hoop", x=0.0), body("c", "cylinder", x=0.49)],
-                         [spring("h", "c", rest_length=0.5)], gravity=0.0)
+    system = make_system(
+        [body("h", "hoop", x=0.0), body("c", "cylinder", x=0.49)],
+        [spring("h", "c", rest_length=0.5)],
+        gravity=0.0,
+    )
     warnings = analyze(system).warnings
     assert any("unbounded friction" in w for w in warnings)
     assert not any("lift off" in w for w in warnings)
 
 
 def test_a_slider_pulled_up_harder_than_its_weight_cannot_rest() -> None:
-    system = make_system([body("s", "slider", mass=0.1, radius=0.05, x=0.0, v=2.0)],
-                         [spring("hook", "s", stiffness=50.0, rest_length=0.2)],
-                         anchors=[{"id": "hook", "x": 0.0, "y": 0.6}])
+    system = make_system(
+        [body("s", "slider", mass=0.1, radius=0.05, x=0.0, v=2.0)],
+        [spring("hook", "s", stiffness=50.0, rest_length=0.2)],
+        anchors=[{"id": "hook", "x": 0.0, "y": 0.6}],
+    )
     result = analyze(system)
     tension = 50.0 * (0.55 - 0.2)
     assert result.equilibrium_normal[0] == pytest.approx(0.1 * 9.81 - tension, rel=1e-12)
@@ -109,9 +130,12 @@ def test_a_slider_under_a_slanted_spring_lifts_off_when_pushed_hard(speed, lifts
     response predicts N < 0 at the larger speed (N range = N* -/+ |dN/dx| A)."""
     system = make_system(
         [body("s", "slider", mass=0.1, radius=0.05, x=0.0, v=speed)],
-        [spring("hook", "s", stiffness=5.0, rest_length=0.5),
-         spring("wall", "s", stiffness=20.0, rest_length=0.4849)],
-        anchors=[{"id": "hook", "x": 0.3, "y": 0.6}, {"id": "wall", "x": -0.5, "y": 0.05}])
+        [
+            spring("hook", "s", stiffness=5.0, rest_length=0.5),
+            spring("wall", "s", stiffness=20.0, rest_length=0.4849),
+        ],
+        anchors=[{"id": "hook", "x": 0.3, "y": 0.6}, {"id": "wall", "x": -0.5, "y": 0.05}],
+    )
     result = analyze(system)
     low, high = result.normal_force_range[0]
     assert low < result.equilibrium_normal[0] < high
@@ -120,16 +144,23 @@ def test_a_slider_under_a_slanted_spring_lifts_off_when_pushed_hard(speed, lifts
 
 
 def test_a_body_far_too_light_for_its_spring_slips() -> None:
-    system = make_system([body("h", "hoop", x=0.0, mass=0.01, mu_static=0.3),
-                          body("c", "cylinder", x=0.4)], [spring("h", "c", rest_length=0.5)])
+    system = make_system(
+        [body("h", "hoop", x=0.0, mass=0.01, mu_static=0.3), body("c", "cylinder", x=0.4)],
+        [spring("h", "c", rest_length=0.5)],
+    )
     result = analyze(system)
     assert any("'h' slips: the motion needs mu_s >=" in w for w in result.warnings)
 
 
 def test_drift_of_free_parts_is_reported() -> None:
-    system = make_system([body("h", "hoop", x=0.0), body("c", "cylinder", x=0.49),
-                          body("loner", "sphere", x=2.0, v=0.3)],
-                         [spring("h", "c", rest_length=0.5)])
+    system = make_system(
+        [
+            body("h", "hoop", x=0.0),
+            body("c", "cylinder", x=0.49),
+            body("loner", "sphere", x=2.0, v=0.3),
+        ],
+        [spring("h", "c", rest_length=0.5)],
+    )
     result = analyze(system)
     assert result.stationary_weights is None  # two zero modes
     assert result.drift_velocity[2] == pytest.approx(0.3, rel=1e-12)
@@ -143,5 +174,8 @@ def test_modes_agree_with_a_direct_eigensolution_of_the_presets() -> None:
 
         result = analyze(load_system(name))
         direct = scipy.linalg.eigvalsh(result.stiffness, result.mass)
-        np.testing.assert_allclose([max(m.eigenvalue, 0) for m in result.modes],
-                                   np.clip(direct, 0, None), atol=1e-9 * direct.max())
+        np.testing.assert_allclose(
+            [max(m.eigenvalue, 0) for m in result.modes],
+            np.clip(direct, 0, None),
+            atol=1e-9 * direct.max(),
+        )

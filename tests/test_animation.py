@@ -52,14 +52,22 @@ def rolling():
     """Hoop and cylinder, the spring compressed by 0.1 m and both sent right at 0.3 m/s: the
     cylinder turns by several radians in 1.2 s. Outputs every 0.04 s, the frame spacing at 25
     fps, so frames fall on output times."""
-    system = system_from_dict({
-        "bodies": [
-            {"id": "hoop", "shape": "hoop", "mass": 1.0, "radius": 0.1, "x": 0.0, "v": 0.3},
-            {"id": "cylinder", "shape": "cylinder", "mass": 1.0, "radius": 0.1, "x": 0.4,
-             "v": 0.3},
-        ],
-        "springs": [{"ends": ["hoop", "cylinder"], "stiffness": 100.0, "rest_length": 0.5}],
-    })
+    system = system_from_dict(
+        {
+            "bodies": [
+                {"id": "hoop", "shape": "hoop", "mass": 1.0, "radius": 0.1, "x": 0.0, "v": 0.3},
+                {
+                    "id": "cylinder",
+                    "shape": "cylinder",
+                    "mass": 1.0,
+                    "radius": 0.1,
+                    "x": 0.4,
+                    "v": 0.3,
+                },
+            ],
+            "springs": [{"ends": ["hoop", "cylinder"], "stiffness": 100.0, "rest_length": 0.5}],
+        }
+    )
     trajectory = simulate(system, 1.2, n_output=31)
     assert trajectory.status == "finished"
     return trajectory
@@ -74,7 +82,7 @@ def _mark_angle(frame: np.ndarray, centre: tuple[float, float], radius: float) -
     """Angle (rad, clockwise from up) of the radius mark around ``centre`` (column, row): the
     mean direction of the mark-coloured pixels between 0.35 and 1.05 radii."""
     rgb = frame[..., :3].astype(float)
-    target = np.array([int(COLORS["mark"][k:k + 2], 16) for k in (1, 3, 5)], dtype=float)
+    target = np.array([int(COLORS["mark"][k : k + 2], 16) for k in (1, 3, 5)], dtype=float)
     close = np.linalg.norm(rgb - target, axis=-1) < 60
     rows, columns = np.nonzero(close)
     dx, down = columns + 0.5 - centre[0], rows + 0.5 - centre[1]
@@ -158,9 +166,22 @@ def test_mp4_has_every_frame(paper, tmp_path) -> None:
     assert imageio_ffmpeg.count_frames_and_secs(str(path)) == (11, pytest.approx(0.44))
     width, height = MotionAnimation(paper, fps=25, dpi=40).size
     width, height = width + (-width % 16), height + (-height % 16)  # padded to macro blocks
-    decoded = subprocess.run([imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-i", str(path),
-                              "-f", "rawvideo", "-pix_fmt", "rgb24", "-"],
-                             capture_output=True, check=True).stdout
+    decoded = subprocess.run(
+        [
+            imageio_ffmpeg.get_ffmpeg_exe(),
+            "-v",
+            "error",
+            "-i",
+            str(path),
+            "-f",
+            "rawvideo",
+            "-pix_fmt",
+            "rgb24",
+            "-",
+        ],
+        capture_output=True,
+        check=True,
+    ).stdout
     frames = np.frombuffer(decoded, np.uint8).reshape(-1, height, width, 3)
     assert len(frames) == 11  # 0, 0.04, ..., 0.4 s
     assert not np.array_equal(frames[0], frames[-1])
@@ -198,8 +219,7 @@ def test_a_failed_render_leaves_nothing_behind(paper, tmp_path, monkeypatch, suf
 
 def test_progress_reaches_one(paper, tmp_path) -> None:
     seen: list[float] = []
-    write_animation(paper, tmp_path / "m.gif", duration=0.3, fps=10, dpi=30,
-                    progress=seen.append)
+    write_animation(paper, tmp_path / "m.gif", duration=0.3, fps=10, dpi=30, progress=seen.append)
     assert seen == pytest.approx([0.25, 0.5, 0.75, 1.0])
 
 
@@ -211,13 +231,16 @@ def test_frame_times(paper) -> None:
     assert frame_times(paper, duration=50.0, fps=10)[-1] == pytest.approx(1.0)  # at most the run
 
 
-@pytest.mark.parametrize(("options", "message"), [
-    ({"speed": 0.0}, "speed: must be a number > 0"),
-    ({"fps": 2.5}, "fps: must be a whole number"),
-    ({"fps": 500}, "fps: must be a whole number > 0 up to 120"),
-    ({"duration": -1.0}, "duration: must be a number > 0"),
-    ({"speed": 1e-4}, "at most 10000"),
-])
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        ({"speed": 0.0}, "speed: must be a number > 0"),
+        ({"fps": 2.5}, "fps: must be a whole number"),
+        ({"fps": 500}, "fps: must be a whole number > 0 up to 120"),
+        ({"duration": -1.0}, "duration: must be a number > 0"),
+        ({"speed": 1e-4}, "at most 10000"),
+    ],
+)
 def test_bad_options_are_refused(paper, options, message) -> None:
     with pytest.raises(AnimationError, match=re.escape(message)):
         frame_times(paper, **options)
@@ -244,25 +267,29 @@ def test_every_preset_animates_without_warnings(name, caplog) -> None:
 
 def test_animate_command_writes_a_gif(tmp_path) -> None:
     target = tmp_path / "out" / "motion.gif"
-    result = run_cli("animate", "hoop-cylinder", "-o", str(target), "-T", "0.1", "--dpi", "30",
-                     "--speed", "0.5")
+    result = run_cli(
+        "animate", "hoop-cylinder", "-o", str(target), "-T", "0.1", "--dpi", "30", "--speed", "0.5"
+    )
     assert result.exit_code == 0, result.output
     with Image.open(target) as gif:
         assert gif.n_frames == 6  # 0.1 s at half speed, 25 fps
     assert "wrote" in result.stderr and result.stdout == ""
 
 
-@pytest.mark.parametrize(("args", "option"), [
-    (["-o", "motion.avi"], "--out"),
-    (["-o", "motion"], "--out"),
-    ([], "--out/-o is required"),
-    (["-o", "m.gif", "--duration", "0"], "--duration"),
-    (["-o", "m.gif", "--speed", "-1"], "--speed"),
-    (["-o", "m.gif", "--fps", "0"], "--fps"),
-    (["-o", "m.gif", "--dpi", "5"], "--dpi"),
-    (["-o", "m.gif", "--on-slip", "later"], "--on-slip"),
-    (["-o", "m.gif", "-T", "1000", "--speed", "0.01"], "--duration"),
-])
+@pytest.mark.parametrize(
+    ("args", "option"),
+    [
+        (["-o", "motion.avi"], "--out"),
+        (["-o", "motion"], "--out"),
+        ([], "--out/-o is required"),
+        (["-o", "m.gif", "--duration", "0"], "--duration"),
+        (["-o", "m.gif", "--speed", "-1"], "--speed"),
+        (["-o", "m.gif", "--fps", "0"], "--fps"),
+        (["-o", "m.gif", "--dpi", "5"], "--dpi"),
+        (["-o", "m.gif", "--on-slip", "later"], "--on-slip"),
+        (["-o", "m.gif", "-T", "1000", "--speed", "0.01"], "--duration"),
+    ],
+)
 def test_animate_command_errors_name_the_option(tmp_path, monkeypatch, args, option) -> None:
     monkeypatch.chdir(tmp_path)
     result = run_cli("animate", "hoop-cylinder", *args)

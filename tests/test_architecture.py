@@ -13,16 +13,28 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 #: What computes results: the orchestration layer (rollspring.service) calls these, never outputs.
-COMPUTATIONS = {"analyze", "simulate", "simulate_batch", "derive", "check_paper",
-                "find_equilibrium", "normal_modes"}
+COMPUTATIONS = {
+    "analyze",
+    "simulate",
+    "simulate_batch",
+    "derive",
+    "check_paper",
+    "find_equilibrium",
+    "normal_modes",
+}
 
 
 def test_import_linter_contracts_are_kept() -> None:
     """model -> physics -> analysis -> simulate -> outputs -> service -> interfaces; the core
     imports no CLI, web or plotting library (contracts in pyproject.toml)."""
     lint = Path(sys.executable).with_name("lint-imports")
-    result = subprocess.run([str(lint), "--config", str(ROOT / "pyproject.toml")], cwd=ROOT,
-                            capture_output=True, text=True, check=False)
+    result = subprocess.run(
+        [str(lint), "--config", str(ROOT / "pyproject.toml")],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert result.returncode == 0, result.stdout + result.stderr
     assert "0 broken" in result.stdout
 
@@ -45,9 +57,15 @@ def test_outputs_render_results_and_interfaces_orchestrate() -> None:
             if not isinstance(node, ast.Call):
                 continue
             function = node.func
-            name = (function.id if isinstance(function, ast.Name) else
-                    function.attr if isinstance(function, ast.Attribute) else None)
+            name = (
+                function.id
+                if isinstance(function, ast.Name)
+                else function.attr
+                if isinstance(function, ast.Attribute)
+                else None
+            )
             if name in COMPUTATIONS:
                 calls.append(f"{path.relative_to(ROOT)}:{node.lineno}: {name}()")
-    assert not calls, "outputs must only render what rollspring.service computed:\n" + \
-        "\n".join(calls)
+    assert not calls, "outputs must only render what rollspring.service computed:\n" + "\n".join(
+        calls
+    )

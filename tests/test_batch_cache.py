@@ -66,8 +66,10 @@ def test_stale_entries_are_pruned_on_the_first_load(fresh, monkeypatch):
 
 def test_a_batch_writes_its_kernel_to_the_cache_directory(fresh, monkeypatch):
     monkeypatch.setenv("ROLLSPRING_CACHE_DIR", str(fresh))
-    system = make_system([body("a", x=0.0), body("b", "cylinder", x=0.5)],
-                         [spring("a", "b", stiffness=80.0, rest_length=0.45)])
+    system = make_system(
+        [body("a", x=0.0), body("b", "cylinder", x=0.5)],
+        [spring("a", "b", stiffness=80.0, rest_length=0.45)],
+    )
     result = simulate_batch(system, {"springs.0.stiffness": [80.0, 90.0]}, 0.5)
     assert np.all(result.status == 0)
     kernels = list((fresh / "batch-kernels" / cache.version_tag()).glob("rollspring_batch_*.py"))

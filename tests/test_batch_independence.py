@@ -21,9 +21,20 @@ from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 from tests.conftest import body, make_system, spring
 
 #: Every per-run array of a BatchResult.
-PER_RUN = ("status", "first_slip_time", "first_slip_body", "period_measured", "cm_amplitude",
-           "stationary_amplitude", "max_friction_ratio", "min_normal_force", "energy_error",
-           "final_x", "final_v", "omega")
+PER_RUN = (
+    "status",
+    "first_slip_time",
+    "first_slip_body",
+    "period_measured",
+    "cm_amplitude",
+    "stationary_amplitude",
+    "max_friction_ratio",
+    "min_normal_force",
+    "energy_error",
+    "final_x",
+    "final_v",
+    "omega",
+)
 
 
 def bits(values) -> np.ndarray:
@@ -35,17 +46,32 @@ def bits(values) -> np.ndarray:
 def alone(system, parameters, run, duration, like, **kwargs):
     """Run ``run`` of ``parameters`` as a batch of its own, with the step, integrator and metric
     sampling of the batch ``like``."""
-    one = {key: np.atleast_1d(np.asarray(value, dtype=float))[run:run + 1]
-           if np.ndim(value) else value for key, value in parameters.items()}
-    return simulate_batch(system, one, duration, step=like.step, integrator=like.integrator,
-                          metric_every=like.metric_every, **kwargs)
+    one = {
+        key: np.atleast_1d(np.asarray(value, dtype=float))[run : run + 1]
+        if np.ndim(value)
+        else value
+        for key, value in parameters.items()
+    }
+    return simulate_batch(
+        system,
+        one,
+        duration,
+        step=like.step,
+        integrator=like.integrator,
+        metric_every=like.metric_every,
+        **kwargs,
+    )
 
 
 def assert_same_run(batch, run, single):
     """Row ``run`` of ``batch`` is bit for bit the only row of ``single``."""
     assert single.n_runs == 1
-    assert (single.step, single.n_steps, single.metric_every, single.integrator) == \
-        (batch.step, batch.n_steps, batch.metric_every, batch.integrator)
+    assert (single.step, single.n_steps, single.metric_every, single.integrator) == (
+        batch.step,
+        batch.n_steps,
+        batch.metric_every,
+        batch.integrator,
+    )
     for name in PER_RUN:
         mine, theirs = getattr(batch, name)[run], getattr(single, name)[0]
         assert np.array_equal(bits(mine), bits(theirs)), (name, run, mine, theirs)
@@ -78,13 +104,24 @@ def test_a_tiny_mass_in_one_run_leaves_the_other_alone():
     assert math.isinf(mixed.omega[1])
 
 
-@pytest.mark.parametrize(("key", "value", "status", "words"), [
-    ("bodies.hoop.mass", 1e-30, Status.UNRESOLVED, ["bodies.hoop.mass = 1e-30", "rad/s",
-                                                    "steps", "resolved"]),
-    ("springs.0.stiffness", 1e300, Status.UNRESOLVED, ["springs.0.stiffness = 1e+300",
-                                                       "rad/s"]),
-    ("bodies.hoop.mass", 1e-320, Status.INVALID, ["not finite"]),
-])
+@pytest.mark.parametrize(
+    ("key", "value", "status", "words"),
+    [
+        (
+            "bodies.hoop.mass",
+            1e-30,
+            Status.UNRESOLVED,
+            ["bodies.hoop.mass = 1e-30", "rad/s", "steps", "resolved"],
+        ),
+        (
+            "springs.0.stiffness",
+            1e300,
+            Status.UNRESOLVED,
+            ["springs.0.stiffness = 1e+300", "rad/s"],
+        ),
+        ("bodies.hoop.mass", 1e-320, Status.INVALID, ["not finite"]),
+    ],
+)
 def test_an_extreme_run_gets_its_own_status_not_an_exception(key, value, status, words):
     """Issue 11: a mass of 1e-30 raised a raw OverflowError and a stiffness of 1e300 a raw
     ValueError; with floating-point errors raised (tests/conftest.py) too."""
@@ -108,8 +145,7 @@ def mixed_parameters():
     mass = [1.0, 1e-308, 1.3, 1e-30, 0.7, 1e300, 1.0, 1.0, 2.0, 1.0]
     stiffness = [100.0, 100.0, 150.0, 100.0, 80.0, 100.0, 1e300, 1e-300, 120.0, 100.0]
     mu = [1.0, 1.0, 0.04, 1.0, 1.0, 1.0, 1.0, 1.0, math.inf, 0.02]
-    return {"bodies.hoop.mass": mass, "springs.0.stiffness": stiffness,
-            "bodies.hoop.mu_static": mu}
+    return {"bodies.hoop.mass": mass, "springs.0.stiffness": stiffness, "bodies.hoop.mu_static": mu}
 
 
 ORDINARY = [0, 2, 4, 8, 9]  # 2 and 9 slip, 8 cannot
@@ -125,25 +161,36 @@ def test_every_run_of_a_mixed_batch_equals_itself_alone():
     assert {names[i] for i in ORDINARY} == {"finished", "slip"}
     assert names[2] == names[9] == "slip" and names[8] == "finished"
     # the extremes take no part in the choice of the step: that of the ordinary runs
-    ordinary = simulate_batch(system, {k: np.asarray(v)[ORDINARY] for k, v in parameters.items()},
-                              duration, keep_trajectories=True, n_output=31)
-    assert (mixed.step, mixed.integrator, mixed.metric_every) == \
-        (ordinary.step, ordinary.integrator, ordinary.metric_every)
+    ordinary = simulate_batch(
+        system,
+        {k: np.asarray(v)[ORDINARY] for k, v in parameters.items()},
+        duration,
+        keep_trajectories=True,
+        n_output=31,
+    )
+    assert (mixed.step, mixed.integrator, mixed.metric_every) == (
+        ordinary.step,
+        ordinary.integrator,
+        ordinary.metric_every,
+    )
     for row, run in enumerate(ORDINARY):
         for name in PER_RUN:
-            assert np.array_equal(bits(getattr(mixed, name)[run]),
-                                  bits(getattr(ordinary, name)[row])), name
+            assert np.array_equal(
+                bits(getattr(mixed, name)[run]), bits(getattr(ordinary, name)[row])
+            ), name
     # every run, ordinary or not, is itself alone (a huge mass or a tiny stiffness is integrated)
     for run in range(mixed.n_runs):
         if names[run] == "unresolved":  # relative to a step chosen from rtol: alone, too
-            single = simulate_batch(system, {k: np.asarray(v)[run:run + 1]
-                                             for k, v in parameters.items()}, duration)
+            single = simulate_batch(
+                system, {k: np.asarray(v)[run : run + 1] for k, v in parameters.items()}, duration
+            )
             assert single.status[0] == Status.UNRESOLVED
             assert single.messages[0] == mixed.messages[run].replace(f"run {run}", "run 0", 1)
             assert np.all(np.isnan(single.final_x)) and np.all(np.isnan(mixed.final_x[run]))
             continue
-        single = alone(system, parameters, run, duration, mixed, keep_trajectories=True,
-                       n_output=31)
+        single = alone(
+            system, parameters, run, duration, mixed, keep_trajectories=True, n_output=31
+        )
         assert_same_run(mixed, run, single)
         assert bool(single.messages[0]) == (names[run] == "invalid")
 
@@ -167,26 +214,40 @@ def test_the_kernel_does_not_depend_on_the_values_of_the_other_runs():
     cannot slip (mu_s = inf) in one run only, two bodies of one radius (a horizontal spring) in
     one run only, and a sweep cut into chunks."""
     system = make_system(
-        [body("a", "hoop", radius=0.1, x=0.0), body("b", "cylinder", radius=0.1, x=0.6),
-         body("c", "sphere", radius=0.08, x=1.2, v=0.1)],
-        [spring("a", "b", stiffness=90.0, rest_length=0.55, at=[{"height": 0.1}, {}]),
-         spring("b", "c", stiffness=60.0, rest_length=0.6)])
-    parameters = {"bodies.a.radius": [0.1, 0.12, 0.1, 0.09],
-                  "bodies.b.radius": [0.1, 0.1, 0.11, 0.1],
-                  "bodies.a.mu_static": [math.inf, 0.5, 0.05, math.inf],
-                  "springs.1.stiffness": [60.0, 70.0, 50.0, 65.0]}
+        [
+            body("a", "hoop", radius=0.1, x=0.0),
+            body("b", "cylinder", radius=0.1, x=0.6),
+            body("c", "sphere", radius=0.08, x=1.2, v=0.1),
+        ],
+        [
+            spring("a", "b", stiffness=90.0, rest_length=0.55, at=[{"height": 0.1}, {}]),
+            spring("b", "c", stiffness=60.0, rest_length=0.6),
+        ],
+    )
+    parameters = {
+        "bodies.a.radius": [0.1, 0.12, 0.1, 0.09],
+        "bodies.b.radius": [0.1, 0.1, 0.11, 0.1],
+        "bodies.a.mu_static": [math.inf, 0.5, 0.05, math.inf],
+        "springs.1.stiffness": [60.0, 70.0, 50.0, 65.0],
+    }
     whole = simulate_batch(system, parameters, 2.0, rtol=1e-9)
     assert whole.status[2] == Status.SLIP
     for run in range(whole.n_runs):
         assert_same_run(whole, run, alone(system, parameters, run, 2.0, whole))
     # a sweep fixes the step and sampling once and runs the grid in chunks
-    first = simulate_batch(system, {k: v[:2] for k, v in parameters.items()}, 2.0,
-                           step=whole.step, integrator=whole.integrator,
-                           metric_every=whole.metric_every)
+    first = simulate_batch(
+        system,
+        {k: v[:2] for k, v in parameters.items()},
+        2.0,
+        step=whole.step,
+        integrator=whole.integrator,
+        metric_every=whole.metric_every,
+    )
     for run in range(2):
         for name in PER_RUN:
-            assert np.array_equal(bits(getattr(first, name)[run]),
-                                  bits(getattr(whole, name)[run])), name
+            assert np.array_equal(
+                bits(getattr(first, name)[run]), bits(getattr(whole, name)[run])
+            ), name
 
 
 # --------------------------------------------------------------------------------------------
@@ -218,10 +279,16 @@ def test_one_argument_validator(call):
             return simulate(system, **arguments)
         return simulate_batch(system, {}, **arguments)
 
-    for kwargs, field in (({"duration": True}, "duration"), ({"rtol": True}, "rtol"),
-                          ({"step": True}, "step"), ({"n_output": True}, "n_output"),
-                          ({"n_output": 2.0}, "n_output"), ({"duration": "1"}, "duration"),
-                          ({"integrator": "rk4"}, "integrator"), ({"step": 0.3}, "step")):
+    for kwargs, field in (
+        ({"duration": True}, "duration"),
+        ({"rtol": True}, "rtol"),
+        ({"step": True}, "step"),
+        ({"n_output": True}, "n_output"),
+        ({"n_output": 2.0}, "n_output"),
+        ({"duration": "1"}, "duration"),
+        ({"integrator": "rk4"}, "integrator"),
+        ({"step": 0.3}, "step"),
+    ):
         with pytest.raises(SimulationError, match=f"^{field}: "):
             run(**kwargs)
     # NumPy numbers are numbers
@@ -252,13 +319,25 @@ def test_the_integrators_are_shared():
 
 def test_kahanli8_in_a_batch_is_the_single_runs_kahanli8():
     """The same scheme and step in both engines: the same motion, to rounding."""
-    system = make_system([body("a", "hoop", x=0.0, mu_static=math.inf),
-                          body("b", "sphere", radius=0.08, x=0.5, v=0.3, mu_static=math.inf)],
-                         [spring("a", "b", stiffness=120.0, rest_length=0.45,
-                                 at=[{"radius": 0.05, "angle": 40.0}, {"height": 0.12}])])
+    system = make_system(
+        [
+            body("a", "hoop", x=0.0, mu_static=math.inf),
+            body("b", "sphere", radius=0.08, x=0.5, v=0.3, mu_static=math.inf),
+        ],
+        [
+            spring(
+                "a",
+                "b",
+                stiffness=120.0,
+                rest_length=0.45,
+                at=[{"radius": 0.05, "angle": 40.0}, {"height": 0.12}],
+            )
+        ],
+    )
     h, duration = 0.01, 3.0
-    batch = simulate_batch(system, {"springs.0.stiffness": [120.0]}, duration,
-                           integrator="kahanli8", step=h)
+    batch = simulate_batch(
+        system, {"springs.0.stiffness": [120.0]}, duration, integrator="kahanli8", step=h
+    )
     single = simulate(system, duration, integrator="kahanli8", step=h, n_output=31)
     assert batch.integrator == single.integrator == "kahanli8"
     assert batch.n_steps == single.n_steps == 300

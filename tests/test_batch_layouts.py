@@ -33,12 +33,18 @@ def layouts(draw):
     bodies = []
     for i in range(n):
         shape = draw(st.sampled_from(SHAPES)) if i else draw(st.sampled_from(SHAPES[:4]))
-        bodies.append({"id": f"b{i}", "shape": shape,
-                       "mass": draw(st.floats(0.3, 3.0, **finite)),
-                       "radius": draw(st.floats(0.05, 0.2, **finite)),
-                       "track_height": draw(st.sampled_from([0.0, 0.0, 0.05, 0.12])),
-                       "x": 0.7 * i, "v": draw(st.floats(-0.3, 0.3, **finite)),
-                       **({} if shape == "slider" else {"mu_static": math.inf})})
+        bodies.append(
+            {
+                "id": f"b{i}",
+                "shape": shape,
+                "mass": draw(st.floats(0.3, 3.0, **finite)),
+                "radius": draw(st.floats(0.05, 0.2, **finite)),
+                "track_height": draw(st.sampled_from([0.0, 0.0, 0.05, 0.12])),
+                "x": 0.7 * i,
+                "v": draw(st.floats(-0.3, 0.3, **finite)),
+                **({} if shape == "slider" else {"mu_static": math.inf}),
+            }
+        )
     anchors = [{"id": "w", "x": -0.6, "y": draw(st.floats(0.0, 0.4, **finite))}]
 
     def attachment(i):
@@ -46,8 +52,10 @@ def layouts(draw):
             return {}
         kind = draw(st.sampled_from(["centre", "polar", "height"]))
         if kind == "polar":
-            return {"radius": draw(st.floats(0.01, 0.9, **finite)) * bodies[i]["radius"],
-                    "angle": draw(st.floats(-180.0, 180.0, **finite))}
+            return {
+                "radius": draw(st.floats(0.01, 0.9, **finite)) * bodies[i]["radius"],
+                "angle": draw(st.floats(-180.0, 180.0, **finite)),
+            }
         if kind == "height":  # on the centre vertical: below, at or above the centre
             return {"height": draw(st.sampled_from([0.3, 1.0, 1.6])) * bodies[i]["radius"]}
         return {}
@@ -57,8 +65,11 @@ def layouts(draw):
     chosen = draw(st.lists(st.sampled_from(pairs), min_size=1, max_size=3, unique=True))
     for a, b in chosen:
         ends = ["w" if a < 0 else f"b{a}", f"b{b}"]
-        entry = {"ends": ends, "stiffness": draw(st.floats(20.0, 200.0, **finite)),
-                 "at": [attachment(a), attachment(b)]}
+        entry = {
+            "ends": ends,
+            "stiffness": draw(st.floats(20.0, 200.0, **finite)),
+            "at": [attachment(a), attachment(b)],
+        }
         if draw(st.booleans()):
             entry["rest_length"] = draw(st.floats(0.3, 0.8, **finite))
         springs.append(entry)
@@ -66,9 +77,14 @@ def layouts(draw):
     rolling = [i for i in range(n) if bodies[i]["shape"] != "slider"]
     if draw(st.booleans()):
         i = draw(st.sampled_from(rolling))
-        forces.append({"body": f"b{i}", "at": attachment(i),
-                       "fx": draw(st.floats(-1.0, 1.0, **finite)),
-                       "fy": draw(st.floats(-1.0, 1.0, **finite))})
+        forces.append(
+            {
+                "body": f"b{i}",
+                "at": attachment(i),
+                "fx": draw(st.floats(-1.0, 1.0, **finite)),
+                "fy": draw(st.floats(-1.0, 1.0, **finite)),
+            }
+        )
     system = make_system(bodies, springs, anchors=anchors, forces=forces)
     keys = [f"bodies.b{i}.mass" for i in range(n)] + [f"bodies.b{i}.radius" for i in rolling]
     keys += [f"springs.{k}.stiffness" for k in range(len(springs))] + ["gravity"]
@@ -117,7 +133,7 @@ def test_generated_forces_equal_the_physics(layout, seed):
     module = cache.load_module(Source(plan, varying, constant, True).module())
     Pl = np.zeros(max(len(varying), 1) * _RS)
     for r in range(len(varying)):
-        Pl[r * _RS:r * _RS + BLOCK] = P[r, :BLOCK]
+        Pl[r * _RS : r * _RS + BLOCK] = P[r, :BLOCK]
     rng = np.random.default_rng(seed)
     n = plan.n
     for run in range(runs.n_runs):
@@ -126,14 +142,15 @@ def test_generated_forces_equal_the_physics(layout, seed):
             q = rng.uniform(-0.8, 0.8, n) * np.where(arrays.rolls > 0, 1.0, 0.1)
             y = arrays.scale * q  # the kernel's state: centre displacements
             out = module.lane_state(Pl, C, run, *y)
-            acc, friction, normal = (np.array(out[k * n:(k + 1) * n]) for k in range(3))
+            acc, friction, normal = (np.array(out[k * n : (k + 1) * n]) for k in range(3))
             energy = out[-1]
             expected = arrays.scale * generalized_forces(arrays, q) / arrays.inertia
             f_ref, n_ref = contact_forces(arrays, q)
             scale = np.max(np.abs(expected)) + 1e-300
             np.testing.assert_allclose(acc, expected, rtol=0, atol=1e-12 * scale)
-            np.testing.assert_allclose(friction, f_ref, rtol=0,
-                                       atol=1e-12 * (np.max(np.abs(f_ref)) + 1.0))
+            np.testing.assert_allclose(
+                friction, f_ref, rtol=0, atol=1e-12 * (np.max(np.abs(f_ref)) + 1.0)
+            )
             np.testing.assert_allclose(normal, n_ref, rtol=1e-12, atol=1e-12)
             u_ref = float(potential_energy(arrays, q))
             assert abs(energy - u_ref) <= 1e-11 * (abs(u_ref) + 1e-3)
@@ -146,8 +163,13 @@ def test_a_batch_moves_as_simulate_with_the_same_step(layout):
     duration, h = 0.6, 2e-3
     batch = simulate_batch(system, parameters, duration, integrator="yoshida4", step=h)
     for run in range(batch.n_runs):
-        single = simulate(_run_system(system, parameters, run), duration, integrator="yoshida4",
-                          step=h, n_output=7)
+        single = simulate(
+            _run_system(system, parameters, run),
+            duration,
+            integrator="yoshida4",
+            step=h,
+            n_output=7,
+        )
         assume(single.status == "finished")
         assert batch.status_names[run] == "finished"
         assert single.n_steps == batch.n_steps

@@ -14,8 +14,16 @@ from rollspring.cli import app
 from rollspring.model import preset_names
 
 runner = CliRunner()
-REQUIRED_KEYS = {"coordinates", "matrices", "equilibrium", "modes", "stationary_point", "response",
-                 "springs", "warnings"}
+REQUIRED_KEYS = {
+    "coordinates",
+    "matrices",
+    "equilibrium",
+    "modes",
+    "stationary_point",
+    "response",
+    "springs",
+    "warnings",
+}
 
 
 def run(*args: str):
@@ -42,8 +50,13 @@ def test_analyze_json_is_one_object_with_the_documented_fields() -> None:
     assert mode["omega"] == pytest.approx((100 / 2 + 200 / 3) ** 0.5, rel=1e-12)
     assert set(mode) >= {"shape", "shape_phi", "spring_extension", "friction", "normal_force"}
     assert sum(data["stationary_point"]["weights"].values()) == pytest.approx(1.0)
-    assert set(data["response"]) >= {"amplitude", "cm_amplitude", "friction_amplitude",
-                                      "normal_force_range", "required_mu"}
+    assert set(data["response"]) >= {
+        "amplitude",
+        "cm_amplitude",
+        "friction_amplitude",
+        "normal_force_range",
+        "required_mu",
+    }
     assert data["springs"][0]["tilt_deg"] == 0.0
     assert data["springs"][0]["tension"] == 0.0
 
@@ -55,7 +68,7 @@ def test_analyze_json_keeps_warnings_off_stdout(tmp_path: Path) -> None:
         '[[bodies]]\nid = "hoop"\nshape = "hoop"\nmass = 1.0\nradius = 0.05\nx = 0.0\n'
         '[[bodies]]\nid = "cyl"\nshape = "cylinder"\nmass = 1.0\nradius = 0.1\nx = 0.5\n'
         '[[springs]]\nends = ["hoop", "cyl"]\nstiffness = 100.0\n'
-        'at = [{ height = 0.1 }, { height = 0.15 }]\n'
+        "at = [{ height = 0.1 }, { height = 0.15 }]\n"
     )
     result = run("analyze", str(path), "--json")
     assert result.exit_code == 0
@@ -79,9 +92,15 @@ def test_every_preset_analyses(name: str) -> None:
 def test_presets_lists_all_seven_and_marks_the_default() -> None:
     result = run("presets", "--json")
     rows = json.loads(result.stdout)
-    assert {r["name"] for r in rows} == {"two-masses", "hoop-cylinder", "frictionless",
-                                         "two-hoops", "two-cylinders", "wall-hoop-cylinder",
-                                         "three-bodies"}
+    assert {r["name"] for r in rows} == {
+        "two-masses",
+        "hoop-cylinder",
+        "frictionless",
+        "two-hoops",
+        "two-cylinders",
+        "wall-hoop-cylinder",
+        "three-bodies",
+    }
     assert [r["name"] for r in rows if r["default"]] == ["hoop-cylinder"]
     assert "hoop-cylinder (default)" in run("presets").stdout
 
@@ -107,7 +126,8 @@ def test_unknown_option_exits_with_code_2() -> None:
 
 def test_console_script_runs_as_a_process() -> None:
     exe = Path(sys.executable).with_name("rollspring")
-    done = subprocess.run([str(exe), "analyze", "two-hoops", "--json"], capture_output=True,
-                          text=True, check=False)
+    done = subprocess.run(
+        [str(exe), "analyze", "two-hoops", "--json"], capture_output=True, text=True, check=False
+    )
     assert done.returncode == 0, done.stderr
     assert json.loads(done.stdout)["stationary_point"]["is_centre_of_mass"] is True

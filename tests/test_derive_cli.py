@@ -51,16 +51,26 @@ def chain() -> Derivation:
 def compile_latex(source: str, directory: Path) -> None:
     (directory / "derivation.tex").write_text(source, encoding="ascii")
     result = subprocess.run(
-        [shutil.which("pdflatex") or "pdflatex", "-interaction=nonstopmode", "-halt-on-error",
-         "derivation.tex"], cwd=directory, capture_output=True, text=True, timeout=120,
-        check=False)
+        [
+            shutil.which("pdflatex") or "pdflatex",
+            "-interaction=nonstopmode",
+            "-halt-on-error",
+            "derivation.tex",
+        ],
+        cwd=directory,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
     assert result.returncode == 0, result.stdout[-3000:]
     pdf = directory / "derivation.pdf"
     assert pdf.exists() and pdf.read_bytes().startswith(b"%PDF")
 
 
-def test_latex_document_compiles_with_pdflatex(fig2: Derivation, chain: Derivation,
-                                              tmp_path: Path) -> None:
+def test_latex_document_compiles_with_pdflatex(
+    fig2: Derivation, chain: Derivation, tmp_path: Path
+) -> None:
     for name, result in (("fig2", fig2), ("chain", chain)):
         source = result.to_latex()
         assert source.startswith(r"\documentclass") and source.rstrip().endswith(r"\end{document}")
@@ -71,8 +81,11 @@ def test_latex_document_compiles_with_pdflatex(fig2: Derivation, chain: Derivati
 
 
 def test_latex_escapes_words_and_names(tmp_path: Path) -> None:
-    system = make_system([body("a_1", "hoop", x=0.0), body("b_2", "sphere", x=0.5)],
-                         [spring("a_1", "b_2")], name="Odd & 100% #1 {x}_y ~ ^ \\ — φ")
+    system = make_system(
+        [body("a_1", "hoop", x=0.0), body("b_2", "sphere", x=0.5)],
+        [spring("a_1", "b_2")],
+        name="Odd & 100% #1 {x}_y ~ ^ \\ — φ",
+    )
     compile_latex(derive(system, "newton").to_latex(), tmp_path)
 
 
@@ -114,8 +127,11 @@ def test_methods_that_do_not_apply_say_why(chain: Derivation) -> None:
 
 
 def test_no_equilibrium_is_reported_not_raised() -> None:
-    pulled = make_system([body("c", "cylinder", x=0.0)], [],
-                         forces=[{"body": "c", "at": {"height": 0.05}, "fx": 1.0}])
+    pulled = make_system(
+        [body("c", "cylinder", x=0.0)],
+        [],
+        forces=[{"body": "c", "at": {"height": 0.05}, "fx": 1.0}],
+    )
     result = derive(pulled, ["newton", "conservation"])
     assert result.symbolic.reference == "initial placement"
     assert not result.methods["conservation"].applies
@@ -138,8 +154,21 @@ def test_cli_prints_a_derivation(app: typer.Typer) -> None:
 
 def test_cli_markdown_and_latex_to_a_file(app: typer.Typer, tmp_path: Path) -> None:
     target = tmp_path / "out" / "fig2.tex"
-    result = runner.invoke(app, ["derive", "hoop-cylinder", "-m", "lagrange", "-m", "hamilton",
-                                 "-f", "latex", "-o", str(target)])
+    result = runner.invoke(
+        app,
+        [
+            "derive",
+            "hoop-cylinder",
+            "-m",
+            "lagrange",
+            "-m",
+            "hamilton",
+            "-f",
+            "latex",
+            "-o",
+            str(target),
+        ],
+    )
     assert result.exit_code == 0, result.output
     text = target.read_text()
     assert text.startswith(r"\documentclass") and "Hamilton" in text
@@ -150,13 +179,20 @@ def test_cli_markdown_and_latex_to_a_file(app: typer.Typer, tmp_path: Path) -> N
     assert md.exit_code == 0 and md.stdout.startswith("# Derivation")
 
 
-@pytest.mark.parametrize(("args", "message"), [
-    (["derive", "hoop-cylinder", "--method", "euler"], "error: --method: unknown method 'euler'"),
-    (["derive", "hoop-cylinder", "--format", "pdf"], "error: --format: unknown format 'pdf'"),
-    (["derive", "no-such-system"], "error: 'no-such-system' is neither a file nor a preset"),
-])
-def test_cli_bad_input_exit_2_with_one_line(app: typer.Typer, args: list[str],
-                                            message: str) -> None:
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (
+            ["derive", "hoop-cylinder", "--method", "euler"],
+            "error: --method: unknown method 'euler'",
+        ),
+        (["derive", "hoop-cylinder", "--format", "pdf"], "error: --format: unknown format 'pdf'"),
+        (["derive", "no-such-system"], "error: 'no-such-system' is neither a file nor a preset"),
+    ],
+)
+def test_cli_bad_input_exit_2_with_one_line(
+    app: typer.Typer, args: list[str], message: str
+) -> None:
     result = runner.invoke(app, args)
     assert result.exit_code == 2
     lines = result.stderr.strip().splitlines()
@@ -167,8 +203,9 @@ def test_cli_bad_input_exit_2_with_one_line(app: typer.Typer, args: list[str],
 def test_cli_unwritable_output_is_a_one_line_error(app: typer.Typer, tmp_path: Path) -> None:
     blocker = tmp_path / "file"
     blocker.write_text("")
-    result = runner.invoke(app, ["derive", "two-masses", "-m", "newton", "-o",
-                                 str(blocker / "x.txt")])
+    result = runner.invoke(
+        app, ["derive", "two-masses", "-m", "newton", "-o", str(blocker / "x.txt")]
+    )
     assert result.exit_code == 2
     assert result.stderr.strip().startswith("error: --out:")
 
@@ -176,8 +213,9 @@ def test_cli_unwritable_output_is_a_one_line_error(app: typer.Typer, tmp_path: P
 def test_the_rollspring_app_has_the_derive_command() -> None:
     from rollspring.cli import app as rollspring_app
 
-    result = runner.invoke(rollspring_app, ["derive", "two-hoops", "-m", "natural-frequencies",
-                                            "--symbols"])
+    result = runner.invoke(
+        rollspring_app, ["derive", "two-hoops", "-m", "natural-frequencies", "--symbols"]
+    )
     assert result.exit_code == 0, result.output
     assert "Natural frequencies of the subsystems" in result.stdout
     assert "all methods agree" in result.stdout
@@ -203,8 +241,9 @@ def test_the_cross_check_shows_each_residual_not_a_truth_value():
         assert latex.startswith(r"\mathrm{residual} = ")
 
 
-@pytest.mark.parametrize(("preset", "is_cm"), [("two-hoops", True), ("two-masses", True),
-                                               ("hoop-cylinder", False)])
+@pytest.mark.parametrize(
+    ("preset", "is_cm"), [("two-hoops", True), ("two-masses", True), ("hoop-cylinder", False)]
+)
 def test_the_stationary_point_is_called_the_centre_of_mass_only_when_it_is(preset, is_cm):
     """Equal inertia factors give weights (1 + gamma) m_i proportional to m_i: X-hat is the CM
     (docs/physics.md (M14)); a hoop and a cylinder weigh 2 m1 : 1.5 m2, not the CM."""

@@ -85,8 +85,11 @@ def test_fig2_conserved_combination_stationary_point_and_elimination(fig2) -> No
     v1, v2, p1 = s["phidot_1"], s["phidot_2"], s["phi_1"]
     newton = fig2.methods["newton"]
     # (rel1): I'_1 phi1' + I'_2 phi2' = 0
-    assert proportional(newton.extras["conserved"], 2 * m1 * R**2 * v1
-                        + sp.Rational(3, 2) * m2 * R**2 * v2, [v1, v2])
+    assert proportional(
+        newton.extras["conserved"],
+        2 * m1 * R**2 * v1 + sp.Rational(3, 2) * m2 * R**2 * v2,
+        [v1, v2],
+    )
     # (c): X-hat weights I'_1 : I'_2 = 2 m1 : 3/2 m2 (equal radii)
     w1, w2 = newton.extras["weights"]
     assert zero(w1 / w2 - (2 * m1) / (sp.Rational(3, 2) * m2))
@@ -198,12 +201,16 @@ def test_fig3_torques_a_b_frequency_and_stationary_cm(fig3) -> None:
     force = k * (sp.Rational(3, 2) * R2 * p2 - 2 * R1 * p1)
     eq1, eq2 = fig3.methods["newton"].equations
     assert zero(eq1.rhs - eq1.lhs - (force * 2 * R1 - 2 * m1 * R1**2 * a1))
-    assert zero(eq2.rhs - eq2.lhs - (-force * sp.Rational(3, 2) * R2
-                                     - sp.Rational(3, 2) * m2 * R2**2 * a2))
+    assert zero(
+        eq2.rhs - eq2.lhs - (-force * sp.Rational(3, 2) * R2 - sp.Rational(3, 2) * m2 * R2**2 * a2)
+    )
     # m1 R1 phi1' + m2 R2 phi2' = 0, (bb): m1 x1' + m2 x2' = 0 -> the CM is the stationary point
     newton = fig3.methods["newton"]
-    assert proportional(newton.extras["conserved"], m1 * R1 * s["phidot_1"]
-                        + m2 * R2 * s["phidot_2"], [s["phidot_1"], s["phidot_2"]])
+    assert proportional(
+        newton.extras["conserved"],
+        m1 * R1 * s["phidot_1"] + m2 * R2 * s["phidot_2"],
+        [s["phidot_1"], s["phidot_2"]],
+    )
     w1, w2 = newton.extras["weights"]
     assert zero(w1 / w2 - m1 / m2)
     # App. C: Omega_3 = sqrt(2k/m1), Omega_4 = sqrt(3k/(2 m2)); no friction to first order
@@ -231,7 +238,8 @@ def test_fig3_as_the_paper_sizes_it_tilts_the_spring() -> None:
     and Omega^2 = cos^2(beta) (2k/m1 + 3k/(2m2)) (README table)."""
     system = make_system(
         [body("hoop", "hoop", radius=0.05, x=0.0), body("cyl", "cylinder", radius=0.1, x=0.5)],
-        [spring("hoop", "cyl", at=[{"height": 0.1}, {"height": 0.15}])])
+        [spring("hoop", "cyl", at=[{"height": 0.1}, {"height": 0.15}])],
+    )
     result = derive(system, ["newton", "natural-frequencies"], symbols=True)
     s = names(result)
     m1, m2, k, beta = s["m_1"], s["m_2"], s["k"], s["beta"]
@@ -255,10 +263,17 @@ def test_appendix_a_friction_law_and_zero_friction_heights() -> None:
 def test_pulled_body_friction_matches_appendix_a_for_every_shape() -> None:
     """A body pulled by F at height y (constant force, no spring): the engine's (M8) friction
     is -f(y) of the paper (signed along +x), for each shape."""
-    for shape, gamma in (("hoop", 1), ("cylinder", sp.Rational(1, 2)),
-                         ("sphere", sp.Rational(2, 5)), ("shell", sp.Rational(2, 3))):
-        system = make_system([body("b", shape, radius=0.1, x=0.0)], [],
-                             forces=[{"body": "b", "at": {"height": 0.123}, "fx": 2.0}])
+    for shape, gamma in (
+        ("hoop", 1),
+        ("cylinder", sp.Rational(1, 2)),
+        ("sphere", sp.Rational(2, 5)),
+        ("shell", sp.Rational(2, 3)),
+    ):
+        system = make_system(
+            [body("b", shape, radius=0.1, x=0.0)],
+            [],
+            forces=[{"body": "b", "at": {"height": 0.123}, "fx": 2.0}],
+        )
         sym = symbolic_system(system, symbols=True)
         s = {symbol.name: symbol for symbol in sym.values}
         m, R, F, y = s["m"], s["R"], s["F"], s["y"]

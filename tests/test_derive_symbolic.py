@@ -38,11 +38,16 @@ def test_mass_stiffness_and_frequencies_agree_with_analyze(name: str, symbols: b
     system = load_system(name)
     sym = symbolic_system(system, symbols=symbols)
     numeric = analyze(system)
-    np.testing.assert_allclose(matrix_to_float(sym.mass_matrix, sym.values), numeric.mass,
-                               rtol=1e-13)
+    np.testing.assert_allclose(
+        matrix_to_float(sym.mass_matrix, sym.values), numeric.mass, rtol=1e-13
+    )
     scale = float(np.max(np.abs(numeric.stiffness)))
-    np.testing.assert_allclose(matrix_to_float(sym.stiffness_matrix, sym.values),
-                               numeric.stiffness, rtol=1e-12, atol=1e-13 * scale)
+    np.testing.assert_allclose(
+        matrix_to_float(sym.stiffness_matrix, sym.values),
+        numeric.stiffness,
+        rtol=1e-12,
+        atol=1e-13 * scale,
+    )
     frequencies = normal_frequencies(sym)
     expected = [m.eigenvalue for m in numeric.modes if m.kind != "zero"]
     assert frequencies.complete  # every preset has closed-form frequencies
@@ -63,15 +68,19 @@ def everything_system():
     """Anchors (pre-tension), off-centre and height attachments, a raised track, a custom
     shape, a slider, a constant force, two springs between the same bodies."""
     return make_system(
-        [body("hoop", "hoop", x=0.0),
-         body("cyl", "cylinder", radius=0.08, x=0.5, track_height=0.05),
-         body("wheel", "custom", radius=0.12, x=1.0, inertia_factor=0.75),
-         body("block", "slider", mass=2.0, radius=0.05, x=1.5)],
-        [spring("wall", "hoop", at=[{}, {"radius": 0.05, "angle": 60.0}], rest_length=0.45),
-         spring("hoop", "cyl", at=[{"height": 0.15}, {"radius": 0.06, "angle": -30.0}]),
-         spring("hoop", "cyl", stiffness=50.0),
-         spring("cyl", "wheel", at=[{}, {"height": 0.2}], rest_length=0.55),
-         spring("wheel", "block", stiffness=80.0)],
+        [
+            body("hoop", "hoop", x=0.0),
+            body("cyl", "cylinder", radius=0.08, x=0.5, track_height=0.05),
+            body("wheel", "custom", radius=0.12, x=1.0, inertia_factor=0.75),
+            body("block", "slider", mass=2.0, radius=0.05, x=1.5),
+        ],
+        [
+            spring("wall", "hoop", at=[{}, {"radius": 0.05, "angle": 60.0}], rest_length=0.45),
+            spring("hoop", "cyl", at=[{"height": 0.15}, {"radius": 0.06, "angle": -30.0}]),
+            spring("hoop", "cyl", stiffness=50.0),
+            spring("cyl", "wheel", at=[{}, {"height": 0.2}], rest_length=0.55),
+            spring("wheel", "block", stiffness=80.0),
+        ],
         anchors=[{"id": "wall", "x": -0.5, "y": 0.15}],
         forces=[{"body": "wheel", "at": {"radius": 0.05, "angle": 45.0}, "fx": 0.5, "fy": -0.2}],
     )
@@ -99,8 +108,11 @@ def test_exact_forces_match_the_numeric_physics_at_random_states(symbols: bool) 
         np.testing.assert_allclose(friction(*u), f_num, atol=1e-10)
         np.testing.assert_allclose(normal(*u), n_num, atol=1e-10)
     q_ref = sym.q_reference
-    np.testing.assert_allclose(matrix_to_float(sym.stiffness_matrix, sym.values),
-                               stiffness_matrix(arrays, q_ref), atol=1e-10)
+    np.testing.assert_allclose(
+        matrix_to_float(sym.stiffness_matrix, sym.values),
+        stiffness_matrix(arrays, q_ref),
+        atol=1e-10,
+    )
     d_friction, d_normal = contact_forces_jacobian(arrays, q_ref)
     f_lin, n_lin = sym.linear_contact_forces
     jac_f = np.array([[float(sp.diff(e, q).xreplace(sym.values)) for q in sym.q] for e in f_lin])
@@ -133,14 +145,16 @@ fig2 = settings(max_examples=12, deadline=None)
 
 
 @fig2
-@given(st.floats(0.05, 20.0), st.floats(0.05, 20.0), st.floats(0.01, 1.0),
-       st.floats(1.0, 5000.0))
+@given(st.floats(0.05, 20.0), st.floats(0.05, 20.0), st.floats(0.01, 1.0), st.floats(1.0, 5000.0))
 def test_fig2_exact_for_random_parameters(m1: float, m2: float, radius: float, k: float) -> None:
     rest = 10 * radius + 1.0
     system = make_system(
-        [body("hoop", "hoop", mass=m1, radius=radius, x=0.0),
-         body("cylinder", "cylinder", mass=m2, radius=radius, x=rest - 0.01)],
-        [spring("hoop", "cylinder", stiffness=k, rest_length=rest)])
+        [
+            body("hoop", "hoop", mass=m1, radius=radius, x=0.0),
+            body("cylinder", "cylinder", mass=m2, radius=radius, x=rest - 0.01),
+        ],
+        [spring("hoop", "cylinder", stiffness=k, rest_length=rest)],
+    )
     sym = symbolic_system(system)
     M1, M2, K, R = (exact_number(v) for v in (m1, m2, k, radius))
     # paper (QQQ1), exactly in rational arithmetic
@@ -161,9 +175,12 @@ def test_geometric_stiffness_of_a_pretensioned_hoop_between_walls() -> None:
     tension T: K = (kL + kR) R^2 + T r^2 (1/lL + 1/lR) (the path-curvature terms cancel)."""
     system = make_system(
         [body("h", "hoop", x=0.0)],
-        [spring("left", "h", at=[{}, {"radius": 0.05, "angle": 90.0}], rest_length=0.4),
-         spring("h", "right", at=[{"radius": 0.05, "angle": 90.0}, {}], rest_length=0.4)],
-        anchors=[{"id": "left", "x": -0.45, "y": 0.1}, {"id": "right", "x": 0.55, "y": 0.1}])
+        [
+            spring("left", "h", at=[{}, {"radius": 0.05, "angle": 90.0}], rest_length=0.4),
+            spring("h", "right", at=[{"radius": 0.05, "angle": 90.0}, {}], rest_length=0.4),
+        ],
+        anchors=[{"id": "left", "x": -0.45, "y": 0.1}, {"id": "right", "x": 0.55, "y": 0.1}],
+    )
     sym = symbolic_system(system, symbols=True)
     s = {symbol.name: symbol for symbol in sym.values}
     k1, k2, l1, l2, R = s["k_1"], s["k_2"], s["ell_1"], s["ell_2"], s["R"]
@@ -174,5 +191,6 @@ def test_geometric_stiffness_of_a_pretensioned_hoop_between_walls() -> None:
     r = R / 2  # the attachment radius 0.05 m is R/2
     expected = (k1 + k2) * R**2 + T * r**2 * (1 / l1 + 1 / l2)
     assert sp.simplify(sym.stiffness_matrix[0, 0].subs(at_tension) - expected) == 0
-    np.testing.assert_allclose(matrix_to_float(sym.stiffness_matrix, sym.values),
-                               analyze(system).stiffness, rtol=1e-12)
+    np.testing.assert_allclose(
+        matrix_to_float(sym.stiffness_matrix, sym.values), analyze(system).stiffness, rtol=1e-12
+    )

@@ -62,7 +62,8 @@ def test_every_cited_section_exists() -> None:
 
 def _docs_extension():
     spec = importlib.util.spec_from_file_location(
-        "rollspring_docs", ROOT / "docs" / "_ext" / "rollspring_docs.py")
+        "rollspring_docs", ROOT / "docs" / "_ext" / "rollspring_docs.py"
+    )
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
@@ -91,8 +92,9 @@ def test_cli_reference_lists_every_command() -> None:
         assert f"## `rollspring {name}`" in page
 
 
-@pytest.mark.parametrize("example", sorted((ROOT / "examples").glob("*/plot_*.py")),
-                         ids=lambda p: p.name)
+@pytest.mark.parametrize(
+    "example", sorted((ROOT / "examples").glob("*/plot_*.py")), ids=lambda p: p.name
+)
 def test_gallery_example_has_a_title(example: Path) -> None:
     """sphinx-gallery needs each example to open with a docstring whose first line is a title."""
     text = example.read_text(encoding="utf-8")

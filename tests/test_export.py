@@ -38,8 +38,7 @@ def mixed_system() -> System:
     return make_system(
         [
             body("hoop", "hoop", x=0.0, v=0.02, mu_static=0.4),
-            body("cyl", "cylinder", radius=0.08, x=0.5, track_height=0.05,
-                 mu_static=math.inf),
+            body("cyl", "cylinder", radius=0.08, x=0.5, track_height=0.05, mu_static=math.inf),
             body("ball", "sphere", radius=0.06, x=1.0, mu_static=0.9, mu_kinetic=0.5),
             body("shell", "shell", radius=0.07, x=1.5, track_height=0.05),
             body("wheel", "custom", x=2.0, inertia_factor=0.75, track_height=0.2),
@@ -121,13 +120,19 @@ def test_one_body_per_body_with_its_joints_at_the_initial_placement(name: str) -
     bodies = world.findall("body")
     assert [b.get("name") for b in bodies] == [b.id for b in system.bodies]
     for element, b in zip(bodies, system.bodies, strict=True):
-        np.testing.assert_array_equal(floats(element.get("pos")),
-                                      [b.x, 0.0, b.track_height + b.radius])
-        joints = [(j.get("name"), j.get("type"), tuple(floats(j.get("axis"))))
-                  for j in element.findall("joint")]
+        np.testing.assert_array_equal(
+            floats(element.get("pos")), [b.x, 0.0, b.track_height + b.radius]
+        )
+        joints = [
+            (j.get("name"), j.get("type"), tuple(floats(j.get("axis"))))
+            for j in element.findall("joint")
+        ]
         if b.rolls:
-            expected = [("slide", (1.0, 0.0, 0.0)), ("slide", (0.0, 0.0, 1.0)),
-                        ("hinge", (0.0, 1.0, 0.0))]
+            expected = [
+                ("slide", (1.0, 0.0, 0.0)),
+                ("slide", (0.0, 0.0, 1.0)),
+                ("hinge", (0.0, 1.0, 0.0)),
+            ]
         else:
             expected = [("slide", (1.0, 0.0, 0.0))]
         assert [j[1:] for j in joints] == expected
@@ -146,11 +151,13 @@ def test_inertial_is_mass_and_central_moment_about_y(name: str) -> None:
         assert float(inertial.get("mass", "nan")) == arrays.mass[i]
         moment_y = floats(inertial.get("diaginertia"))[1]
         if arrays.rolls[i]:
-            assert moment_y == pytest.approx(arrays.gamma[i] * arrays.mass[i]
-                                             * arrays.radius[i] ** 2, rel=1e-15)
+            assert moment_y == pytest.approx(
+                arrays.gamma[i] * arrays.mass[i] * arrays.radius[i] ** 2, rel=1e-15
+            )
             # Steiner: the contact inertia J of our mass matrix is I + m R^2 (M4)
             assert moment_y + arrays.mass[i] * arrays.radius[i] ** 2 == pytest.approx(
-                arrays.inertia[i], rel=1e-15)
+                arrays.inertia[i], rel=1e-15
+            )
         else:
             assert moment_y > 0.0
 
@@ -161,8 +168,7 @@ def test_sites_are_the_spring_ends_in_the_initial_placement(name: str) -> None:
     arrays = system_arrays(system)
     sites = world_sites(parse(system))
     ends, _, _ = end_kinematics(arrays, np.zeros(arrays.n_bodies))
-    for s, (spr, spring_name) in enumerate(zip(system.springs, arrays.spring_names,
-                                               strict=True)):
+    for s, (spr, spring_name) in enumerate(zip(system.springs, arrays.spring_names, strict=True)):
         for j, end in enumerate(spr.ends):
             site = end if arrays.end_body[s, j] < 0 else spring_site_name(spring_name, end)
             x, y = ends[s, j]
@@ -198,7 +204,7 @@ def test_keyframe_is_the_initial_placement_with_rolling_velocities(name: str) ->
     k = 0
     for b in system.bodies:
         if b.rolls:
-            vx, vz, omega = qvel[k:k + 3]
+            vx, vz, omega = qvel[k : k + 3]
             assert (vx, vz) == (b.v, 0.0)
             assert omega * b.radius == pytest.approx(b.v, rel=1e-15, abs=0.0)
             k += 3
@@ -256,8 +262,9 @@ def test_header_option_and_forces(name: str) -> None:
     actuators = root.findall("actuator/general")
     assert len(actuators) == len(system.forces)
     for actuator, force in zip(actuators, system.forces, strict=True):
-        np.testing.assert_array_equal(floats(actuator.get("gear")),
-                                      [force.fx, 0.0, force.fy, 0.0, 0.0, 0.0])
+        np.testing.assert_array_equal(
+            floats(actuator.get("gear")), [force.fx, 0.0, force.fy, 0.0, 0.0, 0.0]
+        )
 
 
 def test_timestep_is_written_and_checked() -> None:
@@ -289,8 +296,9 @@ def test_awkward_names_still_give_well_formed_xml() -> None:
 
 
 def test_more_track_heights_than_contact_bits_is_an_error() -> None:
-    system = make_system([body(f"b{i}", x=float(i), track_height=0.01 * i)
-                          for i in range(MAX_TRACKS + 1)])
+    system = make_system(
+        [body(f"b{i}", x=float(i), track_height=0.01 * i) for i in range(MAX_TRACKS + 1)]
+    )
     with pytest.raises(ExportError, match="track heights"):
         system_to_mjcf(system)
 
@@ -342,8 +350,9 @@ def cli_app() -> typer.Typer:
 
 def test_cli_writes_the_model(tmp_path: Path) -> None:
     out = tmp_path / "model.xml"
-    result = runner.invoke(cli_app(), ["export", "hoop-cylinder", "--format", "mjcf",
-                                       "-o", str(out)])
+    result = runner.invoke(
+        cli_app(), ["export", "hoop-cylinder", "--format", "mjcf", "-o", str(out)]
+    )
     assert result.exit_code == 0, result.stderr
     assert out.read_text(encoding="utf-8") == system_to_mjcf(load_system("hoop-cylinder"))
     assert result.stdout == ""
@@ -351,24 +360,30 @@ def test_cli_writes_the_model(tmp_path: Path) -> None:
 
 def test_cli_prints_to_stdout_and_warnings_to_stderr(tmp_path: Path) -> None:
     path = tmp_path / "slippy.toml"
-    path.write_text('[[bodies]]\nid = "c"\nshape = "cylinder"\nmass = 1.0\nradius = 0.1\n'
-                    'x = 0.0\nmu_static = 0.5\nmu_kinetic = 0.3\n', encoding="utf-8")
+    path.write_text(
+        '[[bodies]]\nid = "c"\nshape = "cylinder"\nmass = 1.0\nradius = 0.1\n'
+        "x = 0.0\nmu_static = 0.5\nmu_kinetic = 0.3\n",
+        encoding="utf-8",
+    )
     result = runner.invoke(cli_app(), ["export", str(path), "-o", "-", "--timestep", "1e-3"])
     assert result.exit_code == 0, result.stderr
     assert result.stdout == system_to_mjcf(load_system(path), timestep=1e-3)
-    assert result.stderr.splitlines() == [f"warning: {w}" for w in
-                                          mjcf_warnings(load_system(path))]
+    assert result.stderr.splitlines() == [f"warning: {w}" for w in mjcf_warnings(load_system(path))]
     assert len(result.stderr.splitlines()) == 1
 
 
-@pytest.mark.parametrize(("args", "says"), [
-    (["hoop-cylinder", "--format", "urdf"], "--format"),
-    (["no-such-system"], "neither a file nor a preset"),
-    (["missing.toml"], "file not found"),
-    (["hoop-cylinder", "--timestep", "0"], "timestep"),
-])
-def test_cli_errors_are_one_line_with_exit_code_2(tmp_path: Path, args: list[str],
-                                                  says: str) -> None:
+@pytest.mark.parametrize(
+    ("args", "says"),
+    [
+        (["hoop-cylinder", "--format", "urdf"], "--format"),
+        (["no-such-system"], "neither a file nor a preset"),
+        (["missing.toml"], "file not found"),
+        (["hoop-cylinder", "--timestep", "0"], "timestep"),
+    ],
+)
+def test_cli_errors_are_one_line_with_exit_code_2(
+    tmp_path: Path, args: list[str], says: str
+) -> None:
     out = tmp_path / "model.xml"
     result = runner.invoke(cli_app(), ["export", *args, "-o", str(out)])
     assert result.exit_code == 2
@@ -413,13 +428,15 @@ def test_mujoco_keyframe_reproduces_the_initial_state(name: str) -> None:
     mujoco.mj_resetDataKeyframe(model, data, 0)
     mujoco.mj_forward(model, data)
     q0 = np.zeros(arrays.n_bodies)
-    np.testing.assert_allclose(data.ten_length, spring_state(arrays, q0).length,
-                               rtol=0, atol=1e-9)
+    np.testing.assert_allclose(data.ten_length, spring_state(arrays, q0).length, rtol=0, atol=1e-9)
     qdot0 = np.where(arrays.rolls > 0, arrays.v0 / arrays.radius, arrays.v0)
     np.testing.assert_allclose(data.qvel, rolling_qpos(system, qdot0), rtol=0, atol=1e-15)
-    np.testing.assert_allclose(data.xpos[1:, [0, 2]],
-                               np.stack([arrays.x0, arrays.track + arrays.radius], axis=1),
-                               rtol=0, atol=1e-15)
+    np.testing.assert_allclose(
+        data.xpos[1:, [0, 2]],
+        np.stack([arrays.x0, arrays.track + arrays.radius], axis=1),
+        rtol=0,
+        atol=1e-15,
+    )
 
 
 @ALL
@@ -441,12 +458,12 @@ def test_mujoco_geometry_and_forces_match_ours_in_any_rolling_configuration(
     data.qvel[:] = rolling_qpos(system, qdot)
     mujoco.mj_forward(model, data)
     ends, _, _ = end_kinematics(arrays, q)
-    for s, (spr, spring_name) in enumerate(zip(system.springs, arrays.spring_names,
-                                               strict=True)):
+    for s, (spr, spring_name) in enumerate(zip(system.springs, arrays.spring_names, strict=True)):
         for j, end in enumerate(spr.ends):
             site = end if arrays.end_body[s, j] < 0 else spring_site_name(spring_name, end)
-            np.testing.assert_allclose(data.site(site).xpos, [ends[s, j, 0], 0.0, ends[s, j, 1]],
-                                       rtol=0, atol=1e-12)
+            np.testing.assert_allclose(
+                data.site(site).xpos, [ends[s, j, 0], 0.0, ends[s, j, 1]], rtol=0, atol=1e-12
+            )
     np.testing.assert_allclose(data.ten_length, spring_state(arrays, q).length, rtol=1e-12)
     ours = generalized_forces(arrays, q, qdot)
     theirs = project(system, data.qfrc_passive + data.qfrc_actuator)
@@ -461,7 +478,7 @@ def test_mujoco_contacts_join_each_body_to_its_own_track_with_its_friction() -> 
         mujoco.mj_step(model, data)
     track_of = {h: f"track:{k}" for k, h in enumerate(track_heights(system))}
     touching: dict[str, set[str]] = {}
-    for contact in data.contact[:data.ncon]:
+    for contact in data.contact[: data.ncon]:
         names = {model.geom(int(g)).name for g in contact.geom}
         track = next(n for n in names if n.startswith("track:"))
         (geom,) = names - {track}

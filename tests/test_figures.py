@@ -59,19 +59,31 @@ GALLERY = {
     "name": "Gallery: every shape, a wall, a raised track, off-centre springs, a pull",
     "anchors": [{"id": "wall", "x": -0.4, "y": 0.2}],
     "bodies": [
-        {"id": "hoop", "shape": "hoop", "mass": 1.0, "radius": 0.1, "x": 0.0,
-         "track_height": 0.05},
+        {"id": "hoop", "shape": "hoop", "mass": 1.0, "radius": 0.1, "x": 0.0, "track_height": 0.05},
         {"id": "sphere", "shape": "sphere", "mass": 1.0, "radius": 0.08, "x": 0.45},
         {"id": "shell", "shape": "shell", "mass": 0.8, "radius": 0.09, "x": 0.9},
-        {"id": "wheel", "shape": "custom", "inertia_factor": 0.3, "mass": 1.2, "radius": 0.1,
-         "x": 1.35},
+        {
+            "id": "wheel",
+            "shape": "custom",
+            "inertia_factor": 0.3,
+            "mass": 1.2,
+            "radius": 0.1,
+            "x": 1.35,
+        },
         {"id": "block", "shape": "slider", "mass": 0.5, "radius": 0.05, "x": 1.8},
     ],
     "springs": [
-        {"ends": ["wall", "hoop"], "stiffness": 80.0, "at": [{}, {"height": 0.2}],
-         "rest_length": 0.42},
-        {"ends": ["hoop", "sphere"], "stiffness": 100.0,
-         "at": [{"radius": 0.06, "angle": 90.0}, {}]},
+        {
+            "ends": ["wall", "hoop"],
+            "stiffness": 80.0,
+            "at": [{}, {"height": 0.2}],
+            "rest_length": 0.42,
+        },
+        {
+            "ends": ["hoop", "sphere"],
+            "stiffness": 100.0,
+            "at": [{"radius": 0.06, "angle": 90.0}, {}],
+        },
         {"ends": ["sphere", "shell"], "stiffness": 100.0},
         {"ends": ["shell", "wheel"], "stiffness": 120.0, "at": [{}, {"height": 0.15}]},
         {"ends": ["wheel", "block"], "stiffness": 60.0},
@@ -116,7 +128,8 @@ def check_baseline(fig, name: str, tmp_path: Path) -> None:
         expected.write_bytes(actual.read_bytes())
     assert expected.exists(), (
         f"no baseline {expected.name}; create it with ROLLSPRING_UPDATE_BASELINES=1 "
-        f".venv/bin/python -m pytest {Path(__file__).name}")
+        f".venv/bin/python -m pytest {Path(__file__).name}"
+    )
     result = compare_images(str(expected), str(actual), tol=TOLERANCE)
     assert result is None, f"{name}: {result} (see {tmp_path})"
 
@@ -201,12 +214,17 @@ def test_every_figure_of_every_preset_renders_without_warnings(name, caplog) -> 
     analysis = analyze(system)
     trajectory = simulate(system, 1.0, n_output=201)
     with caplog.at_level(logging.WARNING):
-        made = [plot_system(system).figure,
-                plot_system(analysis, at="equilibrium", forces=True).figure,
-                plot_system(trajectory, time=0.5, forces=True).figure,
-                plot_positions(trajectory).figure, plot_contact_forces(trajectory),
-                plot_friction_ratio(trajectory).figure, plot_energy(trajectory).figure,
-                plot_phase_portraits(trajectory), plot_modes(analysis)]
+        made = [
+            plot_system(system).figure,
+            plot_system(analysis, at="equilibrium", forces=True).figure,
+            plot_system(trajectory, time=0.5, forces=True).figure,
+            plot_positions(trajectory).figure,
+            plot_contact_forces(trajectory),
+            plot_friction_ratio(trajectory).figure,
+            plot_energy(trajectory).figure,
+            plot_phase_portraits(trajectory),
+            plot_modes(analysis),
+        ]
         for fig in made:
             pixels = np.asarray(Image.open(io.BytesIO(figure_png(fig, dpi=30))))
             width, height = fig.get_size_inches() * 30
@@ -229,17 +247,20 @@ def test_bodies_are_drawn_where_the_trajectory_puts_them(paper) -> None:
     for i, mark in enumerate(marks):
         x, phi, radius = trajectory.x[k, i], trajectory.phi[k, i], 0.1
         np.testing.assert_allclose(mark.get_xdata(), [x, x + radius * math.sin(phi)], atol=1e-12)
-        np.testing.assert_allclose(mark.get_ydata(), [radius, radius + radius * math.cos(phi)],
-                                   atol=1e-12)
+        np.testing.assert_allclose(
+            mark.get_ydata(), [radius, radius + radius * math.cos(phi)], atol=1e-12
+        )
 
 
 def test_cm_and_stationary_point_markers_sit_at_their_values(paper) -> None:
     system, analysis, _ = paper
     ax = plot_system(analysis)
-    cm = next(line for line in ax.lines if line.get_marker() == "^"
-              and line.get_color() == COLORS["cm"])
-    xhat = next(line for line in ax.lines if line.get_marker() == "^"
-                and line.get_color() == COLORS["xhat"])
+    cm = next(
+        line for line in ax.lines if line.get_marker() == "^" and line.get_color() == COLORS["cm"]
+    )
+    xhat = next(
+        line for line in ax.lines if line.get_marker() == "^" and line.get_color() == COLORS["xhat"]
+    )
     assert cm.get_xdata()[0] == pytest.approx((0.0 + 0.49) / 2)  # equal masses
     # paper eq. (c): X-hat = (2 m1 x1 + 1.5 m2 x2) / (2 m1 + 1.5 m2)
     assert xhat.get_xdata()[0] == pytest.approx((2 * 0.0 + 1.5 * 0.49) / 3.5, rel=1e-12)
@@ -251,8 +272,9 @@ def test_positions_plot_the_trajectory_displacements(paper) -> None:
     ax = fig.add_subplot()
     assert plot_positions(trajectory, ax) is ax
     lines = {line.get_label(): line for line in ax.lines}
-    np.testing.assert_array_equal(lines["cylinder"].get_ydata(),
-                                  trajectory.x[:, 1] - trajectory.x[0, 1])
+    np.testing.assert_array_equal(
+        lines["cylinder"].get_ydata(), trajectory.x[:, 1] - trajectory.x[0, 1]
+    )
     np.testing.assert_array_equal(lines["CM"].get_ydata(), trajectory.cm_x - trajectory.cm_x[0])
     assert np.ptp(lines[r"$\hat{X}$"].get_ydata()) < 1e-12  # X-hat stays put (paper Sec. 2)
     assert np.ptp(lines["CM"].get_ydata()) > 1e-3  # the CM does not
@@ -262,11 +284,15 @@ def test_first_slip_is_marked_at_its_time(slipping) -> None:
     ax = plot_friction_ratio(slipping)
     slip = slipping.summary["first_slip"]
     assert slip is not None and slip["body"] == "hoop"
-    vertical = [line for line in ax.lines if np.ptp(line.get_xdata()) == 0
-                and line.get_xdata()[0] == slip["time"]]
+    vertical = [
+        line
+        for line in ax.lines
+        if np.ptp(line.get_xdata()) == 0 and line.get_xdata()[0] == slip["time"]
+    ]
     assert vertical, "no line at the slip time"
-    assert any(f"first slip: hoop, t = {slip['time']:.4g} s" == text.get_text()
-               for text in ax.texts)
+    assert any(
+        f"first slip: hoop, t = {slip['time']:.4g} s" == text.get_text() for text in ax.texts
+    )
 
 
 def test_mode_panels_give_each_frequency(paper) -> None:
@@ -287,9 +313,11 @@ def test_given_axes_and_figures_are_used_and_returned(paper) -> None:
     for function in (plot_friction_ratio, plot_energy):
         ax = new_figure(6, 3).add_subplot()
         assert function(trajectory, ax) is ax
-    for function, result in ((plot_contact_forces, trajectory), (plot_phase_portraits,
-                                                                  trajectory),
-                             (plot_modes, analysis)):
+    for function, result in (
+        (plot_contact_forces, trajectory),
+        (plot_phase_portraits, trajectory),
+        (plot_modes, analysis),
+    ):
         fig = new_figure(7, 6)
         assert function(result, fig) is fig
 

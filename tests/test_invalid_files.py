@@ -188,7 +188,8 @@ def test_every_fixture_is_a_case_and_every_case_is_distinct() -> None:
 
 HOOP_CYLINDER_WITH_COMMENTED_AT = ISSUE_EXAMPLE.replace(
     "# at = [{ height = 0.2 }, { radius = 0.05, angle = 0.0 }]   # one entry per end",
-    "# at = [{ height = 0.1 }, { height = 0.15 }]")
+    "# at = [{ height = 0.1 }, { height = 0.15 }]",
+)
 
 
 def test_the_issues_example_with_a_commented_out_at_line_loads(tmp_path: Path) -> None:
@@ -212,15 +213,22 @@ def test_the_example_file_loads() -> None:
 @pytest.mark.parametrize(
     ("name", "text"),
     [
-        ("rolling.toml", '[[bodies]]\nid = "gear"\nshape = "cylinder"\nmass = 1.0\n'
-                         'radius = 0.1\nx = 0.0\nmu_static = inf\n'),
-        ("rolling.json", '{"bodies": [{"id": "gear", "shape": "cylinder", "mass": 1.0, '
-                         '"radius": 0.1, "x": 0.0, "mu_static": Infinity}]}'),
+        (
+            "rolling.toml",
+            '[[bodies]]\nid = "gear"\nshape = "cylinder"\nmass = 1.0\n'
+            "radius = 0.1\nx = 0.0\nmu_static = inf\n",
+        ),
+        (
+            "rolling.json",
+            '{"bodies": [{"id": "gear", "shape": "cylinder", "mass": 1.0, '
+            '"radius": 0.1, "x": 0.0, "mu_static": Infinity}]}',
+        ),
     ],
     ids=["toml-inf", "json-Infinity"],
 )
-def test_mu_static_inf_is_accepted_and_enforces_rolling(tmp_path: Path, name: str,
-                                                         text: str) -> None:
+def test_mu_static_inf_is_accepted_and_enforces_rolling(
+    tmp_path: Path, name: str, text: str
+) -> None:
     path = tmp_path / name
     path.write_text(text, encoding="utf-8")
     (gear,) = load_system(path).bodies

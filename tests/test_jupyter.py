@@ -36,8 +36,10 @@ def shell():
 
 
 def _png_images(markup: str) -> list[bytes]:
-    return [base64.b64decode(data) for data in
-            re.findall(r'src="data:image/png;base64,([A-Za-z0-9+/=]+)"', markup)]
+    return [
+        base64.b64decode(data)
+        for data in re.findall(r'src="data:image/png;base64,([A-Za-z0-9+/=]+)"', markup)
+    ]
 
 
 def test_system_renders_as_a_diagram_and_tables(paper, shell) -> None:
@@ -98,8 +100,9 @@ def test_to_pandas(paper) -> None:
     np.testing.assert_array_equal(frame.index.to_numpy(), trajectory.t)
     assert frame.index.name == "t"
     np.testing.assert_array_equal(frame["cylinder.x"].to_numpy(), trajectory.x[:, 1])
-    np.testing.assert_array_equal(frame["hoop-cylinder.tension"].to_numpy(),
-                                  trajectory.spring_tension[:, 0])
+    np.testing.assert_array_equal(
+        frame["hoop-cylinder.tension"].to_numpy(), trajectory.spring_tension[:, 0]
+    )
     assert frame["hoop.slipping"].dtype == bool
     assert frame.attrs["units"]["hoop.friction"] == "N" and frame.attrs["units"]["t"] == "s"
     assert len(frame.columns) == len(trajectory.columns()) - 1
@@ -109,8 +112,7 @@ def test_to_xarray(paper) -> None:
     _, _, trajectory = paper
     data = jupyter.trajectory_to_xarray(trajectory)
     assert dict(data.sizes) == {"time": trajectory.t.size, "body": 2, "spring": 1}
-    np.testing.assert_array_equal(data["phi"].sel(body="cylinder").to_numpy(),
-                                  trajectory.phi[:, 1])
+    np.testing.assert_array_equal(data["phi"].sel(body="cylinder").to_numpy(), trajectory.phi[:, 1])
     np.testing.assert_array_equal(data["stationary_x"].to_numpy(), trajectory.stationary_x)
     assert data["normal"].attrs["units"] == "N" and data["time"].attrs["units"] == "s"
     assert list(data["shape"].to_numpy()) == ["hoop", "cylinder"]
@@ -124,12 +126,17 @@ def test_a_notebook_shows_rich_output(tmp_path) -> None:
             "import rollspring\n"
             "from rollspring.outputs.jupyter import register_formatters\n"
             "print(register_formatters())\n"
-            "system = rollspring.load_system('two-hoops')"),
+            "system = rollspring.load_system('two-hoops')"
+        ),
         nbformat.v4.new_code_cell("system"),
         nbformat.v4.new_code_cell("rollspring.analyze(system)"),
     ]
-    NotebookClient(notebook, timeout=120, kernel_name="python3",
-                   resources={"metadata": {"path": str(tmp_path)}}).execute()
+    NotebookClient(
+        notebook,
+        timeout=120,
+        kernel_name="python3",
+        resources={"metadata": {"path": str(tmp_path)}},
+    ).execute()
     first, shown, modes = (cell.outputs for cell in notebook.cells)
     assert first[0]["text"].strip() == "True"
     assert "<img" in shown[0]["data"]["text/html"] and ">hoop2<" in shown[0]["data"]["text/html"]

@@ -14,7 +14,7 @@ from tests.conftest import body, make_system, spring
 
 ROOT = Path(__file__).resolve().parents[1]
 
-ISSUE_EXAMPLE = '''\
+ISSUE_EXAMPLE = """\
 name = "Hoop and cylinder joined at their centres"
 gravity = 9.81
 
@@ -39,7 +39,7 @@ ends = ["hoop", "cylinder"]
 stiffness = 100.0
 rest_length = 0.5
 # at = [{ height = 0.2 }, { radius = 0.05, angle = 0.0 }]   # one entry per end
-'''
+"""
 
 
 def test_the_documented_example_loads_as_it_is(tmp_path: Path) -> None:
@@ -62,7 +62,10 @@ def test_json_and_toml_describe_the_same_system(tmp_path: Path) -> None:
 
 
 def test_anchors_forces_and_attachments_of_the_documented_forms() -> None:
-    system = system_from_dict(tomllib.loads(ISSUE_EXAMPLE + '''
+    system = system_from_dict(
+        tomllib.loads(
+            ISSUE_EXAMPLE
+            + """
 [[anchors]]
 id = "wall"
 x = -0.3
@@ -78,7 +81,9 @@ body = "cylinder"
 at = { height = 0.15 }
 fx = 1.0
 fy = 0.0
-'''))
+"""
+        )
+    )
     wall_spring = system.springs[1]
     hoop = system.bodies[0]
     r, alpha = wall_spring.attachments[1].polar(hoop)
@@ -90,17 +95,23 @@ fy = 0.0
 
 
 def test_height_below_the_centre_points_down() -> None:
-    system = make_system([body("c", "cylinder", radius=0.2)],
-                         forces=[{"body": "c", "at": {"height": 0.05}, "fx": 1.0}])
+    system = make_system(
+        [body("c", "cylinder", radius=0.2)],
+        forces=[{"body": "c", "at": {"height": 0.05}, "fx": 1.0}],
+    )
     r, alpha = system.forces[0].at.polar(system.bodies[0])
     assert r == pytest.approx(0.15)
     assert alpha == pytest.approx(math.pi)
 
 
 def test_defaults() -> None:
-    system = make_system([body("a", "sphere", x=0.0), body("b", "custom", inertia_factor=0.3,
-                                                            x=1.0, mu_static=math.inf)],
-                         [spring("a", "b")])
+    system = make_system(
+        [
+            body("a", "sphere", x=0.0),
+            body("b", "custom", inertia_factor=0.3, x=1.0, mu_static=math.inf),
+        ],
+        [spring("a", "b")],
+    )
     a, b = system.bodies
     assert system.gravity == 9.81
     assert (a.v, a.track_height, a.mu_static, a.mu_kinetic_value) == (0.0, 0.0, 1.0, 1.0)
@@ -111,8 +122,10 @@ def test_defaults() -> None:
     assert system.rest_lengths == [1.0]
 
 
-@pytest.mark.parametrize("shape,gamma,height", [("hoop", 1.0, 2.0), ("cylinder", 0.5, 1.5),
-                                                ("sphere", 0.4, 1.4), ("shell", 2 / 3, 5 / 3)])
+@pytest.mark.parametrize(
+    "shape,gamma,height",
+    [("hoop", 1.0, 2.0), ("cylinder", 0.5, 1.5), ("sphere", 0.4, 1.4), ("shell", 2 / 3, 5 / 3)],
+)
 def test_inertia_and_percussion_height_of_each_shape(shape, gamma, height) -> None:
     b = make_system([body("b", shape, mass=2.0, radius=0.5)]).bodies[0]
     assert b.central_inertia == pytest.approx(gamma * 2.0 * 0.25)

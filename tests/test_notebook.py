@@ -31,8 +31,9 @@ def executed(tmp_path_factory: pytest.TempPathFactory) -> nbformat.NotebookNode:
         patch.setenv("JUPYTER_PLATFORM_DIRS", "1")
         patch.delenv("MPLBACKEND", raising=False)  # the kernel then draws inline
         notebook = nbformat.read(NOTEBOOK, as_version=4)
-        client = NotebookClient(notebook, kernel_name=KERNEL, timeout=300,
-                                resources={"metadata": {"path": str(folder)}})
+        client = NotebookClient(
+            notebook, kernel_name=KERNEL, timeout=300, resources={"metadata": {"path": str(folder)}}
+        )
         client.execute()
     return notebook
 
@@ -57,8 +58,13 @@ def test_every_cell_runs_without_error(executed: nbformat.NotebookNode) -> None:
 
 
 def test_the_printed_numbers_are_the_papers(executed: nbformat.NotebookNode) -> None:
-    text = "\n".join(o.text for cell in executed.cells if cell.cell_type == "code"
-                     for o in cell.outputs if o.output_type == "stream")
+    text = "\n".join(
+        o.text
+        for cell in executed.cells
+        if cell.cell_type == "code"
+        for o in cell.outputs
+        if o.output_type == "stream"
+    )
     k, m1, m2, amplitude = 100.0, 1.0, 1.0, 0.01  # the preset, as the paper's Fig. 2
     omega2 = k / (2 * m1) + 2 * k / (3 * m2)  # eq. (QQQ1)
     assert f"Omega^2 = {omega2:.6f} 1/s^2;  paper (QQQ1): {omega2:.6f} 1/s^2" in text
@@ -70,5 +76,7 @@ def test_the_printed_numbers_are_the_papers(executed: nbformat.NotebookNode) -> 
     assert f"Omega^2 = {2 * k / m1 + 3 * k / (2 * m2):.6f} (paper: " in text  # Fig. 3, App. B
     assert "slip - 'hoop' starts to slip at t = 0 s" in text
     assert "finished:" in text and "first slip: None" in text
-    assert "5 method(s) applied (newton, conservation, lagrange, natural-frequencies, " \
-           "hamilton); all methods agree." in text
+    assert (
+        "5 method(s) applied (newton, conservation, lagrange, natural-frequencies, "
+        "hamilton); all methods agree." in text
+    )

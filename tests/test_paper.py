@@ -30,8 +30,10 @@ def hoop_cylinder(m1: float, m2: float, radius: float, k: float, compression: fl
     """The paper's Fig. 2 system: centres joined by a spring compressed by `compression`."""
     rest = 10 * radius + 1.0
     return make_system(
-        [body("hoop", "hoop", mass=m1, radius=radius, x=0.0),
-         body("cylinder", "cylinder", mass=m2, radius=radius, x=rest - compression)],
+        [
+            body("hoop", "hoop", mass=m1, radius=radius, x=0.0),
+            body("cylinder", "cylinder", mass=m2, radius=radius, x=rest - compression),
+        ],
         [spring("hoop", "cylinder", stiffness=k, rest_length=rest)],
     )
 
@@ -49,7 +51,8 @@ def test_fig2_frequency_positions_and_stationary_point(m1, m2, radius, k, a) -> 
     assert result.stationary_amplitude == pytest.approx(0.0, abs=1e-12 * a)
     # Sec. 4.2: A1 = A 3m2/(4m1 + 3m2), A2 = A 4m1/(4m1 + 3m2), A = spring deformation amplitude
     np.testing.assert_allclose(
-        result.amplitude, [a * 3 * m2 / (4 * m1 + 3 * m2), a * 4 * m1 / (4 * m1 + 3 * m2)],
+        result.amplitude,
+        [a * 3 * m2 / (4 * m1 + 3 * m2), a * 4 * m1 / (4 * m1 + 3 * m2)],
         rtol=1e-9,
     )
     # eqs. (om), (pi): maximal centre velocities v1 = A sqrt(3 k m2/(2 m1 (4 m1 + 3 m2))), ...
@@ -57,8 +60,9 @@ def test_fig2_frequency_positions_and_stationary_point(m1, m2, radius, k, a) -> 
     v2 = a * math.sqrt(8 * k * m1 / (3 * m2 * (4 * m1 + 3 * m2)))
     np.testing.assert_allclose(result.velocity_amplitude, [v1, v2], rtol=1e-9)
     # the CM is not stationary: amplitude m1 m2 A / ((m1 + m2)(4 m1 + 3 m2)) (docs/physics.md 7.1)
-    assert result.cm_amplitude == pytest.approx(m1 * m2 * a / ((m1 + m2) * (4 * m1 + 3 * m2)),
-                                                rel=1e-9)
+    assert result.cm_amplitude == pytest.approx(
+        m1 * m2 * a / ((m1 + m2) * (4 * m1 + 3 * m2)), rel=1e-9
+    )
     # in the mode the bodies move in phase opposition (eq. (g))
     assert mode.shape_x[0] * mode.shape_x[1] < 0
 
@@ -75,8 +79,9 @@ def test_fig2_friction_amplitudes_are_f_over_2_and_f_over_3_opposite(m1, m2, rad
     assert mode.friction[0] / mode.friction[1] == pytest.approx(-1.5, rel=1e-12)
     # required mu: max |f|/N = (F/2)/(m1 g), (F/3)/(m2 g)
     g = 9.81
-    np.testing.assert_allclose(result.required_mu, [force / 2 / (m1 * g), force / 3 / (m2 * g)],
-                               rtol=1e-9)
+    np.testing.assert_allclose(
+        result.required_mu, [force / 2 / (m1 * g), force / 3 / (m2 * g)], rtol=1e-9
+    )
 
 
 @paper
@@ -89,28 +94,39 @@ def test_fig2_spring_split_k1_k2(m1, m2, radius, k, a) -> None:
     np.testing.assert_allclose(split["k"], [k1, k2], rtol=1e-12)
     assert 1 / split["k"][0] + 1 / split["k"][1] == pytest.approx(1 / k, rel=1e-12)
     # Appendix B: Omega_1 = sqrt(k/(2 m1)), Omega_2 = sqrt(2k/(3 m2)), Omega^2 = sum
-    np.testing.assert_allclose(split["clamped_omega"],
-                               [math.sqrt(k / (2 * m1)), math.sqrt(2 * k / (3 * m2))], rtol=1e-12)
+    np.testing.assert_allclose(
+        split["clamped_omega"], [math.sqrt(k / (2 * m1)), math.sqrt(2 * k / (3 * m2))], rtol=1e-12
+    )
 
 
 @paper
-@given(st.sampled_from(["hoop", "cylinder", "sphere", "shell"]), masses, masses, radii,
-       stiffnesses, compressions)
+@given(
+    st.sampled_from(["hoop", "cylinder", "sphere", "shell"]),
+    masses,
+    masses,
+    radii,
+    stiffnesses,
+    compressions,
+)
 def test_equal_shapes_make_the_stationary_point_the_cm(shape, m1, m2, radius, k, a) -> None:
     rest = 10 * radius + 1.0
     system = make_system(
-        [body("a", shape, mass=m1, radius=radius, x=0.0),
-         body("b", shape, mass=m2, radius=radius, x=rest - a)],
+        [
+            body("a", shape, mass=m1, radius=radius, x=0.0),
+            body("b", shape, mass=m2, radius=radius, x=rest - a),
+        ],
         [spring("a", "b", stiffness=k, rest_length=rest)],
     )
     result = analyze(system)
-    np.testing.assert_allclose(result.stationary_weights, [m1 / (m1 + m2), m2 / (m1 + m2)],
-                               rtol=1e-12)
+    np.testing.assert_allclose(
+        result.stationary_weights, [m1 / (m1 + m2), m2 / (m1 + m2)], rtol=1e-12
+    )
     assert result.cm_amplitude == pytest.approx(0.0, abs=1e-12 * a)
     gamma = INERTIA_FACTORS[shape]
     # Omega^2 = k/((1+gamma)) (1/m1 + 1/m2) (docs/physics.md (M15) with eta = R)
     assert result.oscillating[0].eigenvalue == pytest.approx(
-        k / (1 + gamma) * (1 / m1 + 1 / m2), rel=1e-12)
+        k / (1 + gamma) * (1 / m1 + 1 / m2), rel=1e-12
+    )
 
 
 @paper
@@ -120,10 +136,11 @@ def test_fig3_percussion_points_remove_friction_and_fix_the_cm(m1, m2, r2, k, v)
     r1 = 0.75 * r2
     height = 1.5 * r2
     system = make_system(
-        [body("hoop", "hoop", mass=m1, radius=r1, x=0.0, v=-v * 0.01),
-         body("cylinder", "cylinder", mass=m2, radius=r2, x=1.0 + 2 * r2)],
-        [spring("hoop", "cylinder", stiffness=k,
-                at=[{"height": height}, {"height": height}])],
+        [
+            body("hoop", "hoop", mass=m1, radius=r1, x=0.0, v=-v * 0.01),
+            body("cylinder", "cylinder", mass=m2, radius=r2, x=1.0 + 2 * r2),
+        ],
+        [spring("hoop", "cylinder", stiffness=k, at=[{"height": height}, {"height": height}])],
     )
     result = analyze(system)
     (mode,) = result.oscillating
@@ -133,8 +150,9 @@ def test_fig3_percussion_points_remove_friction_and_fix_the_cm(m1, m2, r2, k, v)
     force_scale = k * float(np.max(np.abs(mode.spring_extension)))
     np.testing.assert_allclose(mode.friction, 0.0, atol=1e-12 * force_scale)
     # eq. (bb): the CM is stationary; X-hat is the CM
-    np.testing.assert_allclose(result.stationary_weights, [m1 / (m1 + m2), m2 / (m1 + m2)],
-                               rtol=1e-9)
+    np.testing.assert_allclose(
+        result.stationary_weights, [m1 / (m1 + m2), m2 / (m1 + m2)], rtol=1e-9
+    )
     assert result.cm_amplitude == pytest.approx(0.0, abs=1e-12)
 
 
@@ -144,8 +162,10 @@ def test_fig3_r1_equal_r2_over_2_is_right_with_level_centres(r2: float) -> None:
     R1 = R2/2": true when the hoop's track is raised by R1 so that the centres are level."""
     r1 = r2 / 2
     system = make_system(
-        [body("hoop", "hoop", radius=r1, x=0.0, track_height=r2 - r1, v=0.01),
-         body("cylinder", "cylinder", radius=r2, x=0.5)],
+        [
+            body("hoop", "hoop", radius=r1, x=0.0, track_height=r2 - r1, v=0.01),
+            body("cylinder", "cylinder", radius=r2, x=0.5),
+        ],
         [spring("hoop", "cylinder", at=[{"height": 2 * r1}, {"height": 1.5 * r2}])],
     )
     result = analyze(system)
@@ -158,8 +178,10 @@ def test_fig3_r1_equal_r2_over_2_is_right_with_level_centres(r2: float) -> None:
 def test_fig3_r1_equal_r2_over_2_on_one_floor_tilts_the_spring_and_says_so() -> None:
     r2 = 0.1
     system = make_system(
-        [body("hoop", "hoop", radius=r2 / 2, x=0.0),
-         body("cylinder", "cylinder", radius=r2, x=0.5)],
+        [
+            body("hoop", "hoop", radius=r2 / 2, x=0.0),
+            body("cylinder", "cylinder", radius=r2, x=0.5),
+        ],
         [spring("hoop", "cylinder", at=[{"height": r2}, {"height": 1.5 * r2}])],
     )
     result = analyze(system)
@@ -174,13 +196,20 @@ def test_fig3_r1_equal_r2_over_2_on_one_floor_tilts_the_spring_and_says_so() -> 
 
 
 @paper
-@given(st.sampled_from(["hoop", "cylinder", "sphere", "shell"]), masses, radii,
-       st.floats(0.0, 1.0), st.floats(-50.0, 50.0).filter(lambda f: abs(f) > 1e-3))
+@given(
+    st.sampled_from(["hoop", "cylinder", "sphere", "shell"]),
+    masses,
+    radii,
+    st.floats(0.0, 1.0),
+    st.floats(-50.0, 50.0).filter(lambda f: abs(f) > 1e-3),
+)
 def test_appendix_a_friction_of_a_pulled_body(shape, m, radius, y_over_2r, force) -> None:
     """eq. (fric): f(y) = F (1 - m R y / (I + m R^2)), counted opposite to F by the paper."""
     y = 2 * radius * y_over_2r
-    system = make_system([body("b", shape, mass=m, radius=radius)],
-                         forces=[{"body": "b", "at": {"height": y}, "fx": force}])
+    system = make_system(
+        [body("b", shape, mass=m, radius=radius)],
+        forces=[{"body": "b", "at": {"height": y}, "fx": force}],
+    )
     friction, normal = contact_forces(system_arrays(system), np.zeros(1))
     inertia = INERTIA_FACTORS[shape] * m * radius**2
     expected = force * (1 - m * radius * y / (inertia + m * radius**2))
@@ -195,8 +224,10 @@ def test_chain_between_two_walls_has_textbook_frequencies(shape: str, n_bodies: 
     omega_n^2 = (4 k R^2 / J) sin^2(n pi / (2 (N + 1)))."""
     k, m, radius, gap = 37.0, 0.7, 0.05, 0.4
     bodies = [body(f"b{i}", shape, mass=m, radius=radius, x=gap * (i + 1)) for i in range(n_bodies)]
-    anchors = [{"id": "left", "x": 0.0, "y": radius},
-               {"id": "right", "x": gap * (n_bodies + 1), "y": radius}]
+    anchors = [
+        {"id": "left", "x": 0.0, "y": radius},
+        {"id": "right", "x": gap * (n_bodies + 1), "y": radius},
+    ]
     names = ["left"] + [b["id"] for b in bodies] + ["right"]
     springs = [spring(a, b, stiffness=k) for a, b in itertools.pairwise(names)]
     result = analyze(make_system(bodies, springs, anchors=anchors))
@@ -216,8 +247,9 @@ def test_two_sliders_fig1_cm_stays_at_rest() -> None:
     )
     result = analyze(system)
     assert result.oscillating[0].eigenvalue == pytest.approx(k * (1 / m1 + 1 / m2), rel=1e-12)
-    np.testing.assert_allclose(result.stationary_weights, [m1, m2] / np.float64(m1 + m2),
-                               rtol=1e-12)
+    np.testing.assert_allclose(
+        result.stationary_weights, [m1, m2] / np.float64(m1 + m2), rtol=1e-12
+    )
     assert result.cm_amplitude == pytest.approx(0.0, abs=1e-15)
     np.testing.assert_array_equal(result.friction_amplitude, [0.0, 0.0])
 

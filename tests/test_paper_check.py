@@ -162,12 +162,20 @@ def checks():
 def test_every_claim_of_the_issue_is_in_the_list(checks) -> None:
     # issue 4, item 4: Omega^2 of Figs. 2 and 3, v1, v2, A1, A2, k1, k2, f1/f2, X-hat, f(y),
     # the Hamiltonian's canonical coordinates, Omega_1..4, the Fig. 3 geometry R1 = R2/2
-    required = {"omega2-fig2": r"\Omega^2", "omega2-fig3": r"\Omega_{\bcancel{f}}^2",
-                "speeds": "v_1", "amplitudes": "A_1", "k1-k2": "k_1",
-                "friction-ratio": r"\frac{f_1}{f_2}",
-                "stationary-point": r"\hat{X}", "fric": "f(y)",
-                "canonical-coordinates": r"q_1=\sqrt{2}R\phi_1", "omega1-omega2": r"\Omega_1",
-                "omega3-omega4": r"\Omega_{3}", "fig3-geometry": "R_1=R_2/2"}
+    required = {
+        "omega2-fig2": r"\Omega^2",
+        "omega2-fig3": r"\Omega_{\bcancel{f}}^2",
+        "speeds": "v_1",
+        "amplitudes": "A_1",
+        "k1-k2": "k_1",
+        "friction-ratio": r"\frac{f_1}{f_2}",
+        "stationary-point": r"\hat{X}",
+        "fric": "f(y)",
+        "canonical-coordinates": r"q_1=\sqrt{2}R\phi_1",
+        "omega1-omega2": r"\Omega_1",
+        "omega3-omega4": r"\Omega_{3}",
+        "fig3-geometry": "R_1=R_2/2",
+    }
     for key, fragment in required.items():
         assert key in checks, key
         assert fragment in checks[key].claim.latex.replace(" ", ""), key
@@ -223,8 +231,9 @@ def test_the_verdict_is_computed_not_typed_in() -> None:
     c = sp.Symbol("c", positive=True)
 
     def claim(paper, derived: Derived) -> Claim:
-        return Claim("test", "nowhere", "a test claim", "x", "x", paper, "fig2",
-                     lambda bench: derived)
+        return Claim(
+            "test", "nowhere", "a test claim", "x", "x", paper, "fig2", lambda bench: derived
+        )
 
     right = Derived(k / (2 * m1), "by hand")
     assert check_claim(claim(k / (2 * m1), right)).verdict == VERIFIED
@@ -245,10 +254,43 @@ def test_the_verdict_is_computed_not_typed_in() -> None:
 def test_every_claim_compares_in_the_engines_symbols() -> None:
     # a paper expression in symbols the engine does not use would never be verified by accident,
     # but would never verify either: every claim's symbols are known names
-    known = {"m", "m_1", "m_2", "R", "R_1", "R_2", "k", "k_1", "k_2", "gamma", "y", "F", "I",
-             "phi", "phi_1", "phi_2", "phidot_1", "phidot_2", "phiddot", "phiddot_1",
-             "phiddot_2", "x_1", "x_2", "A", "Phidot_1", "Phidot_2", "q_1", "q_2", "q_3", "q_4",
-             "p_1", "p_2", "F_1x", "F_2x", "l"}
+    known = {
+        "m",
+        "m_1",
+        "m_2",
+        "R",
+        "R_1",
+        "R_2",
+        "k",
+        "k_1",
+        "k_2",
+        "gamma",
+        "y",
+        "F",
+        "I",
+        "phi",
+        "phi_1",
+        "phi_2",
+        "phidot_1",
+        "phidot_2",
+        "phiddot",
+        "phiddot_1",
+        "phiddot_2",
+        "x_1",
+        "x_2",
+        "A",
+        "Phidot_1",
+        "Phidot_2",
+        "q_1",
+        "q_2",
+        "q_3",
+        "q_4",
+        "p_1",
+        "p_2",
+        "F_1x",
+        "F_2x",
+        "l",
+    }
     for claim in paper_claims():
         values = claim.paper if isinstance(claim.paper, tuple) else (claim.paper,)
         names = {s.name for v in values for s in sp.sympify(v).free_symbols}
@@ -280,8 +322,10 @@ def test_cli_text_table_marks_and_counts() -> None:
     assert result.exit_code == 0, result.output
     counts = {v: sum(1 for e in EXPECTED.values() if e == v) for v in VERDICTS}
     assert "✔" in result.stdout and "✘" in result.stdout and "⚠" in result.stdout
-    assert (f"{len(EXPECTED)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_ONLY_IF]} hold "
-            f"only under a condition, {counts[WRONG]} wrong") in result.stdout
+    assert (
+        f"{len(EXPECTED)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_ONLY_IF]} hold "
+        f"only under a condition, {counts[WRONG]} wrong"
+    ) in result.stdout
     assert "R₁=R₂/2" in result.stdout  # the LaTeX shown as readable text
     assert "correct: f₁/f₂ = - 3/2" in result.stdout
 
@@ -289,8 +333,7 @@ def test_cli_text_table_marks_and_counts() -> None:
 def test_cli_markdown_table() -> None:
     result = runner.invoke(app, ["paper-check", "--format", "markdown"])
     assert result.exit_code == 0, result.output
-    rows = [line for line in result.stdout.splitlines()
-            if line.startswith(("| ✔", "| ✘", "| ⚠"))]
+    rows = [line for line in result.stdout.splitlines() if line.startswith(("| ✔", "| ✘", "| ⚠"))]
     assert len(rows) == len(EXPECTED)
     assert all(line.count(" | ") == 5 for line in rows)  # 6 cells, no stray pipes
     assert r"$\frac{f_1}{f_2}=\frac{3}{2}" in result.stdout
@@ -299,11 +342,15 @@ def test_cli_markdown_table() -> None:
 def test_cli_unknown_format_is_one_line_and_exit_2() -> None:
     result = runner.invoke(app, ["paper-check", "--format", "html"])
     assert result.exit_code == 2
-    assert result.stderr.strip() == ("error: --format: unknown format 'html' "
-                                     "(formats: text, markdown)")
+    assert result.stderr.strip() == (
+        "error: --format: unknown format 'html' (formats: text, markdown)"
+    )
 
 
 def test_cli_verdict_names_are_the_librarys() -> None:
     # the CLI module keeps its own copies so that importing it does not import SymPy
-    assert (cli_paper_check.VERIFIED, cli_paper_check.WRONG, cli_paper_check.HOLDS_ONLY_IF) == \
-        (VERIFIED, WRONG, HOLDS_ONLY_IF)
+    assert (cli_paper_check.VERIFIED, cli_paper_check.WRONG, cli_paper_check.HOLDS_ONLY_IF) == (
+        VERIFIED,
+        WRONG,
+        HOLDS_ONLY_IF,
+    )

@@ -43,12 +43,20 @@ def general_systems(draw: st.DrawFn) -> System:
     bodies = []
     for i in range(n):
         shape = draw(st.sampled_from(SHAPES))
-        bodies.append(body(
-            f"b{i}", shape, mass=draw(st.floats(0.1, 5.0)), radius=draw(st.floats(0.03, 0.3)),
-            x=0.8 * i, track_height=draw(st.floats(-0.2, 0.2)),
-        ))
-    anchors = [{"id": "wall", "x": -0.7, "y": draw(st.floats(0.0, 0.4))},
-               {"id": "post", "x": 0.8 * n, "y": draw(st.floats(0.0, 0.4))}]
+        bodies.append(
+            body(
+                f"b{i}",
+                shape,
+                mass=draw(st.floats(0.1, 5.0)),
+                radius=draw(st.floats(0.03, 0.3)),
+                x=0.8 * i,
+                track_height=draw(st.floats(-0.2, 0.2)),
+            )
+        )
+    anchors = [
+        {"id": "wall", "x": -0.7, "y": draw(st.floats(0.0, 0.4))},
+        {"id": "post", "x": 0.8 * n, "y": draw(st.floats(0.0, 0.4))},
+    ]
 
     def attachment(b: dict) -> dict:
         if b["shape"] == "slider":
@@ -57,8 +65,10 @@ def general_systems(draw: st.DrawFn) -> System:
         if kind == "height":
             return {"height": draw(st.floats(0.0, 2 * b["radius"]))}
         if kind == "polar":
-            return {"radius": draw(st.floats(0.0, b["radius"])),
-                    "angle": draw(st.floats(-180.0, 180.0))}
+            return {
+                "radius": draw(st.floats(0.0, b["radius"])),
+                "angle": draw(st.floats(-180.0, 180.0)),
+            }
         return {}
 
     ends = [b["id"] for b in bodies] + ["wall", "post"]
@@ -70,14 +80,30 @@ def general_systems(draw: st.DrawFn) -> System:
         pairs = [("wall", "b0")]
     by_id = {b["id"]: b for b in bodies}
     for a, b in pairs:
-        at = [attachment(by_id[a]) if a in by_id else {}, attachment(by_id[b]) if b in by_id else {}]
-        springs.append(spring(a, b, stiffness=draw(st.floats(5.0, 300.0)), at=at,
-                              rest_length=draw(st.floats(0.2, 1.0))))
+        at = [
+            attachment(by_id[a]) if a in by_id else {},
+            attachment(by_id[b]) if b in by_id else {},
+        ]
+        springs.append(
+            spring(
+                a,
+                b,
+                stiffness=draw(st.floats(5.0, 300.0)),
+                at=at,
+                rest_length=draw(st.floats(0.2, 1.0)),
+            )
+        )
     forces = []
     if draw(st.booleans()):
         target = draw(st.sampled_from(bodies))
-        forces.append({"body": target["id"], "at": attachment(target),
-                       "fx": draw(st.floats(-5.0, 5.0)), "fy": draw(st.floats(-5.0, 5.0))})
+        forces.append(
+            {
+                "body": target["id"],
+                "at": attachment(target),
+                "fx": draw(st.floats(-5.0, 5.0)),
+                "fy": draw(st.floats(-5.0, 5.0)),
+            }
+        )
     return make_system(bodies, springs, anchors=anchors, forces=forces)
 
 
@@ -124,11 +150,17 @@ def test_contact_force_jacobians_match_finite_differences(system, seed) -> None:
     q = random_state(system, seed)
     d_friction, d_normal = contact_forces_jacobian(arrays, q)
     np.testing.assert_allclose(
-        d_friction, numerical_gradient(lambda s: contact_forces(arrays, s)[0], q),
-        rtol=1e-6, atol=1e-6)
+        d_friction,
+        numerical_gradient(lambda s: contact_forces(arrays, s)[0], q),
+        rtol=1e-6,
+        atol=1e-6,
+    )
     np.testing.assert_allclose(
-        d_normal, numerical_gradient(lambda s: contact_forces(arrays, s)[1], q),
-        rtol=1e-6, atol=1e-6)
+        d_normal,
+        numerical_gradient(lambda s: contact_forces(arrays, s)[1], q),
+        rtol=1e-6,
+        atol=1e-6,
+    )
 
 
 @physics
@@ -154,8 +186,12 @@ def test_contact_forces_satisfy_newton_about_the_centre(system, seed) -> None:
                 rx, ry = position[s, j] - (x_centre[i], y_centre[i])
                 tau[i] += f_end[0] * ry - f_end[1] * rx  # clockwise torque about the centre
     for f, i in enumerate(arrays.force_body):
-        p = arrays.force_r[f] * np.array([math.sin(arrays.force_alpha[f] + arrays.rolls[i] * q[i]),
-                                          math.cos(arrays.force_alpha[f] + arrays.rolls[i] * q[i])])
+        p = arrays.force_r[f] * np.array(
+            [
+                math.sin(arrays.force_alpha[f] + arrays.rolls[i] * q[i]),
+                math.cos(arrays.force_alpha[f] + arrays.rolls[i] * q[i]),
+            ]
+        )
         tau[i] += arrays.force[f, 0] * p[1] - arrays.force[f, 1] * p[0]
     for i in range(arrays.n_bodies):
         m, radius = arrays.mass[i], arrays.radius[i]
@@ -176,9 +212,17 @@ def test_a_force_through_the_percussion_point_needs_no_friction(shape, direction
     system = make_system([body("b", shape, radius=0.2)], forces=[])
     height = system.bodies[0].percussion_height
     angle = math.radians(direction_deg)
-    system = make_system([body("b", shape, radius=0.2)],
-                         forces=[{"body": "b", "at": {"height": height},
-                                  "fx": 3 * math.cos(angle), "fy": 3 * math.sin(angle)}])
+    system = make_system(
+        [body("b", shape, radius=0.2)],
+        forces=[
+            {
+                "body": "b",
+                "at": {"height": height},
+                "fx": 3 * math.cos(angle),
+                "fy": 3 * math.sin(angle),
+            }
+        ],
+    )
     friction, _ = contact_forces(system_arrays(system), np.zeros(1))
     assert friction[0] == pytest.approx(0.0, abs=1e-13)
 
@@ -200,8 +244,10 @@ def test_functions_are_vectorised_over_states(system, seed) -> None:
             single = contact_forces(arrays, batch[a, b], rates[a, b])
             np.testing.assert_allclose(together[0][a, b], single[0], rtol=1e-13, atol=1e-13)
             np.testing.assert_allclose(together[1][a, b], single[1], rtol=1e-13, atol=1e-13)
-    np.testing.assert_allclose(total_energy(arrays, batch, rates),
-                               kinetic_energy(arrays, rates) + potential_energy(arrays, batch))
+    np.testing.assert_allclose(
+        total_energy(arrays, batch, rates),
+        kinetic_energy(arrays, rates) + potential_energy(arrays, batch),
+    )
 
 
 def integrate(system: System, duration: float, q0: np.ndarray | None = None):
@@ -215,8 +261,9 @@ def integrate(system: System, duration: float, q0: np.ndarray | None = None):
 
     y0 = np.concatenate([q0, arrays.v0 / arrays.scale])
     times = np.linspace(0, duration, 400)
-    sol = scipy.integrate.solve_ivp(rhs, (0, duration), y0, method="DOP853", t_eval=times,
-                                    rtol=1e-12, atol=1e-14)
+    sol = scipy.integrate.solve_ivp(
+        rhs, (0, duration), y0, method="DOP853", t_eval=times, rtol=1e-12, atol=1e-14
+    )
     assert sol.success
     return arrays, sol.t, sol.y[:n].T, sol.y[n:].T
 
@@ -225,9 +272,15 @@ def test_energy_is_conserved_in_a_nonlinear_off_centre_motion() -> None:
     """(M6): H = T + U is constant while rolling (checks that Q, J and U belong together)."""
     system = make_system(
         [body("hoop", "hoop", x=0.0, v=0.8), body("disc", "cylinder", x=0.45, radius=0.12)],
-        [spring("hoop", "disc", rest_length=0.3, at=[{"radius": 0.08, "angle": 60.0},
-                                                    {"height": 0.2}]),
-         spring("wall", "hoop", stiffness=40.0, at=[{}, {"radius": 0.1, "angle": 200.0}])],
+        [
+            spring(
+                "hoop",
+                "disc",
+                rest_length=0.3,
+                at=[{"radius": 0.08, "angle": 60.0}, {"height": 0.2}],
+            ),
+            spring("wall", "hoop", stiffness=40.0, at=[{}, {"radius": 0.1, "angle": 200.0}]),
+        ],
         anchors=[{"id": "wall", "x": -0.5, "y": 0.3}],
     )
     arrays, _t, q, qdot = integrate(system, 3.0)
@@ -239,8 +292,11 @@ def test_energy_is_conserved_in_a_nonlinear_off_centre_motion() -> None:
 def test_pseudo_momentum_is_conserved_for_centre_springs() -> None:
     """(M11): sum (1 + gamma_i) m_i xdot_i is exactly conserved when springs join centres."""
     system = make_system(
-        [body("h", "hoop", x=0.0, v=0.3, mass=1.2), body("c", "cylinder", x=0.55, mass=0.7),
-         body("s", "sphere", x=1.1, v=-0.5, mass=2.0)],
+        [
+            body("h", "hoop", x=0.0, v=0.3, mass=1.2),
+            body("c", "cylinder", x=0.55, mass=0.7),
+            body("s", "sphere", x=1.1, v=-0.5, mass=2.0),
+        ],
         [spring("h", "c", rest_length=0.5), spring("c", "s", rest_length=0.6, stiffness=60.0)],
     )
     arrays, _t, _q, qdot = integrate(system, 4.0)
@@ -261,8 +317,9 @@ def test_linear_response_matches_the_exact_motion_of_the_paper_system() -> None:
     x_eq = arrays.x0 + arrays.scale * result.equilibrium.q
     np.testing.assert_allclose(np.max(np.abs(x - x_eq), axis=0), result.amplitude, rtol=1e-4)
     friction, _ = contact_forces(arrays, q)
-    np.testing.assert_allclose(np.max(np.abs(friction), axis=0), result.friction_amplitude,
-                               rtol=1e-4)
+    np.testing.assert_allclose(
+        np.max(np.abs(friction), axis=0), result.friction_amplitude, rtol=1e-4
+    )
 
 
 @settings(max_examples=25, deadline=None)
@@ -283,11 +340,19 @@ def test_modes_do_not_depend_on_the_order_of_the_bodies(system, order) -> None:
         q[same] = first.equilibrium.q
         stiffness = stiffness_matrix(arrays, q)
         eigenvalues = scipy.linalg.eigvalsh(stiffness, mass)
-        np.testing.assert_allclose(np.sort([m.eigenvalue for m in first.modes]), eigenvalues,
-                                   rtol=1e-8, atol=1e-8 * max(1.0, np.abs(eigenvalues).max()))
+        np.testing.assert_allclose(
+            np.sort([m.eigenvalue for m in first.modes]),
+            eigenvalues,
+            rtol=1e-8,
+            atol=1e-8 * max(1.0, np.abs(eigenvalues).max()),
+        )
         return
-    np.testing.assert_allclose([m.eigenvalue for m in first.modes],
-                               [m.eigenvalue for m in second.modes], rtol=1e-8, atol=1e-8)
+    np.testing.assert_allclose(
+        [m.eigenvalue for m in first.modes],
+        [m.eigenvalue for m in second.modes],
+        rtol=1e-8,
+        atol=1e-8,
+    )
     if first.required_mu is not None and second.required_mu is not None:
         by_id = dict(zip(second.ids, second.required_mu, strict=True))
         np.testing.assert_allclose(first.required_mu, [by_id[i] for i in first.ids], rtol=1e-6)

@@ -23,10 +23,17 @@ def test_results_table_numbers_come_from_the_software() -> None:
     mode = result.oscillating[0]
     assert result.spring_split is not None
     numbers = [
-        mode.eigenvalue, mode.omega, *result.stationary_weights, *result.amplitude,
-        *result.velocity_amplitude, result.cm_amplitude, *result.spring_split["k"],
-        *result.spring_split["clamped_omega"], *result.friction_amplitude,
-        *result.required_mu, mode.friction[0] / mode.friction[1],
+        mode.eigenvalue,
+        mode.omega,
+        *result.stationary_weights,
+        *result.amplitude,
+        *result.velocity_amplitude,
+        result.cm_amplitude,
+        *result.spring_split["k"],
+        *result.spring_split["clamped_omega"],
+        *result.friction_amplitude,
+        *result.required_mu,
+        mode.friction[0] / mode.friction[1],
     ]
     for value in numbers:
         assert g(float(value)) in README, g(float(value))
@@ -43,9 +50,20 @@ def test_cli_tour_lines_are_real_output() -> None:
     checked = 0
     for part, out in ((analyze_part, analysed), (simulate_part.split("```", 2)[1], simulated)):
         for line in part.splitlines():
-            if line.startswith(("│ 2        │", "│ hoop     │", "│ cylinder │", "CM amplitude",
-                                "Stationary point X̂", "Spring split", "│ status", "│ period",
-                                "│ integrator", "│ energy")):
+            if line.startswith(
+                (
+                    "│ 2        │",
+                    "│ hoop     │",
+                    "│ cylinder │",
+                    "CM amplitude",
+                    "Stationary point X̂",
+                    "Spring split",
+                    "│ status",
+                    "│ period",
+                    "│ integrator",
+                    "│ energy",
+                )
+            ):
                 assert line in out, line
                 checked += 1
     assert checked >= 12
@@ -54,8 +72,9 @@ def test_cli_tour_lines_are_real_output() -> None:
 def test_error_example_is_real(tmp_path: Path) -> None:
     bad = tmp_path / "bad.toml"
     good = (Path(__file__).resolve().parents[1] / "examples" / "hoop-cylinder.toml").read_text()
-    bad.write_text(good.replace("mass = 1.0\nradius = 0.1\nx = 0.49",
-                                "mass = -1.0\nradius = 0.1\nx = 0.49"))
+    bad.write_text(
+        good.replace("mass = 1.0\nradius = 0.1\nx = 0.49", "mass = -1.0\nradius = 0.1\nx = 0.49")
+    )
     result = CliRunner().invoke(app, ["analyze", str(bad)])
     assert result.exit_code == 2
     expected = "bodies[1].mass: must be > 0 (got -1.0)"

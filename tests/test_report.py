@@ -130,14 +130,22 @@ def paper_parameters() -> dict[str, float]:
     hoop, cylinder = system.bodies
     spring_ = system.springs[0]
     assert spring_.rest_length is not None
-    return {"m1": hoop.mass, "m2": cylinder.mass, "R": hoop.radius, "k": spring_.stiffness,
-            "A": spring_.rest_length - (cylinder.x - hoop.x), "g": system.gravity}
+    return {
+        "m1": hoop.mass,
+        "m2": cylinder.mass,
+        "R": hoop.radius,
+        "k": spring_.stiffness,
+        "A": spring_.rest_length - (cylinder.x - hoop.x),
+        "g": system.gravity,
+    }
 
 
 # -- the numbers --------------------------------------------------------------------------------
 
-def test_modal_table_holds_analyze_frequencies_and_the_papers_omega(report: Report,
-                                                                    page: Page) -> None:
+
+def test_modal_table_holds_analyze_frequencies_and_the_papers_omega(
+    report: Report, page: Page
+) -> None:
     analysis = analyze(report.system)
     rows = page.tables["modes"][1:]
     assert [row[1][0] for row in rows] == [m.kind for m in analysis.modes]
@@ -145,8 +153,9 @@ def test_modal_table_holds_analyze_frequencies_and_the_papers_omega(report: Repo
     assert [row[5][1] for row in rows] == [m.eigenvalue for m in analysis.modes]
     p = paper_parameters()
     omega2 = rows[1][5][1]
-    assert omega2 == pytest.approx(p["k"] / (2 * p["m1"]) + 2 * p["k"] / (3 * p["m2"]),
-                                   rel=1e-12)  # paper eq. (QQQ1)
+    assert omega2 == pytest.approx(
+        p["k"] / (2 * p["m1"]) + 2 * p["k"] / (3 * p["m2"]), rel=1e-12
+    )  # paper eq. (QQQ1)
     assert rows[1][4][1] == pytest.approx(2 * math.pi / math.sqrt(omega2), rel=1e-12)
     assert rows[0][2][1] == 0.0  # the zero mode: X-hat moves freely
 
@@ -154,15 +163,18 @@ def test_modal_table_holds_analyze_frequencies_and_the_papers_omega(report: Repo
 def test_mode_shapes_and_friction_ratio(report: Report, page: Page) -> None:
     analysis = analyze(report.system)
     mode = analysis.modes[1]
-    assert page.column("mode-shapes", "x, mode 2") == dict(zip(("hoop", "cylinder"),
-                                                               mode.shape_x.tolist(), strict=True))
+    assert page.column("mode-shapes", "x, mode 2") == dict(
+        zip(("hoop", "cylinder"), mode.shape_x.tolist(), strict=True)
+    )
     assert page.column("mode-shapes", "f (N), mode 2") == dict(
-        zip(("hoop", "cylinder"), mode.friction.tolist(), strict=True))
+        zip(("hoop", "cylinder"), mode.friction.tolist(), strict=True)
+    )
     p = paper_parameters()
     shape = page.column("mode-shapes", "x, mode 2")
     # amplitudes about X-hat: A1/A2 = 3 m2 / (4 m1), opposite directions (paper Sec. 4.2)
-    assert shape["hoop"] / shape["cylinder"] == pytest.approx(-3 * p["m2"] / (4 * p["m1"]),
-                                                              rel=1e-12)
+    assert shape["hoop"] / shape["cylinder"] == pytest.approx(
+        -3 * p["m2"] / (4 * p["m1"]), rel=1e-12
+    )
     ratio = re.search(r'id="friction-ratio" data-value="([^"]+)"', report.html)
     assert ratio is not None
     assert float(ratio.group(1)) == pytest.approx(-1.5, rel=1e-12)  # App. A: |f1/f2| = 3/2
@@ -184,8 +196,8 @@ def test_stationary_point_weights_are_analyze_and_the_papers(report: Report, pag
     assert values["CM amplitude, linear (m)"][1] == analysis.cm_amplitude
     # CM amplitude m1 m2 A / ((m1 + m2)(4 m1 + 3 m2)) = A/14 (docs/physics.md 7.1)
     assert values["CM amplitude, linear (m)"][1] == pytest.approx(
-        p["m1"] * p["m2"] * p["A"] / ((p["m1"] + p["m2"]) * (4 * p["m1"] + 3 * p["m2"])),
-        rel=1e-9)
+        p["m1"] * p["m2"] * p["A"] / ((p["m1"] + p["m2"]) * (4 * p["m1"] + 3 * p["m2"])), rel=1e-9
+    )
     assert values["X̂ range in the simulation (m)"][1] == pytest.approx(0.0, abs=1e-12)
 
 
@@ -197,8 +209,9 @@ def test_friction_table_is_analyze_and_the_papers_appendix_a(report: Report, pag
     simulated = page.column("friction", "max |f|/N, simulated")
     assert list(amplitude.values()) == analysis.friction_amplitude.tolist()
     assert list(needed.values()) == analysis.required_mu.tolist()
-    assert simulated == {b: report.trajectory.summary["max_friction_ratio"][b]
-                         for b in ("hoop", "cylinder")}
+    assert simulated == {
+        b: report.trajectory.summary["max_friction_ratio"][b] for b in ("hoop", "cylinder")
+    }
     p = paper_parameters()
     force = p["k"] * p["A"]  # F = kA; friction F/2 on the hoop, F/3 on the cylinder (App. A)
     assert amplitude["hoop"] == pytest.approx(force / 2, rel=1e-9)
@@ -213,7 +226,8 @@ def test_parameter_and_split_tables(report: Report, page: Page) -> None:
     system = report.system
     assert page.column("bodies", "m (kg)") == {b.id: b.mass for b in system.bodies}
     assert page.column("bodies", "J = (1+γ)mR² (kg m²)") == {
-        b.id: b.contact_inertia for b in system.bodies}
+        b.id: b.contact_inertia for b in system.bodies
+    }
     assert page.column("springs", "k (N/m)") == {"hoop-cylinder": system.springs[0].stiffness}
     p = paper_parameters()
     split = page.column("spring-split", "k_i (N/m)")
@@ -224,7 +238,8 @@ def test_parameter_and_split_tables(report: Report, page: Page) -> None:
 
 def test_embedded_analysis_and_animation_data(report: Report, page: Page) -> None:
     assert json.loads(page.scripts["analysis-data"]) == json.loads(
-        json.dumps(analyze(report.system).to_dict()))
+        json.dumps(analyze(report.system).to_dict())
+    )
     data = json.loads(page.scripts["animation-data"])
     times = np.array(data["t"])
     assert times[0] == 0.0 and times[-1] == pytest.approx(report.trajectory.t[-1])
@@ -236,13 +251,32 @@ def test_embedded_analysis_and_animation_data(report: Report, page: Page) -> Non
 
 
 def test_every_section_is_there_and_every_formula_is_mathml(report: Report, page: Page) -> None:
-    for section in ("overview", "diagram", "parameters", "equilibrium", "modes",
-                    "stationary-point", "friction", "animation", "plots", "derivation",
-                    "paper-check", "warnings", "data"):
+    for section in (
+        "overview",
+        "diagram",
+        "parameters",
+        "equilibrium",
+        "modes",
+        "stationary-point",
+        "friction",
+        "animation",
+        "plots",
+        "derivation",
+        "paper-check",
+        "warnings",
+        "data",
+    ):
         assert section in page.ids
-    for figure in ("figure-system", "figure-equilibrium", "figure-modes",
-                   "figure-friction-ratio", "figure-contact-forces", "figure-positions",
-                   "figure-energy", "figure-phase"):
+    for figure in (
+        "figure-system",
+        "figure-equilibrium",
+        "figure-modes",
+        "figure-friction-ratio",
+        "figure-contact-forces",
+        "figure-positions",
+        "figure-energy",
+        "figure-phase",
+    ):
         assert figure in page.ids
     assert report.math_failures == []
     assert 'class="tex-source"' not in report.html
@@ -251,9 +285,13 @@ def test_every_section_is_there_and_every_formula_is_mathml(report: Report, page
 
 def test_the_derivation_has_the_five_methods_and_they_agree(report: Report, page: Page) -> None:
     text = html.unescape(report.html)
-    for title in ("Dynamic equations", "Conservation of energy and angular momentum",
-                  "Euler-Lagrange equations", "Natural frequencies of the subsystems",
-                  "Hamilton's equations"):
+    for title in (
+        "Dynamic equations",
+        "Conservation of energy and angular momentum",
+        "Euler-Lagrange equations",
+        "Natural frequencies of the subsystems",
+        "Hamilton's equations",
+    ):
         assert f"<h3>{title}" in text
     assert "Cross-check: " in text and "all methods that apply agree" in text
     verdicts = [row[2][0] for row in page.tables["cross-check"][1:]]
@@ -265,8 +303,11 @@ def test_the_derivation_has_the_five_methods_and_they_agree(report: Report, page
 def test_the_papers_claims_about_fig_2_with_their_verdicts(report: Report, page: Page) -> None:
     rows = page.tables["paper-claims"][1:]
     shown = [(row[0][0], row[2][0]) for row in rows]
-    claims = [c for c in paper_check.paper_claims()
-              if {"fig2", "fig2-radii"} & {k.strip() for k in c.system.split(",")}]
+    claims = [
+        c
+        for c in paper_check.paper_claims()
+        if {"fig2", "fig2-radii"} & {k.strip() for k in c.system.split(",")}
+    ]
     assert [location for location, _ in shown] == [c.location for c in claims]
     assert len(shown) >= 20
     words = {"verified": "✔ verified", "holds-only-if": "⚠ holds only if", "wrong": "✘ wrong"}
@@ -279,6 +320,7 @@ def test_the_papers_claims_about_fig_2_with_their_verdicts(report: Report, page:
 
 
 # -- self-contained --------------------------------------------------------------------------
+
 
 def test_the_page_fetches_nothing(report: Report, page: Page) -> None:
     assert page.links, "the page has images and links"
@@ -293,9 +335,12 @@ def test_the_page_fetches_nothing(report: Report, page: Page) -> None:
 
 def test_names_are_text_not_markup() -> None:
     name = 'Evil </script><img src="x"> & <!-- "quoted"'
-    system = make_system([body("hoop"), body("cyl", "cylinder", x=0.49)],
-                         [spring("hoop", "cyl", rest_length=0.5)], name=name,
-                         description="<b>bold?</b>")
+    system = make_system(
+        [body("hoop"), body("cyl", "cylinder", x=0.49)],
+        [spring("hoop", "cyl", rest_length=0.5)],
+        name=name,
+        description="<b>bold?</b>",
+    )
     built = build_report(system, duration=0.5, derivation=False)
     page = Page(built.html)
     assert "x" not in page.links  # the name's <img> is text, not an image
@@ -304,8 +349,9 @@ def test_names_are_text_not_markup() -> None:
     assert "<b>bold?</b>" not in built.html
 
 
-def test_write_report_is_atomic(report: Report, tmp_path: Path,
-                                monkeypatch: pytest.MonkeyPatch) -> None:
+def test_write_report_is_atomic(
+    report: Report, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     target = tmp_path / "report.html"
     assert write_report(report, target) == target
     assert target.read_text(encoding="utf-8") == report.html
@@ -323,6 +369,7 @@ def test_write_report_is_atomic(report: Report, tmp_path: Path,
 
 # -- other systems ------------------------------------------------------------------------------
 
+
 def test_a_walled_system_has_no_stationary_point_and_all_math_converts() -> None:
     built = build_report(load_system("wall-hoop-cylinder"), duration=1.0, derivation=False)
     page = Page(built.html)
@@ -334,8 +381,10 @@ def test_a_walled_system_has_no_stationary_point_and_all_math_converts() -> None
 
 
 def test_a_slipping_system_is_reported_as_slipping() -> None:
-    system = make_system([body("hoop", mu_static=0.03), body("ball", "sphere", x=0.49)],
-                         [spring("hoop", "ball", rest_length=0.5)])
+    system = make_system(
+        [body("hoop", mu_static=0.03), body("ball", "sphere", x=0.49)],
+        [spring("hoop", "ball", rest_length=0.5)],
+    )
     built = build_report(system, duration=1.0, derivation=False)
     page = Page(built.html)
     verdicts = {row[0][0]: row[-1][0] for row in page.tables["friction"][1:]}
@@ -358,10 +407,15 @@ def test_a_system_without_equilibrium_says_so() -> None:
 def test_which_of_the_papers_systems_a_system_is() -> None:
     figures = {name: paper_figure(load_system(name)) for name in preset_names()}
     keys = {name: None if f is None else f[1] for name, f in figures.items()}
-    assert keys == {"frictionless": {"fig3"}, "hoop-cylinder": {"fig2", "fig2-radii"},
-                    "three-bodies": None, "two-cylinders": {"two-cylinders"},
-                    "two-hoops": {"two-hoops"}, "two-masses": {"fig1"},
-                    "wall-hoop-cylinder": {"fig4a"}}
+    assert keys == {
+        "frictionless": {"fig3"},
+        "hoop-cylinder": {"fig2", "fig2-radii"},
+        "three-bodies": None,
+        "two-cylinders": {"two-cylinders"},
+        "two-hoops": {"two-hoops"},
+        "two-masses": {"fig1"},
+        "wall-hoop-cylinder": {"fig4a"},
+    }
     # the order of the bodies does not matter; a constant force or raised centres do
     data = load_system("hoop-cylinder").model_dump()
     swapped = {**data, "bodies": data["bodies"][::-1]}
@@ -373,8 +427,10 @@ def test_which_of_the_papers_systems_a_system_is() -> None:
 
 
 def test_animation_data_of_a_run_stopped_at_its_start() -> None:
-    system = make_system([body("hoop", mu_static=0.03), body("cyl", "cylinder", x=0.49)],
-                         [spring("hoop", "cyl", rest_length=0.5)])
+    system = make_system(
+        [body("hoop", mu_static=0.03), body("cyl", "cylinder", x=0.49)],
+        [spring("hoop", "cyl", rest_length=0.5)],
+    )
     from rollspring import simulate
 
     run = simulate(system, 1.0)
@@ -383,6 +439,7 @@ def test_animation_data_of_a_run_stopped_at_its_start() -> None:
 
 
 # -- MathML, Chromium lookup ------------------------------------------------------------------
+
 
 def test_latex_to_mathml() -> None:
     mathml = latex_to_mathml(r"\Omega^2 = \frac{k}{2m_1} + \frac{2k}{3m_2}")
@@ -394,8 +451,9 @@ def test_latex_to_mathml() -> None:
         latex_to_mathml(r"\frac{1}{")
 
 
-def test_find_chromium_names_what_to_install(monkeypatch: pytest.MonkeyPatch,
-                                             tmp_path: Path) -> None:
+def test_find_chromium_names_what_to_install(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
     monkeypatch.setenv(CHROMIUM_ENV, str(tmp_path / "no-such-chromium"))
     with pytest.raises(ReportError, match="apt-get install chromium"):
         find_chromium()
@@ -407,10 +465,12 @@ def test_find_chromium_names_what_to_install(monkeypatch: pytest.MonkeyPatch,
 
 # -- the command line -----------------------------------------------------------------------
 
+
 def test_cli_writes_the_report(tmp_path: Path) -> None:
     target = tmp_path / "out" / "hoop.html"
-    result = runner.invoke(app, ["report", "two-hoops", "-o", str(target), "-T", "1",
-                                 "--no-derivation"])
+    result = runner.invoke(
+        app, ["report", "two-hoops", "-o", str(target), "-T", "1", "--no-derivation"]
+    )
     assert result.exit_code == 0, result.output
     page = Page(target.read_text(encoding="utf-8"))
     assert {"modes", "animation"} <= page.ids and "derivation" not in page.ids
@@ -418,13 +478,17 @@ def test_cli_writes_the_report(tmp_path: Path) -> None:
     assert result.stdout == ""
 
 
-@pytest.mark.parametrize(("args", "message"), [
-    (["--format", "docx"], "--format: unknown format 'docx' (formats: html, pdf)"),
-    (["-T", "-2"], "--duration: must be a positive number of seconds, got -2"),
-    (["no-such-system"], "'no-such-system' is neither a file nor a preset"),
-])
-def test_cli_errors_are_one_line_with_exit_code_2(tmp_path: Path, args: list[str],
-                                                  message: str) -> None:
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--format", "docx"], "--format: unknown format 'docx' (formats: html, pdf)"),
+        (["-T", "-2"], "--duration: must be a positive number of seconds, got -2"),
+        (["no-such-system"], "'no-such-system' is neither a file nor a preset"),
+    ],
+)
+def test_cli_errors_are_one_line_with_exit_code_2(
+    tmp_path: Path, args: list[str], message: str
+) -> None:
     result = runner.invoke(app, ["report", *args, "-o", str(tmp_path / "r.html")])
     assert result.exit_code == 2
     assert result.stderr.count("\n") == 1

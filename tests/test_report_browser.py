@@ -43,8 +43,12 @@ def opened(browser: Browser, report_file: Path) -> Iterator[Opened]:
     errors and requests seen accumulate, so every test also checks what came before it."""
     page = browser.new_page(viewport={"width": 1200, "height": 900})
     seen = Opened(page)
-    page.on("console", lambda message: seen.errors.append(f"console: {message.text}")
-            if message.type == "error" else None)
+    page.on(
+        "console",
+        lambda message: (
+            seen.errors.append(f"console: {message.text}") if message.type == "error" else None
+        ),
+    )
     page.on("pageerror", lambda error: seen.errors.append(f"page error: {error}"))
     page.on("request", lambda request: seen.requests.append(request.url))
     page.goto(report_file.as_uri(), wait_until="load")
@@ -62,7 +66,8 @@ def clock(page: Page) -> float:
 
 
 def test_opens_with_no_console_error_and_no_request_but_its_own_file(
-        opened: Opened, report_file: Path) -> None:
+    opened: Opened, report_file: Path
+) -> None:
     page = opened.page
     page.mouse.wheel(0, 20000)  # scroll through every section
     page.wait_for_timeout(300)
@@ -70,8 +75,13 @@ def test_opens_with_no_console_error_and_no_request_but_its_own_file(
     assert opened.requests, "the page itself is requested"
     for url in opened.requests:
         assert url == report_file.as_uri() or url.startswith("data:"), url[:80]
-    assert page.evaluate("performance.getEntriesByType('resource')"
-                         ".filter(e => !e.name.startsWith('data:')).length") == 0
+    assert (
+        page.evaluate(
+            "performance.getEntriesByType('resource')"
+            ".filter(e => !e.name.startsWith('data:')).length"
+        )
+        == 0
+    )
     images = page.evaluate("[...document.images].map(i => i.complete && i.naturalWidth > 0)")
     assert len(images) >= 8 and all(images)
 
@@ -79,7 +89,8 @@ def test_opens_with_no_console_error_and_no_request_but_its_own_file(
 def test_formulas_are_mathml_rendered_natively(opened: Opened) -> None:
     maths = opened.page.evaluate(
         "[...document.querySelectorAll('math')].map(m => [m.namespaceURI, "
-        "getComputedStyle(m).display, m.getBoundingClientRect().height])")
+        "getComputedStyle(m).display, m.getBoundingClientRect().height])"
+    )
     assert len(maths) >= 100
     for namespace, display, height in maths:
         assert namespace == MATHML
@@ -139,8 +150,9 @@ def test_speed_control_and_frame_slider(opened: Opened) -> None:
 
 def test_pdf_is_printed_by_chromium(tmp_path: Path) -> None:
     target = tmp_path / "report.pdf"
-    result = CliRunner().invoke(app, ["report", "hoop-cylinder", "-o", str(target), "-T", "1",
-                                      "--no-derivation"])
+    result = CliRunner().invoke(
+        app, ["report", "hoop-cylinder", "-o", str(target), "-T", "1", "--no-derivation"]
+    )
     assert result.exit_code == 0, result.output
     assert target.read_bytes().startswith(b"%PDF")
     assert target.stat().st_size > 20_000  # pages with figures, not an empty document

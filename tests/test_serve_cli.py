@@ -11,15 +11,18 @@ from rollspring.cli import app
 from tests.serving import Server
 
 
-@pytest.mark.parametrize(("args", "words"), [
-    (["--port", "70000"], "--port: must be 0 to 65535"),
-    (["--port", "-1"], "--port: must be 0 to 65535"),
-    (["--budget", "0"], "--budget: must be a positive number"),
-    (["--workers", "-2"], "--workers: must be 0 or more"),
-    (["--limit-concurrency", "0"], "--limit-concurrency: must be at least 1"),
-    (["no-such-system"], "neither a file nor a preset"),
-    (["--host", "no.such.host.invalid", "--port", "0"], "--host: cannot listen"),
-])
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--port", "70000"], "--port: must be 0 to 65535"),
+        (["--port", "-1"], "--port: must be 0 to 65535"),
+        (["--budget", "0"], "--budget: must be a positive number"),
+        (["--workers", "-2"], "--workers: must be 0 or more"),
+        (["--limit-concurrency", "0"], "--limit-concurrency: must be at least 1"),
+        (["no-such-system"], "neither a file nor a preset"),
+        (["--host", "no.such.host.invalid", "--port", "0"], "--host: cannot listen"),
+    ],
+)
 def test_bad_options_are_one_line_errors(args: list[str], words: str) -> None:
     result = CliRunner().invoke(app, ["serve", *args])
     assert result.exit_code == 2, result.output

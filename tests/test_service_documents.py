@@ -63,11 +63,15 @@ def test_the_papers_claims_as_paper_check_json_gives_them(hoop_cylinder: dict) -
     for claim in claims:
         assert set(claim) == CLAIM_KEYS
         assert claim["verdict"] in VERDICTS
-    assert {"location": "Sec. 4.1, eq. (QQQ1)", "verdict": "verified"}.items() <= \
-        next(c for c in claims if c["location"] == "Sec. 4.1, eq. (QQQ1)").items()
+    assert {"location": "Sec. 4.1, eq. (QQQ1)", "verdict": "verified"}.items() <= next(
+        c for c in claims if c["location"] == "Sec. 4.1, eq. (QQQ1)"
+    ).items()
     _, keys = paper_figure(load_system("hoop-cylinder"))
-    expected = [c.to_dict() for c in check_paper()
-                if keys & {key.strip() for key in c.claim.system.split(",")}]
+    expected = [
+        c.to_dict()
+        for c in check_paper()
+        if keys & {key.strip() for key in c.claim.system.split(",")}
+    ]
     assert claims == expected
 
 

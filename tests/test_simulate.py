@@ -26,9 +26,13 @@ G = 9.81
 
 def centre_pair(m1: float, m2: float, k: float, compression: float = 0.01, **extra):
     """The paper's Fig. 2: hoop and cylinder joined at their centres (exactly linear)."""
-    return make_system([body("hoop", "hoop", mass=m1, x=0.0, **extra),
-                        body("cyl", "cylinder", mass=m2, x=0.5 - compression, **extra)],
-                       [spring("hoop", "cyl", stiffness=k, rest_length=0.5)])
+    return make_system(
+        [
+            body("hoop", "hoop", mass=m1, x=0.0, **extra),
+            body("cyl", "cylinder", mass=m2, x=0.5 - compression, **extra),
+        ],
+        [spring("hoop", "cyl", stiffness=k, rest_length=0.5)],
+    )
 
 
 def exact_pair(m1, m2, k, compression, t):
@@ -47,8 +51,9 @@ def test_centre_pair_matches_the_exact_modal_solution_over_100_periods(m1, m2, k
     compression = 0.01
     _, _, omega = exact_pair(m1, m2, k, compression, 0.0)
     period = 2 * math.pi / omega
-    trajectory = simulate(centre_pair(m1, m2, k, compression, mu_static=math.inf), 100 * period,
-                          rtol=1e-10)
+    trajectory = simulate(
+        centre_pair(m1, m2, k, compression, mu_static=math.inf), 100 * period, rtol=1e-10
+    )
     assert trajectory.status == "finished"
     x1, x2, _ = exact_pair(m1, m2, k, compression, trajectory.t)
     amplitude = max(np.ptp(x1), np.ptp(x2))  # the larger centre swing of the exact motion
@@ -60,9 +65,11 @@ def test_centre_pair_matches_the_exact_modal_solution_over_100_periods(m1, m2, k
     assert np.ptp(trajectory.stationary_x) <= 1e-9 * amplitude
     force = k * compression
     assert trajectory.summary["max_friction_ratio"]["hoop"] == pytest.approx(
-        force / 2 / (m1 * G), rel=1e-9)
+        force / 2 / (m1 * G), rel=1e-9
+    )
     assert trajectory.summary["max_friction_ratio"]["cyl"] == pytest.approx(
-        force / 3 / (m2 * G), rel=1e-9)
+        force / 3 / (m2 * G), rel=1e-9
+    )
 
 
 @pytest.mark.parametrize("rtol", [1e-6, 1e-9, 1e-12])
@@ -72,8 +79,12 @@ def test_outputs_between_steps_are_interpolated_within_rtol(rtol):
     m1, m2, k, compression = 1.0, 1.3, 100.0, 0.01
     _, _, omega = exact_pair(m1, m2, k, compression, 0.0)
     duration = 2.25 * 2 * math.pi / omega
-    trajectory = simulate(centre_pair(m1, m2, k, compression, mu_static=math.inf), duration,
-                          rtol=rtol, n_output=20_001)
+    trajectory = simulate(
+        centre_pair(m1, m2, k, compression, mu_static=math.inf),
+        duration,
+        rtol=rtol,
+        n_output=20_001,
+    )
     assert trajectory.step > 3 * duration / 20_000  # every step holds several outputs
     x1, x2, _ = exact_pair(m1, m2, k, compression, trajectory.t)
     amplitude = np.ptp(x2)
@@ -83,8 +94,9 @@ def test_outputs_between_steps_are_interpolated_within_rtol(rtol):
     assert np.max(np.abs(trajectory.v[:, 0] - hoop_speed)) <= rtol * speed
 
 
-@pytest.mark.parametrize(("integrator", "order"), [("verlet", 2), ("yoshida4", 4),
-                                                    ("yoshida6", 6), ("kahanli8", 8)])
+@pytest.mark.parametrize(
+    ("integrator", "order"), [("verlet", 2), ("yoshida4", 4), ("yoshida6", 6), ("kahanli8", 8)]
+)
 def test_fitted_order_of_each_integrator(integrator, order):
     m1, m2, k, compression = 1.0, 1.3, 100.0, 0.01
     _, _, omega = exact_pair(m1, m2, k, compression, 0.0)
@@ -107,10 +119,18 @@ def test_fitted_order_of_each_integrator(integrator, order):
 def off_centre_pair():
     """Hoop and sphere joined off-centre: the spring tilts and the motion is nonlinear."""
     return make_system(
-        [body("hoop", "hoop", x=0.0, mu_static=math.inf),
-         body("ball", "sphere", x=0.46, v=0.3, mu_static=math.inf)],
-        [spring("hoop", "ball", at=[{"radius": 0.07, "angle": 40.0},
-                                                     {"radius": 0.05, "angle": -120.0}])])
+        [
+            body("hoop", "hoop", x=0.0, mu_static=math.inf),
+            body("ball", "sphere", x=0.46, v=0.3, mu_static=math.inf),
+        ],
+        [
+            spring(
+                "hoop",
+                "ball",
+                at=[{"radius": 0.07, "angle": 40.0}, {"radius": 0.05, "angle": -120.0}],
+            )
+        ],
+    )
 
 
 def test_energy_stays_bounded_over_a_million_steps_of_a_nonlinear_run():
@@ -118,8 +138,9 @@ def test_energy_stays_bounded_over_a_million_steps_of_a_nonlinear_run():
     analysis = analyze(system)
     omega = max(m.omega for m in analysis.modes)
     h = 0.15 / omega
-    trajectory = simulate(system, 1_000_000 * h, integrator="yoshida4", step=h,
-                          n_output=4001, energy_tolerance=1e-3)
+    trajectory = simulate(
+        system, 1_000_000 * h, integrator="yoshida4", step=h, n_output=4001, energy_tolerance=1e-3
+    )
     assert trajectory.status == "finished"
     assert trajectory.n_steps == 1_000_000
     error = np.abs(trajectory.energy - trajectory.energy[0]) / trajectory.energy[0]
@@ -145,9 +166,13 @@ def moving_pair(mu_hoop: float):
     A sin(Omega t), so |f|/N peaks first at Omega t = pi/2."""
     w1, w2 = 2.0 / 3.5, 1.5 / 3.5  # X-hat weights of equal masses
     speed = 0.05
-    return make_system([body("hoop", "hoop", x=0.0, v=-w2 * speed, mu_static=mu_hoop),
-                        body("cyl", "cylinder", x=0.5, v=w1 * speed, mu_static=5.0)],
-                       [spring("hoop", "cyl", rest_length=0.5)])
+    return make_system(
+        [
+            body("hoop", "hoop", x=0.0, v=-w2 * speed, mu_static=mu_hoop),
+            body("cyl", "cylinder", x=0.5, v=w1 * speed, mu_static=5.0),
+        ],
+        [spring("hoop", "cyl", rest_length=0.5)],
+    )
 
 
 @pytest.mark.parametrize("fraction", [0.999, 0.9])
@@ -175,10 +200,21 @@ def test_no_slip_just_above_the_needed_friction():
 
 
 def wall_cylinder(stretch: float, mu_s: float, mu_k: float):
-    return make_system([body("c", "cylinder", mass=1.0, radius=0.1, x=0.5 + stretch,
-                             mu_static=mu_s, mu_kinetic=mu_k)],
-                       [spring("wall", "c", stiffness=100.0, rest_length=0.5)],
-                       anchors=[{"id": "wall", "x": 0.0, "y": 0.1}])
+    return make_system(
+        [
+            body(
+                "c",
+                "cylinder",
+                mass=1.0,
+                radius=0.1,
+                x=0.5 + stretch,
+                mu_static=mu_s,
+                mu_kinetic=mu_k,
+            )
+        ],
+        [spring("wall", "c", stiffness=100.0, rest_length=0.5)],
+        anchors=[{"id": "wall", "x": 0.0, "y": 0.1}],
+    )
 
 
 def slipping_from_release(stretch, mu_k, t):
@@ -201,8 +237,9 @@ def first_zero_of_slip_velocity(stretch, mu_k):
 
 def test_stick_slip_follows_the_exact_slipping_solution_then_sticks():
     stretch, mu_s, mu_k = 0.1, 0.3, 0.25
-    trajectory = simulate(wall_cylinder(stretch, mu_s, mu_k), 2.0, rtol=1e-12,
-                          on_slip="continue", n_output=2001)
+    trajectory = simulate(
+        wall_cylinder(stretch, mu_s, mu_k), 2.0, rtol=1e-12, on_slip="continue", n_output=2001
+    )
     assert trajectory.status == "finished"
     assert trajectory.events[0] == {"kind": "slip", "time": 0.0, "body": "c"}
     t_stick = first_zero_of_slip_velocity(stretch, mu_k)
@@ -233,12 +270,12 @@ def test_slip_reverses_when_the_friction_needed_at_rest_is_too_large():
     """Stretched further, the contact point stops while the spring still pulls hard: the
     friction needed to roll, |F|/3, exceeds mu_s N, so the slip reverses instead."""
     stretch, mu_s, mu_k = 0.2, 0.3, 0.2
-    trajectory = simulate(wall_cylinder(stretch, mu_s, mu_k), 1.0, rtol=1e-12,
-                          on_slip="continue")
+    trajectory = simulate(wall_cylinder(stretch, mu_s, mu_k), 1.0, rtol=1e-12, on_slip="continue")
     kinds = [e["kind"] for e in trajectory.events]
     assert kinds[:2] == ["slip", "reverse"]
     assert trajectory.events[1]["time"] == pytest.approx(
-        first_zero_of_slip_velocity(stretch, mu_k), abs=1e-9)
+        first_zero_of_slip_velocity(stretch, mu_k), abs=1e-9
+    )
     assert np.all(np.diff(trajectory.energy) <= 1e-12 * trajectory.energy[0])
 
 
@@ -252,9 +289,12 @@ def test_stop_on_slip_ends_the_run_at_release_when_friction_is_too_small():
 def test_lift_off_is_found_to_the_instant():
     system = make_system(
         [body("s", "slider", mass=0.1, radius=0.05, x=0.0, v=5.0)],
-        [spring("hook", "s", stiffness=5.0, rest_length=0.5),
-         spring("wall", "s", stiffness=20.0, rest_length=0.4849)],
-        anchors=[{"id": "hook", "x": 0.3, "y": 0.6}, {"id": "wall", "x": -0.5, "y": 0.05}])
+        [
+            spring("hook", "s", stiffness=5.0, rest_length=0.5),
+            spring("wall", "s", stiffness=20.0, rest_length=0.4849),
+        ],
+        anchors=[{"id": "hook", "x": 0.3, "y": 0.6}, {"id": "wall", "x": -0.5, "y": 0.05}],
+    )
     trajectory = simulate(system, 5.0, rtol=1e-10)
     assert trajectory.status == "liftoff"
     assert trajectory.summary["first_liftoff"]["body"] == "s"
@@ -266,9 +306,11 @@ def test_lift_off_is_found_to_the_instant():
 def test_damped_wall_cylinder_matches_the_exact_damped_oscillator():
     """Wall spring at centre height: 1.5 m x'' = -k (x - x_r) - c x' exactly."""
     k, c, m = 100.0, 2.0, 1.0
-    system = make_system([body("c", "cylinder", mass=m, x=0.52, mu_static=math.inf)],
-                         [spring("wall", "c", stiffness=k, rest_length=0.5, damping=c)],
-                         anchors=[{"id": "wall", "x": 0.0, "y": 0.1}])
+    system = make_system(
+        [body("c", "cylinder", mass=m, x=0.52, mu_static=math.inf)],
+        [spring("wall", "c", stiffness=k, rest_length=0.5, damping=c)],
+        anchors=[{"id": "wall", "x": 0.0, "y": 0.1}],
+    )
     trajectory = simulate(system, 3.0, rtol=1e-11, n_output=301)
     assert trajectory.integrator == "dop853"
     mass = 1.5 * m
@@ -282,34 +324,59 @@ def test_damped_wall_cylinder_matches_the_exact_damped_oscillator():
 
 
 @settings(max_examples=25, deadline=None)
-@given(st.floats(0.0, 0.1), st.floats(-180, 180), st.floats(0.0, 0.1), st.floats(-180, 180),
-       st.floats(-3, 3), st.floats(-3, 3))
+@given(
+    st.floats(0.0, 0.1),
+    st.floats(-180, 180),
+    st.floats(0.0, 0.1),
+    st.floats(-180, 180),
+    st.floats(-3, 3),
+    st.floats(-3, 3),
+)
 def test_kernels_agree_with_the_numpy_physics(r1, a1, r2, a2, q1, q2):
     system = make_system(
         [body("a", "hoop", x=0.0), body("b", "cylinder", x=0.5, track_height=0.03)],
-        [spring("a", "b", rest_length=0.45, at=[{"radius": r1, "angle": a1},
-                                                 {"radius": r2, "angle": a2}]),
-         spring("w", "b", stiffness=30.0)],
+        [
+            spring(
+                "a",
+                "b",
+                rest_length=0.45,
+                at=[{"radius": r1, "angle": a1}, {"radius": r2, "angle": a2}],
+            ),
+            spring("w", "b", stiffness=30.0),
+        ],
         anchors=[{"id": "w", "x": 1.0, "y": 0.2}],
-        forces=[{"body": "a", "at": {"radius": 0.05, "angle": 30.0}, "fx": 0.7, "fy": -0.3}])
+        forces=[{"body": "a", "at": {"radius": 0.05, "angle": 30.0}, "fx": 0.7, "fy": -0.3}],
+    )
     arrays = system_arrays(system)
     model = kernels.kernel_model(arrays)
     q = np.array([q1, q2])
-    _, _, friction, normal = kernels.advance(model, kernels.SCHEMES["verlet"][1], q,
-                                             np.zeros(2), 0.0, 0)
+    _, _, friction, normal = kernels.advance(
+        model, kernels.SCHEMES["verlet"][1], q, np.zeros(2), 0.0, 0
+    )
     f_ref, n_ref = contact_forces(arrays, q)
     np.testing.assert_allclose(friction, f_ref, atol=1e-12)
     np.testing.assert_allclose(normal, n_ref, atol=1e-12)
     state = np.concatenate([arrays.x0 + arrays.scale * q, q, [0.0, 0.0], [0.0, 0.0]])
     derivative = np.empty(8)
-    kernels.slipping_derivatives(model, state, np.zeros(2, dtype=bool), np.zeros(2), False,
-                                 derivative)
-    np.testing.assert_allclose(derivative[6:] * arrays.inertia, generalized_forces(arrays, q),
-                               atol=1e-12)
+    kernels.slipping_derivatives(
+        model, state, np.zeros(2, dtype=bool), np.zeros(2), False, derivative
+    )
+    np.testing.assert_allclose(
+        derivative[6:] * arrays.inertia, generalized_forces(arrays, q), atol=1e-12
+    )
     out = [np.empty((1, 2)), np.empty((1, 2)), np.empty((1, 2)), np.empty((1, 2)), np.empty(1)]
     ratio, kinetic = np.empty((1, 2)), np.empty(1)
-    kernels.observe(model, state[None, :], np.zeros((1, 2), dtype=bool), np.zeros((1, 2)),
-                    False, *out, arrays.gamma * arrays.mass * arrays.radius**2, ratio, kinetic)
+    kernels.observe(
+        model,
+        state[None, :],
+        np.zeros((1, 2), dtype=bool),
+        np.zeros((1, 2)),
+        False,
+        *out,
+        arrays.gamma * arrays.mass * arrays.radius**2,
+        ratio,
+        kinetic,
+    )
     assert out[4][0] == pytest.approx(float(potential_energy(arrays, q)), abs=1e-12)
     assert kinetic[0] == 0.0  # at rest
     # the kernel's rule: |f|/(mu_s N) while the body presses on its track, inf once N <= 0
@@ -321,12 +388,20 @@ def test_kernels_agree_with_the_numpy_physics(r1, a1, r2, a2, q1, q2):
     np.testing.assert_allclose(ratio[0][pressing], expected[pressing], rtol=1e-12)
 
 
-@pytest.mark.parametrize(("kwargs", "field"), [
-    ({"duration": -1.0}, "duration"), ({"duration": math.nan}, "duration"),
-    ({"rtol": 0.0}, "rtol"), ({"rtol": -1e-3}, "rtol"), ({"integrator": "rk45"}, "integrator"),
-    ({"on_slip": "ignore"}, "on_slip"), ({"n_output": 1}, "n_output"),
-    ({"step": 0.0}, "step"), ({"energy_tolerance": -1.0}, "energy_tolerance"),
-])
+@pytest.mark.parametrize(
+    ("kwargs", "field"),
+    [
+        ({"duration": -1.0}, "duration"),
+        ({"duration": math.nan}, "duration"),
+        ({"rtol": 0.0}, "rtol"),
+        ({"rtol": -1e-3}, "rtol"),
+        ({"integrator": "rk45"}, "integrator"),
+        ({"on_slip": "ignore"}, "on_slip"),
+        ({"n_output": 1}, "n_output"),
+        ({"step": 0.0}, "step"),
+        ({"energy_tolerance": -1.0}, "energy_tolerance"),
+    ],
+)
 def test_invalid_arguments_name_the_argument(kwargs, field):
     arguments = {"duration": 1.0, **kwargs}
     with pytest.raises(SimulationError, match=f"^{field}: "):
@@ -347,9 +422,13 @@ def test_a_slipping_hoop_matches_an_independent_solve_ivp_of_the_slipping_equati
     from scipy.integrate import solve_ivp
 
     m1, m2, k, radius, mu_k = 1.0, 1.0, 100.0, 0.1, 0.15
-    system = make_system([body("hoop", "hoop", x=0.0, mu_static=0.2, mu_kinetic=mu_k),
-                          body("cyl", "cylinder", x=0.45, mu_static=5.0)],
-                         [spring("hoop", "cyl", stiffness=k, rest_length=0.5)])
+    system = make_system(
+        [
+            body("hoop", "hoop", x=0.0, mu_static=0.2, mu_kinetic=mu_k),
+            body("cyl", "cylinder", x=0.45, mu_static=5.0),
+        ],
+        [spring("hoop", "cyl", stiffness=k, rest_length=0.5)],
+    )
     trajectory = simulate(system, 1.0, rtol=1e-12, on_slip="continue", n_output=1001)
     assert trajectory.events[0] == {"kind": "slip", "time": 0.0, "body": "hoop"}
     end = trajectory.events[1]["time"]
@@ -359,11 +438,24 @@ def test_a_slipping_hoop_matches_an_independent_solve_ivp_of_the_slipping_equati
         x1, phi1, x2, u1, w1, u2 = y
         force_on_hoop = k * (x2 - x1 - 0.5)
         friction = mu_k * m1 * G  # the slip velocity is negative: friction along +x
-        return [u1, w1, u2, (force_on_hoop + friction) / m1,
-                -radius * friction / (m1 * radius**2), -force_on_hoop / (1.5 * m2)]
+        return [
+            u1,
+            w1,
+            u2,
+            (force_on_hoop + friction) / m1,
+            -radius * friction / (m1 * radius**2),
+            -force_on_hoop / (1.5 * m2),
+        ]
 
-    reference = solve_ivp(rhs, (0.0, end), [0.0, 0.0, 0.45, 0.0, 0.0, 0.0], method="DOP853",
-                          rtol=1e-13, atol=1e-15, dense_output=True)
+    reference = solve_ivp(
+        rhs,
+        (0.0, end),
+        [0.0, 0.0, 0.45, 0.0, 0.0, 0.0],
+        method="DOP853",
+        rtol=1e-13,
+        atol=1e-15,
+        dense_output=True,
+    )
     during = trajectory.t < end
     expected = reference.sol(trajectory.t[during])
     np.testing.assert_allclose(trajectory.x[during, 0], expected[0], atol=1e-8)
@@ -377,8 +469,13 @@ def test_a_slipping_hoop_matches_an_independent_solve_ivp_of_the_slipping_equati
 def test_progress_is_reported_in_order_up_to_the_end():
     fractions = []
     # progress comes once per chunk of about 2e5 steps
-    simulate(centre_pair(1.0, 1.0, 100.0, mu_static=math.inf), 60.0, step=1e-4,
-             n_output=601, progress=fractions.append)
+    simulate(
+        centre_pair(1.0, 1.0, 100.0, mu_static=math.inf),
+        60.0,
+        step=1e-4,
+        n_output=601,
+        progress=fractions.append,
+    )
     assert fractions and fractions == sorted(fractions)
     assert fractions[-1] == 1.0 and len(fractions) >= 3
 

@@ -18,8 +18,18 @@ from rollspring.outputs import write_trajectory
 from rollspring.simulate import simulate
 
 runner = CliRunner()
-SUMMARY_KEYS = {"status", "energy", "energy_error", "period_measured", "period_linear",
-                "max_friction_ratio", "min_normal_force", "first_slip", "first_liftoff", "final"}
+SUMMARY_KEYS = {
+    "status",
+    "energy",
+    "energy_error",
+    "period_measured",
+    "period_linear",
+    "max_friction_ratio",
+    "min_normal_force",
+    "first_slip",
+    "first_liftoff",
+    "final",
+}
 
 
 def run(*args: str):
@@ -27,8 +37,7 @@ def run(*args: str):
 
 
 def test_json_summary_is_the_only_thing_on_stdout(tmp_path) -> None:
-    result = run("simulate", "hoop-cylinder", "--duration", "3", "--json", "--out",
-                 str(tmp_path))
+    result = run("simulate", "hoop-cylinder", "--duration", "3", "--json", "--out", str(tmp_path))
     assert result.exit_code == 0, result.output
     summary = json.loads(result.stdout)
     assert SUMMARY_KEYS <= set(summary)
@@ -39,8 +48,11 @@ def test_json_summary_is_the_only_thing_on_stdout(tmp_path) -> None:
     assert summary["final"]["time"] == 3.0
     assert set(summary["final"]["bodies"]["hoop"]) == {"x", "phi", "v", "omega"}
     assert "wrote" in result.stderr
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["summary.json", "trajectory.csv",
-                                                          "trajectory.npz"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "summary.json",
+        "trajectory.csv",
+        "trajectory.npz",
+    ]
 
 
 def test_files_hold_the_same_numbers(tmp_path) -> None:
@@ -70,11 +82,16 @@ def test_without_out_no_files_are_written(tmp_path, monkeypatch) -> None:
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.parametrize(("args", "field"), [
-    (["--duration", "-1"], "duration"), (["--rtol", "0"], "rtol"),
-    (["--integrator", "euler"], "integrator"), (["--on-slip", "skid"], "on_slip"),
-    (["--outputs", "1"], "n_output"),
-])
+@pytest.mark.parametrize(
+    ("args", "field"),
+    [
+        (["--duration", "-1"], "duration"),
+        (["--rtol", "0"], "rtol"),
+        (["--integrator", "euler"], "integrator"),
+        (["--on-slip", "skid"], "on_slip"),
+        (["--outputs", "1"], "n_output"),
+    ],
+)
 def test_invalid_arguments_are_one_line_errors_with_exit_2(args, field) -> None:
     result = run("simulate", "hoop-cylinder", *args)
     assert result.exit_code == 2
@@ -154,13 +171,15 @@ def test_an_unwritable_out_fails_at_once_before_the_run(tmp_path, monkeypatch, w
     assert not Path("/proc/rollspring-test-run").exists()
 
 
-@pytest.mark.parametrize("args", [["report", "hoop-cylinder"],
-                                  ["animate", "hoop-cylinder", "-T", "1"]])
+@pytest.mark.parametrize(
+    "args", [["report", "hoop-cylinder"], ["animate", "hoop-cylinder", "-T", "1"]]
+)
 def test_report_and_animate_check_their_out_before_the_work(tmp_path, args) -> None:
     blocker = tmp_path / "a-file"
     blocker.write_text("not a directory")
     out = blocker / ("x.html" if args[0] == "report" else "x.gif")
     result = run(*args, "--out", str(out))
     assert result.exit_code == 2, result.output
-    assert result.stderr == (f"error: --out {out}: cannot write there "
-                             f"({blocker} is not a directory)\n")
+    assert result.stderr == (
+        f"error: --out {out}: cannot write there ({blocker} is not a directory)\n"
+    )

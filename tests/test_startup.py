@@ -20,26 +20,46 @@ from rollspring import errors
 from rollspring.cli import app
 
 ROLLSPRING = str(Path(sys.executable).with_name("rollspring"))
-HEAVY = ("numpy", "scipy", "numba", "pydantic", "sympy", "matplotlib", "pandas", "fastapi",
-         "dask", "distributed", "xarray", "zarr", "uvicorn", "PIL", "IPython")
+HEAVY = (
+    "numpy",
+    "scipy",
+    "numba",
+    "pydantic",
+    "sympy",
+    "matplotlib",
+    "pandas",
+    "fastapi",
+    "dask",
+    "distributed",
+    "xarray",
+    "zarr",
+    "uvicorn",
+    "PIL",
+    "IPython",
+)
 
 #: how a subprocess reports the heavy top-level modules it ended with
-REPORT = ("import atexit, sys, json; atexit.register(lambda: sys.stderr.write('LOADED ' + "
-          f"json.dumps(sorted({{m.split('.')[0] for m in sys.modules}} & set({HEAVY!r})))))")
+REPORT = (
+    "import atexit, sys, json; atexit.register(lambda: sys.stderr.write('LOADED ' + "
+    f"json.dumps(sorted({{m.split('.')[0] for m in sys.modules}} & set({HEAVY!r})))))"
+)
 
 
 def loaded(code: str) -> list[str]:
-    done = subprocess.run([sys.executable, "-c", f"{REPORT}\n{code}"], capture_output=True,
-                          text=True, check=False)
+    done = subprocess.run(
+        [sys.executable, "-c", f"{REPORT}\n{code}"], capture_output=True, text=True, check=False
+    )
     line = [x for x in done.stderr.splitlines() if x.startswith("LOADED ")]
     assert line, done.stderr
     return json.loads(line[-1].removeprefix("LOADED "))
 
 
 def command(*args: str) -> str:
-    return ("import sys\nfrom rollspring.cli import main\n"
-            f"sys.argv = ['rollspring', *{list(args)!r}]\n"
-            "try:\n    main()\nexcept SystemExit:\n    pass\n")
+    return (
+        "import sys\nfrom rollspring.cli import main\n"
+        f"sys.argv = ['rollspring', *{list(args)!r}]\n"
+        "try:\n    main()\nexcept SystemExit:\n    pass\n"
+    )
 
 
 def test_import_rollspring_loads_no_heavy_library() -> None:
@@ -51,13 +71,16 @@ def test_help_loads_no_heavy_library() -> None:
 
 
 def test_analyze_needs_numpy_scipy_pydantic_but_not_the_compiled_kernels() -> None:
-    assert loaded(command("analyze", "hoop-cylinder", "--json")) == ["numpy", "pydantic",
-                                                                      "scipy"]
+    assert loaded(command("analyze", "hoop-cylinder", "--json")) == ["numpy", "pydantic", "scipy"]
 
 
 def test_simulate_loads_the_kernels_but_no_plotting_or_symbolic_library() -> None:
     assert loaded(command("simulate", "hoop-cylinder", "-T", "0.5", "--json")) == [
-        "numba", "numpy", "pydantic", "scipy"]
+        "numba",
+        "numpy",
+        "pydantic",
+        "scipy",
+    ]
 
 
 def test_every_public_name_still_loads_and_the_version_comes_from_the_metadata() -> None:
@@ -71,23 +94,30 @@ def test_every_public_name_still_loads_and_the_version_comes_from_the_metadata()
 
 
 def test_a_trajectory_view_loads_the_outputs_layer_on_first_use() -> None:
-    assert loaded("import rollspring\n"
-                  "t = rollspring.simulate(rollspring.load_system('hoop-cylinder'), 0.1, "
-                  "n_output=3)\nassert list(t.to_pandas().index) == list(t.t)\n"
-                  "print('ok')") == ["numba", "numpy", "pandas", "pydantic", "scipy"]
+    assert loaded(
+        "import rollspring\n"
+        "t = rollspring.simulate(rollspring.load_system('hoop-cylinder'), 0.1, "
+        "n_output=3)\nassert list(t.to_pandas().index) == list(t.t)\n"
+        "print('ok')"
+    ) == ["numba", "numpy", "pandas", "pydantic", "scipy"]
 
 
-@pytest.mark.parametrize(("args", "extras"), [
-    (["report", "hoop-cylinder"], ("report",)),
-    (["derive", "hoop-cylinder"], ("report",)),
-    (["paper-check"], ("report",)),
-    (["worksheet"], ("report",)),
-    (["animate", "hoop-cylinder", "-o", "x.gif"], ("plot",)),
-    (["serve"], ("web",)),
-    (["sweep", "hoop-cylinder", "--vary", "springs.0.stiffness=90:110:3"], ("sweep",)),
-    (["sweep-plot", "s.zarr", "--x", "a", "--y", "b", "-m", "status", "-o", "m.png"],
-     ("sweep", "plot")),
-])
+@pytest.mark.parametrize(
+    ("args", "extras"),
+    [
+        (["report", "hoop-cylinder"], ("report",)),
+        (["derive", "hoop-cylinder"], ("report",)),
+        (["paper-check"], ("report",)),
+        (["worksheet"], ("report",)),
+        (["animate", "hoop-cylinder", "-o", "x.gif"], ("plot",)),
+        (["serve"], ("web",)),
+        (["sweep", "hoop-cylinder", "--vary", "springs.0.stiffness=90:110:3"], ("sweep",)),
+        (
+            ["sweep-plot", "s.zarr", "--x", "a", "--y", "b", "-m", "status", "-o", "m.png"],
+            ("sweep", "plot"),
+        ),
+    ],
+)
 def test_a_command_without_its_extra_says_which_to_install(monkeypatch, args, extras) -> None:
     """One line on stderr, exit code 2, before anything else (the extras' modules are made to
     look missing)."""
@@ -97,16 +127,20 @@ def test_a_command_without_its_extra_says_which_to_install(monkeypatch, args, ex
     assert result.exit_code == 2, result.output
     names = " and ".join(f"'{extra}'" for extra in extras)
     plural = "s" if len(extras) > 1 else ""
-    assert result.stderr == (f"error: rollspring {args[0]} needs the {names} extra{plural}: "
-                             f"pip install 'rollspring[{','.join(extras)}]'\n")
+    assert result.stderr == (
+        f"error: rollspring {args[0]} needs the {names} extra{plural}: "
+        f"pip install 'rollspring[{','.join(extras)}]'\n"
+    )
 
 
 def test_a_library_name_without_its_extra_says_which_to_install(monkeypatch) -> None:
     monkeypatch.setitem(errors.EXTRAS, "report", ("rollspring_no_such_module",))
     monkeypatch.delitem(vars(rollspring), "build_report", raising=False)
-    with pytest.raises(errors.MissingExtraError,
-                       match=r"^rollspring.build_report needs the 'report' extra: "
-                             r"pip install 'rollspring\[report\]'$"):
+    with pytest.raises(
+        errors.MissingExtraError,
+        match=r"^rollspring.build_report needs the 'report' extra: "
+        r"pip install 'rollspring\[report\]'$",
+    ):
         rollspring.build_report  # noqa: B018 - the attribute access is the test
     assert isinstance(errors.MissingExtraError("x", ("plot",)), ImportError)
 
@@ -114,8 +148,9 @@ def test_a_library_name_without_its_extra_says_which_to_install(monkeypatch) -> 
 def test_a_missing_module_met_inside_a_guarded_block_names_its_extra() -> None:
     with pytest.raises(errors.MissingExtraError, match=r"needs the 'plot' extra"):
         with errors.require_extra("plot", "this"):
-            raise ModuleNotFoundError("No module named 'matplotlib.pyplot'",
-                                      name="matplotlib.pyplot")
+            raise ModuleNotFoundError(
+                "No module named 'matplotlib.pyplot'", name="matplotlib.pyplot"
+            )
     with pytest.raises(ModuleNotFoundError):  # a module of no extra is a bug, left as it is
         with errors.require_extra("plot", "this"):
             raise ModuleNotFoundError("No module named 'nothing'", name="nothing")

@@ -45,6 +45,7 @@ def cli_json(*args: str) -> Any:
 
 # ------------------------------------------------------------------------- every endpoint
 
+
 def test_presets_list_every_preset_with_its_system(client: TestClient) -> None:
     answer = client.get("/api/presets")
     assert answer.status_code == 200
@@ -62,8 +63,9 @@ def test_schema_is_the_system_files_schema(client: TestClient) -> None:
 
 
 def test_start_is_the_system_the_server_was_started_with() -> None:
-    with TestClient(create_app(load_system("frictionless"), preset="frictionless",
-                               workers=1)) as other:
+    with TestClient(
+        create_app(load_system("frictionless"), preset="frictionless", workers=1)
+    ) as other:
         answer = other.get("/api/start").json()
     assert answer["preset"] == "frictionless"
     assert rollspring.system_from_dict(answer["system"]) == load_system("frictionless")
@@ -80,10 +82,12 @@ def test_analyze_equals_the_cli_json_for_every_preset(client: TestClient, name: 
 
 
 @pytest.mark.parametrize("name", PRESETS)
-def test_simulate_summary_equals_the_cli_json_for_every_preset(client: TestClient,
-                                                               name: str) -> None:
-    answer = client.post("/api/simulate", json={"system": system_json(name), "duration": 2.0,
-                                                "outputs": 201})
+def test_simulate_summary_equals_the_cli_json_for_every_preset(
+    client: TestClient, name: str
+) -> None:
+    answer = client.post(
+        "/api/simulate", json={"system": system_json(name), "duration": 2.0, "outputs": 201}
+    )
     assert answer.status_code == 200
     data = answer.json()
     expected = cli_json("simulate", name, "-T", "2", "--outputs", "201", "--json")
@@ -95,8 +99,14 @@ def test_simulate_summary_equals_the_cli_json_for_every_preset(client: TestClien
     np.testing.assert_array_equal(data["t"], run.t)
     for i, body in enumerate(run.ids):
         series = data["bodies"][body]
-        for key, values in (("x", run.x), ("phi", run.phi), ("v", run.v), ("omega", run.omega),
-                            ("friction", run.friction), ("normal", run.normal)):
+        for key, values in (
+            ("x", run.x),
+            ("phi", run.phi),
+            ("v", run.v),
+            ("omega", run.omega),
+            ("friction", run.friction),
+            ("normal", run.normal),
+        ):
             np.testing.assert_array_equal(series[key], values[:, i], err_msg=f"{body}.{key}")
         ratio = np.array([math.inf if r is None else r for r in series["friction_ratio"]])
         np.testing.assert_array_equal(ratio, run.friction_ratio[:, i])
@@ -118,14 +128,15 @@ def test_simulate_summary_equals_the_cli_json_for_every_preset(client: TestClien
 
 
 @pytest.mark.parametrize("name", PRESETS)
-def test_simulate_csv_is_the_trajectory_file(client: TestClient, name: str,
-                                              tmp_path) -> None:
-    answer = client.post("/api/simulate.csv", json={"system": system_json(name),
-                                                    "duration": 1.0, "outputs": 51})
+def test_simulate_csv_is_the_trajectory_file(client: TestClient, name: str, tmp_path) -> None:
+    answer = client.post(
+        "/api/simulate.csv", json={"system": system_json(name), "duration": 1.0, "outputs": 51}
+    )
     assert answer.status_code == 200
     assert answer.headers["content-type"].startswith("text/csv")
-    result = CliRunner().invoke(cli, ["simulate", name, "-T", "1", "--outputs", "51",
-                                      "--out", str(tmp_path), "--json"])
+    result = CliRunner().invoke(
+        cli, ["simulate", name, "-T", "1", "--outputs", "51", "--out", str(tmp_path), "--json"]
+    )
     assert result.exit_code == 0, result.output
     assert answer.text == (tmp_path / "trajectory.csv").read_text()
     rows = list(csv.reader(io.StringIO(answer.text)))
@@ -151,18 +162,26 @@ def test_infinite_static_friction_travels_as_inf(client: TestClient) -> None:
 def test_linear_solution_and_mode_start(client: TestClient) -> None:
     system = load_system("wall-hoop-cylinder")
     analysis = rollspring.analyze(system)
-    answer = client.post("/api/simulate", json={"system": system_to_json(system),
-                                                "duration": 1.0, "outputs": 101,
-                                                "linear": True}).json()
+    answer = client.post(
+        "/api/simulate",
+        json={"system": system_to_json(system), "duration": 1.0, "outputs": 101, "linear": True},
+    ).json()
     expected = linear_motion(analysis, np.asarray(answer["t"]))
     for i, body in enumerate(analysis.ids):
         np.testing.assert_allclose(answer["linear"][body], expected[:, i], rtol=0, atol=1e-15)
         # the paper's wall system is linear: the exact motion is the linear one
         np.testing.assert_allclose(answer["bodies"][body]["x"], expected[:, i], atol=1e-9)
     mode = next(n for n, m in enumerate(analysis.modes) if m.kind == "oscillating")
-    played = client.post("/api/simulate", json={
-        "system": system_to_json(system), "duration": 2 * analysis.modes[mode].period,
-        "outputs": 201, "start": {"mode": mode, "amplitude": 0.005}, "linear": True}).json()
+    played = client.post(
+        "/api/simulate",
+        json={
+            "system": system_to_json(system),
+            "duration": 2 * analysis.modes[mode].period,
+            "outputs": 201,
+            "start": {"mode": mode, "amplitude": 0.005},
+            "linear": True,
+        },
+    ).json()
     x0 = {b: played["initial"][b]["x"] for b in analysis.ids}
     shape = analysis.modes[mode].shape_x
     equilibrium = analysis.arrays.x0 + analysis.arrays.scale * analysis.equilibrium.q
@@ -175,8 +194,7 @@ def test_linear_solution_and_mode_start(client: TestClient) -> None:
 
 @pytest.mark.parametrize("name", PRESETS)
 def test_derive_every_preset(client: TestClient, name: str) -> None:
-    answer = client.post("/api/derive", json={"system": system_json(name),
-                                              "method": "lagrange"})
+    answer = client.post("/api/derive", json={"system": system_json(name), "method": "lagrange"})
     assert answer.status_code == 200, answer.text
     data = answer.json()
     steps = [step for section in data["sections"] for step in section["steps"]]
@@ -210,6 +228,7 @@ def test_report_every_preset(client: TestClient, name: str) -> None:
 
 # ------------------------------------------------------------------------- invalid requests
 
+
 def _with(path: str, value: Any, base: str = "hoop-cylinder") -> dict[str, Any]:
     """A simulate request whose ``path`` (dotted, list indices as numbers) is ``value``."""
     request: dict[str, Any] = {"system": system_json(base), "duration": 1.0}
@@ -236,35 +255,60 @@ INVALID = [
     (_with("system.bodies.0.mass", "heavy"), ["body", "system", "bodies", 0, "mass"], "number"),
     (_with("system.bodies.0.radius", -0.1), ["body", "system", "bodies", 0, "radius"], "> 0"),
     (_with("system.bodies.1.shape", "cube"), ["body", "system", "bodies", 1, "shape"], "cube"),
-    (_with("system.bodies.0.mu_static", -1), ["body", "system", "bodies", 0, "mu_static"],
-     ">= 0"),
-    (_with("system.bodies.0.mu_static", "infinite"),
-     ["body", "system", "bodies", 0, "mu_static"], "mu_static"),
-    (_with("system.bodies.0.mu_kinetic", 2.0), ["body", "system", "bodies", 0],
-     "must not exceed mu_static"),
+    (_with("system.bodies.0.mu_static", -1), ["body", "system", "bodies", 0, "mu_static"], ">= 0"),
+    (
+        _with("system.bodies.0.mu_static", "infinite"),
+        ["body", "system", "bodies", 0, "mu_static"],
+        "mu_static",
+    ),
+    (
+        _with("system.bodies.0.mu_kinetic", 2.0),
+        ["body", "system", "bodies", 0],
+        "must not exceed mu_static",
+    ),
     (_with("system.bodies.0.x", None), ["body", "system", "bodies", 0, "x"], "number"),
     (_with("system.bodies.0.x", _DELETE), ["body", "system", "bodies", 0, "x"], "missing"),
     (_with("system.bodies.0.id", "1bad"), ["body", "system", "bodies", 0, "id"], "letter"),
-    (_with("system.bodies.0.colour", "red"), ["body", "system", "bodies", 0, "colour"],
-     "unknown key"),
+    (
+        _with("system.bodies.0.colour", "red"),
+        ["body", "system", "bodies", 0, "colour"],
+        "unknown key",
+    ),
     (_with("system.bodies", []), ["body", "system", "bodies"], "at least one body"),
-    (_with("system.bodies.0.inertia_factor", 0.3), ["body", "system", "bodies", 0],
-     "only for shape 'custom'"),
-    (_with("system.springs.0.stiffness", -5), ["body", "system", "springs", 0, "stiffness"],
-     "> 0"),
-    (_with("system.springs.0.ends", ["hoop"]), ["body", "system", "springs", 0, "ends"],
-     "two ends"),
+    (
+        _with("system.bodies.0.inertia_factor", 0.3),
+        ["body", "system", "bodies", 0],
+        "only for shape 'custom'",
+    ),
+    (_with("system.springs.0.stiffness", -5), ["body", "system", "springs", 0, "stiffness"], "> 0"),
+    (
+        _with("system.springs.0.ends", ["hoop"]),
+        ["body", "system", "springs", 0, "ends"],
+        "two ends",
+    ),
     (_with("system.springs.0.ends", ["hoop", "ghost"]), ["body", "system"], "ghost"),
-    (_with("system.springs.0.rest_length", -1), ["body", "system", "springs", 0, "rest_length"],
-     ">= 0"),
+    (
+        _with("system.springs.0.rest_length", -1),
+        ["body", "system", "springs", 0, "rest_length"],
+        ">= 0",
+    ),
     (_with("system.springs.0.damping", -1), ["body", "system", "springs", 0, "damping"], ">= 0"),
-    (_with("system.springs.0.at", [{"height": 0.1}]), ["body", "system", "springs", 0, "at"],
-     "one entry per end"),
-    (_with("system.springs.0.at", [{"height": 0.1, "radius": 0.1}, {}]),
-     ["body", "system", "springs", 0, "at", 0], "either"),
+    (
+        _with("system.springs.0.at", [{"height": 0.1}]),
+        ["body", "system", "springs", 0, "at"],
+        "one entry per end",
+    ),
+    (
+        _with("system.springs.0.at", [{"height": 0.1, "radius": 0.1}, {}]),
+        ["body", "system", "springs", 0, "at", 0],
+        "either",
+    ),
     (_with("system.gravity", -9.81), ["body", "system", "gravity"], ">= 0"),
-    (_with("system.anchors", [{"id": "hoop", "x": 0.0, "y": 0.0}]), ["body", "system"],
-     "duplicate id"),
+    (
+        _with("system.anchors", [{"id": "hoop", "x": 0.0, "y": 0.0}]),
+        ["body", "system"],
+        "duplicate id",
+    ),
     (_with("duration", 0), ["body", "duration"], "> 0"),
     (_with("duration", -3), ["body", "duration"], "> 0"),
     (_with("duration", 601), ["body", "duration"], "<= 600"),
@@ -282,26 +326,40 @@ INVALID = [
     (_with("start", {"mode": 1}), ["body", "start", "amplitude"], "missing"),
     (_with("speed", 2), ["body", "speed"], "unknown key"),
     ({"duration": 1.0}, ["body"], "exactly one of 'system' and 'toml'"),
-    ({"duration": 1.0, "system": system_json("hoop-cylinder"), "toml": "x = 1"}, ["body"],
-     "exactly one"),
+    (
+        {"duration": 1.0, "system": system_json("hoop-cylinder"), "toml": "x = 1"},
+        ["body"],
+        "exactly one",
+    ),
     ({"duration": 1.0, "toml": "bodies = ["}, ["body", "toml"], "TOML syntax error"),
     ({"duration": 1.0, "toml": "name = 'no bodies'"}, ["body", "toml"], "bodies: missing"),
-    ({"duration": 1.0, "toml": system_to_toml(load_system("hoop-cylinder")).replace(
-        "mass = 1.0", "mass = -1.0", 1)}, ["body", "toml"], "bodies[0].mass: must be > 0"),
+    (
+        {
+            "duration": 1.0,
+            "toml": system_to_toml(load_system("hoop-cylinder")).replace(
+                "mass = 1.0", "mass = -1.0", 1
+            ),
+        },
+        ["body", "toml"],
+        "bodies[0].mass: must be > 0",
+    ),
     ({"duration": 1.0, "system": "hoop-cylinder"}, ["body", "system"], "table"),
 ]
 
 
-@pytest.mark.parametrize(("request_body", "loc", "words"), INVALID,
-                         ids=[f"{i}-{'.'.join(map(str, case[1]))}"
-                              for i, case in enumerate(INVALID)])
-def test_invalid_requests_are_422_naming_the_field(client: TestClient, request_body: Any,
-                                                   loc: list[Any], words: str) -> None:
+@pytest.mark.parametrize(
+    ("request_body", "loc", "words"),
+    INVALID,
+    ids=[f"{i}-{'.'.join(map(str, case[1]))}" for i, case in enumerate(INVALID)],
+)
+def test_invalid_requests_are_422_naming_the_field(
+    client: TestClient, request_body: Any, loc: list[Any], words: str
+) -> None:
     answer = client.post("/api/simulate", json=request_body)
     assert answer.status_code == 422, answer.text
     data = answer.json()
     first = data["detail"][0]
-    assert first["loc"][:len(loc)] == loc, data
+    assert first["loc"][: len(loc)] == loc, data
     assert words in first["msg"], data
     assert data["message"].startswith(first["msg"])
     assert "\n" not in data["message"]
@@ -320,24 +378,29 @@ def test_the_message_is_the_clis_line(client: TestClient, tmp_path) -> None:
 
 
 def test_not_json_is_422(client: TestClient) -> None:
-    answer = client.post("/api/analyze", content=b"{not json",
-                         headers={"content-type": "application/json"})
+    answer = client.post(
+        "/api/analyze", content=b"{not json", headers={"content-type": "application/json"}
+    )
     assert answer.status_code == 422
     assert answer.json()["detail"][0]["loc"][0] == "body"
 
 
 # ------------------------------------------------------------------------------- the bounds
 
+
 def test_at_most_50_bodies(client: TestClient) -> None:
-    bodies = [{"id": f"b{i}", "shape": "cylinder", "mass": 1.0, "radius": 0.1, "x": 0.3 * i}
-              for i in range(MAX_BODIES + 1)]
+    bodies = [
+        {"id": f"b{i}", "shape": "cylinder", "mass": 1.0, "radius": 0.1, "x": 0.3 * i}
+        for i in range(MAX_BODIES + 1)
+    ]
     springs = [{"ends": [f"b{i}", f"b{i + 1}"], "stiffness": 10.0} for i in range(MAX_BODIES)]
     answer = client.post("/api/analyze", json={"system": {"bodies": bodies, "springs": springs}})
     assert answer.status_code == 422
     assert answer.json()["detail"][0]["loc"] == ["body", "system", "bodies"]
     assert "at most 50 bodies" in answer.json()["message"]
-    fifty = client.post("/api/system", json={"system": {"bodies": bodies[:50],
-                                                        "springs": springs[:49]}})
+    fifty = client.post(
+        "/api/system", json={"system": {"bodies": bodies[:50], "springs": springs[:49]}}
+    )
     assert fifty.status_code == 200
 
 
@@ -352,8 +415,9 @@ def test_request_body_at_most_256_kb(client: TestClient) -> None:
         yield json.dumps(padded).encode()[:200_000]
         yield json.dumps(padded).encode()[200_000:]
 
-    streamed = client.post("/api/simulate", content=chunks(),
-                           headers={"content-type": "application/json"})
+    streamed = client.post(
+        "/api/simulate", content=chunks(), headers={"content-type": "application/json"}
+    )
     assert streamed.status_code == 422
     assert "256 kB" in streamed.json()["message"]
 
@@ -365,17 +429,26 @@ def test_a_computation_past_its_budget_is_abandoned_with_503() -> None:
         assert slow.status_code == 503
         assert "time budget" in slow.json()["detail"]
         # the worker was replaced: the server goes on serving
-        quick = budgeted.post("/api/simulate", json={"system": system_json("hoop-cylinder"),
-                                                     "duration": 1.0})
+        quick = budgeted.post(
+            "/api/simulate", json={"system": system_json("hoop-cylinder"), "duration": 1.0}
+        )
         assert quick.status_code == 200
         assert quick.json()["summary"]["status"] == "finished"
 
 
 def test_openapi_documents_every_endpoint(client: TestClient) -> None:
     schema = client.get("/openapi.json").json()
-    assert set(schema["paths"]) == {"/api/presets", "/api/schema", "/api/start", "/api/system",
-                                    "/api/analyze", "/api/simulate", "/api/simulate.csv",
-                                    "/api/derive", "/api/report"}
+    assert set(schema["paths"]) == {
+        "/api/presets",
+        "/api/schema",
+        "/api/start",
+        "/api/system",
+        "/api/analyze",
+        "/api/simulate",
+        "/api/simulate.csv",
+        "/api/derive",
+        "/api/report",
+    }
     for path, methods in schema["paths"].items():
         for method, operation in methods.items():
             if method == "post":

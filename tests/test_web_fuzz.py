@@ -29,9 +29,13 @@ def server() -> Iterator[Server]:
 
 #: No 5xx, documented status codes and content types, bodies that fit their schema, and
 #: schema-invalid requests rejected with a 4xx.
-CHECKS = [checks.not_a_server_error, checks.status_code_conformance,
-          checks.content_type_conformance, checks.response_schema_conformance,
-          checks.negative_data_rejection]
+CHECKS = [
+    checks.not_a_server_error,
+    checks.status_code_conformance,
+    checks.content_type_conformance,
+    checks.response_schema_conformance,
+    checks.negative_data_rejection,
+]
 
 #: Examples per operation and generation mode; the symbolic ones (derive, report: seconds
 #: each) get fewer.
@@ -51,8 +55,13 @@ def test_the_api_keeps_its_schema_and_never_fails(server: Server, mode: Generati
             continue  # no parameters: nothing to make invalid
 
         @given(case=operation.as_strategy(generation_mode=mode))
-        @settings(max_examples=EXAMPLES.get(operation.path, 40), deadline=None,
-                  derandomize=True, database=None, suppress_health_check=list(HealthCheck))
+        @settings(
+            max_examples=EXAMPLES.get(operation.path, 40),
+            deadline=None,
+            derandomize=True,
+            database=None,
+            suppress_health_check=list(HealthCheck),
+        )
         def call(case) -> None:
             nonlocal seen
             case.call_and_validate(base_url=server.url.rstrip("/"), checks=CHECKS, timeout=30)
@@ -72,8 +81,9 @@ def test_overload_is_answered_503_at_once() -> None:
         slow: dict[str, object] = {}
 
         def derive() -> None:  # a symbolic derivation: seconds of work
-            slow["response"] = requests.post(busy.url + "api/derive", json={"system": chain},
-                                             timeout=60)
+            slow["response"] = requests.post(
+                busy.url + "api/derive", json={"system": chain}, timeout=60
+            )
 
         worker = threading.Thread(target=derive)
         worker.start()

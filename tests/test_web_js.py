@@ -16,8 +16,9 @@ def test_node_unit_tests_pass() -> None:
     node = shutil.which("node")
     if node is None:
         pytest.fail("node is not installed (the page's JavaScript tests need Node ≥ 20)")
-    done = subprocess.run([node, "--test", "tests/js/"], cwd=REPO, capture_output=True, text=True,
-                          timeout=120)
+    done = subprocess.run(
+        [node, "--test", "tests/js/"], cwd=REPO, capture_output=True, text=True, timeout=120
+    )
     assert done.returncode == 0, done.stdout + done.stderr
     assert "# fail 0" in done.stdout
     assert "# pass 0\n" not in done.stdout, "no JavaScript test ran"

@@ -53,16 +53,20 @@ class Opened:
 
     def check_origin(self) -> None:
         assert self.requests
-        outside = [u for u in self.requests
-                   if not (u.startswith(self.base + "/") or u.startswith(("data:", "blob:")))]
+        outside = [
+            u
+            for u in self.requests
+            if not (u.startswith(self.base + "/") or u.startswith(("data:", "blob:")))
+        ]
         assert outside == []
 
 
 def open_page(browser: Browser, base: str, url: str = "/", viewport: dict = LAPTOP) -> Opened:
     page = browser.new_page(viewport=viewport)
     seen = Opened(page, base)
-    page.on("console", lambda m: seen.errors.append(f"console: {m.text}")
-            if m.type == "error" else None)
+    page.on(
+        "console", lambda m: seen.errors.append(f"console: {m.text}") if m.type == "error" else None
+    )
     page.on("pageerror", lambda e: seen.errors.append(f"page error: {e}"))
     page.on("request", lambda r: seen.requests.append(r.url))
     page.goto(base + url if url.startswith("/") else url)
@@ -91,10 +95,13 @@ def canvas_hash(page: Page) -> str:
 
 def next_frames(page: Page, n: int = 5) -> None:
     """Let the browser paint n animation frames (no wall-clock wait)."""
-    page.evaluate("""n => new Promise(done => {
+    page.evaluate(
+        """n => new Promise(done => {
         const go = k => k ? requestAnimationFrame(() => go(k - 1)) : done();
         go(n);
-    })""", n)
+    })""",
+        n,
+    )
 
 
 def clock(page: Page) -> float:
@@ -112,11 +119,14 @@ def oscillating_omegas(system: dict) -> list[float]:
 
 def wait_omega(page: Page, omega: float) -> None:
     """Wait until the modal table shows ω = omega to 6 significant digits."""
-    page.wait_for_function("""omega => {
+    page.wait_for_function(
+        """omega => {
         const cell = document.querySelector('#modes tr[data-mode] td.omega:not(:empty)');
         const cells = [...document.querySelectorAll('#modes td.omega')].map(c => parseFloat(c.textContent));
         return cell && cells.some(w => Math.abs(w - omega) <= 5e-6 * omega);
-    }""", arg=omega)
+    }""",
+        arg=omega,
+    )
 
 
 def field(page: Page, path: str):
@@ -124,6 +134,7 @@ def field(page: Page, path: str):
 
 
 # ------------------------------------------------------------------------------------ tests
+
 
 def test_loads_with_no_console_error_and_no_request_outside_its_origin(opened: Opened) -> None:
     page = opened.page
@@ -144,7 +155,9 @@ def test_stiffness_slider_changes_omega_to_what_analyze_gives(opened: Opened) ->
     wait_omega(page, oscillating_omegas(page_system(page))[0])
     positions = page.locator('[data-plot="positions"]')
     revision = int(positions.get_attribute("data-revision"))
-    before = page.evaluate("() => document.querySelector('[data-plot=positions] canvas').toDataURL()")
+    before = page.evaluate(
+        "() => document.querySelector('[data-plot=positions] canvas').toDataURL()"
+    )
     slider = page.locator('input[type="range"][data-slider-for="springs.0.stiffness"]')
     slider.focus()
     for _ in range(40):
@@ -157,7 +170,9 @@ def test_stiffness_slider_changes_omega_to_what_analyze_gives(opened: Opened) ->
     shown = float(page.locator("#modes td.omega").nth(1).inner_text())
     assert shown == pytest.approx(omega, rel=5e-6)
     assert int(positions.get_attribute("data-revision")) > revision
-    after = page.evaluate("() => document.querySelector('[data-plot=positions] canvas').toDataURL()")
+    after = page.evaluate(
+        "() => document.querySelector('[data-plot=positions] canvas').toDataURL()"
+    )
     assert after != before
 
 
@@ -167,8 +182,10 @@ def test_play_animates_and_pause_freezes(opened: Opened) -> None:
     page.get_by_role("button", name="Play", exact=True).click()
     page.wait_for_function("() => window.rollspringPage.time() > 0.2")
     second = canvas_hash(page)
-    page.wait_for_function("t => window.rollspringPage.time() > t + 0.1",
-                           arg=page.evaluate("() => window.rollspringPage.time()"))
+    page.wait_for_function(
+        "t => window.rollspringPage.time() > t + 0.1",
+        arg=page.evaluate("() => window.rollspringPage.time()"),
+    )
     third = canvas_hash(page)
     assert len({first, second, third}) == 3
     assert len(page.evaluate("() => window.rollspringPage.frameTimes()")) > 2
@@ -217,7 +234,11 @@ def test_a_slip_is_announced_at_the_time_simulate_reports(opened: Opened) -> Non
     page = opened.page
     # the hoop launched at 0.3 m/s, the spring at its rest length: the friction the hoop needs
     # grows from 0 to 0.14 N per N, above its μs = 0.1
-    for path, value in [("bodies.1.x", "0.5"), ("bodies.0.v", "0.3"), ("bodies.0.mu_static", "0.1")]:
+    for path, value in [
+        ("bodies.1.x", "0.5"),
+        ("bodies.0.v", "0.3"),
+        ("bodies.0.mu_static", "0.1"),
+    ]:
         field(page, path).fill(value)
         field(page, path).press("Enter")
     settle(page)
@@ -235,7 +256,8 @@ def test_a_slip_is_announced_at_the_time_simulate_reports(opened: Opened) -> Non
 
 
 def test_a_shared_link_restores_omega_initial_state_and_frame(
-        opened: Opened, browser: Browser, server: str) -> None:
+    opened: Opened, browser: Browser, server: str
+) -> None:
     page = opened.page
     stiffness = field(page, "springs.0.stiffness")
     stiffness.fill("150")
@@ -317,20 +339,26 @@ ACCESSIBLE_NAME = """el => {
     return text(el.textContent || el.title);
 }"""
 
-DESCRIBE_FOCUS = """() => {
+DESCRIBE_FOCUS = (
+    """() => {
     const el = document.activeElement;
     if (!el || el === document.body) return null;
     if (!el.dataset.tabWalk) el.dataset.tabWalk = String(Math.random());
     return {key: el.dataset.tabWalk, tag: el.tagName, name: (%s)(el)};
-}""" % ACCESSIBLE_NAME
+}"""
+    % ACCESSIBLE_NAME
+)
 
-INTERACTIVE = """() => [...document.querySelectorAll(
+INTERACTIVE = (
+    """() => [...document.querySelectorAll(
         'button, select, input, textarea, summary, [tabindex="0"], a[href]')]
     .filter(el => !el.disabled && el.checkVisibility({visibilityProperty: true}))
     .map(el => {
         if (!el.dataset.tabWalk) el.dataset.tabWalk = String(Math.random());
         return {key: el.dataset.tabWalk, tag: el.tagName, name: (%s)(el)};
-    })""" % ACCESSIBLE_NAME
+    })"""
+    % ACCESSIBLE_NAME
+)
 
 
 def test_every_control_is_reachable_with_tab_labelled_and_operable(opened: Opened) -> None:
@@ -377,8 +405,9 @@ def test_every_control_is_reachable_with_tab_labelled_and_operable(opened: Opene
 
 
 @pytest.mark.parametrize("name, viewport", [("laptop-1280x800", LAPTOP), ("phone-390x844", PHONE)])
-def test_screenshots(browser: Browser, server: str, tmp_path: Path, name: str,
-                     viewport: dict) -> None:
+def test_screenshots(
+    browser: Browser, server: str, tmp_path: Path, name: str, viewport: dict
+) -> None:
     seen = open_page(browser, server, viewport=viewport)
     page = seen.page
     try:

@@ -59,8 +59,9 @@ def test_same_seed_gives_the_same_sheet(level: int) -> None:
     assert first.data == second.data
     for fmt in ("markdown", "latex"):
         assert render_sheet(first, fmt) == render_sheet(second, fmt)
-    assert [(a.key, a.values) for a in first.numeric_answers] == \
-        [(a.key, a.values) for a in second.numeric_answers]
+    assert [(a.key, a.values) for a in first.numeric_answers] == [
+        (a.key, a.values) for a in second.numeric_answers
+    ]
 
 
 def test_same_seed_gives_the_same_solutions() -> None:
@@ -89,7 +90,8 @@ def _expected(key: str, analysis: LinearAnalysis) -> list[float]:
         "omega": [m.omega for m in osc],
         "omega2_exact": [m.eigenvalue for m in osc],
         "period": [m.period for m in osc],
-        "weights": list(analysis.stationary_weights) if analysis.stationary_weights is not None
+        "weights": list(analysis.stationary_weights)
+        if analysis.stationary_weights is not None
         else [],
         "cm_weights": list(analysis.arrays.mass / analysis.arrays.mass.sum()),
         "trace": [sum(m.eigenvalue for m in osc), float(np.sum(np.diag(analysis.stiffness) / J))],
@@ -109,11 +111,15 @@ def _percussion_needs_no_friction(body: dict, height: float) -> bool:
     """A body pulled by a horizontal wall spring attached ``height`` above its floor: no
     friction in its mode exactly when ``height`` is its percussion height (analyze)."""
     lone = {**body, "x": 0.0, "v": 0.05}
-    system = system_from_dict({
-        "bodies": [lone], "anchors": [{"id": "w", "x": -0.5, "y": height}],
-        "springs": [{"ends": ["w", lone["id"]], "stiffness": 100.0,
-                     "at": [{}, {"height": height}]}],
-    })
+    system = system_from_dict(
+        {
+            "bodies": [lone],
+            "anchors": [{"id": "w", "x": -0.5, "y": height}],
+            "springs": [
+                {"ends": ["w", lone["id"]], "stiffness": 100.0, "at": [{}, {"height": height}]}
+            ],
+        }
+    )
     (mode,) = analyze(system).oscillating
     return abs(mode.friction[0]) < 1e-9 * 100.0
 
@@ -137,8 +143,13 @@ def test_every_number_of_the_solutions_is_what_analyze_finds(level: int, seed: i
             for body, height in zip(data["bodies"], answer.values, strict=True):
                 assert _percussion_needs_no_friction(body, height), (body, height)
         else:
-            np.testing.assert_allclose(answer.values, _expected(answer.key, analysis),
-                                       rtol=1e-9, atol=1e-12, err_msg=answer.key)
+            np.testing.assert_allclose(
+                answer.values,
+                _expected(answer.key, analysis),
+                rtol=1e-9,
+                atol=1e-12,
+                err_msg=answer.key,
+            )
         for value in answer.values:  # and each number is printed, as the answer says
             assert format_number(value) in text, (answer.key, value)
             checked += 1
@@ -162,13 +173,19 @@ def test_latex_documents_compile(level: int, tmp_path: Path) -> None:
     assert pdflatex, "pdflatex is needed (make test installs texlive-latex-base)"
     seed = {1: 0, 2: 0, 3: 1, 4: 1}[level]
     sheet = sheet_for(level, seed)
-    for name, document in (("sheet", render_sheet(sheet, "latex")),
-                           ("solutions", render_solutions(sheet, "latex"))):
+    for name, document in (
+        ("sheet", render_sheet(sheet, "latex")),
+        ("solutions", render_solutions(sheet, "latex")),
+    ):
         source = tmp_path / f"{name}.tex"
         source.write_text(document, encoding="ascii")  # pure ASCII
-        run = subprocess.run([pdflatex, "-interaction=nonstopmode", "-halt-on-error",
-                              source.name], cwd=tmp_path, capture_output=True, text=True,
-                             timeout=120)
+        run = subprocess.run(
+            [pdflatex, "-interaction=nonstopmode", "-halt-on-error", source.name],
+            cwd=tmp_path,
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
         assert run.returncode == 0, run.stdout[-2000:]
         assert (tmp_path / f"{name}.pdf").stat().st_size > 1000
 
@@ -214,16 +231,24 @@ def test_cli_prints_both_separated_without_out() -> None:
     assert second == render_solutions(sheet, "latex")
 
 
-@pytest.mark.parametrize(("args", "message"), [
-    (["--level", "0", "--seed", "1"], "error: --level: must be 1, 2, 3 or 4 (got 0)"),
-    (["--level", "5", "--seed", "1"], "error: --level: must be 1, 2, 3 or 4 (got 5)"),
-    (["--level", "two", "--seed", "1"], "error: --level: must be 1, 2, 3 or 4 (got 'two')"),
-    (["--seed", "1"], "error: --level: required (1, 2, 3 or 4)"),
-    (["--level", "2", "--seed", "-1"], "error: --seed: must be a non-negative integer (got -1)"),
-    (["--level", "2"], "error: --seed: required (a non-negative integer)"),
-    (["--level", "2", "--seed", "1", "--format", "html"],
-     "error: --format: unknown format 'html' (formats: markdown, latex)"),
-])
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--level", "0", "--seed", "1"], "error: --level: must be 1, 2, 3 or 4 (got 0)"),
+        (["--level", "5", "--seed", "1"], "error: --level: must be 1, 2, 3 or 4 (got 5)"),
+        (["--level", "two", "--seed", "1"], "error: --level: must be 1, 2, 3 or 4 (got 'two')"),
+        (["--seed", "1"], "error: --level: required (1, 2, 3 or 4)"),
+        (
+            ["--level", "2", "--seed", "-1"],
+            "error: --seed: must be a non-negative integer (got -1)",
+        ),
+        (["--level", "2"], "error: --seed: required (a non-negative integer)"),
+        (
+            ["--level", "2", "--seed", "1", "--format", "html"],
+            "error: --format: unknown format 'html' (formats: markdown, latex)",
+        ),
+    ],
+)
 def test_cli_bad_options_are_one_line_errors_with_exit_2(args: list[str], message: str) -> None:
     result = runner.invoke(app, ["worksheet", *args])
     assert result.exit_code == 2

@@ -29,20 +29,37 @@ GENERATED = Path(__file__).resolve().parent.parent / "_generated"
 
 #: Sections of the API reference: (title, one line of words, predicate on the module name).
 SECTIONS: list[tuple[str, str, tuple[str, ...]]] = [
-    ("Systems", "What a system is: bodies, springs, anchors, forces; files and presets.",
-     ("rollspring.model",)),
-    ("Exact physics",
-     "Pure vectorised functions of the system arrays and a state `q (..., n_bodies)`: positions, "
-     "energies, generalised forces, contact forces, the exact stiffness matrix.",
-     ("rollspring.physics",)),
-    ("Analysis", "Equilibrium, normal modes, the stationary point, the linear response.",
-     ("rollspring.analysis.linear", "rollspring.analysis.equilibrium", "rollspring.analysis")),
-    ("Simulation", "The exact nonlinear motion, single runs and batches.",
-     ("rollspring.simulate",)),
-    ("Derivations, the paper check, reports and sweeps",
-     "Loaded on first use (SymPy, Matplotlib, Zarr): `import rollspring` stays light.",
-     ("rollspring.analysis.derivation", "rollspring.analysis.paper_check", "rollspring.service",
-      "rollspring.outputs")),
+    (
+        "Systems",
+        "What a system is: bodies, springs, anchors, forces; files and presets.",
+        ("rollspring.model",),
+    ),
+    (
+        "Exact physics",
+        "Pure vectorised functions of the system arrays and a state `q (..., n_bodies)`: positions, "
+        "energies, generalised forces, contact forces, the exact stiffness matrix.",
+        ("rollspring.physics",),
+    ),
+    (
+        "Analysis",
+        "Equilibrium, normal modes, the stationary point, the linear response.",
+        ("rollspring.analysis.linear", "rollspring.analysis.equilibrium", "rollspring.analysis"),
+    ),
+    (
+        "Simulation",
+        "The exact nonlinear motion, single runs and batches.",
+        ("rollspring.simulate",),
+    ),
+    (
+        "Derivations, the paper check, reports and sweeps",
+        "Loaded on first use (SymPy, Matplotlib, Zarr): `import rollspring` stays light.",
+        (
+            "rollspring.analysis.derivation",
+            "rollspring.analysis.paper_check",
+            "rollspring.service",
+            "rollspring.outputs",
+        ),
+    ),
     ("Errors", "Every error rollspring raises on purpose.", ("rollspring.errors",)),
 ]
 
@@ -156,8 +173,14 @@ def paper_check_page() -> str:
 def cli_page() -> str:
     command = typer.main.get_command(rollspring.cli.app)
     root = command.make_context("rollspring", [], resilient_parsing=True)
-    lines = [f"{_words(command.help)}", "", "```text", "rollspring [OPTIONS] COMMAND [ARGS]...",
-             "```", ""]
+    lines = [
+        f"{_words(command.help)}",
+        "",
+        "```text",
+        "rollspring [OPTIONS] COMMAND [ARGS]...",
+        "```",
+        "",
+    ]
     for name in command.list_commands(root):
         sub = command.get_command(root, name)
         if sub is None or getattr(sub, "hidden", False):
@@ -193,16 +216,16 @@ def _is_model(obj: Any) -> bool:
     return inspect.isclass(obj) and issubclass(obj, pydantic.BaseModel)
 
 
-def _model_signature(app: Any, what: str, name: str, obj: Any, options: Any, signature: Any,
-                     return_annotation: Any) -> tuple[str, None] | None:
+def _model_signature(
+    app: Any, what: str, name: str, obj: Any, options: Any, signature: Any, return_annotation: Any
+) -> tuple[str, None] | None:
     """A pydantic model's signature as its field names only (its fields are listed below it)."""
     if what == "class" and _is_model(obj):
         return "(*, " + ", ".join(obj.model_fields) + ")", None
     return None
 
 
-def _model_fields(app: Any, what: str, name: str, obj: Any, options: Any,
-                  lines: list[str]) -> None:
+def _model_fields(app: Any, what: str, name: str, obj: Any, options: Any, lines: list[str]) -> None:
     """Append a pydantic model's fields with their defaults and descriptions (the system file's
     keys: the same words as ``rollspring schema``)."""
     if what != "class" or not _is_model(obj):

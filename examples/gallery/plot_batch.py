@@ -16,8 +16,9 @@ from rollspring.simulate.status import Status
 
 system = rollspring.load_system("hoop-cylinder")
 k = np.linspace(50.0, 400.0, 10_000)
-batch = rollspring.simulate_batch(system, {"springs.0.stiffness": k,
-                                           "bodies.hoop.mu_static": 0.1}, 2.0)
+batch = rollspring.simulate_batch(
+    system, {"springs.0.stiffness": k, "bodies.hoop.mu_static": 0.1}, 2.0
+)
 theory = 2 * np.pi / np.sqrt(k / 2 + 2 * k / 3)  # Omega^2 = k/(2 m1) + 2k/(3 m2)
 
 finished = batch.status == Status.FINISHED

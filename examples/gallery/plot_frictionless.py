@@ -18,7 +18,7 @@ from rollspring.outputs.figures import plot_contact_forces, plot_system
 
 system = rollspring.load_system("frictionless")
 result = rollspring.analyze(system)
-print(f"Omega^2 = {result.oscillating[0].omega**2:.4f} 1/s^2 (2k/m1 + 3k/(2m2) = 350)")
+print(f"Omega^2 = {result.oscillating[0].omega ** 2:.4f} 1/s^2 (2k/m1 + 3k/(2m2) = 350)")
 print("linear friction amplitudes (N):", result.friction_amplitude)
 
 fig, ax = plt.subplots(figsize=(7, 2.6), layout="constrained")

@@ -40,5 +40,7 @@ top.legend()
 bottom.plot(time, 1e6 * (x_hoop - reference))
 bottom.set_xlabel("t (s)")
 bottom.set_ylabel("MuJoCo − exact (µm)")
-print(f"largest difference over 2 s: {1e6 * np.abs(x_hoop - reference).max():.1f} µm "
-      f"against an amplitude of {1e3 * np.ptp(exact.x[:, 0]) / 2:.2f} mm")
+print(
+    f"largest difference over 2 s: {1e6 * np.abs(x_hoop - reference).max():.1f} µm "
+    f"against an amplitude of {1e3 * np.ptp(exact.x[:, 0]) / 2:.2f} mm"
+)

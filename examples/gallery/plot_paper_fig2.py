@@ -32,4 +32,6 @@ plot_modes(result, fig=plt.figure(figsize=(8, 3.2)))
 run = rollspring.simulate(system, 2.0)
 fig, ax = plt.subplots(figsize=(7, 3.2), layout="constrained")
 plot_positions(run, ax)
-print(f"CM amplitude {result.cm_amplitude:.6g} m, X-hat amplitude {result.stationary_amplitude:.3g} m")
+print(
+    f"CM amplitude {result.cm_amplitude:.6g} m, X-hat amplitude {result.stationary_amplitude:.3g} m"
+)

@@ -17,8 +17,12 @@ system = rollspring.load_system("wall-hoop-cylinder")
 result = rollspring.analyze(system)
 omegas = np.array([mode.omega for mode in result.modes])
 print("omega (rad/s):", omegas)
-print("sum omega^2 =", np.sum(omegas**2), " sum K_ii/J_i =",
-      np.sum(np.diag(result.stiffness) / np.diag(result.mass)))
+print(
+    "sum omega^2 =",
+    np.sum(omegas**2),
+    " sum K_ii/J_i =",
+    np.sum(np.diag(result.stiffness) / np.diag(result.mass)),
+)
 print("stationary point:", result.stationary_weights)
 
 fig, ax = plt.subplots(figsize=(7, 2.6), layout="constrained")

@@ -19,8 +19,9 @@ import numpy as np
 import rollspring
 
 blocks = rollspring.analyze(rollspring.load_system("two-masses"))
-print(f"omega = {blocks.oscillating[0].omega:.4f} rad/s, "
-      f"CM amplitude = {blocks.cm_amplitude:.3g} m")
+print(
+    f"omega = {blocks.oscillating[0].omega:.4f} rad/s, CM amplitude = {blocks.cm_amplitude:.3g} m"
+)
 
 # %%
 # A hoop and a cylinder (Fig. 2)
@@ -45,7 +46,7 @@ print(f"period = {mode.period:.6f} s")
 # --------------------
 # Static friction is an external force, so the centre of mass is free to move. What stays put
 # is :math:`\hat X`, the centres weighted by :math:`(1+\gamma)m` — the paper's eq. (c), (M11):
-print("weights of X-hat:", result.stationary_weights)          # 4/7, 3/7
+print("weights of X-hat:", result.stationary_weights)  # 4/7, 3/7
 print(f"X-hat amplitude = {result.stationary_amplitude:.3g} m")
 print(f"CM amplitude    = {result.cm_amplitude:.6g} m  (A/14 = {A / 14:.6g} m)")
 
@@ -55,7 +56,7 @@ print(f"CM amplitude    = {result.cm_amplitude:.6g} m  (A/14 = {A / 14:.6g} m)")
 # Appendix A: a pull F at the centre needs static friction F/2 on the hoop and F/3 on the
 # cylinder (M10). The paper's "f1/f2 = 3/2" is a ratio of magnitudes: in the mode the two
 # frictions point opposite ways.
-print("friction amplitudes (N):", result.friction_amplitude)     # kA/2, kA/3
+print("friction amplitudes (N):", result.friction_amplitude)  # kA/2, kA/3
 print("friction coefficient the motion needs:", result.required_mu)
 shape = mode.friction
 print(f"f1/f2 in the mode = {shape[0] / shape[1]:.3f}")
@@ -71,8 +72,10 @@ import matplotlib.pyplot as plt
 from rollspring.outputs.figures import plot_positions, plot_system
 
 run = rollspring.simulate(system, 2.0, rtol=1e-10)
-print(f"measured period {run.summary['period_measured']:.10f} s, "
-      f"linear {run.summary['period_linear']:.10f} s")
+print(
+    f"measured period {run.summary['period_measured']:.10f} s, "
+    f"linear {run.summary['period_linear']:.10f} s"
+)
 
 fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 6), layout="constrained")
 plot_system(result, top)
@@ -87,20 +90,36 @@ plot_positions(run, bottom)
 # the paper's :math:`\Omega^2 = 2k/m_1 + 3k/(2m_2)` times :math:`\cos^2` of the tilt (M15).
 import math
 
-paper_fig3 = rollspring.system_from_dict({
-    "name": "Fig. 3 on one floor, R1 = R2/2",
-    "bodies": [
-        {"id": "hoop", "shape": "hoop", "mass": 1.0, "radius": 0.05, "x": 0.0, "v": -0.05},
-        {"id": "cylinder", "shape": "cylinder", "mass": 1.0, "radius": 0.1, "x": 0.5, "v": 0.05},
-    ],
-    "springs": [{"ends": ["hoop", "cylinder"], "stiffness": 100.0,
-                 "at": [{"height": 0.1}, {"height": 0.15}]}],  # rest length: as placed
-})
+paper_fig3 = rollspring.system_from_dict(
+    {
+        "name": "Fig. 3 on one floor, R1 = R2/2",
+        "bodies": [
+            {"id": "hoop", "shape": "hoop", "mass": 1.0, "radius": 0.05, "x": 0.0, "v": -0.05},
+            {
+                "id": "cylinder",
+                "shape": "cylinder",
+                "mass": 1.0,
+                "radius": 0.1,
+                "x": 0.5,
+                "v": 0.05,
+            },
+        ],
+        "springs": [
+            {
+                "ends": ["hoop", "cylinder"],
+                "stiffness": 100.0,
+                "at": [{"height": 0.1}, {"height": 0.15}],
+            }
+        ],  # rest length: as placed
+    }
+)
 fig3 = rollspring.analyze(paper_fig3)
 tilt = float(fig3.spring_tilt_deg[0])
 print(f"spring tilt {tilt:.2f} deg")
-print(f"Omega^2 = {fig3.oscillating[0].omega**2:.3f} 1/s^2; "
-      f"paper 350 x cos^2(tilt) = {350 * math.cos(math.radians(tilt))**2:.3f}")
+print(
+    f"Omega^2 = {fig3.oscillating[0].omega ** 2:.3f} 1/s^2; "
+    f"paper 350 x cos^2(tilt) = {350 * math.cos(math.radians(tilt)) ** 2:.3f}"
+)
 
 # %%
 # Every claim, checked

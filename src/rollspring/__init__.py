@@ -117,15 +117,43 @@ _register_notebook_display()
 #: ``rollspring.simulate`` the compiled kernels, ``rollspring.derive`` SymPy, ...), so
 #: ``import rollspring`` and the command line start fast: name -> module that defines it.
 _LAZY = {
-    **dict.fromkeys(("LinearAnalysis", "Mode", "analyze", "find_equilibrium", "normal_modes"),
-                    "rollspring.analysis"),
-    **dict.fromkeys(("Anchor", "Attachment", "Body", "ExternalForce", "Spring", "System",
-                     "load_system", "preset_names", "system_from_dict", "system_json_schema"),
-                    "rollspring.model"),
-    **dict.fromkeys(("SystemArrays", "accelerations", "centre_of_mass", "centre_positions",
-                     "contact_forces", "generalized_forces", "kinetic_energy", "mass_matrix",
-                     "potential_energy", "spring_state", "stiffness_matrix", "system_arrays",
-                     "total_energy"), "rollspring.physics"),
+    **dict.fromkeys(
+        ("LinearAnalysis", "Mode", "analyze", "find_equilibrium", "normal_modes"),
+        "rollspring.analysis",
+    ),
+    **dict.fromkeys(
+        (
+            "Anchor",
+            "Attachment",
+            "Body",
+            "ExternalForce",
+            "Spring",
+            "System",
+            "load_system",
+            "preset_names",
+            "system_from_dict",
+            "system_json_schema",
+        ),
+        "rollspring.model",
+    ),
+    **dict.fromkeys(
+        (
+            "SystemArrays",
+            "accelerations",
+            "centre_of_mass",
+            "centre_positions",
+            "contact_forces",
+            "generalized_forces",
+            "kinetic_energy",
+            "mass_matrix",
+            "potential_energy",
+            "spring_state",
+            "stiffness_matrix",
+            "system_arrays",
+            "total_energy",
+        ),
+        "rollspring.physics",
+    ),
     # rollspring.simulate is the subpackage, and callable: rollspring.simulate(system, duration)
     **dict.fromkeys(("BatchResult", "Trajectory", "simulate_batch"), "rollspring.simulate"),
     "derive": "rollspring.analysis.derivation",
@@ -140,13 +168,23 @@ _LAZY = {
 }
 
 #: The subpackages, also loaded on first use (``rollspring.simulate`` is one of them).
-_SUBPACKAGES = frozenset({"analysis", "cli", "model", "outputs", "physics", "service",
-                          "simulate", "web"})
+_SUBPACKAGES = frozenset(
+    {"analysis", "cli", "model", "outputs", "physics", "service", "simulate", "web"}
+)
 
 #: Names that need an optional extra (``pip install 'rollspring[extra]'``).
-_EXTRAS = {"derive": "symbolic", "Derivation": "symbolic", "symbolic_system": "symbolic",
-           "check_paper": "symbolic", "paper_claims": "symbolic", "build_report": "report",
-           "write_report": "report", "worksheet": "report", "sweep": "sweep", "web": "web"}
+_EXTRAS = {
+    "derive": "symbolic",
+    "Derivation": "symbolic",
+    "symbolic_system": "symbolic",
+    "check_paper": "symbolic",
+    "paper_claims": "symbolic",
+    "build_report": "report",
+    "write_report": "report",
+    "worksheet": "report",
+    "sweep": "sweep",
+    "web": "web",
+}
 
 
 def __getattr__(name: str):
@@ -177,6 +215,7 @@ def __getattr__(name: str):
 
 def __dir__() -> list[str]:
     return sorted({*globals(), *_LAZY, *_SUBPACKAGES, "__version__"})
+
 
 __all__ = [
     "AnalysisError",

@@ -15,8 +15,16 @@ argument and the reason. The command-line interface prints it and exits with cod
 
 from __future__ import annotations
 
-__all__ = ["EXTRAS", "AnalysisError", "MissingExtraError", "ModelError", "OutputError",
-           "RollspringError", "SimulationError", "require_extra"]
+__all__ = [
+    "EXTRAS",
+    "AnalysisError",
+    "MissingExtraError",
+    "ModelError",
+    "OutputError",
+    "RollspringError",
+    "SimulationError",
+    "require_extra",
+]
 
 
 class RollspringError(Exception):
@@ -33,7 +41,6 @@ class AnalysisError(RollspringError):
 
 class SimulationError(RollspringError, ValueError):
     """A simulation was requested with invalid arguments (duration, tolerance, integrator)."""
-
 
 
 class OutputError(RollspringError, ValueError):
@@ -58,8 +65,10 @@ class MissingExtraError(RollspringError, ImportError):
     def __init__(self, what: str, extras: tuple[str, ...]) -> None:
         self.what, self.extras = what, extras
         names = " and ".join(f"'{extra}'" for extra in extras)
-        super().__init__(f"{what} needs the {names} extra{'s' if len(extras) > 1 else ''}: "
-                         f"pip install 'rollspring[{','.join(extras)}]'")
+        super().__init__(
+            f"{what} needs the {names} extra{'s' if len(extras) > 1 else ''}: "
+            f"pip install 'rollspring[{','.join(extras)}]'"
+        )
 
 
 def _missing(extras: tuple[str, ...]) -> list[str]:
@@ -88,8 +97,9 @@ class require_extra:  # noqa: N801 - a check, and a context manager
     def __enter__(self) -> None:
         return None
 
-    def __exit__(self, kind: type[BaseException] | None, exc: BaseException | None,
-                 traceback: object) -> None:
+    def __exit__(
+        self, kind: type[BaseException] | None, exc: BaseException | None, traceback: object
+    ) -> None:
         if isinstance(exc, ModuleNotFoundError):
             modules = {module for extra in self.extras for module in EXTRAS[extra]}
             if (exc.name or "").partition(".")[0] in modules:

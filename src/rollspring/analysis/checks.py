@@ -39,18 +39,26 @@ def _contact_warnings(analysis: LinearAnalysis) -> list[str]:
         f_eq, n_eq = analysis.equilibrium_friction[i], analysis.equilibrium_normal[i]
         rolls = arrays.rolls[i] > 0
         if n_eq < 0:
-            out.append(f"'{body}' cannot rest on its track: the springs pull it up harder than "
-                       f"gravity holds it (N = {n_eq:.6g} N at equilibrium)")
+            out.append(
+                f"'{body}' cannot rest on its track: the springs pull it up harder than "
+                f"gravity holds it (N = {n_eq:.6g} N at equilibrium)"
+            )
         elif rolls and f_eq != 0 and not math.isinf(mu) and abs(f_eq) > mu * n_eq:
-            needed = "unbounded friction (N = 0)" if n_eq == 0 else f"mu_s >= {abs(f_eq) / n_eq:.6g}"
-            out.append(f"'{body}' cannot rest at the equilibrium without slipping: it needs "
-                       f"{needed}, it has {mu:g}")
+            needed = (
+                "unbounded friction (N = 0)" if n_eq == 0 else f"mu_s >= {abs(f_eq) / n_eq:.6g}"
+            )
+            out.append(
+                f"'{body}' cannot rest at the equilibrium without slipping: it needs "
+                f"{needed}, it has {mu:g}"
+            )
         if analysis.required_mu is None or analysis.normal_force_range is None:
             continue
         low = float(analysis.normal_force_range[i][0])
         if low < 0 <= n_eq:
-            out.append(f"'{body}' would lift off: in the linear motion its normal force reaches "
-                       f"{low:.6g} N")
+            out.append(
+                f"'{body}' would lift off: in the linear motion its normal force reaches "
+                f"{low:.6g} N"
+            )
             continue
         if not rolls:
             continue
@@ -58,16 +66,21 @@ def _contact_warnings(analysis: LinearAnalysis) -> list[str]:
         if math.isinf(mu):
             continue  # rolling enforced (rack and pinion): it never slips
         if math.isinf(needed) and n_eq >= 0:
-            out.append(f"'{body}' needs unbounded friction: its normal force reaches 0 while "
-                       f"friction is needed, so it slips unless rolling is enforced (mu_s = inf)")
+            out.append(
+                f"'{body}' needs unbounded friction: its normal force reaches 0 while "
+                f"friction is needed, so it slips unless rolling is enforced (mu_s = inf)"
+            )
         elif needed > mu:
             out.append(f"'{body}' slips: the motion needs mu_s >= {needed:.6g}, it has {mu:g}")
     drift = analysis.drift_velocity
     if drift is not None and np.any(drift != 0) and analysis.stationary_weights is None:
-        moving = ", ".join(f"'{b}' {v:.6g} m/s" for b, v in zip(arrays.ids, drift, strict=True)
-                           if v != 0)
-        out.append(f"parts of the system drift freely (zero modes set moving by the initial "
-                   f"velocities): {moving}; amplitudes are about the drifting equilibrium")
+        moving = ", ".join(
+            f"'{b}' {v:.6g} m/s" for b, v in zip(arrays.ids, drift, strict=True) if v != 0
+        )
+        out.append(
+            f"parts of the system drift freely (zero modes set moving by the initial "
+            f"velocities): {moving}; amplitudes are about the drifting equilibrium"
+        )
     return out
 
 
@@ -91,8 +104,9 @@ def percussion_attachments(analysis: LinearAnalysis) -> list[tuple[int, int, int
             i = int(arrays.end_body[s, j])
             if i < 0 or arrays.rolls[i] == 0:
                 continue
-            percussion = np.array([x_centre[i], arrays.track[i] + (1 + arrays.gamma[i])
-                                   * arrays.radius[i]])
+            percussion = np.array(
+                [x_centre[i], arrays.track[i] + (1 + arrays.gamma[i]) * arrays.radius[i]]
+            )
             offset = percussion - position[s, j]
             if abs(e[0] * offset[1] - e[1] * offset[0]) < 1e-9 * arrays.radius[i]:
                 found.append((s, j, i))
@@ -133,12 +147,16 @@ def _percussion_warnings(analysis: LinearAnalysis) -> list[str]:
         h2 = arrays.track[i2] + (1 + arrays.gamma[i2]) * arrays.radius[i2]
         cos2 = math.cos(math.radians(tilt)) ** 2
         ratio = (1 + arrays.gamma[i2]) / (1 + arrays.gamma[i1])
-        hint = (f"; a horizontal spring needs equal percussion heights "
-                f"h + (1 + gamma) R: on one floor R_{name1}/R_{name2} = {ratio:.6g}")
+        hint = (
+            f"; a horizontal spring needs equal percussion heights "
+            f"h + (1 + gamma) R: on one floor R_{name1}/R_{name2} = {ratio:.6g}"
+        )
         shapes = {analysis.system.bodies[i1].shape, analysis.system.bodies[i2].shape}
         if shapes == {"hoop", "cylinder"}:
-            hint += (" (the paper's Fig. 3 condition R1 = R2/2 holds only with the centres level,"
-                     " the hoop's track raised by R1)")
+            hint += (
+                " (the paper's Fig. 3 condition R1 = R2/2 holds only with the centres level,"
+                " the hoop's track raised by R1)"
+            )
         out.append(
             f"spring '{arrays.spring_names[s]}' joins the percussion points of '{name1}' and "
             f"'{name2}' but is tilted {tilt:.4g}° (heights {h1:.6g} m and {h2:.6g} m): friction "

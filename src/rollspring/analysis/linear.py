@@ -71,7 +71,10 @@ class Equilibrium:
 
 
 def find_equilibrium(
-    system: SystemArrays, *, max_iterations: int = 200, tolerance: float = 1e-13,
+    system: SystemArrays,
+    *,
+    max_iterations: int = 200,
+    tolerance: float = 1e-13,
     forces: Callable[[FloatArray], FloatArray] | None = None,
     stiffness: Callable[[FloatArray], FloatArray] | None = None,
 ) -> Equilibrium:
@@ -94,12 +97,16 @@ def find_equilibrium(
     """
     n = system.n_bodies
     if forces is None:
+
         def forces(state: FloatArray) -> FloatArray:
             return generalized_forces(system, state)
+
     stiffness_of = stiffness
     if stiffness_of is None:
+
         def stiffness_of(state: FloatArray) -> FloatArray:
             return stiffness_matrix(system, state)
+
     mass = mass_matrix(system)
     inv_mass = 1.0 / system.inertia
 
@@ -142,8 +149,7 @@ def find_equilibrium(
         solution = scipy.optimize.least_squares(
             lambda p: forces(p / root_mass) / root_mass,
             state * root_mass,
-            jac=lambda p: -stiffness_of(p / root_mass)
-            / np.outer(root_mass, root_mass),
+            jac=lambda p: -stiffness_of(p / root_mass) / np.outer(root_mass, root_mass),
             method="trf",
             x_scale=0.1 * root_mass,  # trust region starts at 0.1 rad (0.1 m for sliders)
             xtol=1e-15,
@@ -174,13 +180,23 @@ def find_equilibrium(
             modes = normal_modes(mass, stiffness_eq)
             residual = residual_of(q)
     found = residual <= 1e-9 * scale
-    return Equilibrium(q, found, residual,
-                       "" if found else "the equilibrium search did not converge",
-                       stiffness_eq if found else None, modes if found else None)
+    return Equilibrium(
+        q,
+        found,
+        residual,
+        "" if found else "the equilibrium search did not converge",
+        stiffness_eq if found else None,
+        modes if found else None,
+    )
 
 
-def _valley_directions(system: SystemArrays, mass: FloatArray, q: FloatArray, n_zero: int,
-                       stiffness: FloatArray | None = None):
+def _valley_directions(
+    system: SystemArrays,
+    mass: FloatArray,
+    q: FloatArray,
+    n_zero: int,
+    stiffness: FloatArray | None = None,
+):
     """The ``n_zero`` softest M-normalised modes at ``q``: the directions along the valley."""
     if stiffness is None:
         stiffness = stiffness_matrix(system, q)
@@ -245,7 +261,9 @@ def _force_scale(system: SystemArrays) -> float:
     """A typical generalised force of the system, for relative tolerances."""
     springs = spring_state(system, np.zeros(system.n_bodies))
     spring_scale = np.sum(system.stiffness * springs.length * np.max(system.scale))
-    applied = np.sum(np.abs(system.force)) * (np.max(system.scale) + np.max(system.force_r, initial=0))
+    applied = np.sum(np.abs(system.force)) * (
+        np.max(system.scale) + np.max(system.force_r, initial=0)
+    )
     return float(max(spring_scale, applied, 1e-300) / np.sqrt(np.min(system.inertia)))
 
 
@@ -280,7 +298,9 @@ class Mode:
     @property
     def period(self) -> float:
         """Period in s (inf for a zero or unstable mode)."""
-        return 2 * math.pi / self.omega if self.kind == "oscillating" and self.omega > 0 else math.inf
+        return (
+            2 * math.pi / self.omega if self.kind == "oscillating" and self.omega > 0 else math.inf
+        )
 
 
 def normal_modes(
@@ -307,8 +327,9 @@ def normal_modes(
     return eigenvalues[order], vectors[:, order], kinds[order]
 
 
-def stationary_weights(system: SystemArrays, vectors: FloatArray,
-                       kinds: np.ndarray) -> FloatArray | None:
+def stationary_weights(
+    system: SystemArrays, vectors: FloatArray, kinds: np.ndarray
+) -> FloatArray | None:
     r"""Weights of the generalised stationary point (docs/physics.md (M14)),
     :math:`w_i = J_i v_{0i}/s_i` normalised to :math:`\sum w = 1`, from the single zero mode
     :math:`v_0` among ``vectors`` (columns, kinds from :func:`normal_modes`); None when there is
@@ -402,8 +423,10 @@ def analyze(system: System) -> LinearAnalysis:
     warnings: list[str] = []
     equilibrium = find_equilibrium(arrays)
     if not equilibrium.found:
-        warnings.append(equilibrium.reason + "; modes are those at the initial placement, and no "
-                        "response is computed")
+        warnings.append(
+            equilibrium.reason + "; modes are those at the initial placement, and no "
+            "response is computed"
+        )
     q_eq = equilibrium.q
     mass = mass_matrix(arrays)
     stiffness = stiffness_matrix(arrays, q_eq)
@@ -447,8 +470,17 @@ def analyze(system: System) -> LinearAnalysis:
         )
     else:
         response = _response(
-            arrays, q_eq, eigenvalues, vectors, kinds, d_friction, d_normal, friction_eq,
-            normal_eq, springs.lever, weights,
+            arrays,
+            q_eq,
+            eigenvalues,
+            vectors,
+            kinds,
+            d_friction,
+            d_normal,
+            friction_eq,
+            normal_eq,
+            springs.lever,
+            weights,
         )
 
     tilt = _tilt_deg(springs.vector)
@@ -476,8 +508,9 @@ def analyze(system: System) -> LinearAnalysis:
         equilibrium_friction=friction_eq,
         equilibrium_normal=normal_eq,
         spring_tilt_deg=tilt,
-        spring_tension=np.where(np.abs(springs.tension) < 1e-12 * arrays.stiffness.sum(), 0.0,
-                                springs.tension),
+        spring_tension=np.where(
+            np.abs(springs.tension) < 1e-12 * arrays.stiffness.sum(), 0.0, springs.tension
+        ),
         spring_length=springs.length,
         stationary_weights=weights,
         stationary_position=position,
@@ -523,8 +556,7 @@ def _mode(
     # contact forces that vanish to first order, and then only the springs set the scale)
     force_scale = float(np.max(np.abs(np.concatenate([d_friction, d_normal])), initial=0.0))
     force_scale *= float(np.max(np.abs(shape_q)))
-    force_scale = max(force_scale,
-                      float(np.max(arrays.stiffness, initial=0.0)) * length_scale)
+    force_scale = max(force_scale, float(np.max(arrays.stiffness, initial=0.0)) * length_scale)
     return Mode(
         eigenvalue=float(eigenvalue),
         omega=float(math.sqrt(abs(eigenvalue))),
@@ -579,15 +611,19 @@ def _response(
         centre = centre_eq + per_mode[..., zero] @ eta0[zero]
         drift = per_mode[..., zero] @ etadot0[zero]
         osc = per_mode[..., oscillating] * complex_amp
-        amps = np.array([osc[..., g].sum(axis=-1) for g in groups]) if groups else np.zeros(
-            (0,) + per_mode.shape[:-1], dtype=complex
+        amps = (
+            np.array([osc[..., g].sum(axis=-1) for g in groups])
+            if groups
+            else np.zeros((0,) + per_mode.shape[:-1], dtype=complex)
         )
         return _Component(np.asarray(centre, dtype=float), amps, np.asarray(drift, dtype=float))
 
     x_modes = arrays.scale[:, None] * vectors
     x_eq = arrays.x0 + arrays.scale * q_eq
     position = component(x_modes, x_eq)
-    cm = component(arrays.mass @ x_modes / arrays.mass.sum(), float(arrays.mass @ x_eq / arrays.mass.sum()))
+    cm = component(
+        arrays.mass @ x_modes / arrays.mass.sum(), float(arrays.mass @ x_eq / arrays.mass.sum())
+    )
     friction = component(d_friction @ vectors, friction_eq)
     normal = component(d_normal @ vectors, normal_eq)
     length_scale = float(np.max(position.amplitude, initial=0.0))
@@ -595,8 +631,7 @@ def _response(
     extension = np.abs(lever @ vectors[:, oscillating]) @ np.abs(complex_amp)  # per spring
     force_scale = float(np.max(arrays.stiffness * extension, initial=0.0))
     friction_amplitude = _clean(friction.amplitude, force_scale)
-    friction = _Component(_clean(friction.centre, force_scale), friction.amplitudes,
-                          friction.drift)
+    friction = _Component(_clean(friction.centre, force_scale), friction.amplitudes, friction.drift)
     required = _required_mu(arrays, friction, normal)
     required[(friction_amplitude == 0.0) & (friction.centre == 0.0)] = 0.0
     result: dict[str, Any] = {
@@ -604,7 +639,9 @@ def _response(
         # d/dt multiplies each frequency group's complex amplitude by i omega
         "velocity_amplitude": np.sum(
             np.abs(position.amplitudes) * omegas[[g[0] for g in groups]][:, None], axis=0
-        ) if groups else np.zeros(arrays.n_bodies),
+        )
+        if groups
+        else np.zeros(arrays.n_bodies),
         "drift_velocity": _clean(position.drift, float(np.max(np.abs(arrays.v0), initial=0.0))),
         "cm_amplitude": float(_clean(cm.amplitude, length_scale)),
         "friction_amplitude": friction_amplitude,
@@ -706,7 +743,9 @@ def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component)
         import scipy.optimize  # loaded on demand (~0.1 s), not by every analysis
 
         res = scipy.optimize.minimize(
-            lambda th: -float(ratio(th[None, :])[0]), grid[best], method="Nelder-Mead",
+            lambda th: -float(ratio(th[None, :])[0]),
+            grid[best],
+            method="Nelder-Mead",
             options={"xatol": 1e-12, "fatol": 1e-15, "maxiter": 2000},
         )
         out[i] = max(float(values[best]), -float(res.fun))

@@ -86,7 +86,8 @@ def analysis_to_dict(analysis: LinearAnalysis) -> dict[str, Any]:
             "drift_velocity": _by_id(ids, analysis.drift_velocity),
             "cm_amplitude": _num(analysis.cm_amplitude or 0.0),
             "stationary_point_amplitude": (
-                None if analysis.stationary_amplitude is None
+                None
+                if analysis.stationary_amplitude is None
                 else _num(analysis.stationary_amplitude)
             ),
             "friction_amplitude": _by_id(ids, analysis.friction_amplitude),
@@ -120,7 +121,9 @@ def analysis_to_dict(analysis: LinearAnalysis) -> dict[str, Any]:
     return {
         "system": analysis.system.name,
         "coordinates": list(ids),
-        "coordinate_units": {i: ("rad" if r else "m") for i, r in zip(ids, arrays.rolls, strict=True)},
+        "coordinate_units": {
+            i: ("rad" if r else "m") for i, r in zip(ids, arrays.rolls, strict=True)
+        },
         "conventions": CONVENTIONS,
         "matrices": {
             "M": [[_num(v) for v in row] for row in analysis.mass],

@@ -23,22 +23,36 @@ __all__ = ["animate", "register"]
 
 
 def animate(
-    system: Annotated[str, typer.Argument(
-        help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-        show_default=False)],
-    out: Annotated[str | None, typer.Option(
-        "--out", "-o", help="Output file: .gif (Pillow), .mp4 (H.264) or .html (JS player).",
-        show_default=False)] = None,
-    duration: Annotated[float, typer.Option(
-        "--duration", "-T", help="Simulated time to show, s.")] = 4.0,
-    speed: Annotated[float, typer.Option(
-        help="Playback speed: 1 real time, 0.5 slow motion.")] = 1.0,
+    system: Annotated[
+        str,
+        typer.Argument(
+            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
+            show_default=False,
+        ),
+    ],
+    out: Annotated[
+        str | None,
+        typer.Option(
+            "--out",
+            "-o",
+            help="Output file: .gif (Pillow), .mp4 (H.264) or .html (JS player).",
+            show_default=False,
+        ),
+    ] = None,
+    duration: Annotated[
+        float, typer.Option("--duration", "-T", help="Simulated time to show, s.")
+    ] = 4.0,
+    speed: Annotated[
+        float, typer.Option(help="Playback speed: 1 real time, 0.5 slow motion.")
+    ] = 1.0,
     fps: Annotated[int, typer.Option(help="Frames per second of playback.")] = 25,
     dpi: Annotated[int, typer.Option(help="Resolution: 80 gives frames 640 pixels wide.")] = 80,
-    forces: Annotated[bool, typer.Option(
-        "--forces/--no-forces", help="Draw spring, friction and normal forces.")] = True,
-    on_slip: Annotated[str, typer.Option(
-        "--on-slip", help="stop: end at the first slip; continue: stick-slip.")] = "stop",
+    forces: Annotated[
+        bool, typer.Option("--forces/--no-forces", help="Draw spring, friction and normal forces.")
+    ] = True,
+    on_slip: Annotated[
+        str, typer.Option("--on-slip", help="stop: end at the first slip; continue: stick-slip.")
+    ] = "stop",
 ) -> None:
     """Animate the exact motion: the bodies roll, the springs stretch, force arrows to scale,
     the CM and X-hat on the floor, and a clock."""
@@ -51,12 +65,20 @@ def animate(
     frames = math.floor(duration / speed * fps) + 1
     with _Bar() as bar:
         bar.start("simulating")
-        trajectory = simulate(model, duration, n_output=max(2001, 2 * frames), on_slip=on_slip,
-                              progress=bar.update)
+        trajectory = simulate(
+            model, duration, n_output=max(2001, 2 * frames), on_slip=on_slip, progress=bar.update
+        )
         bar.start(f"rendering {target.name}")
         try:
-            write_animation(trajectory, target, speed=speed, fps=fps, dpi=dpi, forces=forces,
-                            progress=bar.update)
+            write_animation(
+                trajectory,
+                target,
+                speed=speed,
+                fps=fps,
+                dpi=dpi,
+                forces=forces,
+                progress=bar.update,
+            )
         except OSError as exc:
             raise AnimationError(f"{target}: cannot write ({exc.strerror or exc})") from None
     if trajectory.status != "finished":
@@ -66,8 +88,9 @@ def animate(
     _say(f"wrote {target} ({count} frames, {shown:g} s of motion at speed {speed:g})")
 
 
-def _check(out: str | None, duration: float, speed: float, fps: int, dpi: int,
-           on_slip: str) -> Path:
+def _check(
+    out: str | None, duration: float, speed: float, fps: int, dpi: int, on_slip: str
+) -> Path:
     """Every option checked before any work: one line naming the option."""
     from rollspring.outputs.animation import FORMATS, MAX_FRAMES, AnimationError
 
@@ -77,7 +100,8 @@ def _check(out: str | None, duration: float, speed: float, fps: int, dpi: int,
     if target.suffix.lower() not in FORMATS:
         raise AnimationError(
             f"--out: unknown format '{target.suffix or '(no suffix)'}' of {out} "
-            f"(use .gif, .mp4 or .html)")
+            f"(use .gif, .mp4 or .html)"
+        )
     for name, value in (("--duration", duration), ("--speed", speed)):
         if not (math.isfinite(value) and value > 0):
             raise AnimationError(f"{name}: must be a positive number, got {value:g}")
@@ -91,7 +115,8 @@ def _check(out: str | None, duration: float, speed: float, fps: int, dpi: int,
     if frames > MAX_FRAMES:
         raise AnimationError(
             f"--duration: {duration:g} s at --speed {speed:g} and --fps {fps} is {frames} "
-            f"frames (at most {MAX_FRAMES}); shorten it, raise --speed or lower --fps")
+            f"frames (at most {MAX_FRAMES}); shorten it, raise --speed or lower --fps"
+        )
     from rollspring.outputs.files import writable_file
 
     return writable_file(target)  # an unwritable --out fails now, not after the work
@@ -104,9 +129,14 @@ class _Bar:
         from rich.console import Console
         from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
-        self.progress = Progress(TextColumn("{task.description}"), BarColumn(),
-                                 TextColumn("{task.percentage:>3.0f}%"), TimeRemainingColumn(),
-                                 console=Console(stderr=True), transient=True)
+        self.progress = Progress(
+            TextColumn("{task.description}"),
+            BarColumn(),
+            TextColumn("{task.percentage:>3.0f}%"),
+            TimeRemainingColumn(),
+            console=Console(stderr=True),
+            transient=True,
+        )
         self.task = None
 
     def __enter__(self) -> _Bar:

@@ -68,8 +68,10 @@ def friendly_errors(command: F) -> F:
         except Exception as exc:
             if os.environ.get("ROLLSPRING_DEBUG"):
                 raise
-            _say(f"internal error: {type(exc).__name__}: {exc} (please report it; "
-                 "ROLLSPRING_DEBUG=1 shows the traceback)")
+            _say(
+                f"internal error: {type(exc).__name__}: {exc} (please report it; "
+                "ROLLSPRING_DEBUG=1 shows the traceback)"
+            )
             raise typer.Exit(1) from None
 
     return wrapper  # type: ignore[return-value]
@@ -150,8 +152,14 @@ def presets(as_json: JsonOpt = False) -> None:
     rows = []
     for name in preset_names():
         system = load_system(name)
-        rows.append({"name": name, "title": system.name, "file": str(preset_path(name)),
-                     "default": name == DEFAULT_PRESET})
+        rows.append(
+            {
+                "name": name,
+                "title": system.name,
+                "file": str(preset_path(name)),
+                "default": name == DEFAULT_PRESET,
+            }
+        )
     if as_json:
         _print_json(rows)
         return
@@ -170,18 +178,30 @@ def presets(as_json: JsonOpt = False) -> None:
 def simulate(
     system: SystemArg = DEFAULT_PRESET,
     duration: Annotated[float, typer.Option("--duration", "-T", help="Simulated time, s.")] = 10.0,
-    rtol: Annotated[float, typer.Option(help="Relative accuracy of the motion over the run.")]
-    = 1e-8,
-    integrator: Annotated[str, typer.Option(
-        help="auto, verlet, yoshida4, yoshida6, kahanli8 (symplectic, compiled) or dop853.")]
-    = "auto",
-    on_slip: Annotated[str, typer.Option(
-        "--on-slip", help="stop: end the run when a body starts to slip; continue: run on "
-        "with kinetic friction (stick-slip).")] = "stop",
+    rtol: Annotated[
+        float, typer.Option(help="Relative accuracy of the motion over the run.")
+    ] = 1e-8,
+    integrator: Annotated[
+        str,
+        typer.Option(
+            help="auto, verlet, yoshida4, yoshida6, kahanli8 (symplectic, compiled) or dop853."
+        ),
+    ] = "auto",
+    on_slip: Annotated[
+        str,
+        typer.Option(
+            "--on-slip",
+            help="stop: end the run when a body starts to slip; continue: run on "
+            "with kinetic friction (stick-slip).",
+        ),
+    ] = "stop",
     outputs: Annotated[int, typer.Option("--outputs", help="Number of output times.")] = 2001,
-    out: Annotated[str | None, typer.Option(
-        "--out", "-o", help="Write trajectory.csv, trajectory.npz and summary.json here.")]
-    = None,
+    out: Annotated[
+        str | None,
+        typer.Option(
+            "--out", "-o", help="Write trajectory.csv, trajectory.npz and summary.json here."
+        ),
+    ] = None,
     as_json: JsonOpt = False,
 ) -> None:
     """Integrate the exact nonlinear motion; report energy, period, friction, slip, lift-off."""
@@ -194,9 +214,15 @@ def simulate(
 
     model = load_system(system)
     with _progress_after_a_second("simulating") as progress:
-        trajectory = run_simulation(model, duration, rtol=rtol, integrator=integrator,
-                                    outputs=outputs, on_slip=on_slip,
-                                    progress=progress).trajectory
+        trajectory = run_simulation(
+            model,
+            duration,
+            rtol=rtol,
+            integrator=integrator,
+            outputs=outputs,
+            on_slip=on_slip,
+            progress=progress,
+        ).trajectory
     written = []
     if out is not None:
         from rollspring.outputs import write_trajectory
@@ -257,8 +283,17 @@ def main(argv: list[str] | None = None) -> None:
 
 #: Modules of further commands; each has ``register(app)``. (Work in progress: a module that
 #: is not written yet is skipped; the list becomes plain imports once all exist.)
-_COMMAND_MODULES = ("export", "derive", "paper_check", "worksheet", "animate", "report",
-                    "serve", "sweep", "sweep_plot")
+_COMMAND_MODULES = (
+    "export",
+    "derive",
+    "paper_check",
+    "worksheet",
+    "animate",
+    "report",
+    "serve",
+    "sweep",
+    "sweep_plot",
+)
 
 
 def _register_subcommands() -> None:

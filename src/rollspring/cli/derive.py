@@ -26,22 +26,47 @@ __all__ = ["derive_command", "register"]
 
 
 def derive_command(
-    system: Annotated[str, typer.Argument(
-        help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-        show_default=False)],
-    method: Annotated[list[str] | None, typer.Option(
-        "--method", "-m",
-        help=f"Method(s): {', '.join(METHOD_NAMES[:-1])} or {METHOD_NAMES[-1]} (repeatable).",
-        show_default=False)] = None,
-    format: Annotated[str, typer.Option(  # noqa: A002 - the option is called --format
-        "--format", "-f", help=f"Output format: {', '.join(FORMAT_NAMES)} (latex: a full "
-        "document).")] = "text",
-    symbols: Annotated[bool, typer.Option(
-        "--symbols", help="Masses, radii, stiffnesses and heights as symbols (m_1, R, k, ...) "
-        "instead of exact numbers.")] = False,
-    out: Annotated[str | None, typer.Option(
-        "--out", "-o", help="Write to this file (atomically) instead of stdout.",
-        show_default=False)] = None,
+    system: Annotated[
+        str,
+        typer.Argument(
+            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
+            show_default=False,
+        ),
+    ],
+    method: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--method",
+            "-m",
+            help=f"Method(s): {', '.join(METHOD_NAMES[:-1])} or {METHOD_NAMES[-1]} (repeatable).",
+            show_default=False,
+        ),
+    ] = None,
+    format: Annotated[
+        str,
+        typer.Option(  # noqa: A002 - the option is called --format
+            "--format",
+            "-f",
+            help=f"Output format: {', '.join(FORMAT_NAMES)} (latex: a full document).",
+        ),
+    ] = "text",
+    symbols: Annotated[
+        bool,
+        typer.Option(
+            "--symbols",
+            help="Masses, radii, stiffnesses and heights as symbols (m_1, R, k, ...) "
+            "instead of exact numbers.",
+        ),
+    ] = False,
+    out: Annotated[
+        str | None,
+        typer.Option(
+            "--out",
+            "-o",
+            help="Write to this file (atomically) instead of stdout.",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Derive the equations of motion step by step by Newton, conservation laws, Lagrange,
     subsystem frequencies and Hamilton; check that they agree (symbolically)."""
@@ -49,17 +74,20 @@ def derive_command(
     from rollspring.service.documents import derivation_document
 
     if format not in FORMATS:
-        raise DerivationError(f"--format: unknown format '{format}' "
-                              f"(formats: {', '.join(FORMATS)})")
+        raise DerivationError(
+            f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})"
+        )
     methods = method or [ALL]
     for name in methods:
         if name != ALL and name not in METHODS:
-            raise DerivationError(f"--method: unknown method '{name}' "
-                                  f"(methods: {', '.join(METHODS)}, {ALL})")
+            raise DerivationError(
+                f"--method: unknown method '{name}' (methods: {', '.join(METHODS)}, {ALL})"
+            )
     from rollspring.model import load_system  # pydantic: not for --help
 
-    rendered, check = derivation_document(load_system(system), methods, format=format,
-                                          symbols=symbols)
+    rendered, check = derivation_document(
+        load_system(system), methods, format=format, symbols=symbols
+    )
     if out is None:
         sys.stdout.write(rendered)
         sys.stdout.flush()
@@ -72,8 +100,10 @@ def derive_command(
             raise DerivationError(f"--out: {out}: cannot write ({exc.strerror or exc})") from None
         _say(f"wrote {out}")
     if not check.agree:
-        _say("warning: the methods do not all agree: "
-             + "; ".join(f"{c.method}: {c.what}" for c in check.failures))
+        _say(
+            "warning: the methods do not all agree: "
+            + "; ".join(f"{c.method}: {c.what}" for c in check.failures)
+        )
 
 
 def register(app: typer.Typer) -> None:

@@ -21,17 +21,32 @@ FORMATS = ("mjcf",)
 
 
 def export(
-    system: Annotated[str, typer.Argument(
-        help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-        show_default=False)],
-    format: Annotated[str, typer.Option(  # noqa: A002 - the option is called --format
-        "--format", "-f", help=f"Output format: {', '.join(FORMATS)} (MuJoCo XML).")] = "mjcf",
-    out: Annotated[str | None, typer.Option(
-        "--out", "-o", help="Output file (required); '-' prints to stdout.",
-        show_default=False)] = None,
-    timestep: Annotated[float | None, typer.Option(
-        help="Simulation time step written into the model, s (default 1e-4).",
-        show_default=False)] = None,
+    system: Annotated[
+        str,
+        typer.Argument(
+            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
+            show_default=False,
+        ),
+    ],
+    format: Annotated[
+        str,
+        typer.Option(  # noqa: A002 - the option is called --format
+            "--format", "-f", help=f"Output format: {', '.join(FORMATS)} (MuJoCo XML)."
+        ),
+    ] = "mjcf",
+    out: Annotated[
+        str | None,
+        typer.Option(
+            "--out", "-o", help="Output file (required); '-' prints to stdout.", show_default=False
+        ),
+    ] = None,
+    timestep: Annotated[
+        float | None,
+        typer.Option(
+            help="Simulation time step written into the model, s (default 1e-4).",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Export a system for another simulator: mjcf is a MuJoCo model (planar bodies on planes
     with contact friction, springs as tendons) to compare exact rolling with soft contact."""

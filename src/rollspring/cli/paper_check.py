@@ -23,8 +23,15 @@ from rollspring.errors import RollspringError
 if TYPE_CHECKING:
     from rollspring.analysis.paper_check import ClaimCheck
 
-__all__ = ["FORMATS", "PaperCheckError", "markdown_table", "paper_check", "plain", "register",
-           "summary"]
+__all__ = [
+    "FORMATS",
+    "PaperCheckError",
+    "markdown_table",
+    "paper_check",
+    "plain",
+    "register",
+    "summary",
+]
 
 # the verdicts of rollspring.analysis.paper_check (imported when the command runs: SymPy)
 VERIFIED, WRONG, HOLDS_ONLY_IF = "verified", "wrong", "holds-only-if"
@@ -42,16 +49,20 @@ class PaperCheckError(RollspringError, ValueError):
 
 
 def paper_check(
-    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON list on stdout.")]
-    = False,
-    format: Annotated[str, typer.Option(  # noqa: A002 - the option is called --format
-        "--format", "-f", help=f"Output format: {', '.join(FORMATS)}.")] = "text",
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON list on stdout.")] = False,
+    format: Annotated[
+        str,
+        typer.Option(  # noqa: A002 - the option is called --format
+            "--format", "-f", help=f"Output format: {', '.join(FORMATS)}."
+        ),
+    ] = "text",
 ) -> None:
     """Check every quantitative claim of the paper against the symbolic derivation: ✔ verified,
     ✘ wrong (with the correction) or ⚠ holds only under a condition (stated)."""
     if format not in FORMATS:
-        raise PaperCheckError(f"--format: unknown format '{format}' "
-                              f"(formats: {', '.join(FORMATS)})")
+        raise PaperCheckError(
+            f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})"
+        )
     from rollspring.service.documents import claims_json, paper_checks
 
     checks = paper_checks()
@@ -69,8 +80,10 @@ def paper_check(
 def summary(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
     """'N claims: a verified, b hold only under a condition, c wrong'."""
     counts = Counter(c.verdict for c in checks)
-    return (f"{len(checks)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_ONLY_IF]} hold "
-            f"only under a condition, {counts[WRONG]} wrong")
+    return (
+        f"{len(checks)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_ONLY_IF]} hold "
+        f"only under a condition, {counts[WRONG]} wrong"
+    )
 
 
 def markdown_table(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
@@ -88,7 +101,8 @@ def markdown_table(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
         lines.append(
             f"| {_MARK[check.verdict]} | {_cell(check.claim.location)} | "
             f"${_cell_math(check.claim.latex)}$ | {_WORDS[check.verdict]} | {correction} | "
-            f"{_cell(check.reason)} |")
+            f"{_cell(check.reason)} |"
+        )
     return "\n".join(lines) + "\n"
 
 
@@ -106,8 +120,11 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
 
     from rollspring.cli.app import _stdout
 
-    table = Table(title="The paper's claims, checked by the derivation engine",
-                  title_justify="left", show_lines=True)
+    table = Table(
+        title="The paper's claims, checked by the derivation engine",
+        title_justify="left",
+        show_lines=True,
+    )
     table.add_column("", no_wrap=True)
     table.add_column("where", ratio=2, overflow="fold")
     table.add_column("claim", ratio=4, overflow="fold")
@@ -121,9 +138,12 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
         if check.correction:
             verdict += f"\ncorrect: {plain(check.correction)}"
         mark = f"[{_STYLE[check.verdict]}]{_MARK[check.verdict]}[/]"
-        table.add_row(mark, Text(check.claim.location), Text(plain(check.claim.latex)),
-                      Text(verdict, style=_STYLE[check.verdict] if check.verdict != VERIFIED
-                           else ""))
+        table.add_row(
+            mark,
+            Text(check.claim.location),
+            Text(plain(check.claim.latex)),
+            Text(verdict, style=_STYLE[check.verdict] if check.verdict != VERIFIED else ""),
+        )
     console = _stdout()
     console.print(table)
     console.print(summary(checks), markup=False)
@@ -132,12 +152,38 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
 # -- LaTeX to readable text (for the terminal) ---------------------------------------------------
 
 _SYMBOLS = {
-    r"\varphi": "φ", r"\phi": "φ", r"\Phi": "Φ", r"\Omega": "Ω", r"\omega": "ω",
-    r"\varepsilon": "ε", r"\gamma": "γ", r"\alpha": "α", r"\beta": "β", r"\pi": "π",
-    r"\rightarrow": "→", r"\Rightarrow": "⇒", r"\neq": "≠", r"\equiv": "≡", r"\cdot": "·",
-    r"\quad": "  ", r"\qquad": "   ", r"\,": " ", r"\;": " ", r"\ ": " ", r"\!": "",
-    r"\left": "", r"\right": "", r"\lvert": "|", r"\rvert": "|", r"\vert": "|", r"\sum": "Σ",
-    r"\infty": "∞", r"\leq": "≤", r"\geq": "≥", r"\iff": "⇔", r"\vdots": "⋮",
+    r"\varphi": "φ",
+    r"\phi": "φ",
+    r"\Phi": "Φ",
+    r"\Omega": "Ω",
+    r"\omega": "ω",
+    r"\varepsilon": "ε",
+    r"\gamma": "γ",
+    r"\alpha": "α",
+    r"\beta": "β",
+    r"\pi": "π",
+    r"\rightarrow": "→",
+    r"\Rightarrow": "⇒",
+    r"\neq": "≠",
+    r"\equiv": "≡",
+    r"\cdot": "·",
+    r"\quad": "  ",
+    r"\qquad": "   ",
+    r"\,": " ",
+    r"\;": " ",
+    r"\ ": " ",
+    r"\!": "",
+    r"\left": "",
+    r"\right": "",
+    r"\lvert": "|",
+    r"\rvert": "|",
+    r"\vert": "|",
+    r"\sum": "Σ",
+    r"\infty": "∞",
+    r"\leq": "≤",
+    r"\geq": "≥",
+    r"\iff": "⇔",
+    r"\vdots": "⋮",
 }
 _SUPERSCRIPT = str.maketrans("0123456789+-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻")
 _SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
@@ -162,8 +208,8 @@ def _group(text: str, start: int) -> tuple[str, int]:
         elif text[i] == "}":
             depth -= 1
             if depth == 0:
-                return text[start + 1:i], i + 1
-    return text[start + 1:], len(text)
+                return text[start + 1 : i], i + 1
+    return text[start + 1 :], len(text)
 
 
 def plain(latex: str) -> str:
@@ -184,25 +230,39 @@ def plain(latex: str) -> str:
                 fraction = f"{_wrap(plain(num))}/{_wrap(plain(den))}"
                 rest = re.sub(r"^(\s|\\right|\\quad|\\,|\\;|\\ )+", "", text[i:])
                 before = "".join(out).rstrip()[-1:]
-                joined = (rest[:1].isalnum() or (rest[:1] != "" and rest[:1] in "\\(")
-                          or before.isalnum()
-                          or before in ")̇̈₀₁₂₃₄₅₆₇₈₉²³")
+                joined = (
+                    rest[:1].isalnum()
+                    or (rest[:1] != "" and rest[:1] in "\\(")
+                    or before.isalnum()
+                    or before in ")̇̈₀₁₂₃₄₅₆₇₈₉²³"
+                )
                 out.append(f"({fraction})" if joined else fraction)
             elif name == r"\sqrt":
                 arg, i = _group(text, i)
                 out.append(f"√{_wrap(plain(arg))}")
             elif name in (r"\dot", r"\ddot", r"\hat", r"\bcancel"):
                 arg, i = _group(text, i)
-                accent = {r"\dot": "\u0307", r"\ddot": "\u0308", r"\hat": "\u0302",
-                          r"\bcancel": "\u0338"}[name]
+                accent = {
+                    r"\dot": "\u0307",
+                    r"\ddot": "\u0308",
+                    r"\hat": "\u0302",
+                    r"\bcancel": "\u0338",
+                }[name]
                 inner = plain(arg)
-                if len(inner) == 1 or (inner[:1].isalpha() and all(
-                        c in "₀₁₂₃₄₅₆₇₈₉" for c in inner[1:])):
+                if len(inner) == 1 or (
+                    inner[:1].isalpha() and all(c in "₀₁₂₃₄₅₆₇₈₉" for c in inner[1:])
+                ):
                     out.append(inner[0] + accent + inner[1:])
                 else:
                     out.append(f"({inner}){accent}")
-            elif name in (r"\text", r"\mathrm", r"\operatorname", r"\mathcal", r"\boldsymbol",
-                          r"\mathbf"):
+            elif name in (
+                r"\text",
+                r"\mathrm",
+                r"\operatorname",
+                r"\mathcal",
+                r"\boldsymbol",
+                r"\mathbf",
+            ):
                 arg, i = _group(text, i)
                 out.append(plain(arg) if name != r"\text" else arg)
             elif name in _SYMBOLS:

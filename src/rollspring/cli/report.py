@@ -24,24 +24,57 @@ FORMATS = ("html", "pdf")
 
 
 def report(
-    system: Annotated[str, typer.Argument(
-        help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-        show_default=False)] = DEFAULT_PRESET,
-    out: Annotated[str | None, typer.Option(
-        "--out", "-o", help="Output file (default report.html, or report.pdf with --format pdf).",
-        show_default=False)] = None,
-    format: Annotated[str | None, typer.Option(  # noqa: A002 - the option is called --format
-        "--format", "-f", help="html (default; pdf when --out ends in .pdf) or pdf (printed by "
-        "headless Chromium).", show_default=False)] = None,
-    duration: Annotated[float | None, typer.Option(
-        "--duration", "-T", help="Simulated time, s (default: four periods of the slowest mode, "
-        "1 to 20 s).", show_default=False)] = None,
-    derivation: Annotated[bool, typer.Option(
-        "--derivation/--no-derivation", help="Include the symbolic derivation by the five "
-        "methods and the paper's claims (SymPy; the slowest part for large systems).")] = True,
-    chromium: Annotated[str | None, typer.Option(
-        help="Chromium executable for --format pdf (default: $ROLLSPRING_CHROMIUM, then "
-        "chromium on PATH).", show_default=False)] = None,
+    system: Annotated[
+        str,
+        typer.Argument(
+            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
+            show_default=False,
+        ),
+    ] = DEFAULT_PRESET,
+    out: Annotated[
+        str | None,
+        typer.Option(
+            "--out",
+            "-o",
+            help="Output file (default report.html, or report.pdf with --format pdf).",
+            show_default=False,
+        ),
+    ] = None,
+    format: Annotated[
+        str | None,
+        typer.Option(  # noqa: A002 - the option is called --format
+            "--format",
+            "-f",
+            help="html (default; pdf when --out ends in .pdf) or pdf (printed by "
+            "headless Chromium).",
+            show_default=False,
+        ),
+    ] = None,
+    duration: Annotated[
+        float | None,
+        typer.Option(
+            "--duration",
+            "-T",
+            help="Simulated time, s (default: four periods of the slowest mode, 1 to 20 s).",
+            show_default=False,
+        ),
+    ] = None,
+    derivation: Annotated[
+        bool,
+        typer.Option(
+            "--derivation/--no-derivation",
+            help="Include the symbolic derivation by the five "
+            "methods and the paper's claims (SymPy; the slowest part for large systems).",
+        ),
+    ] = True,
+    chromium: Annotated[
+        str | None,
+        typer.Option(
+            help="Chromium executable for --format pdf (default: $ROLLSPRING_CHROMIUM, then "
+            "chromium on PATH).",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Write a self-contained report (HTML, or PDF through headless Chromium): diagram,
     parameters, modes, X̂, friction needed vs μs, derivations, paper checks, plots, animation."""

@@ -24,21 +24,33 @@ class ServeError(RollspringError, ValueError):
 
 
 def serve(
-    system: Annotated[str, typer.Argument(
-        help=f"The system the page opens with: a file (.toml or .json) or a preset name "
-        f"({', '.join(preset_names())}).", show_default=False)] = DEFAULT_PRESET,
-    host: Annotated[str, typer.Option(help="Address to listen on (127.0.0.1: this machine "
-                                      "only).")] = "127.0.0.1",
+    system: Annotated[
+        str,
+        typer.Argument(
+            help=f"The system the page opens with: a file (.toml or .json) or a preset name "
+            f"({', '.join(preset_names())}).",
+            show_default=False,
+        ),
+    ] = DEFAULT_PRESET,
+    host: Annotated[
+        str, typer.Option(help="Address to listen on (127.0.0.1: this machine only).")
+    ] = "127.0.0.1",
     port: Annotated[int, typer.Option(help="Port (0: any free port).")] = 8000,
-    open_browser: Annotated[bool, typer.Option("--open", help="Open the page in a browser.")]
-    = False,
-    budget: Annotated[float, typer.Option(help="Time budget of one computation, s (longer: "
-                                          "HTTP 503).")] = 10.0,
-    workers: Annotated[int, typer.Option(help="Worker processes for the computations "
-                                         "(0: one per core).")] = 0,
-    limit_concurrency: Annotated[int, typer.Option(
-        "--limit-concurrency", help="Connections at once; more are answered 503 at "
-        "once.")] = 64,
+    open_browser: Annotated[
+        bool, typer.Option("--open", help="Open the page in a browser.")
+    ] = False,
+    budget: Annotated[
+        float, typer.Option(help="Time budget of one computation, s (longer: HTTP 503).")
+    ] = 10.0,
+    workers: Annotated[
+        int, typer.Option(help="Worker processes for the computations (0: one per core).")
+    ] = 0,
+    limit_concurrency: Annotated[
+        int,
+        typer.Option(
+            "--limit-concurrency", help="Connections at once; more are answered 503 at once."
+        ),
+    ] = 64,
 ) -> None:
     """Serve the interactive page: drag the bodies, move the sliders, watch every force."""
     from rollspring.cli.app import _say
@@ -56,8 +68,10 @@ def serve(
     model = load_system(system)
     listener = _listen(host, port)
     if not _is_loopback(host):
-        _say(f"warning: serving on {host}, reachable from other machines; the page has no "
-             "log-in, anyone who reaches it can use it")
+        _say(
+            f"warning: serving on {host}, reachable from other machines; the page has no "
+            "log-in, anyone who reaches it can use it"
+        )
     bound = listener.getsockname()[1]
     shown = f"[{host}]" if ":" in host else host
     url = f"http://{shown}:{bound}/"
@@ -66,10 +80,15 @@ def serve(
 
     from rollspring.web import create_app
 
-    app = create_app(model, preset=system if system in preset_names() else None,
-                     budget=budget, workers=workers or None)
-    config = uvicorn.Config(app, log_level="warning", limit_concurrency=limit_concurrency,
-                            timeout_graceful_shutdown=2)
+    app = create_app(
+        model,
+        preset=system if system in preset_names() else None,
+        budget=budget,
+        workers=workers or None,
+    )
+    config = uvicorn.Config(
+        app, log_level="warning", limit_concurrency=limit_concurrency, timeout_graceful_shutdown=2
+    )
     server = uvicorn.Server(config)
     typer.echo(f"rollspring: {model.name or system} at {url} (Ctrl-C stops)")
     if open_browser:

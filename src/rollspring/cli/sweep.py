@@ -19,42 +19,88 @@ __all__ = ["register", "sweep"]
 
 
 def sweep(
-    system: Annotated[str, typer.Argument(
-        help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-        show_default=False)] = DEFAULT_PRESET,
-    vary: Annotated[list[str] | None, typer.Option(
-        "--vary", help="PATH=START:STOP:NUM[:log] or PATH=v1,v2,... (repeatable; the grid is "
-        "their outer product, in this order). PATHs: bodies.<id>.mass|radius|mu_static|"
-        "mu_kinetic|x|v, springs.<i>.stiffness|rest_length, springs.<i>.at.<end>.height|radius|"
-        "angle, modes.<n>.amplitude, gravity.", show_default=False)] = None,
-    duration: Annotated[float | None, typer.Option(
-        "--duration", "-T", help="Simulated time of every run, s.", show_default=False)] = None,
-    metric: Annotated[list[str] | None, typer.Option(
-        "--metric", help="Keep only this variable (repeatable; status is always kept).",
-        show_default=False)] = None,
-    on_slip: Annotated[str, typer.Option(
-        "--on-slip", help="stop: a run ends at its first slip; continue: stick-slip with "
-        "kinetic friction (single runs, slower).")] = "stop",
-    out: Annotated[str | None, typer.Option(
-        "--out", "-o", help="The Zarr store to write (a rerun resumes it).",
-        show_default=False)] = None,
-    scheduler: Annotated[str | None, typer.Option(
-        "--scheduler", help="A Dask scheduler, tcp://HOST:PORT (default: in this process, "
-        "every core).", show_default=False)] = None,
-    chunk: Annotated[int | None, typer.Option(
-        "--chunk", help="Runs per chunk (default 4096).", show_default=False)] = None,
+    system: Annotated[
+        str,
+        typer.Argument(
+            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
+            show_default=False,
+        ),
+    ] = DEFAULT_PRESET,
+    vary: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--vary",
+            help="PATH=START:STOP:NUM[:log] or PATH=v1,v2,... (repeatable; the grid is "
+            "their outer product, in this order). PATHs: bodies.<id>.mass|radius|mu_static|"
+            "mu_kinetic|x|v, springs.<i>.stiffness|rest_length, springs.<i>.at.<end>.height|radius|"
+            "angle, modes.<n>.amplitude, gravity.",
+            show_default=False,
+        ),
+    ] = None,
+    duration: Annotated[
+        float | None,
+        typer.Option(
+            "--duration", "-T", help="Simulated time of every run, s.", show_default=False
+        ),
+    ] = None,
+    metric: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--metric",
+            help="Keep only this variable (repeatable; status is always kept).",
+            show_default=False,
+        ),
+    ] = None,
+    on_slip: Annotated[
+        str,
+        typer.Option(
+            "--on-slip",
+            help="stop: a run ends at its first slip; continue: stick-slip with "
+            "kinetic friction (single runs, slower).",
+        ),
+    ] = "stop",
+    out: Annotated[
+        str | None,
+        typer.Option(
+            "--out", "-o", help="The Zarr store to write (a rerun resumes it).", show_default=False
+        ),
+    ] = None,
+    scheduler: Annotated[
+        str | None,
+        typer.Option(
+            "--scheduler",
+            help="A Dask scheduler, tcp://HOST:PORT (default: in this process, every core).",
+            show_default=False,
+        ),
+    ] = None,
+    chunk: Annotated[
+        int | None,
+        typer.Option("--chunk", help="Runs per chunk (default 4096).", show_default=False),
+    ] = None,
     rtol: Annotated[float, typer.Option(help="Relative accuracy of each run.")] = 1e-8,
-    step: Annotated[float | None, typer.Option(
-        "--step", help="Fix the integration step of the whole grid, s (default: from --rtol).",
-        show_default=False)] = None,
-    integrator: Annotated[str, typer.Option(
-        help="auto, verlet, yoshida4 or yoshida6 (with --step, auto means yoshida4).")]
-    = "auto",
-    refine_slip: Annotated[bool, typer.Option(
-        "--refine-slip/--no-refine-slip", help="Root-find each first slip instant with a single "
-        "run (default) instead of the batch's interpolation between steps.")] = True,
-    overwrite: Annotated[bool, typer.Option(
-        "--overwrite", help="Replace a store that holds another sweep.")] = False,
+    step: Annotated[
+        float | None,
+        typer.Option(
+            "--step",
+            help="Fix the integration step of the whole grid, s (default: from --rtol).",
+            show_default=False,
+        ),
+    ] = None,
+    integrator: Annotated[
+        str,
+        typer.Option(help="auto, verlet, yoshida4 or yoshida6 (with --step, auto means yoshida4)."),
+    ] = "auto",
+    refine_slip: Annotated[
+        bool,
+        typer.Option(
+            "--refine-slip/--no-refine-slip",
+            help="Root-find each first slip instant with a single "
+            "run (default) instead of the batch's interpolation between steps.",
+        ),
+    ] = True,
+    overwrite: Annotated[
+        bool, typer.Option("--overwrite", help="Replace a store that holds another sweep.")
+    ] = False,
 ) -> None:
     """Run a grid of variations of a system (batched, in-process or on a Dask cluster) into a
     Zarr store: frequencies, X-hat weights, friction needed, periods, slip, lift-off."""
@@ -77,10 +123,22 @@ def sweep(
 
     model = load_system(system)
     with _Bar() as bar:
-        dataset = run_sweep(model, grid, duration, metrics=metric, on_slip=on_slip, out=out,
-                            scheduler=scheduler, chunk=chunk, overwrite=overwrite, rtol=rtol,
-                            progress=bar, step=step, integrator=integrator,
-                            refine_slip=refine_slip)
+        dataset = run_sweep(
+            model,
+            grid,
+            duration,
+            metrics=metric,
+            on_slip=on_slip,
+            out=out,
+            scheduler=scheduler,
+            chunk=chunk,
+            overwrite=overwrite,
+            rtol=rtol,
+            progress=bar,
+            step=step,
+            integrator=integrator,
+            refine_slip=refine_slip,
+        )
     first = bar.first
     total = int(dataset.attrs["n_chunks"])
     ran = bar.last.chunks_run if bar.last is not None else 0
@@ -119,12 +177,19 @@ class _Bar:
                 TimeRemainingColumn,
             )
 
-            self.bar = Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
-                                TextColumn("runs {task.fields[rate]}"), TimeRemainingColumn(),
-                                console=Console(stderr=True), transient=True)
+            self.bar = Progress(
+                TextColumn("sweep"),
+                BarColumn(),
+                MofNCompleteColumn(),
+                TextColumn("runs {task.fields[rate]}"),
+                TimeRemainingColumn(),
+                console=Console(stderr=True),
+                transient=True,
+            )
             self.bar.start()
-            self.task = self.bar.add_task("sweep", total=progress.total_runs, rate="",
-                                          completed=self.first.done_runs)
+            self.task = self.bar.add_task(
+                "sweep", total=progress.total_runs, rate="", completed=self.first.done_runs
+            )
         elapsed = max(time.perf_counter() - self.started, 1e-9)
         rate = (progress.done_runs - self.first.done_runs) / elapsed
         self.bar.update(self.task, completed=progress.done_runs, rate=f"{rate:,.0f} runs/s")

@@ -27,8 +27,9 @@ def _parse_sel(items: list[str]) -> dict[str, str]:
         path, equals, value = item.rpartition("=")
         path, value = path.strip(), value.strip()
         if not equals or not path or not value:
-            raise SweepPlotError(f"--sel {item}: expected PATH=VALUE, e.g. "
-                                 "--sel bodies.hoop.mass=1.5")
+            raise SweepPlotError(
+                f"--sel {item}: expected PATH=VALUE, e.g. --sel bodies.hoop.mass=1.5"
+            )
         if path in chosen:
             raise SweepPlotError(f"--sel {path}: given twice")
         chosen[path] = value
@@ -36,29 +37,68 @@ def _parse_sel(items: list[str]) -> dict[str, str]:
 
 
 def sweep_plot(
-    store: Annotated[str, typer.Argument(help="A sweep store written by rollspring sweep "
-                                        "(a .zarr directory).", show_default=False)],
-    x: Annotated[str, typer.Option("--x", help="The varied PATH along the horizontal axis.",
-                                   show_default=False)],
-    y: Annotated[str, typer.Option("--y", help="The varied PATH along the vertical axis.",
-                                   show_default=False)],
-    metric: Annotated[str, typer.Option(
-        "--metric", "-m", help="The variable to map (status, first_slip_time, "
-        "max_friction_ratio, period_measured, …).", show_default=False)],
-    sel: Annotated[list[str] | None, typer.Option(
-        "--sel", help="PATH=VALUE: fix another varied PATH at a grid value (repeatable; a value "
-        "between grid values takes the nearest).", show_default=False)] = None,
-    body: Annotated[str | None, typer.Option(
-        "--body", help="Body of a per-body metric and of the linear slip boundary (default: "
-        "the extreme over the bodies).", show_default=False)] = None,
-    mode: Annotated[int | None, typer.Option(
-        "--mode", help="Mode of omega (0 … n-1, sorted by ω) and of the linear period.",
-        show_default=False)] = None,
-    linear: Annotated[bool, typer.Option(
-        "--linear/--no-linear", help="Draw the linear theory's prediction (the slip boundary "
-        "μ needed = μs; the period 2π/ω).")] = True,
-    out: Annotated[str, typer.Option("--out", "-o", help="Image file: .png, .svg or .pdf.")]
-    = "map.png",
+    store: Annotated[
+        str,
+        typer.Argument(
+            help="A sweep store written by rollspring sweep (a .zarr directory).",
+            show_default=False,
+        ),
+    ],
+    x: Annotated[
+        str,
+        typer.Option("--x", help="The varied PATH along the horizontal axis.", show_default=False),
+    ],
+    y: Annotated[
+        str,
+        typer.Option("--y", help="The varied PATH along the vertical axis.", show_default=False),
+    ],
+    metric: Annotated[
+        str,
+        typer.Option(
+            "--metric",
+            "-m",
+            help="The variable to map (status, first_slip_time, "
+            "max_friction_ratio, period_measured, …).",
+            show_default=False,
+        ),
+    ],
+    sel: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--sel",
+            help="PATH=VALUE: fix another varied PATH at a grid value (repeatable; a value "
+            "between grid values takes the nearest).",
+            show_default=False,
+        ),
+    ] = None,
+    body: Annotated[
+        str | None,
+        typer.Option(
+            "--body",
+            help="Body of a per-body metric and of the linear slip boundary (default: "
+            "the extreme over the bodies).",
+            show_default=False,
+        ),
+    ] = None,
+    mode: Annotated[
+        int | None,
+        typer.Option(
+            "--mode",
+            help="Mode of omega (0 … n-1, sorted by ω) and of the linear period.",
+            show_default=False,
+        ),
+    ] = None,
+    linear: Annotated[
+        bool,
+        typer.Option(
+            "--linear/--no-linear",
+            help="Draw the linear theory's prediction (the slip boundary "
+            "μ needed = μs; the period 2π/ω).",
+        ),
+    ] = True,
+    out: Annotated[
+        str, typer.Option("--out", "-o", help="Image file: .png, .svg or .pdf.")
+    ] = "map.png",
     dpi: Annotated[float, typer.Option(help="Resolution of a PNG, dots per inch.")] = 150.0,
 ) -> None:
     """Map one metric of a sweep over two varied PATHs (colour bar or legend, labelled axes

@@ -35,16 +35,21 @@ def print_analysis(console: Console, result: LinearAnalysis) -> None:
     console.print()
 
     bodies = Table(title="Bodies at equilibrium", title_justify="left")
-    for col in ("body", "shape", "m (kg)", "R (m)", "J (kg m²)", "μs", "x (m)", "f (N)",
-                "N (N)"):
+    for col in ("body", "shape", "m (kg)", "R (m)", "J (kg m²)", "μs", "x (m)", "f (N)", "N (N)"):
         bodies.add_column(col, justify="right" if col != "body" else "left")
     x_eq = arrays.x0 + arrays.scale * result.equilibrium.q
     for i, body in enumerate(system.bodies):
-        bodies.add_row(body.id, body.shape, _g(body.mass, 4), _g(body.radius, 4),
-                       _g(float(arrays.inertia[i]), 4),
-                       _g(body.mu_static, 3) if body.rolls else "-",
-                       _g(float(x_eq[i]), 5), _g(float(result.equilibrium_friction[i]), 4),
-                       _g(float(result.equilibrium_normal[i]), 5))
+        bodies.add_row(
+            body.id,
+            body.shape,
+            _g(body.mass, 4),
+            _g(body.radius, 4),
+            _g(float(arrays.inertia[i]), 4),
+            _g(body.mu_static, 3) if body.rolls else "-",
+            _g(float(x_eq[i]), 5),
+            _g(float(result.equilibrium_friction[i]), 4),
+            _g(float(result.equilibrium_normal[i]), 5),
+        )
     console.print(bodies)
 
     modes = Table(title="Normal modes", title_justify="left")
@@ -54,11 +59,14 @@ def print_analysis(console: Console, result: LinearAnalysis) -> None:
     for n, mode in enumerate(result.modes, 1):
         label = {"zero": f"{n} (zero)", "unstable": f"{n} UNSTABLE"}.get(mode.kind, str(n))
         labels.append(str(n))
-        modes.add_row(label, _g(mode.omega, 8), _g(mode.frequency), _g(mode.period),
-                      _g(mode.eigenvalue, 8))
+        modes.add_row(
+            label, _g(mode.omega, 8), _g(mode.frequency), _g(mode.period), _g(mode.eigenvalue, 8)
+        )
     console.print(modes)
-    shapes = Table(title="Mode shapes: centre displacement x (largest = 1) and friction f (N) "
-                   "along it", title_justify="left")
+    shapes = Table(
+        title="Mode shapes: centre displacement x (largest = 1) and friction f (N) along it",
+        title_justify="left",
+    )
     shapes.add_column("body")
     for label in labels:
         shapes.add_column(f"x{label}", justify="right")
@@ -71,32 +79,48 @@ def print_analysis(console: Console, result: LinearAnalysis) -> None:
     console.print(shapes)
 
     if result.stationary_weights is not None:
-        weights = ", ".join(f"{w:.6g}·x_{b}" for b, w in zip(ids, result.stationary_weights,
-                                                            strict=True))
+        weights = ", ".join(
+            f"{w:.6g}·x_{b}" for b, w in zip(ids, result.stationary_weights, strict=True)
+        )
         is_cm = np.allclose(result.stationary_weights, arrays.mass / arrays.mass.sum())
-        console.print(f"Stationary point X̂ = {weights} = {_g(result.stationary_position or 0.0)} m"
-                      + (" (the centre of mass)" if is_cm else " (not the centre of mass)"),
-                      markup=False)
+        console.print(
+            f"Stationary point X̂ = {weights} = {_g(result.stationary_position or 0.0)} m"
+            + (" (the centre of mass)" if is_cm else " (not the centre of mass)"),
+            markup=False,
+        )
     else:
         console.print("Stationary point: none (no single zero mode)")
     console.print()
 
     if result.amplitude is not None:
-        resp = Table(title="Response to the initial conditions (linear, exact modal superposition)",
-                     title_justify="left")
-        for col in ("body", "amplitude (m)", "max speed (m/s)", "|f| max (N)", "N range (N)",
-                    "μ needed", "μs"):
+        resp = Table(
+            title="Response to the initial conditions (linear, exact modal superposition)",
+            title_justify="left",
+        )
+        for col in (
+            "body",
+            "amplitude (m)",
+            "max speed (m/s)",
+            "|f| max (N)",
+            "N range (N)",
+            "μ needed",
+            "μs",
+        ):
             resp.add_column(col, justify="right" if col != "body" else "left")
         assert result.friction_amplitude is not None and result.normal_force_range is not None
         assert result.required_mu is not None
         for i, body in enumerate(system.bodies):
             lo, hi = result.normal_force_range[i]
             assert result.velocity_amplitude is not None
-            resp.add_row(body.id, _g(float(result.amplitude[i])),
-                         _g(float(result.velocity_amplitude[i])),
-                         _g(float(result.friction_amplitude[i])), f"{_g(lo, 5)} … {_g(hi, 5)}",
-                         _g(float(result.required_mu[i]), 4) if body.rolls else "-",
-                         _g(body.mu_static) if body.rolls else "-")
+            resp.add_row(
+                body.id,
+                _g(float(result.amplitude[i])),
+                _g(float(result.velocity_amplitude[i])),
+                _g(float(result.friction_amplitude[i])),
+                f"{_g(lo, 5)} … {_g(hi, 5)}",
+                _g(float(result.required_mu[i]), 4) if body.rolls else "-",
+                _g(body.mu_static) if body.rolls else "-",
+            )
         console.print(resp)
         line = f"CM amplitude: {_g(result.cm_amplitude or 0.0)} m"
         if result.stationary_amplitude is not None:
@@ -104,20 +128,24 @@ def print_analysis(console: Console, result: LinearAnalysis) -> None:
         console.print(line, markup=False)
     if result.spring_split is not None:
         split = result.spring_split
-        parts = ", ".join(f"k_{b} = {_g(float(k))} N/m" for b, k in zip(ids, split["k"],
-                                                                           strict=True))
+        parts = ", ".join(
+            f"k_{b} = {_g(float(k))} N/m" for b, k in zip(ids, split["k"], strict=True)
+        )
         console.print(f"Spring split about X̂ (paper's k1, k2): {parts}", markup=False)
     if arrays.n_springs:
         springs = Table(title="Springs at equilibrium", title_justify="left")
         for col in ("spring", "length (m)", "rest (m)", "tension (N)", "tilt (°)"):
             springs.add_column(col, justify="right" if col != "spring" else "left")
         for s, name in enumerate(arrays.spring_names):
-            springs.add_row(name, _g(float(result.spring_length[s])),
-                            _g(float(arrays.rest_length[s])), _g(float(result.spring_tension[s])),
-                            _g(float(result.spring_tilt_deg[s]), 4))
+            springs.add_row(
+                name,
+                _g(float(result.spring_length[s])),
+                _g(float(arrays.rest_length[s])),
+                _g(float(result.spring_tension[s])),
+                _g(float(result.spring_tilt_deg[s]), 4),
+            )
         console.print(springs)
-    console.print(f"[dim]Signs: φ {CONVENTIONS['phi']}; friction: "
-                  f"{CONVENTIONS['friction']}.[/dim]")
+    console.print(f"[dim]Signs: φ {CONVENTIONS['phi']}; friction: {CONVENTIONS['friction']}.[/dim]")
     for warning in result.warnings:
         console.print(f"[yellow]warning:[/yellow] {warning}", highlight=False)
 
@@ -127,35 +155,58 @@ def print_simulation(console: Console, trajectory, written) -> None:
     from rich.table import Table
 
     summary = trajectory.summary
-    head = Table(title=f"{trajectory.system.name}: simulated {summary['duration']:g} s",
-                 title_justify="left", show_header=False)
+    head = Table(
+        title=f"{trajectory.system.name}: simulated {summary['duration']:g} s",
+        title_justify="left",
+        show_header=False,
+    )
     head.add_column("quantity", style="bold")
     head.add_column("value")
-    head.add_row("status", summary["status"] + (f" ({summary['message']})"
-                                                 if summary["message"] else ""))
+    head.add_row(
+        "status", summary["status"] + (f" ({summary['message']})" if summary["message"] else "")
+    )
     step = summary["step"]
-    head.add_row("integrator", f"{summary['integrator']}, {summary['steps']} steps"
-                 + (f" of {_g(step)} s" if step else ""))
+    head.add_row(
+        "integrator",
+        f"{summary['integrator']}, {summary['steps']} steps"
+        + (f" of {_g(step)} s" if step else ""),
+    )
     head.add_row("energy (J)", f"{_g(summary['energy'])}, error {summary['energy_error']:.2e}")
     if summary["period_linear"] is not None:
         measured = summary["period_measured"]
-        head.add_row("period (s)", f"measured {_g(measured, 12) if measured else '-'}, "
-                     f"linear {_g(summary['period_linear'], 12)}")
+        head.add_row(
+            "period (s)",
+            f"measured {_g(measured, 12) if measured else '-'}, "
+            f"linear {_g(summary['period_linear'], 12)}",
+        )
     for kind in ("first_slip", "first_liftoff"):
         event = summary[kind]
-        head.add_row(kind.replace("_", " "), "none" if event is None else
-                     f"'{event['body']}' at t = {_g(event['time'], 12)} s")
+        head.add_row(
+            kind.replace("_", " "),
+            "none" if event is None else f"'{event['body']}' at t = {_g(event['time'], 12)} s",
+        )
     console.print(head)
     bodies = Table(title="bodies", title_justify="left")
-    for column in ("body", "max |f|/N", "min N (N)", "final x (m)", "final v (m/s)",
-                   "final phi (rad)"):
+    for column in (
+        "body",
+        "max |f|/N",
+        "min N (N)",
+        "final x (m)",
+        "final v (m/s)",
+        "final phi (rad)",
+    ):
         bodies.add_column(column, justify="right" if column != "body" else "left")
     final = summary["final"]["bodies"]
     for name in trajectory.ids:
         ratio = summary["max_friction_ratio"].get(name)
-        bodies.add_row(name, "-" if ratio is None else _g(ratio),
-                       _g(summary["min_normal_force"][name]), _g(final[name]["x"]),
-                       _g(final[name]["v"]), _g(final[name]["phi"]))
+        bodies.add_row(
+            name,
+            "-" if ratio is None else _g(ratio),
+            _g(summary["min_normal_force"][name]),
+            _g(final[name]["x"]),
+            _g(final[name]["v"]),
+            _g(final[name]["phi"]),
+        )
     console.print(bodies)
     for path in written:
         console.print(f"wrote {path}")

@@ -18,13 +18,24 @@ import typer
 
 from rollspring.errors import RollspringError
 
-__all__ = ["FORMATS", "LEVELS", "SEPARATORS", "WorksheetOptionError", "register",
-           "solutions_path", "worksheet_command"]
+__all__ = [
+    "FORMATS",
+    "LEVELS",
+    "SEPARATORS",
+    "WorksheetOptionError",
+    "register",
+    "solutions_path",
+    "worksheet_command",
+]
 
 # as in rollspring.outputs.worksheet (imported when the command runs: SymPy, the engine)
 FORMATS = ("markdown", "latex")
-LEVELS = {1: "Two masses and a spring", 2: "Two rolling bodies joined at their centres",
-          3: "Walls and chains", 4: "Off-centre attachments"}
+LEVELS = {
+    1: "Two masses and a spring",
+    2: "Two rolling bodies joined at their centres",
+    3: "Walls and chains",
+    4: "Off-centre attachments",
+}
 
 
 class WorksheetOptionError(RollspringError, ValueError):
@@ -54,18 +65,42 @@ def solutions_path(path: str) -> Path:
 
 
 def worksheet_command(
-    level: Annotated[str | None, typer.Option(
-        "--level", "-l", help=f"1-4: {'; '.join(f'{n} {t}' for n, t in LEVELS.items())}.",
-        show_default=False)] = None,
-    seed: Annotated[str | None, typer.Option(
-        "--seed", "-s", help="A non-negative integer: the same seed gives the same sheet.",
-        show_default=False)] = None,
-    format: Annotated[str, typer.Option(  # noqa: A002 - the option is called --format
-        "--format", "-f", help=f"Output format: {', '.join(FORMATS)} (latex: documents for "
-        "pdflatex).")] = "markdown",
-    out: Annotated[str | None, typer.Option(
-        "--out", "-o", help="Write the sheet here and the solutions to FILE-solutions "
-        "(atomically); default: print both.", show_default=False)] = None,
+    level: Annotated[
+        str | None,
+        typer.Option(
+            "--level",
+            "-l",
+            help=f"1-4: {'; '.join(f'{n} {t}' for n, t in LEVELS.items())}.",
+            show_default=False,
+        ),
+    ] = None,
+    seed: Annotated[
+        str | None,
+        typer.Option(
+            "--seed",
+            "-s",
+            help="A non-negative integer: the same seed gives the same sheet.",
+            show_default=False,
+        ),
+    ] = None,
+    format: Annotated[
+        str,
+        typer.Option(  # noqa: A002 - the option is called --format
+            "--format",
+            "-f",
+            help=f"Output format: {', '.join(FORMATS)} (latex: documents for pdflatex).",
+        ),
+    ] = "markdown",
+    out: Annotated[
+        str | None,
+        typer.Option(
+            "--out",
+            "-o",
+            help="Write the sheet here and the solutions to FILE-solutions "
+            "(atomically); default: print both.",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """An exercise sheet on coupled rolling oscillators, from two masses to off-centre springs
     (the paper's Fig. 4), with random parameters from the seed, and its solutions (derivation and
@@ -77,8 +112,9 @@ def worksheet_command(
     if value < 0:
         raise WorksheetOptionError(f"--seed: must be a non-negative integer (got {value})")
     if format not in FORMATS:
-        raise WorksheetOptionError(f"--format: unknown format '{format}' "
-                             f"(formats: {', '.join(FORMATS)})")
+        raise WorksheetOptionError(
+            f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})"
+        )
     from rollspring.outputs.worksheet import render_sheet, render_solutions
     from rollspring.service.documents import worksheet
 
@@ -96,7 +132,8 @@ def worksheet_command(
             atomic_write_text(path, content)
         except OSError as exc:
             raise WorksheetOptionError(
-                f"--out: {path}: cannot write ({exc.strerror or exc})") from None
+                f"--out: {path}: cannot write ({exc.strerror or exc})"
+            ) from None
         _say(f"wrote {path}")
 
 

@@ -33,12 +33,23 @@ if TYPE_CHECKING:
 
 #: name -> the module that defines it, imported on first use
 _LAZY = {
-    **dict.fromkeys(("load_system", "system_from_dict", "system_from_text", "system_json_schema",
-                     "system_to_json", "system_to_toml", "validation_errors"),
-                    "rollspring.model.files"),
+    **dict.fromkeys(
+        (
+            "load_system",
+            "system_from_dict",
+            "system_from_text",
+            "system_json_schema",
+            "system_to_json",
+            "system_to_toml",
+            "validation_errors",
+        ),
+        "rollspring.model.files",
+    ),
     "rolled": "rollspring.model.placement",
-    **dict.fromkeys(("INERTIA_FACTORS", "Anchor", "Attachment", "Body", "ExternalForce",
-                     "Spring", "System"), "rollspring.model.schema"),
+    **dict.fromkeys(
+        ("INERTIA_FACTORS", "Anchor", "Attachment", "Body", "ExternalForce", "Spring", "System"),
+        "rollspring.model.schema",
+    ),
 }
 
 

@@ -19,8 +19,9 @@ _PRESET_DIR = "presets"
 def preset_names() -> list[str]:
     """Names of the built-in presets (each is also a file in ``examples/``)."""
     folder = resources.files("rollspring.model") / _PRESET_DIR
-    return sorted(p.name.removesuffix(".toml") for p in folder.iterdir()
-                  if p.name.endswith(".toml"))
+    return sorted(
+        p.name.removesuffix(".toml") for p in folder.iterdir() if p.name.endswith(".toml")
+    )
 
 
 def preset_path(name: str) -> Path:

@@ -27,6 +27,7 @@ __all__ = [
     "validation_errors",
 ]
 
+
 def load_system(source: str | Path) -> System:
     """Load a system from a ``.toml`` or ``.json`` file, or by preset name.
 
@@ -61,7 +62,9 @@ def load_system(source: str | Path) -> System:
     except ValueError as exc:  # e.g. an integer with more digits than Python converts
         if isinstance(exc, ModelError):
             raise
-        raise ModelError(f"{_shown(path)}: a number has too many digits ({_oneline(exc)})") from None
+        raise ModelError(
+            f"{_shown(path)}: a number has too many digits ({_oneline(exc)})"
+        ) from None
     return system_from_dict(data, source=_shown(path))
 
 
@@ -79,14 +82,14 @@ def _parse(text: str, path: Path, *, shown: str | None = None) -> dict[str, Any]
     name = _shown(path) if shown is None else shown
     if suffix == ".json":
         try:
-            data = json.loads(text, parse_constant=_json_constant,
-                              object_pairs_hook=_no_duplicate_keys)
+            data = json.loads(
+                text, parse_constant=_json_constant, object_pairs_hook=_no_duplicate_keys
+            )
         except ModelError as exc:  # a duplicate key
             raise ModelError(f"{name}: {exc}") from None
         except json.JSONDecodeError as exc:
             raise ModelError(
-                f"{name}: JSON syntax error: {exc.msg} (line {exc.lineno}, "
-                f"column {exc.colno})"
+                f"{name}: JSON syntax error: {exc.msg} (line {exc.lineno}, column {exc.colno})"
             ) from None
         if not isinstance(data, dict):
             raise ModelError(f"{name}: the top level must be a JSON object")
@@ -122,8 +125,12 @@ def system_from_dict(data: dict[str, Any], *, source: str = "system") -> System:
         raise ModelError(f"{source}: {_oneline(_one_line(exc, data))}") from None
 
 
-def system_from_text(text: str, *, format: str = "toml",  # noqa: A002 - toml | json
-                     source: str = "toml") -> System:
+def system_from_text(
+    text: str,
+    *,
+    format: str = "toml",  # noqa: A002 - toml | json
+    source: str = "toml",
+) -> System:
     """Parse and validate the text of a system file (``format`` ``"toml"`` or ``"json"``);
     errors are one-line :class:`~rollspring.errors.ModelError` messages starting with
     ``source``, as for files."""
@@ -138,14 +145,16 @@ def system_from_text(text: str, *, format: str = "toml",  # noqa: A002 - toml | 
     return system_from_dict(data, source=source)
 
 
-def validation_errors(errors: list[dict[str, Any]], data: Any
-                      ) -> list[tuple[tuple[Any, ...], str, str]]:
+def validation_errors(
+    errors: list[dict[str, Any]], data: Any
+) -> list[tuple[tuple[Any, ...], str, str]]:
     """pydantic's validation errors (``ValidationError.errors()``, locations relative to
     ``data``) as ``(loc, message, type)``: ``message`` the one-line words the CLI prints."""
     out = []
     for error in errors:
-        loc = tuple(p for p in error["loc"]
-                    if not (isinstance(p, str) and p.startswith("function-")))
+        loc = tuple(
+            p for p in error["loc"] if not (isinstance(p, str) and p.startswith("function-"))
+        )
         out.append((loc, _oneline(_describe(error, data)), str(error["type"])))
     return out
 
@@ -200,17 +209,38 @@ def _describe(error: dict[str, Any], data: Any) -> str:
         msg = "must be a finite number (no NaN or infinity)"
     elif kind in ("greater_than", "greater_than_equal", "less_than_equal", "less_than"):
         bound = error.get("ctx", {})
-        op = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<",
-              "less_than_equal": "<="}[kind]
+        op = {
+            "greater_than": ">",
+            "greater_than_equal": ">=",
+            "less_than": "<",
+            "less_than_equal": "<=",
+        }[kind]
         limit = next(iter(bound.values()), "?")
-        msg = f"must be {op} {limit:g}" if isinstance(limit, (int, float)) else f"must be {op} {limit}"
+        msg = (
+            f"must be {op} {limit:g}"
+            if isinstance(limit, (int, float))
+            else f"must be {op} {limit}"
+        )
     elif kind == "literal_error":
         expected = error.get("ctx", {}).get("expected", "")
         msg = f"unknown value {error.get('input')!r} (expected one of {expected})"
-    elif kind in ("float_type", "int_type", "string_type", "bool_type", "list_type",
-                  "tuple_type", "dict_type", "model_type", "model_attributes_type"):
-        expected = kind.removesuffix("_type").replace("model_attributes", "table").replace(
-            "model", "table").replace("dict", "table")
+    elif kind in (
+        "float_type",
+        "int_type",
+        "string_type",
+        "bool_type",
+        "list_type",
+        "tuple_type",
+        "dict_type",
+        "model_type",
+        "model_attributes_type",
+    ):
+        expected = (
+            kind.removesuffix("_type")
+            .replace("model_attributes", "table")
+            .replace("model", "table")
+            .replace("dict", "table")
+        )
         msg = f"must be a {'number' if expected in ('float', 'int') else expected}"
     elif kind == "string_pattern_mismatch":
         msg = "must start with a letter or '_' and hold only letters, digits, '_' or '-'"

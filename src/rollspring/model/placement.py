@@ -21,8 +21,9 @@ from rollspring.model.schema import Attachment, Body, System
 __all__ = ["rolled"]
 
 
-def rolled(system: System, q: Sequence[float], *, velocities: Sequence[float] | None = None
-           ) -> System:
+def rolled(
+    system: System, q: Sequence[float], *, velocities: Sequence[float] | None = None
+) -> System:
     r"""``system`` with body :math:`i` rolled by :math:`q_i` (rad, clockwise; metres for a
     slider) from its initial placement: centre :math:`x_i + R_i q_i`, attachment points and the
     points of application of forces turned by :math:`q_i` about the centre (docs/physics.md (M1)),
@@ -48,12 +49,15 @@ def rolled(system: System, q: Sequence[float], *, velocities: Sequence[float] | 
     springs = []
     for spring, rest in zip(system.springs, system.rest_lengths, strict=True):
         ats = spring.attachments
-        new_at = [_turned(at, by_id.get(end), turn.get(end, 0.0))
-                  for end, at in zip(spring.ends, ats, strict=True)]
+        new_at = [
+            _turned(at, by_id.get(end), turn.get(end, 0.0))
+            for end, at in zip(spring.ends, ats, strict=True)
+        ]
         springs.append(spring.model_copy(update={"rest_length": rest, "at": new_at}))
-    forces = [force.model_copy(update={"at": _turned(force.at, by_id[force.body],
-                                                      turn[force.body])})
-              for force in system.forces]
+    forces = [
+        force.model_copy(update={"at": _turned(force.at, by_id[force.body], turn[force.body])})
+        for force in system.forces
+    ]
     data = system.model_dump(mode="python", exclude_none=True)
     data["bodies"] = [b.model_dump(mode="python", exclude_none=True) for b in bodies]
     data["springs"] = [s.model_dump(mode="python", exclude_none=True) for s in springs]

@@ -114,9 +114,11 @@ class Body(_Strict):
     track_height: Finite = Field(default=0.0, description="Height of the floor under the body (m).")
     x: Finite = Field(description="Initial horizontal position of the centre (m).")
     v: Finite = Field(default=0.0, description="Initial velocity of the centre (m/s).")
-    mu_static: Annotated[float, Field(ge=0, allow_inf_nan=True),
-                         WithJsonSchema({"anyOf": [{"type": "number", "minimum": 0},
-                                                   {"const": "inf"}]})] = Field(
+    mu_static: Annotated[
+        float,
+        Field(ge=0, allow_inf_nan=True),
+        WithJsonSchema({"anyOf": [{"type": "number", "minimum": 0}, {"const": "inf"}]}),
+    ] = Field(
         default=1.0,
         description="Static friction coefficient; inf enforces rolling (rack and pinion), "
         'written "inf" in JSON. Ignored for sliders.',
@@ -273,7 +275,9 @@ class System(_Strict):
                 raise ValueError(f"{where}.ends: both ends are anchors ('{a}', '{b}')")
             for j, (end, at) in enumerate(zip(spring.ends, spring.attachments, strict=True)):
                 if end in anchors and not at.is_centre_form:
-                    raise ValueError(f"{where}.at[{j}]: '{end}' is an anchor; its entry must be {{}}")
+                    raise ValueError(
+                        f"{where}.at[{j}]: '{end}' is an anchor; its entry must be {{}}"
+                    )
                 if end in bodies:
                     _check_attachment(bodies[end], at, f"{where}.at[{j}]")
             length = self._initial_length(spring)

@@ -10,7 +10,6 @@ from rollspring.outputs.trajectory import (
 )
 
 
-
 def _register_presenters() -> None:
     """``Trajectory.to_pandas``/``to_xarray``/``animate`` (the Jupyter views, imported on first
     use: Matplotlib and pandas stay out of ``import rollspring``)."""
@@ -24,8 +23,11 @@ def _register_presenters() -> None:
 
         return call
 
-    PRESENTERS.update(to_pandas=view("trajectory_to_pandas"),
-                      to_xarray=view("trajectory_to_xarray"), animate=view("animate_inline"))
+    PRESENTERS.update(
+        to_pandas=view("trajectory_to_pandas"),
+        to_xarray=view("trajectory_to_xarray"),
+        animate=view("animate_inline"),
+    )
 
 
 _register_presenters()

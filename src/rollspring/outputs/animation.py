@@ -65,8 +65,9 @@ class AnimationError(RollspringError, ValueError):
     """An animation was requested with invalid arguments (format, duration, speed, fps, dpi)."""
 
 
-def _check_positive(name: str, value: object, *, integer: bool = False,
-                    upper: float = math.inf) -> None:
+def _check_positive(
+    name: str, value: object, *, integer: bool = False, upper: float = math.inf
+) -> None:
     ok = isinstance(value, int | float) and not isinstance(value, bool)
     if ok and integer:
         ok = float(value).is_integer()
@@ -76,8 +77,9 @@ def _check_positive(name: str, value: object, *, integer: bool = False,
         raise AnimationError(f"{name}: must be {kind} > 0{limit}, got {value!r}")
 
 
-def frame_times(trajectory: Trajectory, *, duration: float | None = None, speed: float = 1.0,
-                fps: int = 25) -> FloatArray:
+def frame_times(
+    trajectory: Trajectory, *, duration: float | None = None, speed: float = 1.0, fps: int = 25
+) -> FloatArray:
     """Simulated times of the frames: from the start, one every ``speed/fps`` seconds, up to
     ``duration`` (default, and at most, the end of the trajectory)."""
     _check_positive("speed", speed)
@@ -91,7 +93,8 @@ def frame_times(trajectory: Trajectory, *, duration: float | None = None, speed:
     if count > MAX_FRAMES:
         raise AnimationError(
             f"duration: {end - t0:g} s at speed {speed:g} and {int(fps)} fps is {count} frames "
-            f"(at most {MAX_FRAMES}); shorten it, or raise the speed or lower the fps")
+            f"(at most {MAX_FRAMES}); shorten it, or raise the speed or lower the fps"
+        )
     return t0 + step * np.arange(count)
 
 
@@ -103,17 +106,26 @@ class MotionAnimation:
     array (row 0 at the top); :meth:`pixel` maps a scene point (m) to (column, row) in it.
     """
 
-    def __init__(self, trajectory: Trajectory, *, duration: float | None = None,
-                 speed: float = 1.0, fps: int = 25, dpi: float = 80, forces: bool = True,
-                 width: float = 8.0) -> None:
+    def __init__(
+        self,
+        trajectory: Trajectory,
+        *,
+        duration: float | None = None,
+        speed: float = 1.0,
+        fps: int = 25,
+        dpi: float = 80,
+        forces: bool = True,
+        width: float = 8.0,
+    ) -> None:
         _check_positive("dpi", dpi, upper=1200)
         self.trajectory = trajectory
         self.fps = int(fps)
         self.speed = float(speed)
         self.dpi = float(dpi)
         self.times = frame_times(trajectory, duration=duration, speed=speed, fps=fps)
-        self.scene: SystemScene = scene_for_trajectory(trajectory, forces=forces, clock=True,
-                                                       width=width, dpi=dpi)
+        self.scene: SystemScene = scene_for_trajectory(
+            trajectory, forces=forces, clock=True, width=width, dpi=dpi
+        )
         self.figure = self.scene.ax.figure
         self._forces = forces
 
@@ -128,7 +140,7 @@ class MotionAnimation:
 
     def update(self, i: int) -> None:
         """Move the scene to frame ``i`` (without drawing)."""
-        state = states_at(self.trajectory, self.times[i:i + 1], forces=self._forces)[0]
+        state = states_at(self.trajectory, self.times[i : i + 1], forces=self._forces)[0]
         self.scene.update(state)
 
     def render(self, i: int) -> np.ndarray:
@@ -157,10 +169,17 @@ class MotionAnimation:
         return float(column), float(self.size[1] - up)
 
 
-def write_animation(trajectory: Trajectory, path: str | os.PathLike[str], *,
-                    duration: float | None = None, speed: float = 1.0, fps: int = 25,
-                    dpi: float = 80, forces: bool = True,
-                    progress: Progress | None = None) -> Path:
+def write_animation(
+    trajectory: Trajectory,
+    path: str | os.PathLike[str],
+    *,
+    duration: float | None = None,
+    speed: float = 1.0,
+    fps: int = 25,
+    dpi: float = 80,
+    forces: bool = True,
+    progress: Progress | None = None,
+) -> Path:
     """Render the animation and write it to ``path`` (``.gif``, ``.mp4``, ``.html``), atomically:
     a temporary file in the same directory renamed into place. Returns the path."""
     target = Path(path)
@@ -168,30 +187,42 @@ def write_animation(trajectory: Trajectory, path: str | os.PathLike[str], *,
     if kind is None:
         raise AnimationError(
             f"{target}: unknown animation format '{target.suffix or '(no suffix)'}' "
-            f"(use .gif, .mp4 or .html)")
-    animation = MotionAnimation(trajectory, duration=duration, speed=speed, fps=fps, dpi=dpi,
-                                forces=forces)
+            f"(use .gif, .mp4 or .html)"
+        )
+    animation = MotionAnimation(
+        trajectory, duration=duration, speed=speed, fps=fps, dpi=dpi, forces=forces
+    )
     if kind == "gif":
         _write_gif(animation, target, progress)
     elif kind == "mp4":
         _write_mp4(animation, target, progress)
     else:
         title = html.escape(trajectory.system.name or "rollspring animation")
-        page = ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                f"<title>{title}</title>\n</head>\n<body>\n{_html_markup(animation, progress)}"
-                "\n</body>\n</html>\n")
+        page = (
+            '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+            f"<title>{title}</title>\n</head>\n<body>\n{_html_markup(animation, progress)}"
+            "\n</body>\n</html>\n"
+        )
         atomic_write_text(target, page)
     return target
 
 
-def animation_html(trajectory: Trajectory, *, duration: float | None = None, speed: float = 1.0,
-                   fps: int = 25, dpi: float = 80, forces: bool = True,
-                   progress: Progress | None = None) -> str:
+def animation_html(
+    trajectory: Trajectory,
+    *,
+    duration: float | None = None,
+    speed: float = 1.0,
+    fps: int = 25,
+    dpi: float = 80,
+    forces: bool = True,
+    progress: Progress | None = None,
+) -> str:
     """The animation as HTML markup (Matplotlib's JS player: play, pause, step, speed, loop),
     self-contained: frames embedded as base64 PNG, no network access, no icon font. The element
     ids derive from the frames' hash, so equal inputs give equal markup."""
-    animation = MotionAnimation(trajectory, duration=duration, speed=speed, fps=fps, dpi=dpi,
-                                forces=forces)
+    animation = MotionAnimation(
+        trajectory, duration=duration, speed=speed, fps=fps, dpi=dpi, forces=forces
+    )
     return _html_markup(animation, progress)
 
 
@@ -204,12 +235,19 @@ def _write_gif(animation: MotionAnimation, target: Path, progress: Progress | No
     images = []
     for frame in animation.frames(progress):
         rgb = Image.fromarray(frame[..., :3])
-        images.append(rgb.quantize(colors=255, method=Image.Quantize.MEDIANCUT,
-                                   dither=Image.Dither.NONE))
+        images.append(
+            rgb.quantize(colors=255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+        )
     milliseconds = round(1000 / animation.fps)
     with atomic_write(target, "wb") as handle:
-        images[0].save(handle, format="GIF", save_all=True, append_images=images[1:],
-                       duration=milliseconds, loop=0)
+        images[0].save(
+            handle,
+            format="GIF",
+            save_all=True,
+            append_images=images[1:],
+            duration=milliseconds,
+            loop=0,
+        )
 
 
 def _padded(frame: np.ndarray, block: int) -> np.ndarray:
@@ -232,9 +270,16 @@ def _write_mp4(animation: MotionAnimation, target: Path, progress: Progress | No
             rgb = _padded(frame, 16)
             if writer is None:
                 writer = imageio_ffmpeg.write_frames(
-                    str(temporary), (rgb.shape[1], rgb.shape[0]), fps=animation.fps,
-                    codec="libx264", pix_fmt_out="yuv420p", quality=8, macro_block_size=16,
-                    ffmpeg_log_level="error", output_params=["-movflags", "+faststart"])
+                    str(temporary),
+                    (rgb.shape[1], rgb.shape[0]),
+                    fps=animation.fps,
+                    codec="libx264",
+                    pix_fmt_out="yuv420p",
+                    quality=8,
+                    macro_block_size=16,
+                    ffmpeg_log_level="error",
+                    output_params=["-movflags", "+faststart"],
+                )
                 writer.send(None)
             writer.send(rgb.tobytes())
         if writer is not None:
@@ -242,9 +287,15 @@ def _write_mp4(animation: MotionAnimation, target: Path, progress: Progress | No
 
 
 _ICONS = {
-    "minus": "\u2212", "plus": "+", "fast-backward": "\u23ee", "step-backward": "\u2039",
-    "play fa-flip-horizontal": "\u25c0", "pause": "\u23f8", "play": "\u25b6",
-    "step-forward": "\u203a", "fast-forward": "\u23ed",
+    "minus": "\u2212",
+    "plus": "+",
+    "fast-backward": "\u23ee",
+    "step-backward": "\u2039",
+    "play fa-flip-horizontal": "\u25c0",
+    "pause": "\u23f8",
+    "play": "\u25b6",
+    "step-forward": "\u203a",
+    "fast-forward": "\u23ed",
 }
 
 
@@ -255,8 +306,9 @@ def _html_markup(animation: MotionAnimation, progress: Progress | None) -> str:
 
     with tempfile.TemporaryDirectory(prefix="rollspring-html-") as folder:
         out = Path(folder) / "animation.html"
-        writer = HTMLWriter(fps=animation.fps, embed_frames=True, default_mode="loop",
-                            embed_limit=1e6)
+        writer = HTMLWriter(
+            fps=animation.fps, embed_frames=True, default_mode="loop", embed_limit=1e6
+        )
         total = len(animation)
         with theme(), writer.saving(animation.figure, out, dpi=animation.dpi):
             for i in range(total):
@@ -275,4 +327,3 @@ def _html_markup(animation: MotionAnimation, progress: Progress | None) -> str:
         markup = markup.replace(old, "{id}")
     digest = hashlib.sha256(markup.encode("utf-8")).hexdigest()[:32]
     return markup.replace("{id}", digest)
-

@@ -87,30 +87,42 @@ __all__ = [
 ]
 
 #: Colours of the drawings. ``mark`` (the radius mark of rolling bodies) is used for nothing else.
-COLORS = MappingProxyType({
-    "floor": "#7f7f7f",
-    "edge": "#1f3b57",
-    "hoop": "#1f3b57",
-    "cylinder": "#a6c8e0",
-    "sphere": "#c9b8dc",
-    "shell": "#d9e7c3",
-    "custom": "#e8d3a9",
-    "slider": "#bdbdbd",
-    "mark": "#e0007f",
-    "spring": "#333333",
-    "spring_force": "#1a9641",
-    "friction": "#e66101",
-    "normal": "#2c7bb6",
-    "applied": "#a50026",
-    "cm": "#000000",
-    "xhat": "#7b3294",
-    "mode": "#7b3294",
-    "wall": "#7f7f7f",
-})
+COLORS = MappingProxyType(
+    {
+        "floor": "#7f7f7f",
+        "edge": "#1f3b57",
+        "hoop": "#1f3b57",
+        "cylinder": "#a6c8e0",
+        "sphere": "#c9b8dc",
+        "shell": "#d9e7c3",
+        "custom": "#e8d3a9",
+        "slider": "#bdbdbd",
+        "mark": "#e0007f",
+        "spring": "#333333",
+        "spring_force": "#1a9641",
+        "friction": "#e66101",
+        "normal": "#2c7bb6",
+        "applied": "#a50026",
+        "cm": "#000000",
+        "xhat": "#7b3294",
+        "mode": "#7b3294",
+        "wall": "#7f7f7f",
+    }
+)
 
 #: Line colours of the bodies in time plots, in body order (repeats after ten).
-BODY_COLORS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#bcbd22",
-               "#7f7f7f", "#ff7f0e", "#e377c2")
+BODY_COLORS = (
+    "#1f77b4",
+    "#d62728",
+    "#2ca02c",
+    "#9467bd",
+    "#8c564b",
+    "#17becf",
+    "#bcbd22",
+    "#7f7f7f",
+    "#ff7f0e",
+    "#e377c2",
+)
 
 _RC = {
     "font.family": ["DejaVu Sans"],
@@ -225,8 +237,13 @@ class _Geometry:
         a = self.arrays
         body = a.force_body
         theta = a.force_alpha + a.rolls[body] * phi[body]
-        return np.stack([x[body] + a.force_r * np.sin(theta),
-                         self.centre_height[body] + a.force_r * np.cos(theta)], axis=-1)
+        return np.stack(
+            [
+                x[body] + a.force_r * np.sin(theta),
+                self.centre_height[body] + a.force_r * np.cos(theta),
+            ],
+            axis=-1,
+        )
 
 
 @dataclass(frozen=True)
@@ -243,8 +260,14 @@ class _Extent:
     walls: tuple[tuple[float, float, float, float], ...]  # rectangles (x, y, width, height)
 
 
-def _extent(geometry: _Geometry, xs: FloatArray, phis: FloatArray, *,
-            top_extra: float = 0.0, side_extra: float = 0.0) -> _Extent:
+def _extent(
+    geometry: _Geometry,
+    xs: FloatArray,
+    phis: FloatArray,
+    *,
+    top_extra: float = 0.0,
+    side_extra: float = 0.0,
+) -> _Extent:
     """Limits covering the states ``xs``, ``phis`` (k, n), the anchors, walls and labels."""
     a = geometry.arrays
     radius, track = a.radius, a.track
@@ -262,13 +285,20 @@ def _extent(geometry: _Geometry, xs: FloatArray, phis: FloatArray, *,
     spans = []
     for i in range(geometry.n):
         if track[i] > floor:
-            spans.append((float(track[i]), float(lefts[i] - 0.5 * radius[i]),
-                          float(rights[i] + 0.5 * radius[i])))
+            spans.append(
+                (
+                    float(track[i]),
+                    float(lefts[i] - 0.5 * radius[i]),
+                    float(rights[i] + 0.5 * radius[i]),
+                )
+            )
     walls = []
     thickness = 0.25 * size
     left_end, right_end = float(np.min(lefts)), float(np.max(rights))
-    anchor_points = {(float(p[0]), float(p[1])) for p in a.end_anchor.reshape(-1, 2)[
-        (a.end_body < 0).reshape(-1)]}
+    anchor_points = {
+        (float(p[0]), float(p[1]))
+        for p in a.end_anchor.reshape(-1, 2)[(a.end_body < 0).reshape(-1)]
+    }
     for ax_, ay in sorted(anchor_points):
         height = max(ay + 0.6 * size, floor + size) - floor
         if ax_ <= left_end:  # a wall on the left, from the floor up past the hook
@@ -287,10 +317,14 @@ def _extent(geometry: _Geometry, xs: FloatArray, phis: FloatArray, *,
         xmin, xmax = min(xmin, left), max(xmax, right)
     pad = 0.3 * size + side_extra
     return _Extent(
-        xmin=xmin - pad, xmax=xmax + pad,
+        xmin=xmin - pad,
+        xmax=xmax + pad,
         ymin=floor - 1.05 * size,  # the floor band with the CM and X-hat markers and labels
         ymax=top + 0.45 * size + top_extra,  # body labels
-        floor=floor, size=size, track_spans=tuple(spans), walls=tuple(walls),
+        floor=floor,
+        size=size,
+        track_spans=tuple(spans),
+        walls=tuple(walls),
     )
 
 
@@ -331,11 +365,13 @@ class ForceScale:
     normal_reference: float
 
     @classmethod
-    def fit(cls, size: float, horizontal_max: float, normal_max: float,
-            legend_length: float = math.inf) -> ForceScale:
+    def fit(
+        cls, size: float, horizontal_max: float, normal_max: float, legend_length: float = math.inf
+    ) -> ForceScale:
         """The largest spring/friction/applied force drawn as long as the largest radius, the
         largest normal force 0.9 of it; the legend's round forces are drawn at most
         ``legend_length`` long."""
+
         def one(largest: float, length: float) -> tuple[float, float]:
             if not (math.isfinite(largest) and largest > 0.0):
                 return 1.0, 0.0
@@ -379,9 +415,17 @@ class SystemScene:
     arrows and their legend; ``clock`` a time display and a line for slips and events;
     ``labels`` the body ids; ``show_xhat`` the stationary point's marker."""
 
-    def __init__(self, ax: Axes, system: System, extent: _Extent, *,
-                 forces: ForceScale | None = None, clock: bool = False,
-                 labels: bool = True, show_xhat: bool = True) -> None:
+    def __init__(
+        self,
+        ax: Axes,
+        system: System,
+        extent: _Extent,
+        *,
+        forces: ForceScale | None = None,
+        clock: bool = False,
+        labels: bool = True,
+        show_xhat: bool = True,
+    ) -> None:
         self.ax = ax
         self.system = system
         self.geometry = _Geometry.of(system)
@@ -405,93 +449,189 @@ class SystemScene:
             rest = float(a.rest_length[s])
             half_width = 0.12 * size
             teeth = int(np.clip(round(rest / (2.5 * half_width)), 5, 16))
-            (line,) = ax.plot([], [], color=COLORS["spring"], lw=1.2, zorder=5,
-                              solid_joinstyle="miter")
+            (line,) = ax.plot(
+                [], [], color=COLORS["spring"], lw=1.2, zorder=5, solid_joinstyle="miter"
+            )
             self.springs.append((line, half_width, teeth))
         (self.ends,) = ax.plot([], [], "o", ms=3.0, color=COLORS["spring"], zorder=6)
         for anchor in system.anchors:
-            ax.plot([anchor.x], [anchor.y], "o", ms=4.5, mfc="white", mec=COLORS["spring"],
-                    mew=1.2, zorder=7)
+            ax.plot(
+                [anchor.x],
+                [anchor.y],
+                "o",
+                ms=4.5,
+                mfc="white",
+                mec=COLORS["spring"],
+                mew=1.2,
+                zorder=7,
+            )
         # CM and X-hat on the floor
         marker = dict(ms=7, zorder=8, clip_on=False, mew=0.0)
         (self.cm,) = ax.plot([], [], "^", color=COLORS["cm"], **marker)
         (self.xhat,) = ax.plot([], [], "^", color=COLORS["xhat"], **marker)
         text = dict(ha="center", va="top", fontsize=7.5, zorder=8)
         self.cm_label = ax.text(0, extent.floor - 0.42 * size, "CM", color=COLORS["cm"], **text)
-        self.xhat_label = ax.text(0, extent.floor - 0.70 * size, r"$\hat{X}$",
-                                  color=COLORS["xhat"], **text)
+        self.xhat_label = ax.text(
+            0, extent.floor - 0.70 * size, r"$\hat{X}$", color=COLORS["xhat"], **text
+        )
         self.show_xhat = show_xhat
         # forces
-        self.arrows: dict[str, list[FancyArrowPatch]] = {"spring": [], "friction": [],
-                                                         "normal": [], "applied": []}
+        self.arrows: dict[str, list[FancyArrowPatch]] = {
+            "spring": [],
+            "friction": [],
+            "normal": [],
+            "applied": [],
+        }
         if forces is not None:
             self._make_force_artists(forces)
         self.clock = self.note = None
         if clock:  # above the scene on the right: the time, and above it the latest event
-            self.clock = ax.annotate("", (1.0, 1.0), xycoords="axes fraction", xytext=(0, 3),
-                                     textcoords="offset points", ha="right", va="bottom",
-                                     fontsize=8.5, family="DejaVu Sans Mono")
-            self.note = ax.annotate("", (1.0, 1.0), xycoords="axes fraction", xytext=(0, 16),
-                                    textcoords="offset points", ha="right", va="bottom",
-                                    fontsize=7.5, color=COLORS["applied"])
+            self.clock = ax.annotate(
+                "",
+                (1.0, 1.0),
+                xycoords="axes fraction",
+                xytext=(0, 3),
+                textcoords="offset points",
+                ha="right",
+                va="bottom",
+                fontsize=8.5,
+                family="DejaVu Sans Mono",
+            )
+            self.note = ax.annotate(
+                "",
+                (1.0, 1.0),
+                xycoords="axes fraction",
+                xytext=(0, 16),
+                textcoords="offset points",
+                ha="right",
+                va="bottom",
+                fontsize=7.5,
+                color=COLORS["applied"],
+            )
 
     # construction -------------------------------------------------------------------------
     def _draw_ground(self) -> None:
         ax, e = self.ax, self.extent
         band = 0.22 * e.size
-        ax.add_patch(Rectangle((e.xmin, e.floor - band), e.xmax - e.xmin, band, facecolor="none",
-                               edgecolor=COLORS["floor"], hatch="////", lw=0.0, zorder=1))
+        ax.add_patch(
+            Rectangle(
+                (e.xmin, e.floor - band),
+                e.xmax - e.xmin,
+                band,
+                facecolor="none",
+                edgecolor=COLORS["floor"],
+                hatch="////",
+                lw=0.0,
+                zorder=1,
+            )
+        )
         ax.plot([e.xmin, e.xmax], [e.floor, e.floor], color=COLORS["floor"], lw=1.4, zorder=2)
         for height, left, right in e.track_spans:
-            ax.add_patch(Rectangle((left, e.floor), right - left, height - e.floor,
-                                   facecolor="white", edgecolor=COLORS["floor"], hatch="\\\\\\\\",
-                                   lw=1.0, zorder=1.5))
+            ax.add_patch(
+                Rectangle(
+                    (left, e.floor),
+                    right - left,
+                    height - e.floor,
+                    facecolor="white",
+                    edgecolor=COLORS["floor"],
+                    hatch="\\\\\\\\",
+                    lw=1.0,
+                    zorder=1.5,
+                )
+            )
             ax.plot([left, right], [height, height], color=COLORS["floor"], lw=1.4, zorder=2)
         for x, y, width, height in e.walls:
-            ax.add_patch(Rectangle((x, y), width, height, facecolor="white",
-                                   edgecolor=COLORS["wall"], hatch="////", lw=1.0, zorder=1.5))
+            ax.add_patch(
+                Rectangle(
+                    (x, y),
+                    width,
+                    height,
+                    facecolor="white",
+                    edgecolor=COLORS["wall"],
+                    hatch="////",
+                    lw=1.0,
+                    zorder=1.5,
+                )
+            )
 
     def _make_body(self, i: int, shape: str) -> dict[str, Any]:
         ax, a = self.ax, self.geometry.arrays
         radius = float(a.radius[i])
         parts: dict[str, Any] = {"shape": shape, "radius": radius}
         if shape == "slider":
-            block = Rectangle((0.0, 0.0), 2.4 * radius, 2.0 * radius, facecolor=COLORS["slider"],
-                              edgecolor=COLORS["edge"], lw=1.4, zorder=3)
+            block = Rectangle(
+                (0.0, 0.0),
+                2.4 * radius,
+                2.0 * radius,
+                facecolor=COLORS["slider"],
+                edgecolor=COLORS["edge"],
+                lw=1.4,
+                zorder=3,
+            )
             ax.add_patch(block)
             parts["block"] = block
         elif shape == "hoop":
-            ring = Circle((0.0, 0.0), radius, fill=False, edgecolor=COLORS["hoop"], lw=2.4,
-                          zorder=3)
+            ring = Circle(
+                (0.0, 0.0), radius, fill=False, edgecolor=COLORS["hoop"], lw=2.4, zorder=3
+            )
             ax.add_patch(ring)
             spokes = LineCollection([], colors=COLORS["hoop"], linewidths=0.9, zorder=3)
             ax.add_collection(spokes)
             parts.update(disc=ring, spokes=spokes)
         else:
             lw = 4.0 if shape == "shell" else 1.4
-            disc = Circle((0.0, 0.0), radius, facecolor=COLORS.get(shape, COLORS["custom"]),
-                          edgecolor=COLORS["edge"], lw=lw, zorder=3)
+            disc = Circle(
+                (0.0, 0.0),
+                radius,
+                facecolor=COLORS.get(shape, COLORS["custom"]),
+                edgecolor=COLORS["edge"],
+                lw=lw,
+                zorder=3,
+            )
             ax.add_patch(disc)
             parts["disc"] = disc
             if shape == "custom":  # the radius of gyration: I = m (sqrt(gamma) R)^2
-                gyration = Circle((0.0, 0.0), math.sqrt(float(a.gamma[i])) * radius, fill=False,
-                                  edgecolor=COLORS["edge"], lw=0.8, ls="--", zorder=3)
+                gyration = Circle(
+                    (0.0, 0.0),
+                    math.sqrt(float(a.gamma[i])) * radius,
+                    fill=False,
+                    edgecolor=COLORS["edge"],
+                    lw=0.8,
+                    ls="--",
+                    zorder=3,
+                )
                 ax.add_patch(gyration)
                 parts["gyration"] = gyration
         if shape != "slider":
-            (mark,) = ax.plot([], [], color=COLORS["mark"], lw=2.2, solid_capstyle="butt",
-                              zorder=4)
+            (mark,) = ax.plot([], [], color=COLORS["mark"], lw=2.2, solid_capstyle="butt", zorder=4)
             parts["mark"] = mark
             (hub,) = ax.plot([], [], "o", ms=2.5, color=COLORS["edge"], zorder=4)
             parts["hub"] = hub
-        parts["label"] = ax.text(0.0, 0.0, self.geometry.arrays.ids[i], ha="center",
-                                 va="bottom", fontsize=8, zorder=8, visible=self.labels)
+        parts["label"] = ax.text(
+            0.0,
+            0.0,
+            self.geometry.arrays.ids[i],
+            ha="center",
+            va="bottom",
+            fontsize=8,
+            zorder=8,
+            visible=self.labels,
+        )
         return parts
 
     def _arrow(self, color: str, alpha: float = 1.0, zorder: float = 9) -> FancyArrowPatch:
-        arrow = FancyArrowPatch((0.0, 0.0), (1.0, 0.0), arrowstyle="-|>", mutation_scale=9,
-                                color=color, lw=1.6, shrinkA=0.0, shrinkB=0.0, alpha=alpha,
-                                zorder=zorder)
+        arrow = FancyArrowPatch(
+            (0.0, 0.0),
+            (1.0, 0.0),
+            arrowstyle="-|>",
+            mutation_scale=9,
+            color=color,
+            lw=1.6,
+            shrinkA=0.0,
+            shrinkB=0.0,
+            alpha=alpha,
+            zorder=zorder,
+        )
         self.ax.add_patch(arrow)
         return arrow
 
@@ -518,22 +658,46 @@ class SystemScene:
             if a_forces:
                 entries.append((length, COLORS["applied"], f"applied {label}"))
         if forces.normal_reference > 0:
-            entries.append((forces.normal_reference * forces.normal, COLORS["normal"],
-                            f"normal {forces.normal_reference:g} N"))
+            entries.append(
+                (
+                    forces.normal_reference * forces.normal,
+                    COLORS["normal"],
+                    f"normal {forces.normal_reference:g} N",
+                )
+            )
         children = []
         for length, color, text in entries:
             box = AuxTransformBox(self.ax.transData)
-            box.add_artist(FancyArrowPatch((0.0, 0.0), (length, 0.0), arrowstyle="-|>",
-                                           mutation_scale=9, color=color, lw=1.6, shrinkA=0,
-                                           shrinkB=0))
-            children.append(HPacker(children=[box, TextArea(text, textprops=dict(
-                fontsize=7.5))], align="center", pad=0, sep=3))
+            box.add_artist(
+                FancyArrowPatch(
+                    (0.0, 0.0),
+                    (length, 0.0),
+                    arrowstyle="-|>",
+                    mutation_scale=9,
+                    color=color,
+                    lw=1.6,
+                    shrinkA=0,
+                    shrinkB=0,
+                )
+            )
+            children.append(
+                HPacker(
+                    children=[box, TextArea(text, textprops=dict(fontsize=7.5))],
+                    align="center",
+                    pad=0,
+                    sep=3,
+                )
+            )
         if children:
             legend = AnchoredOffsetbox(
-                loc="lower left", child=HPacker(children=children, align="center", pad=0,
-                                                sep=12),
-                bbox_to_anchor=(0.0, 1.0), bbox_transform=self.ax.transAxes, frameon=False,
-                pad=0.0, borderpad=0.25)
+                loc="lower left",
+                child=HPacker(children=children, align="center", pad=0, sep=12),
+                bbox_to_anchor=(0.0, 1.0),
+                bbox_transform=self.ax.transAxes,
+                frameon=False,
+                pad=0.0,
+                borderpad=0.25,
+            )
             legend.set_clip_on(False)
             self.ax.add_artist(legend)
 
@@ -556,13 +720,15 @@ class SystemScene:
                 turn = float(phi[i])
                 if "spokes" in parts:
                     angles = turn + np.arange(1, 6) * (math.pi / 3)
-                    ends = np.stack([cx + radius * np.sin(angles), cy + radius * np.cos(angles)],
-                                    axis=-1)
+                    ends = np.stack(
+                        [cx + radius * np.sin(angles), cy + radius * np.cos(angles)], axis=-1
+                    )
                     centres = np.broadcast_to([cx, cy], ends.shape)
                     parts["spokes"].set_segments(np.stack([centres, ends], axis=1))
                 # the radius mark: the body's material radius that was straight up at phi = 0
-                parts["mark"].set_data([cx, cx + radius * math.sin(turn)],
-                                       [cy, cy + radius * math.cos(turn)])
+                parts["mark"].set_data(
+                    [cx, cx + radius * math.sin(turn)], [cy, cy + radius * math.cos(turn)]
+                )
                 parts["hub"].set_data([cx], [cy])
                 top = cy + radius
             parts["label"].set_position((cx, top + 0.08 * self.extent.size))
@@ -609,8 +775,10 @@ class SystemScene:
                 arrow.set_visible(False)
                 return
             arrow.set_visible(True)
-            arrow.set_positions((float(start[0]), float(start[1])),
-                                (float(start[0] + vector[0]), float(start[1] + vector[1])))
+            arrow.set_positions(
+                (float(start[0]), float(start[1])),
+                (float(start[0] + vector[0]), float(start[1] + vector[1])),
+            )
 
         k = 0
         if a.n_springs and state.tension is not None:
@@ -635,8 +803,11 @@ class SystemScene:
             else:
                 self.arrows["normal"][i].set_visible(False)
             if state.friction is not None and a.rolls[i] > 0:
-                put(self.arrows["friction"][i], contact,
-                    (float(state.friction[i]) * scale.horizontal, 0.0))
+                put(
+                    self.arrows["friction"][i],
+                    contact,
+                    (float(state.friction[i]) * scale.horizontal, 0.0),
+                )
             else:
                 self.arrows["friction"][i].set_visible(False)
         if a.force.shape[0]:
@@ -648,8 +819,9 @@ class SystemScene:
 # -- states from results ------------------------------------------------------------------------
 
 
-def states_at(trajectory: Trajectory, times: FloatArray, *,
-              forces: bool = True) -> list[SceneState]:
+def states_at(
+    trajectory: Trajectory, times: FloatArray, *, forces: bool = True
+) -> list[SceneState]:
     """The trajectory's states at ``times`` (clipped to its span), ready for
     :meth:`SystemScene.update`: centre positions and rotations by cubic Hermite interpolation
     with their own velocities, forces, the CM and X-hat linearly, and the latest event."""
@@ -672,15 +844,20 @@ class _Sampler:
         h = (t[k + 1] - t[k])[:, None]
         s = np.clip((times - t[k])[:, None] / h, 0.0, 1.0)
         s2, s3 = s * s, s * s * s
-        return ((2 * s3 - 3 * s2 + 1) * values[k] + (s3 - 2 * s2 + s) * h * rates[k]
-                + (-2 * s3 + 3 * s2) * values[k + 1] + (s3 - s2) * h * rates[k + 1])
+        return (
+            (2 * s3 - 3 * s2 + 1) * values[k]
+            + (s3 - 2 * s2 + s) * h * rates[k]
+            + (-2 * s3 + 3 * s2) * values[k + 1]
+            + (s3 - s2) * h * rates[k + 1]
+        )
 
     def _linear(self, values: FloatArray, times: FloatArray) -> FloatArray:
         values = np.asarray(values, dtype=float)
         if values.ndim == 1:
             return np.interp(times, self.t, values)
-        return np.stack([np.interp(times, self.t, values[:, j]) for j in range(values.shape[1])],
-                        axis=-1).reshape(times.size, values.shape[1])
+        return np.stack(
+            [np.interp(times, self.t, values[:, j]) for j in range(values.shape[1])], axis=-1
+        ).reshape(times.size, values.shape[1])
 
     def states(self, times: FloatArray, *, forces: bool = True) -> list[SceneState]:
         tr = self.trajectory
@@ -695,14 +872,19 @@ class _Sampler:
             tension = self._linear(tr.spring_tension, times) if tr.spring_tension.size else None
         out = []
         for k, time in enumerate(times):
-            out.append(SceneState(
-                x=x[k], phi=phi[k],
-                friction=friction[k] if forces else None,
-                normal=normal[k] if forces else None,
-                tension=(tension[k] if tension is not None else None) if forces else None,
-                cm=float(cm[k]), xhat=float(xhat[k]) if xhat is not None else None,
-                time=float(time), note=_event_note(tr, float(time)),
-            ))
+            out.append(
+                SceneState(
+                    x=x[k],
+                    phi=phi[k],
+                    friction=friction[k] if forces else None,
+                    normal=normal[k] if forces else None,
+                    tension=(tension[k] if tension is not None else None) if forces else None,
+                    cm=float(cm[k]),
+                    xhat=float(xhat[k]) if xhat is not None else None,
+                    time=float(time),
+                    note=_event_note(tr, float(time)),
+                )
+            )
         return out
 
 
@@ -725,8 +907,9 @@ def _event_note(trajectory: Trajectory, time: float) -> str:
     return "   ".join(parts)
 
 
-def _trajectory_force_scale(trajectory: Trajectory, size: float,
-                            legend_length: float = math.inf) -> ForceScale:
+def _trajectory_force_scale(
+    trajectory: Trajectory, size: float, legend_length: float = math.inf
+) -> ForceScale:
     horizontal = max(_finite_max(trajectory.spring_tension), _finite_max(trajectory.friction))
     a = system_arrays(trajectory.system)
     if a.force.shape[0]:
@@ -737,8 +920,9 @@ def _trajectory_force_scale(trajectory: Trajectory, size: float,
 def _cover(trajectory: Trajectory, samples: int = 400) -> tuple[FloatArray, FloatArray]:
     """States spread over the run (for limits that fit the whole motion)."""
     step = max(1, trajectory.t.size // samples)
-    index = np.unique(np.concatenate([np.arange(0, trajectory.t.size, step),
-                                      [trajectory.t.size - 1]]))
+    index = np.unique(
+        np.concatenate([np.arange(0, trajectory.t.size, step), [trajectory.t.size - 1]])
+    )
     return trajectory.x[index], trajectory.phi[index]
 
 
@@ -751,8 +935,9 @@ def _header_points(forces: bool, clock: bool) -> float:
 _TITLE_POINTS = 15.0
 
 
-def _scene_figure(extent: _Extent, *, width: float, header: float, title: bool,
-                  dpi: float = 100.0) -> tuple[Figure, Axes]:
+def _scene_figure(
+    extent: _Extent, *, width: float, header: float, title: bool, dpi: float = 100.0
+) -> tuple[Figure, Axes]:
     """A figure whose axes fits ``extent`` at equal scale, with ``header`` points above it
     (legend, clock) and room for a title."""
     dx, dy = extent.xmax - extent.xmin, extent.ymax - extent.ymin
@@ -762,34 +947,58 @@ def _scene_figure(extent: _Extent, *, width: float, header: float, title: bool,
     height = float(np.clip(inner_width * dy / dx + top + margin, 1.0, 3.0 * width))
     fig = new_figure(width, height, dpi=dpi)
     with theme():
-        ax = fig.add_axes((margin / width, margin / height, inner_width / width,
-                           (height - top - margin) / height))
+        ax = fig.add_axes(
+            (margin / width, margin / height, inner_width / width, (height - top - margin) / height)
+        )
     return fig, ax
 
 
-def scene_for_trajectory(trajectory: Trajectory, ax: Axes | None = None, *, forces: bool = True,
-                         clock: bool = True, title: bool = False, width: float = 8.0,
-                         dpi: float = 100.0) -> SystemScene:
+def scene_for_trajectory(
+    trajectory: Trajectory,
+    ax: Axes | None = None,
+    *,
+    forces: bool = True,
+    clock: bool = True,
+    title: bool = False,
+    width: float = 8.0,
+    dpi: float = 100.0,
+) -> SystemScene:
     """A scene sized for the whole run of ``trajectory`` (the animation's, and
     :func:`plot_system`'s for a trajectory), not yet updated to any time."""
     geometry = _Geometry.of(trajectory.system)
     extent = _extent(geometry, *_cover(trajectory))
-    scale = (_trajectory_force_scale(trajectory, extent.size,
-                                     0.15 * (extent.xmax - extent.xmin)) if forces else None)
+    scale = (
+        _trajectory_force_scale(trajectory, extent.size, 0.15 * (extent.xmax - extent.xmin))
+        if forces
+        else None
+    )
     with theme():
         if ax is None:
-            _, ax = _scene_figure(extent, width=width, header=_header_points(forces, clock),
-                                  title=title, dpi=dpi)
-        return SystemScene(ax, trajectory.system, extent, forces=scale, clock=clock,
-                           show_xhat=trajectory.stationary_x is not None)
+            _, ax = _scene_figure(
+                extent, width=width, header=_header_points(forces, clock), title=title, dpi=dpi
+            )
+        return SystemScene(
+            ax,
+            trajectory.system,
+            extent,
+            forces=scale,
+            clock=clock,
+            show_xhat=trajectory.stationary_x is not None,
+        )
 
 
 # -- figures ------------------------------------------------------------------------------------
 
 
-def plot_system(result: System | LinearAnalysis | Trajectory, ax: Axes | None = None, *,
-                time: float | None = None, at: str = "initial", forces: bool = False,
-                title: bool = True) -> Axes:
+def plot_system(
+    result: System | LinearAnalysis | Trajectory,
+    ax: Axes | None = None,
+    *,
+    time: float | None = None,
+    at: str = "initial",
+    forces: bool = False,
+    title: bool = True,
+) -> Axes:
     r"""The system diagram: floor and tracks, bodies, springs, walls, anchors, the CM and
     :math:`\hat X` on the floor.
 
@@ -804,15 +1013,19 @@ def plot_system(result: System | LinearAnalysis | Trajectory, ax: Axes | None = 
         raise ValueError(f"at: must be 'initial' or 'equilibrium', got {at!r}")
     with theme():
         if isinstance(result, Trajectory):
-            scene = scene_for_trajectory(result, ax, forces=forces, clock=False, title=title,
-                                         width=6.4)
+            scene = scene_for_trajectory(
+                result, ax, forces=forces, clock=False, title=title, width=6.4
+            )
             t = float(result.t[0] if time is None else time)
             state = _Sampler(result).states(np.array([t]), forces=forces)[0]
             scene.update(state)
             ax = scene.ax
             if title:
-                ax.set_title(f"{result.system.name or 'system'}   t = {t:.3f} s", loc="left",
-                             pad=_header_points(forces, False) + 3)
+                ax.set_title(
+                    f"{result.system.name or 'system'}   t = {t:.3f} s",
+                    loc="left",
+                    pad=_header_points(forces, False) + 3,
+                )
             return ax
         system = result.system if isinstance(result, LinearAnalysis) else result
         geometry = _Geometry.of(system)
@@ -830,24 +1043,38 @@ def plot_system(result: System | LinearAnalysis | Trajectory, ax: Axes | None = 
                 xhat = float(result.stationary_weights @ x)
             if forces and at == "equilibrium":
                 scale = ForceScale.fit(
-                    extent.size, max(_finite_max(result.spring_tension),
-                                     _finite_max(result.equilibrium_friction),
-                                     _finite_max(np.hypot(a.force[:, 0], a.force[:, 1]))),
-                    _finite_max(result.equilibrium_normal), 0.15 * (extent.xmax - extent.xmin))
-                state_forces = dict(friction=result.equilibrium_friction,
-                                    normal=result.equilibrium_normal,
-                                    tension=result.spring_tension)
+                    extent.size,
+                    max(
+                        _finite_max(result.spring_tension),
+                        _finite_max(result.equilibrium_friction),
+                        _finite_max(np.hypot(a.force[:, 0], a.force[:, 1])),
+                    ),
+                    _finite_max(result.equilibrium_normal),
+                    0.15 * (extent.xmax - extent.xmin),
+                )
+                state_forces = dict(
+                    friction=result.equilibrium_friction,
+                    normal=result.equilibrium_normal,
+                    tension=result.spring_tension,
+                )
         if ax is None:
-            _, ax = _scene_figure(extent, width=6.4, header=_header_points(scale is not None,
-                                                                           False), title=title)
+            _, ax = _scene_figure(
+                extent, width=6.4, header=_header_points(scale is not None, False), title=title
+            )
         scene = SystemScene(ax, system, extent, forces=scale, show_xhat=xhat is not None)
         cm = float(centre_of_mass(a, q))
         scene.update(SceneState(x=x, phi=phi, cm=cm, xhat=xhat, **state_forces))
         if title:
-            where = " (equilibrium)" if at == "equilibrium" and isinstance(
-                result, LinearAnalysis) else ""
-            ax.set_title((system.name or "system") + where, loc="left",
-                         pad=_header_points(scale is not None, False) + 3)
+            where = (
+                " (equilibrium)"
+                if at == "equilibrium" and isinstance(result, LinearAnalysis)
+                else ""
+            )
+            ax.set_title(
+                (system.name or "system") + where,
+                loc="left",
+                pad=_header_points(scale is not None, False) + 3,
+            )
         return ax
 
 
@@ -864,8 +1091,9 @@ def _first_event(trajectory: Trajectory, kind: str) -> dict[str, Any] | None:
     return next((e for e in trajectory.events if e["kind"] == kind), None)
 
 
-def plot_positions(trajectory: Trajectory, ax: Axes | None = None, *,
-                   relative: bool = True) -> Axes:
+def plot_positions(
+    trajectory: Trajectory, ax: Axes | None = None, *, relative: bool = True
+) -> Axes:
     r"""Centre positions against time, with the centre of mass (dashed) and the stationary point
     :math:`\hat X` (dotted). ``relative`` (default) plots each displacement from its initial
     value, so oscillations of millimetres are visible next to bodies half a metre apart."""
@@ -876,28 +1104,44 @@ def plot_positions(trajectory: Trajectory, ax: Axes | None = None, *,
             x = trajectory.x[:, i]
             ax.plot(t, x - x[0] if relative else x, color=BODY_COLORS[i % 10], label=name)
         cm = trajectory.cm_x
-        ax.plot(t, cm - cm[0] if relative else cm, color=COLORS["cm"], ls="--", lw=1.1,
-                label="CM")
+        ax.plot(t, cm - cm[0] if relative else cm, color=COLORS["cm"], ls="--", lw=1.1, label="CM")
         if trajectory.stationary_x is not None:
             xh = trajectory.stationary_x
-            ax.plot(t, xh - xh[0] if relative else xh, color=COLORS["xhat"], ls=":", lw=1.8,
-                    label=r"$\hat{X}$")
+            ax.plot(
+                t,
+                xh - xh[0] if relative else xh,
+                color=COLORS["xhat"],
+                ls=":",
+                lw=1.8,
+                label=r"$\hat{X}$",
+            )
         ax.set_xlabel("t (s)")
         ax.set_ylabel("displacement from start (m)" if relative else "position (m)")
         ax.set_title("Centre positions", loc="left")
-        ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), borderaxespad=0.2,
-                  ncols=len(trajectory.ids) + 2)
+        ax.legend(
+            loc="lower right",
+            bbox_to_anchor=(1.0, 1.0),
+            borderaxespad=0.2,
+            ncols=len(trajectory.ids) + 2,
+        )
         ax.margins(x=0)
         return ax
 
 
-def _rows_figure(fig: Figure | None, rows: int, columns: int, *, width: float = 7.0,
-                 row_height: float = 1.9) -> tuple[Figure, np.ndarray]:
+def _rows_figure(
+    fig: Figure | None, rows: int, columns: int, *, width: float = 7.0, row_height: float = 1.9
+) -> tuple[Figure, np.ndarray]:
     if fig is None:
         fig = new_figure(width, row_height * rows + 0.7)
     axes = np.atleast_2d(fig.subplots(rows, columns, squeeze=False, sharex=True))
-    fig.subplots_adjust(left=0.14, right=0.97, bottom=0.5 / (row_height * rows + 0.7),
-                        top=1 - 0.35 / (row_height * rows + 0.7), hspace=0.35, wspace=0.3)
+    fig.subplots_adjust(
+        left=0.14,
+        right=0.97,
+        bottom=0.5 / (row_height * rows + 0.7),
+        top=1 - 0.35 / (row_height * rows + 0.7),
+        hspace=0.35,
+        wspace=0.3,
+    )
     return fig, axes
 
 
@@ -921,11 +1165,16 @@ def plot_contact_forces(trajectory: Trajectory, fig: Figure | None = None) -> Fi
                 left.plot(t, -limit, color=color, lw=0.6, alpha=0.5)
             left.plot(t, trajectory.friction[:, i], color=color, label="f")
             left.axhline(0.0, color="0.6", lw=0.6)
-            note = ("slider: no friction" if not rolls[i] else
-                    r"$\mu_s = \infty$ (rolling enforced)" if not math.isfinite(mu[i]) else
-                    rf"$\mu_s = {mu[i]:g}$")
-            left.text(0.99, 0.96, note, transform=left.transAxes, ha="right", va="top",
-                      fontsize=7.5)
+            note = (
+                "slider: no friction"
+                if not rolls[i]
+                else r"$\mu_s = \infty$ (rolling enforced)"
+                if not math.isfinite(mu[i])
+                else rf"$\mu_s = {mu[i]:g}$"
+            )
+            left.text(
+                0.99, 0.96, note, transform=left.transAxes, ha="right", va="top", fontsize=7.5
+            )
             left.set_ylabel(f"{name}\nf (N)")
             right.plot(t, normal, color=color)
             right.axhline(0.0, color="0.6", lw=0.6)
@@ -935,8 +1184,9 @@ def plot_contact_forces(trajectory: Trajectory, fig: Figure | None = None) -> Fi
             right.set_ylim(1.15 * lowest, max(top * 1.15, 1e-9))
             right.set_ylabel("N (N)")
             if i == 0:
-                left.set_title(r"Friction $f$ (line), rolling while inside $\pm\mu_s N$ (band)",
-                               loc="left")
+                left.set_title(
+                    r"Friction $f$ (line), rolling while inside $\pm\mu_s N$ (band)", loc="left"
+                )
                 right.set_title("Normal force (lift-off at 0)", loc="left")
             for ax in (left, right):
                 ax.margins(x=0)
@@ -967,19 +1217,28 @@ def plot_friction_ratio(trajectory: Trajectory, ax: Axes | None = None) -> Axes:
                 continue
             ax.axvline(event["time"], color="0.3", ls=":", lw=1.0)
             y = 1.0 if kind == "slip" else 0.05
-            ax.plot([event["time"]], [y], marker, ms=6, mfc="white", mec="black", mew=1.3,
-                    zorder=5)
-            ax.annotate(f"first {'slip' if kind == 'slip' else 'lift-off'}: {event['body']}, "
-                        f"t = {event['time']:.4g} s", (event["time"], y), xytext=(6, 8),
-                        textcoords="offset points", fontsize=7.5)
+            ax.plot([event["time"]], [y], marker, ms=6, mfc="white", mec="black", mew=1.3, zorder=5)
+            ax.annotate(
+                f"first {'slip' if kind == 'slip' else 'lift-off'}: {event['body']}, "
+                f"t = {event['time']:.4g} s",
+                (event["time"], y),
+                xytext=(6, 8),
+                textcoords="offset points",
+                fontsize=7.5,
+            )
         if not drawn:
-            ax.text(0.5, 0.5, "no body can slip (sliders, or rolling enforced)",
-                    transform=ax.transAxes, ha="center", va="center")
+            ax.text(
+                0.5,
+                0.5,
+                "no body can slip (sliders, or rolling enforced)",
+                transform=ax.transAxes,
+                ha="center",
+                va="center",
+            )
         ax.set_xlabel("t (s)")
         ax.set_ylabel(r"$|f| / (\mu_s N)$")
         ax.set_title("Friction used", loc="left")
-        ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), borderaxespad=0.2,
-                  ncols=drawn + 1)
+        ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), borderaxespad=0.2, ncols=drawn + 1)
         ax.margins(x=0)
         return ax
 
@@ -995,8 +1254,15 @@ def plot_energy(trajectory: Trajectory, ax: Axes | None = None) -> Axes:
         ax.plot(t, trajectory.energy, color="black", lw=1.6, label="total")
         error = trajectory.summary.get("energy_error")
         if error is not None:
-            ax.text(0.99, 0.03, f"relative energy error {error:.2g}", transform=ax.transAxes,
-                    ha="right", va="bottom", fontsize=7.5)
+            ax.text(
+                0.99,
+                0.03,
+                f"relative energy error {error:.2g}",
+                transform=ax.transAxes,
+                ha="right",
+                va="bottom",
+                fontsize=7.5,
+            )
         ax.set_xlabel("t (s)")
         ax.set_ylabel("energy (J)")
         ax.set_title("Energy", loc="left")
@@ -1015,9 +1281,14 @@ def plot_phase_portraits(trajectory: Trajectory, fig: Figure | None = None) -> F
         if fig is None:
             fig = new_figure(2.6 * columns + 0.4, 2.5 * rows + 0.3)
         axes = np.atleast_1d(fig.subplots(rows, columns, squeeze=False).ravel())
-        fig.subplots_adjust(left=0.5 / (2.6 * columns + 0.4) + 0.06, right=0.97,
-                            bottom=0.55 / (2.5 * rows + 0.3), top=1 - 0.35 / (2.5 * rows + 0.3),
-                            wspace=0.45, hspace=0.5)
+        fig.subplots_adjust(
+            left=0.5 / (2.6 * columns + 0.4) + 0.06,
+            right=0.97,
+            bottom=0.55 / (2.5 * rows + 0.3),
+            top=1 - 0.35 / (2.5 * rows + 0.3),
+            wspace=0.45,
+            hspace=0.5,
+        )
         for i, name in enumerate(trajectory.ids):
             ax = axes[i]
             x = trajectory.x[:, i] - trajectory.x[0, i]
@@ -1049,8 +1320,13 @@ def plot_modes(analysis: LinearAnalysis, fig: Figure | None = None) -> Figure:
         extent = _extent(geometry, x[None, :], phi[None, :], side_extra=length + 0.6 * size)
         # the arrows go 14 points above each body's label: room for them, in metres
         metres_per_point = (extent.xmax - extent.xmin) / (6.14 * 72.0)
-        extent = _extent(geometry, x[None, :], phi[None, :], side_extra=length + 0.6 * size,
-                         top_extra=20.0 * metres_per_point)
+        extent = _extent(
+            geometry,
+            x[None, :],
+            phi[None, :],
+            side_extra=length + 0.6 * size,
+            top_extra=20.0 * metres_per_point,
+        )
         modes = analysis.modes
         if fig is None:
             dx, dy = extent.xmax - extent.xmin, extent.ymax - extent.ymin
@@ -1058,13 +1334,15 @@ def plot_modes(analysis: LinearAnalysis, fig: Figure | None = None) -> Figure:
             fig = new_figure(6.4, panel * len(modes) + 0.1)
         height = fig.get_figheight()
         panel_fraction = 1.0 / max(len(modes), 1)
-        xhat = (float(analysis.stationary_weights @ x)
-                if analysis.stationary_weights is not None else None)
+        xhat = (
+            float(analysis.stationary_weights @ x)
+            if analysis.stationary_weights is not None
+            else None
+        )
         cm = float(centre_of_mass(a, q))
         for k, mode in enumerate(modes):
             bottom = 1.0 - (k + 1) * panel_fraction
-            ax = fig.add_axes((0.02, bottom + 0.02 / height,
-                               0.96, panel_fraction - 0.32 / height))
+            ax = fig.add_axes((0.02, bottom + 0.02 / height, 0.96, panel_fraction - 0.32 / height))
             scene = SystemScene(ax, system, extent, show_xhat=xhat is not None)
             scene.update(SceneState(x=x, phi=phi, cm=cm, xhat=xhat))
             above = ax.transData + ScaledTranslation(0.0, 14.0 / 72.0, fig.dpi_scale_trans)
@@ -1072,20 +1350,40 @@ def plot_modes(analysis: LinearAnalysis, fig: Figure | None = None) -> Figure:
                 value = float(mode.shape_x[i])
                 top = float(a.track[i] + 2 * a.radius[i]) + 0.08 * size  # the label's foot
                 if abs(value) > 1e-9:
-                    ax.add_patch(FancyArrowPatch((x[i], top), (x[i] + value * length, top),
-                                                 arrowstyle="-|>", mutation_scale=10,
-                                                 color=COLORS["mode"], lw=2.0, shrinkA=0,
-                                                 shrinkB=0, zorder=9, transform=above,
-                                                 clip_on=False))
-                ax.text(x[i] + value * length + math.copysign(0.08 * size, value or 1.0),
-                        top, f"{value:+.3g}", ha="left" if value >= 0 else "right",
-                        va="center", fontsize=7.5, color=COLORS["mode"], transform=above)
+                    ax.add_patch(
+                        FancyArrowPatch(
+                            (x[i], top),
+                            (x[i] + value * length, top),
+                            arrowstyle="-|>",
+                            mutation_scale=10,
+                            color=COLORS["mode"],
+                            lw=2.0,
+                            shrinkA=0,
+                            shrinkB=0,
+                            zorder=9,
+                            transform=above,
+                            clip_on=False,
+                        )
+                    )
+                ax.text(
+                    x[i] + value * length + math.copysign(0.08 * size, value or 1.0),
+                    top,
+                    f"{value:+.3g}",
+                    ha="left" if value >= 0 else "right",
+                    va="center",
+                    fontsize=7.5,
+                    color=COLORS["mode"],
+                    transform=above,
+                )
             if mode.kind == "oscillating":
-                heading = (rf"mode {k + 1}:  $\omega$ = {mode.omega:.6g} rad/s,  "
-                           f"f = {mode.frequency:.4g} Hz,  T = {mode.period:.4g} s")
+                heading = (
+                    rf"mode {k + 1}:  $\omega$ = {mode.omega:.6g} rad/s,  "
+                    f"f = {mode.frequency:.4g} Hz,  T = {mode.period:.4g} s"
+                )
             elif mode.kind == "zero":
-                heading = (rf"mode {k + 1}:  $\omega$ = 0  (zero mode: a free motion"
-                           + (r"; $\hat{X}$ moves)" if xhat is not None else ")"))
+                heading = rf"mode {k + 1}:  $\omega$ = 0  (zero mode: a free motion" + (
+                    r"; $\hat{X}$ moves)" if xhat is not None else ")"
+                )
             else:
                 heading = f"mode {k + 1}:  unstable, growth rate {mode.omega:.6g} 1/s"
             ax.set_title(heading, loc="left", pad=3)

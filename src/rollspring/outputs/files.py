@@ -15,8 +15,14 @@ from typing import IO
 
 from rollspring.errors import OutputError
 
-__all__ = ["atomic_path", "atomic_write", "atomic_write_bytes", "atomic_write_text",
-           "writable_directory", "writable_file"]
+__all__ = [
+    "atomic_path",
+    "atomic_write",
+    "atomic_write_bytes",
+    "atomic_write_text",
+    "writable_directory",
+    "writable_file",
+]
 
 
 @contextlib.contextmanager
@@ -26,8 +32,9 @@ def atomic_path(path: str | os.PathLike[str], suffix: str = ".part") -> Iterator
     leaving ``path`` untouched. ``suffix`` ends the temporary name (some writers go by it)."""
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=suffix,
-                                             dir=target.parent)
+    descriptor, temporary = tempfile.mkstemp(
+        prefix=f".{target.name}.", suffix=suffix, dir=target.parent
+    )
     os.close(descriptor)
     try:
         yield Path(temporary)
@@ -61,8 +68,12 @@ def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
         handle.write(data)
 
 
-def writable_directory(path: str | os.PathLike[str], option: str = "--out", *,
-                       named: str | os.PathLike[str] | None = None) -> Path:
+def writable_directory(
+    path: str | os.PathLike[str],
+    option: str = "--out",
+    *,
+    named: str | os.PathLike[str] | None = None,
+) -> Path:
     """Check, before any long computation, that files can be written into the directory
     ``path`` (which may not exist yet: then into its nearest existing ancestor, where it will be
     created). Creates nothing; raises :class:`~rollspring.errors.OutputError` naming ``option``,
@@ -74,13 +85,17 @@ def writable_directory(path: str | os.PathLike[str], option: str = "--out", *,
         while not probe.exists() and probe.parent != probe:
             probe = probe.parent
         if not probe.is_dir():
-            reason = f"{probe} is not a directory" if Path(shown).absolute() != probe else \
-                "it is a file, not a directory"
+            reason = (
+                f"{probe} is not a directory"
+                if Path(shown).absolute() != probe
+                else "it is a file, not a directory"
+            )
             raise OutputError(f"{option} {shown}: cannot write there ({reason})")
         descriptor, temporary = tempfile.mkstemp(prefix=".rollspring-check-", dir=probe)
     except OSError as exc:
-        raise OutputError(f"{option} {shown}: cannot write there "
-                          f"({exc.strerror or exc}: {probe})") from None
+        raise OutputError(
+            f"{option} {shown}: cannot write there ({exc.strerror or exc}: {probe})"
+        ) from None
     os.close(descriptor)
     os.unlink(temporary)
     return directory

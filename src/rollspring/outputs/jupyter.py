@@ -53,8 +53,10 @@ __all__ = [
 #: Resolution of the figures embedded in notebook output (a 6.4-inch figure is 640 px wide).
 NOTEBOOK_DPI = 100
 
-_TABLE = ('<table style="border-collapse: collapse; margin: 0.3em 0; font-size: 0.92em">'
-          "{head}{rows}</table>")
+_TABLE = (
+    '<table style="border-collapse: collapse; margin: 0.3em 0; font-size: 0.92em">'
+    "{head}{rows}</table>"
+)
 _CELL = 'style="padding: 0.15em 0.6em; text-align: {align}; border-bottom: 1px solid #ddd"'
 
 
@@ -68,8 +70,11 @@ def _table(header: list[str], rows: list[list[Any]], caption: str = "") -> str:
 
     head = cells([html.escape(h) for h in header], "th")
     body = "".join(cells(row, "td") for row in rows)
-    title = (f'<div style="font-weight: bold; margin-top: 0.6em">{html.escape(caption)}</div>'
-             if caption else "")
+    title = (
+        f'<div style="font-weight: bold; margin-top: 0.6em">{html.escape(caption)}</div>'
+        if caption
+        else ""
+    )
     return title + _TABLE.format(head=head, rows=body)
 
 
@@ -78,14 +83,18 @@ def _image(fig: Any) -> str:
 
     data = base64.b64encode(figure_png(fig, dpi=NOTEBOOK_DPI)).decode("ascii")
     width = round(fig.get_figwidth() * NOTEBOOK_DPI)
-    return (f'<img src="data:image/png;base64,{data}" width="{width}" '
-            'style="max-width: 100%; height: auto" alt="rollspring figure">')
+    return (
+        f'<img src="data:image/png;base64,{data}" width="{width}" '
+        'style="max-width: 100%; height: auto" alt="rollspring figure">'
+    )
 
 
 def _heading(system: System, kind: str) -> str:
     name = html.escape(system.name or "system")
-    text = (f'<div style="font-size: 1.1em"><b>{name}</b> '
-            f'<span style="color: #666">({kind})</span></div>')
+    text = (
+        f'<div style="font-size: 1.1em"><b>{name}</b> '
+        f'<span style="color: #666">({kind})</span></div>'
+    )
     if system.description:
         text += f'<div style="color: #444; max-width: 48em">{html.escape(system.description)}</div>'
     return text
@@ -99,28 +108,60 @@ def system_html(system: System) -> str:
     parts = [_heading(system, "system"), _image(plot_system(system, title=False).figure)]
     rows = []
     for body in system.bodies:
-        rows.append([html.escape(body.id), body.shape, _g(body.mass, 4), _g(body.radius, 4),
-                     _g(body.track_height, 4), _g(body.x, 6), _g(body.v, 6),
-                     _g(body.mu_static, 3) if body.rolls else "–"])
-    parts.append(_table(["body", "shape", "m (kg)", "R (m)", "track (m)", "x (m)", "v (m/s)",
-                         "μs"], rows, "Bodies"))
+        rows.append(
+            [
+                html.escape(body.id),
+                body.shape,
+                _g(body.mass, 4),
+                _g(body.radius, 4),
+                _g(body.track_height, 4),
+                _g(body.x, 6),
+                _g(body.v, 6),
+                _g(body.mu_static, 3) if body.rolls else "–",
+            ]
+        )
+    parts.append(
+        _table(
+            ["body", "shape", "m (kg)", "R (m)", "track (m)", "x (m)", "v (m/s)", "μs"],
+            rows,
+            "Bodies",
+        )
+    )
     if system.springs:
         rows = []
         for spring, rest in zip(system.springs, system.rest_lengths, strict=True):
             a, b = spring.attachments
-            rows.append([html.escape(" – ".join(spring.ends)), _g(spring.stiffness, 6),
-                         _g(rest, 6), _g(spring.damping, 4), f"{attachment_words(a)}; "
-                         f"{attachment_words(b)}"])
-        parts.append(_table(["spring", "k (N/m)", "L₀ (m)", "c (N s/m)", "attached at"], rows,
-                            "Springs"))
+            rows.append(
+                [
+                    html.escape(" – ".join(spring.ends)),
+                    _g(spring.stiffness, 6),
+                    _g(rest, 6),
+                    _g(spring.damping, 4),
+                    f"{attachment_words(a)}; {attachment_words(b)}",
+                ]
+            )
+        parts.append(
+            _table(["spring", "k (N/m)", "L₀ (m)", "c (N s/m)", "attached at"], rows, "Springs")
+        )
     if system.anchors:
-        parts.append(_table(["anchor", "x (m)", "y (m)"],
-                            [[html.escape(a.id), _g(a.x), _g(a.y)] for a in system.anchors],
-                            "Anchors"))
+        parts.append(
+            _table(
+                ["anchor", "x (m)", "y (m)"],
+                [[html.escape(a.id), _g(a.x), _g(a.y)] for a in system.anchors],
+                "Anchors",
+            )
+        )
     if system.forces:
-        parts.append(_table(["force on", "at", "Fx (N)", "Fy (N)"],
-                            [[html.escape(f.body), attachment_words(f.at), _g(f.fx), _g(f.fy)]
-                             for f in system.forces], "Applied forces"))
+        parts.append(
+            _table(
+                ["force on", "at", "Fx (N)", "Fy (N)"],
+                [
+                    [html.escape(f.body), attachment_words(f.at), _g(f.fx), _g(f.fy)]
+                    for f in system.forces
+                ],
+                "Applied forces",
+            )
+        )
     parts.append(f'<div style="color: #666">g = {_g(system.gravity)} m/s²</div>')
     return "<div>" + "".join(parts) + "</div>"
 
@@ -136,17 +177,26 @@ def analysis_latex(analysis: LinearAnalysis) -> str:
     coordinates, and the frequencies :math:`\omega_n`."""
     coordinates = ", ".join(
         (r"\varphi" if rolls else "x") + r"_{\mathrm{" + name.replace("_", r"\_") + "}}"
-        for name, rolls in zip(analysis.ids, analysis.arrays.rolls > 0, strict=True))
+        for name, rolls in zip(analysis.ids, analysis.arrays.rolls > 0, strict=True)
+    )
     omegas = ", ".join(_g(m.omega, 6) for m in analysis.modes)
-    return (r"$$M\ddot u + K u = 0,\qquad u = ("
-            + coordinates + r") - u^*,\qquad M = " + _matrix_latex(analysis.mass)
-            + r",\quad K = " + _matrix_latex(analysis.stiffness)
-            + r",\qquad \omega = (" + omegas + r")\ \mathrm{rad/s}$$")
+    return (
+        r"$$M\ddot u + K u = 0,\qquad u = ("
+        + coordinates
+        + r") - u^*,\qquad M = "
+        + _matrix_latex(analysis.mass)
+        + r",\quad K = "
+        + _matrix_latex(analysis.stiffness)
+        + r",\qquad \omega = ("
+        + omegas
+        + r")\ \mathrm{rad/s}$$"
+    )
 
 
 def _mode_label(number: int, mode: Mode) -> str:
-    return {"zero": f"{number} (zero)", "unstable": f"{number} (unstable)"}.get(mode.kind,
-                                                                                 str(number))
+    return {"zero": f"{number} (zero)", "unstable": f"{number} (unstable)"}.get(
+        mode.kind, str(number)
+    )
 
 
 def analysis_html(analysis: LinearAnalysis) -> str:
@@ -159,32 +209,54 @@ def analysis_html(analysis: LinearAnalysis) -> str:
     parts = [_heading(analysis.system, "normal modes"), _image(plot_modes(analysis))]
     rows = []
     for n, mode in enumerate(analysis.modes, 1):
-        rows.append([_mode_label(n, mode), _g(mode.omega, 8), _g(mode.frequency),
-                     _g(mode.period)]
-                    + [_g(float(v), 4) for v in mode.shape_x]
-                    + [_g(float(v), 4) for v in mode.friction])
-    header = (["mode", "ω (rad/s)", "f (Hz)", "period (s)"] + [f"x {i}" for i in ids]
-              + [f"f {i} (N)" for i in ids])
-    parts.append(_table([html.escape(h) for h in header], rows,
-                        "Normal modes: centre displacement x (largest = 1) and friction f along "
-                        "it"))
+        rows.append(
+            [_mode_label(n, mode), _g(mode.omega, 8), _g(mode.frequency), _g(mode.period)]
+            + [_g(float(v), 4) for v in mode.shape_x]
+            + [_g(float(v), 4) for v in mode.friction]
+        )
+    header = (
+        ["mode", "ω (rad/s)", "f (Hz)", "period (s)"]
+        + [f"x {i}" for i in ids]
+        + [f"f {i} (N)" for i in ids]
+    )
+    parts.append(
+        _table(
+            [html.escape(h) for h in header],
+            rows,
+            "Normal modes: centre displacement x (largest = 1) and friction f along it",
+        )
+    )
     if analysis.stationary_weights is not None:
-        weights = " + ".join(f"{w:.6g}·x<sub>{html.escape(i)}</sub>"
-                             for i, w in zip(ids, analysis.stationary_weights, strict=True))
+        weights = " + ".join(
+            f"{w:.6g}·x<sub>{html.escape(i)}</sub>"
+            for i, w in zip(ids, analysis.stationary_weights, strict=True)
+        )
         mass = analysis.arrays.mass
         is_cm = bool(np.allclose(analysis.stationary_weights, mass / mass.sum()))
-        parts.append(f"<p>Stationary point X̂ = {weights} = "
-                     f"{_g(analysis.stationary_position)} m "
-                     f"({'the centre of mass' if is_cm else 'not the centre of mass'})</p>")
+        parts.append(
+            f"<p>Stationary point X̂ = {weights} = "
+            f"{_g(analysis.stationary_position)} m "
+            f"({'the centre of mass' if is_cm else 'not the centre of mass'})</p>"
+        )
     else:
         parts.append("<p>No stationary point (no single zero mode).</p>")
     if analysis.required_mu is not None:
-        parts.append(_table(["body", "amplitude (m)", "|f| max (N)", "μ needed", "μs"],
-                            [[html.escape(i), _g(analysis.amplitude[k]),
-                              _g(analysis.friction_amplitude[k]),
-                              _g(analysis.required_mu[k], 4),
-                              _g(analysis.system.bodies[k].mu_static, 3)]
-                             for k, i in enumerate(ids)], "Linear response"))
+        parts.append(
+            _table(
+                ["body", "amplitude (m)", "|f| max (N)", "μ needed", "μs"],
+                [
+                    [
+                        html.escape(i),
+                        _g(analysis.amplitude[k]),
+                        _g(analysis.friction_amplitude[k]),
+                        _g(analysis.required_mu[k], 4),
+                        _g(analysis.system.bodies[k].mu_static, 3),
+                    ]
+                    for k, i in enumerate(ids)
+                ],
+                "Linear response",
+            )
+        )
     parts.append(f"<div>{analysis_latex(analysis)}</div>")
     for warning in analysis.warnings:
         parts.append(f'<p style="color: #a50026">warning: {html.escape(warning)}</p>')
@@ -193,11 +265,14 @@ def analysis_html(analysis: LinearAnalysis) -> str:
 
 def mode_html(mode: Mode) -> str:
     """One normal mode: kind, ω, frequency, period and its shape (largest displacement 1)."""
-    rows = [[str(k + 1), _g(float(x), 4), _g(float(q), 4), _g(float(f), 4)]
-            for k, (x, q, f) in enumerate(zip(mode.shape_x, mode.shape_q, mode.friction,
-                                              strict=True))]
-    head = (f"<p><b>{mode.kind} mode</b>: ω = {_g(mode.omega, 8)} rad/s, "
-            f"f = {_g(mode.frequency)} Hz, period {_g(mode.period)} s</p>")
+    rows = [
+        [str(k + 1), _g(float(x), 4), _g(float(q), 4), _g(float(f), 4)]
+        for k, (x, q, f) in enumerate(zip(mode.shape_x, mode.shape_q, mode.friction, strict=True))
+    ]
+    head = (
+        f"<p><b>{mode.kind} mode</b>: ω = {_g(mode.omega, 8)} rad/s, "
+        f"f = {_g(mode.frequency)} Hz, period {_g(mode.period)} s</p>"
+    )
     return "<div>" + head + _table(["body #", "x", "φ or x", "f (N)"], rows) + "</div>"
 
 
@@ -216,16 +291,30 @@ def trajectory_html(trajectory: Trajectory) -> str:
         return f"{html.escape(str(found['body']))} at {_g(found['time'])} s"
 
     rows = [
-        ["status", html.escape(trajectory.status) + (f" – {html.escape(trajectory.message)}"
-                                                     if trajectory.message else "")],
+        [
+            "status",
+            html.escape(trajectory.status)
+            + (f" – {html.escape(trajectory.message)}" if trajectory.message else ""),
+        ],
         ["time", f"0 … {_g(float(trajectory.t[-1]))} s, {trajectory.t.size} outputs"],
-        ["integrator", html.escape(str(trajectory.integrator))
-         + (f", {trajectory.n_steps} steps of {_g(trajectory.step)} s" if trajectory.step
-            else "")],
-        ["energy (J)", f"{_g(summary.get('energy'))}, relative error "
-                       f"{_g(summary.get('energy_error'), 3)}"],
-        ["period (s)", f"measured {_g(summary.get('period_measured'), 12)}, linear "
-                       f"{_g(summary.get('period_linear'), 12)}"],
+        [
+            "integrator",
+            html.escape(str(trajectory.integrator))
+            + (
+                f", {trajectory.n_steps} steps of {_g(trajectory.step)} s"
+                if trajectory.step
+                else ""
+            ),
+        ],
+        [
+            "energy (J)",
+            f"{_g(summary.get('energy'))}, relative error {_g(summary.get('energy_error'), 3)}",
+        ],
+        [
+            "period (s)",
+            f"measured {_g(summary.get('period_measured'), 12)}, linear "
+            f"{_g(summary.get('period_linear'), 12)}",
+        ],
         ["first slip", event("first_slip")],
         ["first lift-off", event("first_liftoff")],
     ]
@@ -234,11 +323,23 @@ def trajectory_html(trajectory: Trajectory) -> str:
     normal = summary.get("min_normal_force", {})
     body_rows = []
     for i, name in enumerate(trajectory.ids):
-        body_rows.append([html.escape(name), _g(ratio.get(name)), _g(normal.get(name)),
-                          _g(float(trajectory.x[-1, i])), _g(float(trajectory.v[-1, i])),
-                          _g(float(trajectory.phi[-1, i]))])
-    parts.append(_table(["body", "max |f|/N", "min N (N)", "final x (m)", "final v (m/s)",
-                         "final φ (rad)"], body_rows, "Bodies"))
+        body_rows.append(
+            [
+                html.escape(name),
+                _g(ratio.get(name)),
+                _g(normal.get(name)),
+                _g(float(trajectory.x[-1, i])),
+                _g(float(trajectory.v[-1, i])),
+                _g(float(trajectory.phi[-1, i])),
+            ]
+        )
+    parts.append(
+        _table(
+            ["body", "max |f|/N", "min N (N)", "final x (m)", "final v (m/s)", "final φ (rad)"],
+            body_rows,
+            "Bodies",
+        )
+    )
     parts.append(_image(plot_positions(trajectory).figure))
     return "<div>" + "".join(parts) + "</div>"
 
@@ -292,8 +393,10 @@ def trajectory_to_pandas(trajectory: Trajectory) -> Any:
     except ImportError as exc:
         raise ImportError("trajectory_to_pandas needs pandas: pip install pandas") from exc
     columns = _columns(trajectory)
-    data = {name: (values > 0.5 if name.endswith(".slipping") else values)
-            for name, (_, values) in columns.items()}
+    data = {
+        name: (values > 0.5 if name.endswith(".slipping") else values)
+        for name, (_, values) in columns.items()
+    }
     frame = pd.DataFrame(data, index=pd.Index(trajectory.t, name="t"))
     frame.attrs["units"] = {"t": "s", **{name: unit for name, (unit, _) in columns.items()}}
     frame.attrs["system"] = trajectory.system.name
@@ -313,27 +416,31 @@ def trajectory_to_xarray(trajectory: Trajectory) -> Any:
     except ImportError as exc:
         raise ImportError("trajectory_to_xarray needs xarray: pip install xarray") from exc
     tr = trajectory
-    per_body = {"x": ("m", tr.x, "centre position"), "phi": ("rad", tr.phi,
-                "rotation from the initial placement, clockwise positive"),
-                "v": ("m/s", tr.v, "centre velocity"), "omega": ("rad/s", tr.omega,
-                "angular velocity, clockwise positive"),
-                "friction": ("N", tr.friction, "friction on the body, positive along +x"),
-                "normal": ("N", tr.normal, "normal force"),
-                "friction_ratio": ("1", tr.friction_ratio, "|f| / (mu_s N)"),
-                "slipping": ("1", np.asarray(tr.slipping, dtype=bool), "the body slips")}
+    per_body = {
+        "x": ("m", tr.x, "centre position"),
+        "phi": ("rad", tr.phi, "rotation from the initial placement, clockwise positive"),
+        "v": ("m/s", tr.v, "centre velocity"),
+        "omega": ("rad/s", tr.omega, "angular velocity, clockwise positive"),
+        "friction": ("N", tr.friction, "friction on the body, positive along +x"),
+        "normal": ("N", tr.normal, "normal force"),
+        "friction_ratio": ("1", tr.friction_ratio, "|f| / (mu_s N)"),
+        "slipping": ("1", np.asarray(tr.slipping, dtype=bool), "the body slips"),
+    }
     variables: dict[str, Any] = {}
     for name, (unit, values, text) in per_body.items():
         variables[name] = (("time", "body"), values, {"units": unit, "long_name": text})
-    for name, unit, values, text in (("length", "m", tr.spring_length, "spring length"),
-                                     ("tension", "N", tr.spring_tension,
-                                      "spring tension, positive when stretched")):
+    for name, unit, values, text in (
+        ("length", "m", tr.spring_length, "spring length"),
+        ("tension", "N", tr.spring_tension, "spring tension, positive when stretched"),
+    ):
         variables[name] = (("time", "spring"), values, {"units": unit, "long_name": text})
-    for name, unit, values, text in (("kinetic", "J", tr.kinetic, "kinetic energy"),
-                                     ("potential", "J", tr.potential, "potential energy"),
-                                     ("energy", "J", tr.energy, "total energy"),
-                                     ("cm_x", "m", tr.cm_x, "centre of mass"),
-                                     ("stationary_x", "m", tr.stationary_x,
-                                      "stationary point X-hat")):
+    for name, unit, values, text in (
+        ("kinetic", "J", tr.kinetic, "kinetic energy"),
+        ("potential", "J", tr.potential, "potential energy"),
+        ("energy", "J", tr.energy, "total energy"),
+        ("cm_x", "m", tr.cm_x, "centre of mass"),
+        ("stationary_x", "m", tr.stationary_x, "stationary point X-hat"),
+    ):
         if values is not None:
             variables[name] = (("time",), values, {"units": unit, "long_name": text})
     bodies = tr.system.bodies

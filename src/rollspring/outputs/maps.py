@@ -77,11 +77,16 @@ SLIP_METRICS = ("status", "first_slip_time", "first_slip_body", "max_friction_ra
 #: Non-grid dimensions of a store.
 _EXTRA_DIMS = ("body", "mode")
 #: How a per-body metric is reduced over the bodies when no body is chosen.
-_OVER_BODIES = {"max_friction_ratio": "max", "required_mu_linear": "max",
-                "min_normal_force": "min"}
+_OVER_BODIES = {"max_friction_ratio": "max", "required_mu_linear": "max", "min_normal_force": "min"}
 #: Colours of the status codes (by name); other names take _SPARE in turn.
-_STATUS_COLORS = {"finished": "#a6d96a", "slip": "#fdae61", "liftoff": "#2c7bb6",
-                  "nonfinite": "#252525", "energy_error": "#d7191c", "invalid": "#bdbdbd"}
+_STATUS_COLORS = {
+    "finished": "#a6d96a",
+    "slip": "#fdae61",
+    "liftoff": "#2c7bb6",
+    "nonfinite": "#252525",
+    "energy_error": "#d7191c",
+    "invalid": "#bdbdbd",
+}
 _SPARE = ("#984ea3", "#ffff99", "#a65628", "#f781bf", "#66c2a5", "#8da0cb")
 _NONE_COLOR = "#d9d9d9"
 _LINEAR_LABEL = "linear theory: μ needed = μs"
@@ -141,8 +146,10 @@ def open_sweep(path: str | Path) -> xr.Dataset:
     if not store.exists():
         raise MapError(f"{path}: no such sweep store")
     if not store.is_dir():
-        raise MapError(f"{path}: not a sweep store (a Zarr store is a directory; "
-                       "make one with rollspring sweep)")
+        raise MapError(
+            f"{path}: not a sweep store (a Zarr store is a directory; "
+            "make one with rollspring sweep)"
+        )
     try:
         with warnings.catch_warnings():
             # a store without consolidated metadata is read without (xarray warns about it)
@@ -160,9 +167,14 @@ def check_sweep(dataset: xr.Dataset, name: str = "dataset") -> None:
     ``system`` attribute and a ``status`` variable."""
     if not isinstance(dataset, xr.Dataset):
         raise MapError(f"{name}: not a sweep dataset (got {type(dataset).__name__})")
-    missing = [what for what, ok in (("the 'system' attribute", "system" in dataset.attrs),
-                                     ("a 'status' variable", "status" in dataset.data_vars))
-               if not ok]
+    missing = [
+        what
+        for what, ok in (
+            ("the 'system' attribute", "system" in dataset.attrs),
+            ("a 'status' variable", "status" in dataset.data_vars),
+        )
+        if not ok
+    ]
     if missing:
         raise MapError(f"{name}: not a rollspring sweep store (no {' and no '.join(missing)})")
 
@@ -177,7 +189,7 @@ def grid_dims(dataset: xr.Dataset) -> list[str]:
 def _listing(values: Sequence[Any]) -> str:
     shown = [_number(v) if isinstance(v, (float, np.floating)) else str(v) for v in values]
     if len(shown) > _MAX_LISTED:
-        shown = [*shown[:_MAX_LISTED // 2], "…", *shown[-_MAX_LISTED // 2:]]
+        shown = [*shown[: _MAX_LISTED // 2], "…", *shown[-_MAX_LISTED // 2 :]]
     return ", ".join(shown)
 
 
@@ -200,8 +212,9 @@ def _is_log_spaced(values: np.ndarray) -> bool:
         return False
     logs = np.diff(np.log(values))
     steps = np.diff(values)
-    return (bool(np.allclose(logs, logs[0], rtol=1e-6, atol=0.0))
-            and not bool(np.allclose(steps, steps[0], rtol=1e-6, atol=0.0)))
+    return bool(np.allclose(logs, logs[0], rtol=1e-6, atol=0.0)) and not bool(
+        np.allclose(steps, steps[0], rtol=1e-6, atol=0.0)
+    )
 
 
 def _edges(values: np.ndarray, log: bool) -> np.ndarray:
@@ -233,8 +246,9 @@ def _choose_value(dataset: xr.Dataset, dim: str, raw: Any, notes: list[str]) -> 
     span = (high - low) or abs(high) or 1.0
     if not (low - 1e-9 * span <= wanted <= high + 1e-9 * span):
         raise MapError(f"--sel {dim}={raw}: outside the grid (values: {_listing(values)})")
-    notes.append(f"--sel {dim}={raw}: not on the grid; the nearest grid value "
-                 f"{_number(nearest)} is shown")
+    notes.append(
+        f"--sel {dim}={raw}: not on the grid; the nearest grid value {_number(nearest)} is shown"
+    )
     return nearest
 
 
@@ -245,8 +259,11 @@ def _mu_static(dataset: xr.Dataset, system: Any | None, ids: list[str]) -> xr.Da
     for index, body_id in enumerate(ids):
         path = f"bodies.{body_id}.mu_static"
         if path in dataset.coords:
-            columns.append(dataset[path].astype(float).reset_coords(drop=True)
-                           if dataset[path].ndim == 0 else dataset[path].astype(float))
+            columns.append(
+                dataset[path].astype(float).reset_coords(drop=True)
+                if dataset[path].ndim == 0
+                else dataset[path].astype(float)
+            )
         elif system is not None:
             columns.append(xr.DataArray(float(system.bodies[index].mu_static)))
         else:
@@ -261,22 +278,33 @@ def _system(dataset: xr.Dataset) -> Any | None:
         return None
 
 
-def _reduce_bodies(variable: xr.DataArray, metric: str, body: str | None,
-                   ids: list[str]) -> tuple[xr.DataArray, str | None]:
+def _reduce_bodies(
+    variable: xr.DataArray, metric: str, body: str | None, ids: list[str]
+) -> tuple[xr.DataArray, str | None]:
     if body is not None:
         return variable.sel(body=body), body
     if len(ids) == 1:
         return variable.isel(body=0), ids[0]
     how = _OVER_BODIES.get(metric)
     if how is None:
-        raise MapError(f"--body: {metric} is given per body; choose one with --body ID "
-                       f"(bodies: {_listing(ids)})")
+        raise MapError(
+            f"--body: {metric} is given per body; choose one with --body ID "
+            f"(bodies: {_listing(ids)})"
+        )
     return getattr(variable, how)("body"), None
 
 
-def prepare_map(dataset: xr.Dataset, x: str, y: str, metric: str, *,
-                sel: Mapping[str, Any] | None = None, body: str | None = None,
-                mode: int | None = None, linear: bool = True) -> MapData:
+def prepare_map(
+    dataset: xr.Dataset,
+    x: str,
+    y: str,
+    metric: str,
+    *,
+    sel: Mapping[str, Any] | None = None,
+    body: str | None = None,
+    mode: int | None = None,
+    linear: bool = True,
+) -> MapData:
     """Read the map of ``metric`` over the grid dimensions ``x`` and ``y`` from a sweep
     ``dataset``; see the module's description. ``sel`` fixes the other varied PATHs (a grid
     dimension of a single value needs none); ``body`` picks a body of a per-body metric (default:
@@ -288,21 +316,28 @@ def prepare_map(dataset: xr.Dataset, x: str, y: str, metric: str, *,
     dims = grid_dims(dataset)
     for option, name in (("--x", x), ("--y", y)):
         if name not in dims:
-            raise MapError(f"{option} {name}: not a varied PATH of this sweep "
-                           f"(varied: {_listing(dims) or 'none'})")
+            raise MapError(
+                f"{option} {name}: not a varied PATH of this sweep "
+                f"(varied: {_listing(dims) or 'none'})"
+            )
     if x == y:
         raise MapError(f"--y {y}: the same PATH as --x; a map needs two different PATHs")
     for option, name in (("--x", x), ("--y", y)):
         if dataset.sizes[name] < 2:
-            raise MapError(f"{option} {name}: has a single value in this sweep; a map needs "
-                           "at least two")
+            raise MapError(
+                f"{option} {name}: has a single value in this sweep; a map needs at least two"
+            )
         if not np.all(np.isfinite(np.asarray(dataset[name].values, float))):
-            raise MapError(f"{option} {name}: holds a value that is not finite "
-                           f"({_listing(dataset[name].values)}); a map axis needs finite "
-                           "values (map it with --sel instead)")
+            raise MapError(
+                f"{option} {name}: holds a value that is not finite "
+                f"({_listing(dataset[name].values)}); a map axis needs finite "
+                "values (map it with --sel instead)"
+            )
     if metric not in dataset.data_vars:
-        raise MapError(f"--metric {metric}: not in this store (metrics: "
-                       f"{_listing(sorted(str(v) for v in dataset.data_vars))})")
+        raise MapError(
+            f"--metric {metric}: not in this store (metrics: "
+            f"{_listing(sorted(str(v) for v in dataset.data_vars))})"
+        )
     ids = [str(v) for v in dataset["body"].values] if "body" in dataset.coords else []
     notes: list[str] = []
 
@@ -320,8 +355,9 @@ def prepare_map(dataset: xr.Dataset, x: str, y: str, metric: str, *,
         if key in (x, y):
             raise MapError(f"--sel {key}: is the map's {'x' if key == x else 'y'} axis")
         if key not in dims:
-            raise MapError(f"--sel {key}: not a varied PATH of this sweep "
-                           f"(varied: {_listing(dims)})")
+            raise MapError(
+                f"--sel {key}: not a varied PATH of this sweep (varied: {_listing(dims)})"
+            )
         chosen[key] = _choose_value(dataset, key, raw, notes)
     for dim in dims:
         if dim in (x, y) or dim in chosen:
@@ -329,21 +365,28 @@ def prepare_map(dataset: xr.Dataset, x: str, y: str, metric: str, *,
         if dataset.sizes[dim] == 1:
             chosen[dim] = dataset[dim].values[0]
         else:
-            raise MapError(f"{dim}: also varied in this sweep; fix it with --sel {dim}=VALUE "
-                           f"(values: {_listing(dataset[dim].values)})")
+            raise MapError(
+                f"{dim}: also varied in this sweep; fix it with --sel {dim}=VALUE "
+                f"(values: {_listing(dataset[dim].values)})"
+            )
     if body is not None and body not in ids:
         raise MapError(f"--body {body}: no such body (bodies: {_listing(ids) or 'none'})")
     n_modes = dataset.sizes.get("mode", 0)
     if mode is not None and not 0 <= mode < n_modes:
-        raise MapError(f"--mode {mode}: no such mode (modes: 0 … {n_modes - 1})"
-                       if n_modes else f"--mode {mode}: this store has no mode dimension")
+        raise MapError(
+            f"--mode {mode}: no such mode (modes: 0 … {n_modes - 1})"
+            if n_modes
+            else f"--mode {mode}: this store has no mode dimension"
+        )
 
     plane = dataset.sel(chosen) if chosen else dataset
     variable = plane[metric]
     if "mode" in variable.dims:
         if mode is None:
-            raise MapError(f"--mode: {metric} is given per mode; choose one with --mode N "
-                           f"(modes: 0 … {n_modes - 1}, sorted by ω)")
+            raise MapError(
+                f"--mode: {metric} is given per mode; choose one with --mode N "
+                f"(modes: 0 … {n_modes - 1}, sorted by ω)"
+            )
         variable = variable.sel(mode=mode)
     shown_body = None
     if "body" in variable.dims:
@@ -354,8 +397,9 @@ def prepare_map(dataset: xr.Dataset, x: str, y: str, metric: str, *,
         raise MapError(f"--mode {mode}: {metric} is not given per mode")
     extra = [d for d in variable.dims if d not in (x, y)]
     if extra:  # pragma: no cover - a store outside docs/sweeps.md
-        raise MapError(f"--metric {metric}: has dimensions {', '.join(map(str, extra))} "
-                       "this map cannot fix")
+        raise MapError(
+            f"--metric {metric}: has dimensions {', '.join(map(str, extra))} this map cannot fix"
+        )
     values = np.asarray(variable.transpose(y, x).values)
     units = _units(plane[metric])
     long_name = str(plane[metric].attrs.get("long_name", ""))
@@ -365,7 +409,8 @@ def prepare_map(dataset: xr.Dataset, x: str, y: str, metric: str, *,
         categories = _status_categories(plane[metric])
     elif metric == "first_slip_body":
         categories = [(-1, "no slip", _NONE_COLOR)] + [
-            (i, body_id, BODY_COLORS[i % len(BODY_COLORS)]) for i, body_id in enumerate(ids)]
+            (i, body_id, BODY_COLORS[i % len(BODY_COLORS)]) for i, body_id in enumerate(ids)
+        ]
     if metric == "first_slip_body" and values.dtype.kind == "f":
         values = np.where(np.isfinite(values), values, -1).astype(int)
 
@@ -378,11 +423,24 @@ def prepare_map(dataset: xr.Dataset, x: str, y: str, metric: str, *,
     if "mode" in plane[metric].dims:
         label = f"{metric} [mode {mode}]"
     data = MapData(
-        x_name=x, y_name=y, metric=metric, x=xv, y=yv, values=values,
-        x_units=_units(dataset[x]), y_units=_units(dataset[y]), units=units,
-        long_name=long_name, x_log=_is_log_spaced(xv), y_log=_is_log_spaced(yv),
-        metric_label=label, title="", categories=categories, notes=notes,
-        fixed=[(dim, _with_value(value, _units(dataset[dim]))) for dim, value in chosen.items()])
+        x_name=x,
+        y_name=y,
+        metric=metric,
+        x=xv,
+        y=yv,
+        values=values,
+        x_units=_units(dataset[x]),
+        y_units=_units(dataset[y]),
+        units=units,
+        long_name=long_name,
+        x_log=_is_log_spaced(xv),
+        y_log=_is_log_spaced(yv),
+        metric_label=label,
+        title="",
+        categories=categories,
+        notes=notes,
+        fixed=[(dim, _with_value(value, _units(dataset[dim]))) for dim, value in chosen.items()],
+    )
 
     if linear:
         _linear_overlay(data, plane, dataset, x, y, body, mode, ids)
@@ -409,20 +467,34 @@ def _status_categories(variable: xr.DataArray) -> list[tuple[int, str, str]]:
     codes = variable.attrs.get("flag_values")
     names = str(variable.attrs.get("flag_meanings", "")).split()
     if codes is None or len(names) != len(np.atleast_1d(codes)):
-        raise MapError("status: the store's status has no flag_values/flag_meanings "
-                       "(not a sweep store of docs/sweeps.md)")
+        raise MapError(
+            "status: the store's status has no flag_values/flag_meanings "
+            "(not a sweep store of docs/sweeps.md)"
+        )
     spare = iter(_SPARE * 4)
-    return [(int(code), name, _STATUS_COLORS.get(name) or next(spare))
-            for code, name in zip(np.atleast_1d(codes), names, strict=True)]
+    return [
+        (int(code), name, _STATUS_COLORS.get(name) or next(spare))
+        for code, name in zip(np.atleast_1d(codes), names, strict=True)
+    ]
 
 
-def _linear_overlay(data: MapData, plane: xr.Dataset, dataset: xr.Dataset, x: str, y: str,
-                    body: str | None, mode: int | None, ids: list[str]) -> None:
+def _linear_overlay(
+    data: MapData,
+    plane: xr.Dataset,
+    dataset: xr.Dataset,
+    x: str,
+    y: str,
+    body: str | None,
+    mode: int | None,
+    ids: list[str],
+) -> None:
     """Fill ``data.linear`` with the linear theory's field where it has a prediction."""
     if data.metric in SLIP_METRICS:
         if "required_mu_linear" not in plane:
-            data.notes.append("no linear slip boundary: the store has no required_mu_linear "
-                              "(swept with --metric without it)")
+            data.notes.append(
+                "no linear slip boundary: the store has no required_mu_linear "
+                "(swept with --metric without it)"
+            )
             return
         mu = _mu_static(plane, _system(dataset), ids)
         if mu is None:
@@ -432,8 +504,9 @@ def _linear_overlay(data: MapData, plane: xr.Dataset, dataset: xr.Dataset, x: st
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio = needed / mu  # inf mu_s: ratio 0, never slips
         ratio = ratio.sel(body=body) if body is not None else ratio.max("body")
-        ratio = ratio.broadcast_like(plane[data.metric].isel(
-            {d: 0 for d in plane[data.metric].dims if d not in (x, y)}))
+        ratio = ratio.broadcast_like(
+            plane[data.metric].isel({d: 0 for d in plane[data.metric].dims if d not in (x, y)})
+        )
         data.linear = np.asarray(ratio.transpose(y, x).values, float)
         data.linear_kind = "slip"
         data.linear_label = _LINEAR_LABEL + (f" ({body})" if body is not None else "")
@@ -450,8 +523,7 @@ def _linear_overlay(data: MapData, plane: xr.Dataset, dataset: xr.Dataset, x: st
             period = 2 * math.pi / omega
         data.linear = np.asarray(period.transpose(y, x).values, float)
         data.linear_kind = "period"
-        data.linear_label = "linear theory: 2π/ω" + (f" (mode {mode})" if mode is not None
-                                                     else "")
+        data.linear_label = "linear theory: 2π/ω" + (f" (mode {mode})" if mode is not None else "")
 
 
 # -- drawing ---------------------------------------------------------------------------------
@@ -495,32 +567,49 @@ def plot_map(data: MapData, ax: Axes | None = None) -> Axes:
         ax.set_ylabel(_with_units(data.y_name, data.y_units))
         ax.set_title(data.title)
         if data.categories is not None:
-            ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0),
-                      borderaxespad=0.0, title=data.metric_label)
+            ax.legend(
+                handles=handles,
+                loc="upper left",
+                bbox_to_anchor=(1.02, 1.0),
+                borderaxespad=0.0,
+                title=data.metric_label,
+            )
         elif handles:
-            ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.13),
-                      ncols=len(handles), frameon=False, borderaxespad=0.0)
+            ax.legend(
+                handles=handles,
+                loc="upper center",
+                bbox_to_anchor=(0.5, -0.13),
+                ncols=len(handles),
+                frameon=False,
+                borderaxespad=0.0,
+            )
     return ax
 
 
-def _draw_categories(ax: Axes, data: MapData, xe: np.ndarray, ye: np.ndarray
-                     ) -> tuple[Any, list[Any]]:
+def _draw_categories(
+    ax: Axes, data: MapData, xe: np.ndarray, ye: np.ndarray
+) -> tuple[Any, list[Any]]:
     codes = [code for code, _, _ in data.categories]
     index = np.full(data.values.shape, -1, dtype=int)
     for i, code in enumerate(codes):
         index[data.values == code] = i
     cmap = ListedColormap([colour for _, _, colour in data.categories])
     norm = BoundaryNorm(np.arange(len(codes) + 1) - 0.5, len(codes))
-    mesh = ax.pcolormesh(xe, ye, np.ma.masked_less(index, 0), cmap=cmap, norm=norm,
-                         shading="flat", rasterized=True)
+    mesh = ax.pcolormesh(
+        xe, ye, np.ma.masked_less(index, 0), cmap=cmap, norm=norm, shading="flat", rasterized=True
+    )
     present = set(np.unique(index[index >= 0]).tolist())
-    handles = [Patch(facecolor=colour, edgecolor="none", label=name)
-               for i, (_, name, colour) in enumerate(data.categories) if i in present]
+    handles = [
+        Patch(facecolor=colour, edgecolor="none", label=name)
+        for i, (_, name, colour) in enumerate(data.categories)
+        if i in present
+    ]
     return mesh, handles
 
 
-def _draw_values(ax: Axes, data: MapData, xe: np.ndarray, ye: np.ndarray,
-                 handles: list[Any]) -> Any:
+def _draw_values(
+    ax: Axes, data: MapData, xe: np.ndarray, ye: np.ndarray, handles: list[Any]
+) -> Any:
     values = np.asarray(data.values, float)
     finite = np.isfinite(values)
     masked = np.ma.masked_where(~finite, values)
@@ -535,11 +624,13 @@ def _draw_values(ax: Axes, data: MapData, xe: np.ndarray, ye: np.ndarray,
     else:
         norm = Normalize(0.0, 1.0)
     cmap = colormaps["viridis"].with_extremes(bad=_NONE_COLOR)
-    mesh = ax.pcolormesh(xe, ye, masked, cmap=cmap, norm=norm, shading="flat",
-                         rasterized=True)
+    mesh = ax.pcolormesh(xe, ye, masked, cmap=cmap, norm=norm, shading="flat", rasterized=True)
     if not finite.all():
-        what = {"first_slip_time": "no slip", "first_liftoff_time": "no lift-off",
-                "period_measured": "fewer than two crossings"}.get(data.metric, "no value")
+        what = {
+            "first_slip_time": "no slip",
+            "first_liftoff_time": "no lift-off",
+            "period_measured": "fewer than two crossings",
+        }.get(data.metric, "no value")
         handles.append(Patch(facecolor=_NONE_COLOR, edgecolor="none", label=what))
     return mesh
 
@@ -568,10 +659,12 @@ def _draw_linear(ax: Axes, data: MapData, mesh: Any) -> list[Any]:
     if math.isclose(low, high, rel_tol=1e-9):
         label += f" = {low:.4g} s everywhere"
     else:
-        levels = [v for v in _nice_levels(float(mesh.norm.vmin), float(mesh.norm.vmax))
-                  if low < v < high] or [0.5 * (low + high)]
-        lines = ax.contour(X, Y, field_, levels=levels, colors="black", linestyles="dashed",
-                           linewidths=1.2)
+        levels = [
+            v for v in _nice_levels(float(mesh.norm.vmin), float(mesh.norm.vmax)) if low < v < high
+        ] or [0.5 * (low + high)]
+        lines = ax.contour(
+            X, Y, field_, levels=levels, colors="black", linestyles="dashed", linewidths=1.2
+        )
         lines.set(path_effects=_HALO)
         for text in ax.clabel(lines, fmt=lambda v: f"{v:.3g} s", fontsize=7, colors="black"):
             text.set_path_effects(_HALO)
@@ -588,15 +681,25 @@ def _nice_levels(low: float, high: float, count: int = 6) -> list[float]:
     return [float(v) for v in MaxNLocator(count).tick_values(low, high)]
 
 
-def sweep_map(dataset: xr.Dataset | str | Path, x: str, y: str, metric: str, *,
-              sel: Mapping[str, Any] | None = None, body: str | None = None,
-              mode: int | None = None, ax: Axes | None = None, linear: bool = True) -> Axes:
+def sweep_map(
+    dataset: xr.Dataset | str | Path,
+    x: str,
+    y: str,
+    metric: str,
+    *,
+    sel: Mapping[str, Any] | None = None,
+    body: str | None = None,
+    mode: int | None = None,
+    ax: Axes | None = None,
+    linear: bool = True,
+) -> Axes:
     """The map of ``metric`` over ``x`` and ``y`` of a sweep (a Dataset or a store's path):
     :func:`prepare_map` then :func:`plot_map`. Returns the Axes (``ax.figure`` the Figure)."""
     if not isinstance(dataset, xr.Dataset):
         dataset = open_sweep(dataset)
-    return plot_map(prepare_map(dataset, x, y, metric, sel=sel, body=body, mode=mode,
-                                linear=linear), ax)
+    return plot_map(
+        prepare_map(dataset, x, y, metric, sel=sel, body=body, mode=mode, linear=linear), ax
+    )
 
 
 def write_map(target: Axes | Figure, path: str | Path, *, dpi: float = 150.0) -> Path:
@@ -610,8 +713,11 @@ def write_map(target: Axes | Figure, path: str | Path, *, dpi: float = 150.0) ->
         atomic_write_text(path, figure_svg(fig))
     elif suffix == ".pdf":
         with atomic_path(path, suffix=".pdf") as temporary, theme():
-            fig.savefig(temporary, format="pdf", metadata={"Creator": None, "Producer": None,
-                                                           "CreationDate": None})
+            fig.savefig(
+                temporary,
+                format="pdf",
+                metadata={"Creator": None, "Producer": None, "CreationDate": None},
+            )
     else:
         raise MapError(f"-o {path}: unknown image format '{path.suffix}' (.png, .svg or .pdf)")
     return path

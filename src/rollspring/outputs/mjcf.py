@@ -101,9 +101,9 @@ WORLD_FRAME_SITE = "world:frame"
 
 _TUNING_NOTE = (
     "Contact keeps MuJoCo's defaults. Settings to tune for closer agreement with exact "
-    "rolling: <option cone=\"elliptic\" impratio=\"10\" noslip_iterations=\"5\"/> (less "
+    'rolling: <option cone="elliptic" impratio="10" noslip_iterations="5"/> (less '
     "tangential creep), and geom solref (contact stiffness/damping time constant, default "
-    "0.02 1) and solimp (impedance), e.g. solref=\"0.002 1\" with a smaller timestep."
+    '0.02 1) and solimp (impedance), e.g. solref="0.002 1" with a smaller timestep.'
 )
 
 
@@ -173,89 +173,165 @@ def system_to_mjcf(system: System, *, timestep: float | None = None) -> str:
     root.append(ET.Comment(_comment(_header(system))))
     ET.SubElement(root, "compiler", angle="radian")
     root.append(ET.Comment(_comment(_TUNING_NOTE)))
-    ET.SubElement(root, "option", timestep=_num(step), integrator="RK4",
-                  gravity=_vec(0.0, 0.0, -arrays.gravity))
+    ET.SubElement(
+        root,
+        "option",
+        timestep=_num(step),
+        integrator="RK4",
+        gravity=_vec(0.0, 0.0, -arrays.gravity),
+    )
     world = ET.SubElement(root, "worldbody")
     _add_view(world, system)
     for k, h in enumerate(heights):
-        world.append(ET.Comment(_comment(f"track {k}: floor at height {_num(h)} m, contact bit "
-                                         f"{1 << k}; friction comes from the bodies")))
-        ET.SubElement(world, "geom", name=f"track:{k}", type="plane", pos=_vec(0.0, 0.0, h),
-                      size="0 0 1", contype=str(1 << k), conaffinity="0", rgba="0.8 0.8 0.8 1")
+        world.append(
+            ET.Comment(
+                _comment(
+                    f"track {k}: floor at height {_num(h)} m, contact bit "
+                    f"{1 << k}; friction comes from the bodies"
+                )
+            )
+        )
+        ET.SubElement(
+            world,
+            "geom",
+            name=f"track:{k}",
+            type="plane",
+            pos=_vec(0.0, 0.0, h),
+            size="0 0 1",
+            contype=str(1 << k),
+            conaffinity="0",
+            rgba="0.8 0.8 0.8 1",
+        )
     for anchor in system.anchors:
-        ET.SubElement(world, "site", name=anchor.id, pos=_vec(anchor.x, 0.0, anchor.y),
-                      size="0.01", rgba="0.2 0.2 0.2 1")
+        ET.SubElement(
+            world,
+            "site",
+            name=anchor.id,
+            pos=_vec(anchor.x, 0.0, anchor.y),
+            size="0.01",
+            rgba="0.2 0.2 0.2 1",
+        )
     if system.forces:
-        ET.SubElement(world, "site", name=WORLD_FRAME_SITE, pos="0 0 0", size="0.001",
-                      rgba="0 0 0 0")
+        ET.SubElement(
+            world, "site", name=WORLD_FRAME_SITE, pos="0 0 0", size="0.001", rgba="0 0 0 0"
+        )
 
     for i, body in enumerate(system.bodies):
-        element = ET.SubElement(world, "body", name=body.id, pos=_vec(
-            arrays.x0[i], 0.0, arrays.track[i] + arrays.radius[i]))
+        element = ET.SubElement(
+            world,
+            "body",
+            name=body.id,
+            pos=_vec(arrays.x0[i], 0.0, arrays.track[i] + arrays.radius[i]),
+        )
         _add_joints_and_geom(element, body, bit_of_height)
         for s, name in enumerate(arrays.spring_names):
             for j in range(2):
                 if arrays.end_body[s, j] == i:
                     r, alpha = arrays.end_r[s, j], arrays.end_alpha[s, j]
-                    ET.SubElement(element, "site", name=spring_site_name(name, body.id),
-                                  pos=_body_offset(r, alpha), size="0.005")
+                    ET.SubElement(
+                        element,
+                        "site",
+                        name=spring_site_name(name, body.id),
+                        pos=_body_offset(r, alpha),
+                        size="0.005",
+                    )
         for f in range(len(system.forces)):
             if arrays.force_body[f] == i:
-                ET.SubElement(element, "site", name=f"{body.id}:force{f}",
-                              pos=_body_offset(arrays.force_r[f], arrays.force_alpha[f]),
-                              size="0.005", rgba="1 0 0 1")
+                ET.SubElement(
+                    element,
+                    "site",
+                    name=f"{body.id}:force{f}",
+                    pos=_body_offset(arrays.force_r[f], arrays.force_alpha[f]),
+                    size="0.005",
+                    rgba="1 0 0 1",
+                )
 
     equalities = [b for b in system.bodies if b.rolls and math.isinf(b.mu_static)]
     if equalities:
         equality = ET.SubElement(root, "equality")
-        equality.append(ET.Comment(_comment(
-            "mu_static = inf: rolling enforced by x = R phi; solref time constant = 2 timesteps "
-            "(MuJoCo's default 0.02 s would let x - R phi drift by millimetres)")))
+        equality.append(
+            ET.Comment(
+                _comment(
+                    "mu_static = inf: rolling enforced by x = R phi; solref time constant = 2 timesteps "
+                    "(MuJoCo's default 0.02 s would let x - R phi drift by millimetres)"
+                )
+            )
+        )
         for b in equalities:
             x_joint, _, phi_joint = body_joint_names(b)
-            ET.SubElement(equality, "joint", name=f"{b.id}:rolling", joint1=x_joint,
-                          joint2=phi_joint, polycoef=f"0 {_num(b.radius)} 0 0 0",
-                          solref=f"{_num(2.0 * step)} 1")
+            ET.SubElement(
+                equality,
+                "joint",
+                name=f"{b.id}:rolling",
+                joint1=x_joint,
+                joint2=phi_joint,
+                polycoef=f"0 {_num(b.radius)} 0 0 0",
+                solref=f"{_num(2.0 * step)} 1",
+            )
 
     if system.springs:
         tendon = ET.SubElement(root, "tendon")
         for s, (spring, name) in enumerate(zip(system.springs, arrays.spring_names, strict=True)):
-            spatial = ET.SubElement(tendon, "spatial", name=name,
-                                    stiffness=_num(arrays.stiffness[s]),
-                                    springlength=_num(arrays.rest_length[s]),
-                                    damping=_num(arrays.damping[s]), width="0.003")
+            spatial = ET.SubElement(
+                tendon,
+                "spatial",
+                name=name,
+                stiffness=_num(arrays.stiffness[s]),
+                springlength=_num(arrays.rest_length[s]),
+                damping=_num(arrays.damping[s]),
+                width="0.003",
+            )
             for j, end in enumerate(spring.ends):
                 site = end if arrays.end_body[s, j] < 0 else spring_site_name(name, end)
                 ET.SubElement(spatial, "site", site=site)
 
     if system.forces:
         actuator = ET.SubElement(root, "actuator")
-        actuator.append(ET.Comment(_comment(
-            "constant forces: gear = (fx, 0, fy) N in the world frame (refsite), applied at a "
-            "body-fixed site; force = gain*ctrl + bias = 0*ctrl + 1, independent of ctrl")))
+        actuator.append(
+            ET.Comment(
+                _comment(
+                    "constant forces: gear = (fx, 0, fy) N in the world frame (refsite), applied at a "
+                    "body-fixed site; force = gain*ctrl + bias = 0*ctrl + 1, independent of ctrl"
+                )
+            )
+        )
         for f, force in enumerate(system.forces):
             fx, fy = arrays.force[f]
-            ET.SubElement(actuator, "general", name=f"{force.body}:force{f}",
-                          site=f"{force.body}:force{f}", refsite=WORLD_FRAME_SITE,
-                          gear=_vec(fx, 0.0, fy, 0.0, 0.0, 0.0), gainprm="0",
-                          biastype="affine", biasprm="1 0 0")
+            ET.SubElement(
+                actuator,
+                "general",
+                name=f"{force.body}:force{f}",
+                site=f"{force.body}:force{f}",
+                refsite=WORLD_FRAME_SITE,
+                gear=_vec(fx, 0.0, fy, 0.0, 0.0, 0.0),
+                gainprm="0",
+                biastype="affine",
+                biasprm="1 0 0",
+            )
 
     keyframe = ET.SubElement(root, "keyframe")
-    keyframe.append(ET.Comment(_comment(
-        "qpos = 0 is the initial placement; velocities roll without slipping (omega = v/R)")))
+    keyframe.append(
+        ET.Comment(
+            _comment(
+                "qpos = 0 is the initial placement; velocities roll without slipping (omega = v/R)"
+            )
+        )
+    )
     qvel: list[float] = []
     for i, body in enumerate(system.bodies):
         v = float(arrays.v0[i])
         qvel.extend((v, 0.0, v / body.radius) if body.rolls else (v,))
-    ET.SubElement(keyframe, "key", name="initial", qpos=_vec(*([0.0] * len(qvel))),
-                  qvel=_vec(*qvel))
+    ET.SubElement(
+        keyframe, "key", name="initial", qpos=_vec(*([0.0] * len(qvel))), qvel=_vec(*qvel)
+    )
 
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="unicode") + "\n"
 
 
-def write_mjcf(system: System, path: str | os.PathLike[str], *,
-               timestep: float | None = None) -> None:
+def write_mjcf(
+    system: System, path: str | os.PathLike[str], *, timestep: float | None = None
+) -> None:
     """Write :func:`system_to_mjcf` to ``path`` atomically (the previous file or the complete
     new one, never a partial file)."""
     atomic_write_text(path, system_to_mjcf(system, timestep=timestep))
@@ -268,28 +344,59 @@ def _add_joints_and_geom(element: ET.Element, body: Body, bit_of_height: dict[fl
         element.append(ET.Comment(_comment("slider: slides along x without friction, no contact")))
         ET.SubElement(element, "joint", name=names[0], type="slide", axis="1 0 0")
         moment = 0.4 * body.mass * body.radius**2  # no rotation: any positive value
-        ET.SubElement(element, "inertial", pos="0 0 0", mass=_num(body.mass),
-                      diaginertia=_vec(moment, moment, moment))
-        ET.SubElement(element, "geom", name=body.id, type="sphere", size=_num(body.radius),
-                      contype="0", conaffinity="0", rgba="0.3 0.5 0.8 1")
+        ET.SubElement(
+            element,
+            "inertial",
+            pos="0 0 0",
+            mass=_num(body.mass),
+            diaginertia=_vec(moment, moment, moment),
+        )
+        ET.SubElement(
+            element,
+            "geom",
+            name=body.id,
+            type="sphere",
+            size=_num(body.radius),
+            contype="0",
+            conaffinity="0",
+            rgba="0.3 0.5 0.8 1",
+        )
         return
-    element.append(ET.Comment(_comment(
-        f"{body.shape}: I = {_num(body.gamma)} m R^2 about y; hinge angle = our phi "
-        "(clockwise positive as seen from -y)")))
+    element.append(
+        ET.Comment(
+            _comment(
+                f"{body.shape}: I = {_num(body.gamma)} m R^2 about y; hinge angle = our phi "
+                "(clockwise positive as seen from -y)"
+            )
+        )
+    )
     ET.SubElement(element, "joint", name=names[0], type="slide", axis="1 0 0")
     ET.SubElement(element, "joint", name=names[1], type="slide", axis="0 0 1")
     ET.SubElement(element, "joint", name=names[2], type="hinge", axis="0 1 0")
     moment = body.central_inertia
-    ET.SubElement(element, "inertial", pos="0 0 0", mass=_num(body.mass),
-                  diaginertia=_vec(moment, moment, moment))
+    ET.SubElement(
+        element,
+        "inertial",
+        pos="0 0 0",
+        mass=_num(body.mass),
+        diaginertia=_vec(moment, moment, moment),
+    )
     if body.shape in ("sphere", "shell"):
         geom = {"name": body.id, "type": "sphere", "size": _num(body.radius)}
     else:  # a cylinder lying along y; its half-width (R/4) does not enter the dynamics
-        geom = {"name": body.id, "type": "cylinder", "size": _vec(body.radius, 0.25 * body.radius),
-                "zaxis": "0 1 0"}
+        geom = {
+            "name": body.id,
+            "type": "cylinder",
+            "size": _vec(body.radius, 0.25 * body.radius),
+            "zaxis": "0 1 0",
+        }
     frictionless = math.isinf(body.mu_static) or body.mu_static == 0.0
-    geom |= {"contype": "0", "conaffinity": str(bit_of_height[body.track_height]),
-             "priority": "1", "condim": "1" if frictionless else "3"}
+    geom |= {
+        "contype": "0",
+        "conaffinity": str(bit_of_height[body.track_height]),
+        "priority": "1",
+        "condim": "1" if frictionless else "3",
+    }
     if not frictionless:  # sliding, torsional, rolling; the last two act only for condim 4, 6
         geom["friction"] = f"{_num(body.mu_static)} 0.005 0.0001"
     geom["rgba"] = "0.8 0.5 0.2 1"
@@ -299,14 +406,27 @@ def _add_joints_and_geom(element: ET.Element, body: Body, bit_of_height: dict[fl
 def _add_view(world: ET.Element, system: System) -> None:
     """A light and a fixed ``side`` camera looking along +y (x right, z up, as our drawings)."""
     xs = [b.x for b in system.bodies] + [a.x for a in system.anchors]
-    zs = ([b.track_height + 2 * b.radius for b in system.bodies]
-          + [b.track_height for b in system.bodies] + [a.y for a in system.anchors])
+    zs = (
+        [b.track_height + 2 * b.radius for b in system.bodies]
+        + [b.track_height for b in system.bodies]
+        + [a.y for a in system.anchors]
+    )
     centre_x, centre_z = (min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2
     extent = max(max(xs) - min(xs), max(zs) - min(zs), 0.1)
-    ET.SubElement(world, "light", pos=_vec(centre_x, -2.0 * extent, centre_z + 2.0 * extent),
-                  dir="0 1 -1", directional="true")
-    ET.SubElement(world, "camera", name="side", pos=_vec(centre_x, -1.5 * extent, centre_z),
-                  xyaxes="1 0 0 0 0 1")
+    ET.SubElement(
+        world,
+        "light",
+        pos=_vec(centre_x, -2.0 * extent, centre_z + 2.0 * extent),
+        dir="0 1 -1",
+        directional="true",
+    )
+    ET.SubElement(
+        world,
+        "camera",
+        name="side",
+        pos=_vec(centre_x, -1.5 * extent, centre_z),
+        xyaxes="1 0 0 0 0 1",
+    )
 
 
 def _body_offset(r: float, alpha: float) -> str:
@@ -320,11 +440,13 @@ def _header(system: System) -> str:
     except metadata.PackageNotFoundError:  # running from a source tree without installing
         version = "(unknown version)"
     title = system.name or "(unnamed system)"
-    return (f"{title} - generated by rollspring {version}. Planar model: our (x, y) is MuJoCo "
-            "(x, z); rotations about +y, clockwise positive seen from -y (our phi); qpos = 0 is "
-            "the initial placement; keyframe 'initial' holds the initial velocities. "
-            "Friction = mu_static (MuJoCo has one coefficient). Contact is soft, rolling only "
-            "approximately exact.")
+    return (
+        f"{title} - generated by rollspring {version}. Planar model: our (x, y) is MuJoCo "
+        "(x, z); rotations about +y, clockwise positive seen from -y (our phi); qpos = 0 is "
+        "the initial placement; keyframe 'initial' holds the initial velocities. "
+        "Friction = mu_static (MuJoCo has one coefficient). Contact is soft, rolling only "
+        "approximately exact."
+    )
 
 
 def _num(value: float) -> str:
@@ -340,8 +462,11 @@ def _vec(*values: float) -> str:
 def _xml_safe(text: str) -> str:
     """``text`` without the characters XML 1.0 cannot hold (control characters, surrogates)."""
     return "".join(
-        c for c in text
-        if c in "\t\n\r" or 0x20 <= ord(c) <= 0xD7FF or 0xE000 <= ord(c) <= 0xFFFD
+        c
+        for c in text
+        if c in "\t\n\r"
+        or 0x20 <= ord(c) <= 0xD7FF
+        or 0xE000 <= ord(c) <= 0xFFFD
         or 0x10000 <= ord(c) <= 0x10FFFF
     )
 

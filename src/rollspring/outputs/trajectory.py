@@ -64,8 +64,11 @@ def write_trajectory(trajectory: Trajectory, directory: str | Path) -> list[Path
     json_path = directory / "summary.json"
     atomic_write_text(csv_path, trajectory_csv(trajectory))
     with atomic_write(npz_path, "wb") as handle:
-        np.savez_compressed(handle, **{name: values for name, (_, values)
-                                       in trajectory.columns().items()})
-    atomic_write_text(json_path, json.dumps(summary_json(trajectory), indent=2,
-                                            ensure_ascii=False, allow_nan=False) + "\n")
+        np.savez_compressed(
+            handle, **{name: values for name, (_, values) in trajectory.columns().items()}
+        )
+    atomic_write_text(
+        json_path,
+        json.dumps(summary_json(trajectory), indent=2, ensure_ascii=False, allow_nan=False) + "\n",
+    )
     return [csv_path, npz_path, json_path]

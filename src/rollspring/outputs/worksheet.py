@@ -120,28 +120,36 @@ class Worksheet:
         """Every numeric answer of the solutions, by question."""
         derivation = self.derivation
         closed = list(derivation.omega2)
-        exact = ([derivation.symbolic.numeric(w) for w in closed]
-                 if closed and all(w is not None for w in closed)
-                 and len(closed) == len(self.analysis.oscillating) else [])
+        exact = (
+            [derivation.symbolic.numeric(w) for w in closed]
+            if closed
+            and all(w is not None for w in closed)
+            and len(closed) == len(self.analysis.oscillating)
+            else []
+        )
         out = []
         for answer in self.numeric_answers:
             if answer.key == "omega2_exact":
                 if not exact:
                     continue
-                names = tuple(f"mode {n + 1}" for n in range(len(exact))) if len(exact) > 1 \
-                    else ()
-                answer = Answer(answer.key, answer.question, answer.label, tuple(exact),
-                                answer.unit, names)
+                names = tuple(f"mode {n + 1}" for n in range(len(exact))) if len(exact) > 1 else ()
+                answer = Answer(
+                    answer.key, answer.question, answer.label, tuple(exact), answer.unit, names
+                )
             elif answer.key == "percussion":
-                heights = tuple(derivation.symbolic.numeric(b.percussion_height)
-                                for b in derivation.symbolic.bodies)
-                answer = Answer(answer.key, answer.question, answer.label, heights,
-                                answer.unit, answer.names)
+                heights = tuple(
+                    derivation.symbolic.numeric(b.percussion_height)
+                    for b in derivation.symbolic.bodies
+                )
+                answer = Answer(
+                    answer.key, answer.question, answer.label, heights, answer.unit, answer.names
+                )
             out.append(answer)
         return out
 
 
 # -- rendering -----------------------------------------------------------------------------------
+
 
 def format_number(value: float) -> str:
     """Six significant digits; an exact zero as 0, infinity as inf."""
@@ -192,14 +200,25 @@ def _tables(sheet: Worksheet) -> list[tuple[str, list[str], list[list[str]]]]:
     """(title, header, rows) of the bodies, anchors and springs."""
     bodies = []
     for i, b in enumerate(sheet.system.bodies):
-        bodies.append([str(i + 1), SHAPE_WORDS[b.shape][0], format_number(b.mass),
-                       format_number(b.radius) if b.rolls else "-", format_number(b.x),
-                       format_number(b.v)])
+        bodies.append(
+            [
+                str(i + 1),
+                SHAPE_WORDS[b.shape][0],
+                format_number(b.mass),
+                format_number(b.radius) if b.rolls else "-",
+                format_number(b.x),
+                format_number(b.v),
+            ]
+        )
     out = [("Bodies", ["body", "shape", "m (kg)", "R (m)", "x (m)", "v (m/s)"], bodies)]
     if sheet.system.anchors:
-        out.append(("Walls", ["wall", "x (m)", "y (m)"],
-                    [[a.id, format_number(a.x), format_number(a.y)]
-                     for a in sheet.system.anchors]))
+        out.append(
+            (
+                "Walls",
+                ["wall", "x (m)", "y (m)"],
+                [[a.id, format_number(a.x), format_number(a.y)] for a in sheet.system.anchors],
+            )
+        )
     springs = []
     for s, spring in enumerate(sheet.system.springs):
         ends = " - ".join(end_words(e) for e in spring.ends)
@@ -207,10 +226,16 @@ def _tables(sheet: Worksheet) -> list[tuple[str, list[str], list[list[str]]]]:
         for end, at in zip(spring.ends, spring.attachments, strict=True):
             if end in sheet.system.body_map:
                 heights.append("centre" if at.is_centre_form else f"{format_number(at.height)} m")
-        springs.append([str(s + 1), ends, format_number(spring.stiffness),
-                        format_number(sheet.system.rest_lengths[s]), ", ".join(heights)])
-    out.append(("Springs", ["spring", "ends", "k (N/m)", "L (m)", "attached at (height)"],
-                springs))
+        springs.append(
+            [
+                str(s + 1),
+                ends,
+                format_number(spring.stiffness),
+                format_number(sheet.system.rest_lengths[s]),
+                ", ".join(heights),
+            ]
+        )
+    out.append(("Springs", ["spring", "ends", "k (N/m)", "L (m)", "attached at (height)"], springs))
     return out
 
 
@@ -219,14 +244,18 @@ def render_sheet(sheet: Worksheet, format: str = "markdown") -> str:  # noqa: A0
     _check_format(format)
     if format == "latex":
         return _latex_sheet(sheet)
-    lines = [f"# rollspring worksheet, {_md(sheet.title)}", "",
-             f"*Seed {sheet.seed}. SI units; $g = {sheet.system.gravity:g}$ m/s$^2$.*", "",
-             "## The system", ""]
+    lines = [
+        f"# rollspring worksheet, {_md(sheet.title)}",
+        "",
+        f"*Seed {sheet.seed}. SI units; $g = {sheet.system.gravity:g}$ m/s$^2$.*",
+        "",
+        "## The system",
+        "",
+    ]
     for paragraph in sheet.setting:
         lines += [paragraph, ""]
     for title, header, rows in _tables(sheet):
-        lines += [f"**{title}**", "", "| " + " | ".join(header) + " |",
-                  "|" + "---|" * len(header)]
+        lines += [f"**{title}**", "", "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
         lines += ["| " + " | ".join(row) + " |" for row in rows]
         lines.append("")
     lines += ["## Questions", ""]
@@ -241,11 +270,23 @@ def render_solutions(sheet: Worksheet, format: str = "markdown") -> str:  # noqa
     _check_format(format)
     if format == "latex":
         return _latex_solutions(sheet)
-    lines = [f"# Solutions: rollspring worksheet, {_md(sheet.title)}", "",
-             f"*Seed {sheet.seed}.*", "", "## The system as a rollspring file", "",
-             "Save it as `system.toml` and run `rollspring analyze system.toml` to check the "
-             "numbers.", "", "```toml", system_toml(sheet.data).rstrip(), "```", "",
-             "## Derivation", "", _md(sheet.derivation.subtitle)]
+    lines = [
+        f"# Solutions: rollspring worksheet, {_md(sheet.title)}",
+        "",
+        f"*Seed {sheet.seed}.*",
+        "",
+        "## The system as a rollspring file",
+        "",
+        "Save it as `system.toml` and run `rollspring analyze system.toml` to check the numbers.",
+        "",
+        "```toml",
+        system_toml(sheet.data).rstrip(),
+        "```",
+        "",
+        "## Derivation",
+        "",
+        _md(sheet.derivation.subtitle),
+    ]
     for section in _sections(sheet):
         lines += ["", f"### {_md(section.title)}"]
         if section.note:
@@ -268,6 +309,7 @@ def render_solutions(sheet: Worksheet, format: str = "markdown") -> str:  # noqa
 
 def _values_text(answer: Answer, *, latex: bool = False) -> str:
     """The values with their names and unit (Markdown, or LaTeX text)."""
+
     def words(text: str) -> str:
         return latex_text(text) if latex else text
 
@@ -277,8 +319,10 @@ def _values_text(answer: Answer, *, latex: bool = False) -> str:
         base = answer.unit.removesuffix("^2")
         unit = " " + words(base) + (("$^2$" if latex else "²") if squared else "")
     if answer.names and len(answer.names) == len(answer.values):
-        return "; ".join(f"{words(name)} {format_number(v)}{unit}"
-                         for name, v in zip(answer.names, answer.values, strict=True))
+        return "; ".join(
+            f"{words(name)} {format_number(v)}{unit}"
+            for name, v in zip(answer.names, answer.values, strict=True)
+        )
     return ", ".join(format_number(v) for v in answer.values) + unit
 
 
@@ -295,8 +339,7 @@ def _sections(sheet: Worksheet) -> list[Section]:
 
 def _check_format(format: str) -> None:  # noqa: A002
     if format not in FORMATS:
-        raise WorksheetError(f"--format: unknown format '{format}' "
-                             f"(formats: {', '.join(FORMATS)})")
+        raise WorksheetError(f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})")
 
 
 def _md(words: str) -> str:
@@ -305,7 +348,6 @@ def _md(words: str) -> str:
 
 
 # -- LaTeX ---------------------------------------------------------------------------------------
-
 
 
 def _latex_words(text: str) -> str:
@@ -326,8 +368,14 @@ def _ascii(value: str) -> str:
 def _latex_tables(sheet: Worksheet) -> list[str]:
     lines = []
     for title, header, rows in _tables(sheet):
-        lines += [rf"\paragraph{{{title}}}", "", r"\begin{tabular}{" + "l" * len(header) + "}",
-                  r"\hline", " & ".join(latex_text(h) for h in header) + r" \\", r"\hline"]
+        lines += [
+            rf"\paragraph{{{title}}}",
+            "",
+            r"\begin{tabular}{" + "l" * len(header) + "}",
+            r"\hline",
+            " & ".join(latex_text(h) for h in header) + r" \\",
+            r"\hline",
+        ]
         lines += [" & ".join(latex_text(c) for c in row) + r" \\" for row in rows]
         lines += [r"\hline", r"\end{tabular}", ""]
     return lines
@@ -335,41 +383,59 @@ def _latex_tables(sheet: Worksheet) -> list[str]:
 
 def _latex_sheet(sheet: Worksheet) -> str:
     lines = list(LATEX_PREAMBLE)
-    lines += [rf"\section*{{rollspring worksheet, {latex_text(sheet.title)}}}",
-              rf"\emph{{Seed {sheet.seed}. SI units; $g = {sheet.system.gravity:g}$\,m/s$^2$.}}",
-              r"\subsection*{The system}"]
+    lines += [
+        rf"\section*{{rollspring worksheet, {latex_text(sheet.title)}}}",
+        rf"\emph{{Seed {sheet.seed}. SI units; $g = {sheet.system.gravity:g}$\,m/s$^2$.}}",
+        r"\subsection*{The system}",
+    ]
     for paragraph in sheet.setting:
         lines += [_latex_words(paragraph), ""]
     lines += _latex_tables(sheet)
     lines += [r"\subsection*{Questions}", r"\begin{enumerate}"]
     lines += [rf"\item {_latex_words(q)}" for q in sheet.questions]
-    lines += [r"\end{enumerate}", r"\emph{The solutions are on a separate sheet.}",
-              r"\end{document}"]
+    lines += [
+        r"\end{enumerate}",
+        r"\emph{The solutions are on a separate sheet.}",
+        r"\end{document}",
+    ]
     return "\n".join(lines) + "\n"
 
 
 def _latex_solutions(sheet: Worksheet) -> str:
     lines = list(LATEX_PREAMBLE)
-    lines += [rf"\section*{{Solutions: rollspring worksheet, {latex_text(sheet.title)}}}",
-              rf"\emph{{Seed {sheet.seed}.}}",
-              r"\subsection*{The system as a rollspring file}",
-              latex_text("Save it as system.toml and run: rollspring analyze system.toml"),
-              r"\begin{verbatim}", _ascii(system_toml(sheet.data)).rstrip(), r"\end{verbatim}",
-              r"\subsection*{Derivation}", latex_text(sheet.derivation.subtitle)]
+    lines += [
+        rf"\section*{{Solutions: rollspring worksheet, {latex_text(sheet.title)}}}",
+        rf"\emph{{Seed {sheet.seed}.}}",
+        r"\subsection*{The system as a rollspring file}",
+        latex_text("Save it as system.toml and run: rollspring analyze system.toml"),
+        r"\begin{verbatim}",
+        _ascii(system_toml(sheet.data)).rstrip(),
+        r"\end{verbatim}",
+        r"\subsection*{Derivation}",
+        latex_text(sheet.derivation.subtitle),
+    ]
     for section in _sections(sheet):
         lines.append(rf"\subsubsection*{{{latex_text(section.title)}}}")
         if section.note:
             lines.append(latex_text(section.note))
         for step in section.steps:
             ref = rf" \hfill{{\small ({latex_text(step.ref)})}}" if step.ref else ""
-            lines += ["", latex_text(step.words) + ref, r"\begin{equation*}",
-                      _ascii(step.latex), r"\end{equation*}"]
+            lines += [
+                "",
+                latex_text(step.words) + ref,
+                r"\begin{equation*}",
+                _ascii(step.latex),
+                r"\end{equation*}",
+            ]
     lines += [r"\subsection*{Answers (rollspring analyze)}", r"\begin{enumerate}"]
     answers = sheet.answers
     for number, question in enumerate(sheet.questions, 1):
         lines.append(rf"\item {_latex_words(question)}")
-        given = [rf"\item {_latex_words(a.label)}: {_values_text(a, latex=True)}"
-                 for a in answers if a.question == number]
+        given = [
+            rf"\item {_latex_words(a.label)}: {_values_text(a, latex=True)}"
+            for a in answers
+            if a.question == number
+        ]
         if number in sheet.notes:
             given.append(rf"\item {_latex_words(sheet.notes[number])}")
         if given:

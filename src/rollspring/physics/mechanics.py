@@ -44,7 +44,9 @@ def _as_state(system: SystemArrays, q: FloatArray | float) -> FloatArray:
     if q.ndim == 0:
         q = np.full(system.n_bodies, float(q))
     if q.shape[-1] != system.n_bodies:
-        raise ValueError(f"q has {q.shape[-1]} coordinates; the system has {system.n_bodies} bodies")
+        raise ValueError(
+            f"q has {q.shape[-1]} coordinates; the system has {system.n_bodies} bodies"
+        )
     return q
 
 
@@ -193,9 +195,7 @@ def accelerations(
     return generalized_forces(system, q, qdot) / system.inertia
 
 
-def body_forces(
-    system: SystemArrays, q: FloatArray, qdot: FloatArray | None = None
-) -> FloatArray:
+def body_forces(system: SystemArrays, q: FloatArray, qdot: FloatArray | None = None) -> FloatArray:
     r"""Resultant applied force :math:`F_i = (F_{ix}, F_{iy})` on every body (springs and external
     forces; not gravity, friction or the normal force). Shape (..., n, 2), newtons.
 
@@ -257,7 +257,7 @@ def stiffness_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
     curvature = np.einsum("j,sji,sjc->sic", sign, system.incidence, second)  # DD_i
     e, length, b = springs.direction, springs.length, springs.lever
     elastic_tension = system.stiffness * (length - system.rest_length)
-    transverse = (np.einsum("sic,sjc->sij", delta, delta) - b[:, :, None] * b[:, None, :])
+    transverse = np.einsum("sic,sjc->sij", delta, delta) - b[:, :, None] * b[:, None, :]
     transverse /= length[:, None, None]
     path = np.einsum("sc,sic->si", e, curvature)
     hess_l = transverse + np.einsum("si,ij->sij", path, np.eye(system.n_bodies))

@@ -49,15 +49,28 @@ from rollspring.outputs.worksheet import LEVELS, Worksheet, WorksheetError
 from rollspring.service import exercises
 from rollspring.simulate import simulate
 
-__all__ = ["build_report", "claims_json", "derivation_document", "derivation_payload",
-           "figure_claims", "paper_checks", "worksheet"]
+__all__ = [
+    "build_report",
+    "claims_json",
+    "derivation_document",
+    "derivation_payload",
+    "figure_claims",
+    "paper_checks",
+    "worksheet",
+]
 
 
 # -- the report -----------------------------------------------------------------------------------
 
-def build_report(system: System, *, duration: float | None = None, rtol: float = 1e-8,
-                 derivation: bool = True,
-                 progress: Callable[[float], None] | None = None) -> Report:
+
+def build_report(
+    system: System,
+    *,
+    duration: float | None = None,
+    rtol: float = 1e-8,
+    derivation: bool = True,
+    progress: Callable[[float], None] | None = None,
+) -> Report:
     """Analyse and simulate ``system``, derive it, check the paper's claims about it, and render
     its self-contained report page (:func:`rollspring.outputs.report.render_report`).
 
@@ -98,9 +111,16 @@ def build_report(system: System, *, duration: float | None = None, rtol: float =
         paper = figure_claims(system)
         computed = 0.6
         done("check the paper's claims", computed)
-    report = render_report(system, analysis, trajectory, frames=frames, derivation=derived,
-                           derivation_error=error, paper=paper,
-                           stage=lambda name, f: done(name, computed + (1.0 - computed) * f))
+    report = render_report(
+        system,
+        analysis,
+        trajectory,
+        frames=frames,
+        derivation=derived,
+        derivation_error=error,
+        paper=paper,
+        stage=lambda name, f: done(name, computed + (1.0 - computed) * f),
+    )
     timings["total"] = time.perf_counter() - started
     report.timings = timings
     return report
@@ -108,9 +128,14 @@ def build_report(system: System, *, duration: float | None = None, rtol: float =
 
 # -- the derivation -------------------------------------------------------------------------------
 
-def derivation_document(system: System, methods: str | Sequence[str] = ALL, *,
-                        format: str = "text",  # noqa: A002 - mirrors --format
-                        symbols: bool = False) -> tuple[str, CrossCheck]:
+
+def derivation_document(
+    system: System,
+    methods: str | Sequence[str] = ALL,
+    *,
+    format: str = "text",  # noqa: A002 - mirrors --format
+    symbols: bool = False,
+) -> tuple[str, CrossCheck]:
     """``system`` derived step by step by ``methods`` (``"all"`` or names of
     :data:`rollspring.analysis.derivation.METHODS`; with ``symbols`` the parameters are symbols),
     rendered as ``format`` (``text``, ``markdown`` or ``latex``, a complete document), and the
@@ -119,8 +144,9 @@ def derivation_document(system: System, methods: str | Sequence[str] = ALL, *,
     return derivation.render(format), derivation.cross_check
 
 
-def derivation_payload(system: System, method: str | Sequence[str] = ALL, *,
-                       symbols: bool = True) -> dict[str, Any]:
+def derivation_payload(
+    system: System, method: str | Sequence[str] = ALL, *, symbols: bool = True
+) -> dict[str, Any]:
     """The derivation of ``system`` by ``method`` as plain JSON data (``POST /api/derive``).
 
     ``{"title", "subtitle", "sections": [{"title", "note", "steps": [{"words", "latex",
@@ -142,17 +168,30 @@ def derivation_payload(system: System, method: str | Sequence[str] = ALL, *,
         "title": derivation.title,
         "subtitle": derivation.subtitle,
         "sections": [
-            {"title": section.title, "note": section.note,
-             "steps": [{"words": step.words, "latex": step.latex,
-                        "mathml": _mathml(step.latex), "ref": step.ref}
-                       for step in section.steps]}
-            for section in derivation_sections(derivation)],
+            {
+                "title": section.title,
+                "note": section.note,
+                "steps": [
+                    {
+                        "words": step.words,
+                        "latex": step.latex,
+                        "mathml": _mathml(step.latex),
+                        "ref": step.ref,
+                    }
+                    for step in section.steps
+                ],
+            }
+            for section in derivation_sections(derivation)
+        ],
         "cross_check": {
             "agree": check.agree,
             "applied": list(check.applied),
             "not_applicable": dict(check.not_applicable),
-            "checks": [{"method": c.method, "what": c.what, "agree": c.agrees,
-                        "residual": str(c.residual)} for c in check.checks]},
+            "checks": [
+                {"method": c.method, "what": c.what, "agree": c.agrees, "residual": str(c.residual)}
+                for c in check.checks
+            ],
+        },
         "claims": None if paper is None else claims_json(paper[1]),
     }
 
@@ -166,6 +205,7 @@ def _mathml(latex: str) -> str | None:
 
 
 # -- the paper's claims ---------------------------------------------------------------------------
+
 
 def paper_checks() -> tuple[ClaimCheck, ...]:
     """Every quantitative claim of the paper with its computed verdict (once per process)."""
@@ -192,6 +232,7 @@ def claims_json(checks: Iterable[ClaimCheck]) -> list[dict[str, Any]]:
 
 # -- worksheets -----------------------------------------------------------------------------------
 
+
 def worksheet(level: int, seed: int) -> Worksheet:
     """The exercise sheet of ``level`` (1-4) drawn with ``seed`` (a non-negative integer; the
     same seed gives the same sheet): a random system of the level, its analysis, questions and
@@ -205,6 +246,17 @@ def worksheet(level: int, seed: int) -> Worksheet:
     system = system_from_dict(data)
     analysis = analyze(system)
     questions, answers, notes = exercises.questions_and_answers(level, analysis)
-    return Worksheet(level, seed, variant, f"Level {level}: {LEVELS[level]}", data, system,
-                     setting, questions, answers, analysis,
-                     functools.partial(derive, system, ["lagrange"], symbols=True), notes)
+    return Worksheet(
+        level,
+        seed,
+        variant,
+        f"Level {level}: {LEVELS[level]}",
+        data,
+        system,
+        setting,
+        questions,
+        answers,
+        analysis,
+        functools.partial(derive, system, ["lagrange"], symbols=True),
+        notes,
+    )

@@ -38,6 +38,7 @@ _SHAPES = ("hoop", "cylinder", "sphere", "shell")
 
 # -- random systems ------------------------------------------------------------------------------
 
+
 def _pick(rng: np.random.Generator, values: tuple) -> Any:
     return values[int(rng.integers(len(values)))]
 
@@ -56,8 +57,10 @@ def _level1(rng: np.random.Generator) -> tuple[str, dict, list[str]]:
     k, A = _pick(rng, _STIFFNESSES), _pick(rng, _COMPRESSIONS)
     data = {
         "name": "Two blocks and a spring",
-        "bodies": [_body("m1", "slider", m1, 0.05, 0.0),
-                   _body("m2", "slider", m2, 0.05, _REST - A)],
+        "bodies": [
+            _body("m1", "slider", m1, 0.05, 0.0),
+            _body("m2", "slider", m2, 0.05, _REST - A),
+        ],
         "springs": [{"ends": ["m1", "m2"], "stiffness": k, "rest_length": _REST}],
     }
     setting = [
@@ -109,26 +112,35 @@ def _level3(rng: np.random.Generator) -> tuple[str, dict, list[str]]:
         ends.append((ids[-1], "right"))
     stiffness = [_pick(rng, _STIFFNESSES) for _ in ends]
     data: dict[str, Any] = {
-        "name": {"wall": "A wall, two bodies and two springs",
-                 "two-walls": "Two bodies between two walls",
-                 "chain": "A free chain of three bodies"}[variant],
+        "name": {
+            "wall": "A wall, two bodies and two springs",
+            "two-walls": "Two bodies between two walls",
+            "chain": "A free chain of three bodies",
+        }[variant],
         "bodies": bodies,
-        "springs": [{"ends": list(e), "stiffness": k, "rest_length": _REST}
-                    for e, k in zip(ends, stiffness, strict=True)],
+        "springs": [
+            {"ends": list(e), "stiffness": k, "rest_length": _REST}
+            for e, k in zip(ends, stiffness, strict=True)
+        ],
     }
     if anchors:
         data["anchors"] = anchors
-    parts = [f"body {i + 1} a {SHAPE_WORDS[shapes[i]][0]} of mass $m_{i + 1} = {masses[i]:g}$ kg"
-             for i in range(n)]
+    parts = [
+        f"body {i + 1} a {SHAPE_WORDS[shapes[i]][0]} of mass $m_{i + 1} = {masses[i]:g}$ kg"
+        for i in range(n)
+    ]
     springs = "; ".join(
         f"spring {s + 1} (${'k_' + str(s + 1)} = {k:g}$ N/m) joins "
         + " and ".join(end_words(e) for e in pair)
-        for s, (pair, k) in enumerate(zip(ends, stiffness, strict=True)))
+        for s, (pair, k) in enumerate(zip(ends, stiffness, strict=True))
+    )
     setting = [
-        "On one horizontal floor, from left to right: " + "; ".join(parts)
+        "On one horizontal floor, from left to right: "
+        + "; ".join(parts)
         + f"; all of radius $R = {R:g}$ m. They roll without slipping.",
         f"Horizontal springs, all of rest length $L = {_REST:g}$ m, at the height of the centres: "
-        f"{springs}" + (" (the walls are fixed)" if anchors else "")
+        f"{springs}"
+        + (" (the walls are fixed)" if anchors else "")
         + "; the paper's Fig. 4 (a), (b).",
         f"Body 2 is pushed {A:g} m to the left (every spring at rest before) and the bodies are "
         "released from rest.",
@@ -154,14 +166,17 @@ def _level4(rng: np.random.Generator) -> tuple[str, dict, list[str]]:
         # (docs/physics.md M16)
         gammas = [Fraction(g).limit_denominator(10) for g in (1.0, 0.5, 0.4)]
         factor = dict(zip(("hoop", "cylinder", "sphere"), gammas, strict=True))
-        w = [(1 + factor[s]) * Fraction(str(m)) * Fraction(str(r))
-             for s, m, r in zip(shapes, masses, radii, strict=True)]
+        w = [
+            (1 + factor[s]) * Fraction(str(m)) * Fraction(str(r))
+            for s, m, r in zip(shapes, masses, radii, strict=True)
+        ]
         scale = Fraction(_pick(rng, ("0.1", "0.2", "0.3")))  # v_i = -/+ c w_j: exact decimals
         v = [_clean(float(-w[1] * scale)), _clean(float(w[0] * scale))]
-        bodies = [_body(ids[0], shapes[0], masses[0], radii[0], 0.0, v=v[0]),
-                  _body(ids[1], shapes[1], masses[1], radii[1], _REST, v=v[1])]
-        springs = [{"ends": ids, "stiffness": k[0], "at": [{"height": height},
-                                                            {"height": height}]}]
+        bodies = [
+            _body(ids[0], shapes[0], masses[0], radii[0], 0.0, v=v[0]),
+            _body(ids[1], shapes[1], masses[1], radii[1], _REST, v=v[1]),
+        ]
+        springs = [{"ends": ids, "stiffness": k[0], "at": [{"height": height}, {"height": height}]}]
         anchors: list[dict] = []
         setting = [
             f"Body 1 is a {SHAPE_WORDS[shapes[0]][0]} (mass $m_1 = {masses[0]:g}$ kg, radius "
@@ -176,13 +191,15 @@ def _level4(rng: np.random.Generator) -> tuple[str, dict, list[str]]:
         ]
     else:
         wall_height = _clean(0.01 * int(rng.integers(1, int(round(2 * radii[0] / 0.01)) + 1)))
-        bodies = [_body(ids[0], shapes[0], masses[0], radii[0], 0.0),
-                  _body(ids[1], shapes[1], masses[1], radii[1], _REST, v=speed)]
+        bodies = [
+            _body(ids[0], shapes[0], masses[0], radii[0], 0.0),
+            _body(ids[1], shapes[1], masses[1], radii[1], _REST, v=speed),
+        ]
         anchors = [{"id": "wall", "x": -_REST, "y": wall_height}]
-        springs = [{"ends": ["wall", ids[0]], "stiffness": k[0],
-                    "at": [{}, {"height": wall_height}]},
-                   {"ends": ids, "stiffness": k[1], "at": [{"height": height},
-                                                            {"height": height}]}]
+        springs = [
+            {"ends": ["wall", ids[0]], "stiffness": k[0], "at": [{}, {"height": wall_height}]},
+            {"ends": ids, "stiffness": k[1], "at": [{"height": height}, {"height": height}]},
+        ]
         setting = [
             f"Body 1 is a {SHAPE_WORDS[shapes[0]][0]} (mass $m_1 = {masses[0]:g}$ kg, radius "
             f"$R_1 = {radii[0]:g}$ m), body 2 a {SHAPE_WORDS[shapes[1]][0]} ($m_2 = "
@@ -196,9 +213,14 @@ def _level4(rng: np.random.Generator) -> tuple[str, dict, list[str]]:
             f"Body 2 is given a velocity $v_2 = {speed:g}$ m/s to the right; body 1 starts at "
             "rest.",
         ]
-    data = {"name": {"pair": "Two bodies joined above their centres",
-                     "wall": "A wall hook and two bodies, off-centre springs"}[variant],
-            "bodies": bodies, "springs": springs}
+    data = {
+        "name": {
+            "pair": "Two bodies joined above their centres",
+            "wall": "A wall hook and two bodies, off-centre springs",
+        }[variant],
+        "bodies": bodies,
+        "springs": springs,
+    }
     if anchors:
         data["anchors"] = anchors
     return variant, data, setting
@@ -218,6 +240,7 @@ def draw(level: int, seed: int) -> tuple[str, dict, list[str]]:
 
 # -- questions and answers -----------------------------------------------------------------------
 
+
 def _by_body(analysis: LinearAnalysis) -> tuple[str, ...]:
     return tuple(f"body {i + 1}" for i in range(analysis.arrays.n_bodies))
 
@@ -227,8 +250,9 @@ def _by_body(analysis: LinearAnalysis) -> tuple[str, ...]:
 _DERIVED = ("omega2_exact", "percussion")
 
 
-def questions_and_answers(level: int, analysis: LinearAnalysis
-                          ) -> tuple[list[str], list[Answer], dict[int, str]]:
+def questions_and_answers(
+    level: int, analysis: LinearAnalysis
+) -> tuple[list[str], list[Answer], dict[int, str]]:
     """The questions of a sheet of ``level`` on the system of ``analysis``: the questions, the
     answers the analysis gives (and places for those of the derivation, :data:`_DERIVED`) and
     answers in words, by question number."""
@@ -236,8 +260,9 @@ def questions_and_answers(level: int, analysis: LinearAnalysis
     return asked, [a for a in answers if a.values or a.key in _DERIVED], notes
 
 
-def _questions(level: int, analysis: LinearAnalysis
-               ) -> tuple[list[str], list[Answer], dict[int, str]]:
+def _questions(
+    level: int, analysis: LinearAnalysis
+) -> tuple[list[str], list[Answer], dict[int, str]]:
     """:func:`questions_and_answers`, every answer included (also those without values)."""
     names = _by_body(analysis)
     oscillating = analysis.oscillating
@@ -258,21 +283,38 @@ def _questions(level: int, analysis: LinearAnalysis
         questions.append(text)
         return len(questions)
 
-    def give(key: str, question: int, label: str, values: Any, unit: str,
-             value_names: tuple[str, ...] = ()) -> None:
-        answers.append(Answer(key, question, label, tuple(float(v) for v in values), unit,
-                              value_names))
+    def give(
+        key: str,
+        question: int,
+        label: str,
+        values: Any,
+        unit: str,
+        value_names: tuple[str, ...] = (),
+    ) -> None:
+        answers.append(
+            Answer(key, question, label, tuple(float(v) for v in values), unit, value_names)
+        )
 
     free = analysis.stationary_weights is not None
     if level == 1:
-        q = ask("Write the equations of motion of the two blocks (Newton's second law, or the "
-                "Lagrangian $L = \\tfrac12 m_1\\dot x_1^2 + \\tfrac12 m_2\\dot x_2^2 - "
-                "\\tfrac12 k (x_2 - x_1 - L)^2$).")
+        q = ask(
+            "Write the equations of motion of the two blocks (Newton's second law, or the "
+            "Lagrangian $L = \\tfrac12 m_1\\dot x_1^2 + \\tfrac12 m_2\\dot x_2^2 - "
+            "\\tfrac12 k (x_2 - x_1 - L)^2$)."
+        )
         give("omega2_exact", q, "$\\Omega^2$ of the oscillation", (), "1/s^2")
-        q = ask("Show that the centre of mass stays at rest. What are the weights of $x_1$ and "
-                "$x_2$ in it?")
-        give("weights", q, "weights of the stationary point (the centre of mass)",
-             analysis.stationary_weights, "", names)
+        q = ask(
+            "Show that the centre of mass stays at rest. What are the weights of $x_1$ and "
+            "$x_2$ in it?"
+        )
+        give(
+            "weights",
+            q,
+            "weights of the stationary point (the centre of mass)",
+            analysis.stationary_weights,
+            "",
+            names,
+        )
         q = ask("Find the angular frequency $\\Omega$ and the period $T$.")
         give("omega", q, "$\\Omega$", omegas, "rad/s")
         give("period", q, "$T$", [m.period for m in oscillating], "s")
@@ -280,66 +322,125 @@ def _questions(level: int, analysis: LinearAnalysis
         give("amplitude", q, "amplitudes", analysis.amplitude, "m", names)
         give("max_speed", q, "largest speeds", analysis.velocity_amplitude, "m/s", names)
         return questions, answers, notes
-    q = ask("Find each body's moment of inertia about its contact line, "
-            "$I'_i = I_i + m_i R_i^2$" + (", and the stiffness matrix $K$ of the linearised "
-                                          "equations $M\\ddot\\varphi = -K\\varphi$ "
-                                          "(angles $\\varphi_i$ clockwise)." if level > 2
-                                          else "."))
+    q = ask(
+        "Find each body's moment of inertia about its contact line, "
+        "$I'_i = I_i + m_i R_i^2$"
+        + (
+            ", and the stiffness matrix $K$ of the linearised "
+            "equations $M\\ddot\\varphi = -K\\varphi$ "
+            "(angles $\\varphi_i$ clockwise)."
+            if level > 2
+            else "."
+        )
+    )
     give("inertia", q, "$I'_i$", J, "kg m^2", names)
     if level > 2:
         give("stiffness", q, "entries of $K$", K_values, "N m", K_names)
     if level == 2:
-        q = ask("Write the equations of motion with the rotation angles $\\varphi_1$, "
-                "$\\varphi_2$ (rolling: $x_i = R\\varphi_i$) and find the angular frequency "
-                "$\\Omega$ and the period $T$.")
+        q = ask(
+            "Write the equations of motion with the rotation angles $\\varphi_1$, "
+            "$\\varphi_2$ (rolling: $x_i = R\\varphi_i$) and find the angular frequency "
+            "$\\Omega$ and the period $T$."
+        )
     else:
-        q = ask("Find the normal-mode frequencies and the mode shapes (centre displacements, the "
-                "largest set to 1).")
+        q = ask(
+            "Find the normal-mode frequencies and the mode shapes (centre displacements, the "
+            "largest set to 1)."
+        )
     give("omega2_exact", q, "$\\Omega^2$ from the closed form", (), "1/s^2")
-    give("omega", q, "$\\Omega$" if len(omegas) == 1 else "$\\omega_n$", omegas, "rad/s",
-         modes if len(omegas) > 1 else ())
-    give("period", q, "periods", [m.period for m in oscillating], "s",
-         modes if len(omegas) > 1 else ())
+    give(
+        "omega",
+        q,
+        "$\\Omega$" if len(omegas) == 1 else "$\\omega_n$",
+        omegas,
+        "rad/s",
+        modes if len(omegas) > 1 else (),
+    )
+    give(
+        "period",
+        q,
+        "periods",
+        [m.period for m in oscillating],
+        "s",
+        modes if len(omegas) > 1 else (),
+    )
     if level > 2:
         for number, mode in enumerate(oscillating, 1):
             give(f"shape{number}", q, f"shape of mode {number}", mode.shape_x, "", names)
-        q = ask("Check the trace identity: the sum of the squared frequencies equals the sum of "
-                "the squared frequencies of each body alone (the others held), "
-                "$\\sum_n\\omega_n^2 = \\sum_i K_{ii}/I'_i$.")
-        give("trace", q, "$\\sum_n \\omega_n^2$ and $\\sum_i K_{ii}/I'_i$",
-             (sum(m.eigenvalue for m in oscillating),
-              float(np.sum(np.diag(K) / np.diag(analysis.mass)))), "1/s^2",
-             ("sum of squares", "sum of clamped"))
+        q = ask(
+            "Check the trace identity: the sum of the squared frequencies equals the sum of "
+            "the squared frequencies of each body alone (the others held), "
+            "$\\sum_n\\omega_n^2 = \\sum_i K_{ii}/I'_i$."
+        )
+        give(
+            "trace",
+            q,
+            "$\\sum_n \\omega_n^2$ and $\\sum_i K_{ii}/I'_i$",
+            (
+                sum(m.eigenvalue for m in oscillating),
+                float(np.sum(np.diag(K) / np.diag(analysis.mass))),
+            ),
+            "1/s^2",
+            ("sum of squares", "sum of clamped"),
+        )
     if free:
-        q = ask("Which point stays at rest? Give the weights of the centres in it, "
-                "$\\hat X = \\sum_i w_i x_i$, and compare with the centre of mass.")
+        q = ask(
+            "Which point stays at rest? Give the weights of the centres in it, "
+            "$\\hat X = \\sum_i w_i x_i$, and compare with the centre of mass."
+        )
         give("weights", q, "weights $w_i$", analysis.stationary_weights, "", names)
-        give("cm_weights", q, "the centre of mass's weights $m_i/\\sum m$ for comparison",
-             analysis.arrays.mass / analysis.arrays.mass.sum(), "", names)
+        give(
+            "cm_weights",
+            q,
+            "the centre of mass's weights $m_i/\\sum m$ for comparison",
+            analysis.arrays.mass / analysis.arrays.mass.sum(),
+            "",
+            names,
+        )
     elif level > 2:
         q = ask("Why does no point of this system stay at rest? (Hint: the walls.)")
-        notes[q] = ("The wall springs hold the system: $K$ has no null vector (no zero mode), so "
-                    "no combination of the velocities is conserved and every body oscillates "
-                    "about its equilibrium.")
+        notes[q] = (
+            "The wall springs hold the system: $K$ has no null vector (no zero mode), so "
+            "no combination of the velocities is conserved and every body oscillates "
+            "about its equilibrium."
+        )
     if level == 4:
-        q = ask("Find the static friction each body needs in each mode, per metre of the largest "
-                "centre displacement. At which height would a spring attachment need no "
-                "friction?")
+        q = ask(
+            "Find the static friction each body needs in each mode, per metre of the largest "
+            "centre displacement. At which height would a spring attachment need no "
+            "friction?"
+        )
         for number, mode in enumerate(oscillating, 1):
-            give(f"friction{number}", q, f"friction in mode {number}", mode.friction, "N/m",
-                 names)
-        give("percussion", q, "no friction for an attachment at the percussion height "
-             "$(1 + \\gamma_i) R_i$ above the floor", (), "m", names)
-    q = ask("Find the amplitude of each centre and its largest speed"
-            + (", and the amplitude of the centre of mass." if free else "."))
+            give(f"friction{number}", q, f"friction in mode {number}", mode.friction, "N/m", names)
+        give(
+            "percussion",
+            q,
+            "no friction for an attachment at the percussion height "
+            "$(1 + \\gamma_i) R_i$ above the floor",
+            (),
+            "m",
+            names,
+        )
+    q = ask(
+        "Find the amplitude of each centre and its largest speed"
+        + (", and the amplitude of the centre of mass." if free else ".")
+    )
     give("amplitude", q, "amplitudes", analysis.amplitude, "m", names)
     give("max_speed", q, "largest speeds", analysis.velocity_amplitude, "m/s", names)
     if free:
         give("cm_amplitude", q, "amplitude of the centre of mass", (analysis.cm_amplitude,), "m")
     if rolling:
-        q = ask("Find the largest static friction force on each body during the motion and the "
-                "smallest coefficient of static friction for which nothing slips.")
-        give("friction_amplitude", q, "largest friction amplitudes", analysis.friction_amplitude,
-             "N", names)
+        q = ask(
+            "Find the largest static friction force on each body during the motion and the "
+            "smallest coefficient of static friction for which nothing slips."
+        )
+        give(
+            "friction_amplitude",
+            q,
+            "largest friction amplitudes",
+            analysis.friction_amplitude,
+            "N",
+            names,
+        )
         give("required_mu", q, "smallest $\\mu_s$", analysis.required_mu, "", names)
     return questions, answers, notes

@@ -22,8 +22,14 @@ from rollspring.model import System, rolled
 if TYPE_CHECKING:  # the simulation (compiled kernels) loads only when a run is asked for
     from rollspring.simulate import Trajectory
 
-__all__ = ["ModeStart", "SimulationRun", "analysis_payload", "mode_start", "run_simulation",
-           "simulation_payload"]
+__all__ = [
+    "ModeStart",
+    "SimulationRun",
+    "analysis_payload",
+    "mode_start",
+    "run_simulation",
+    "simulation_payload",
+]
 
 
 def analysis_payload(system: System) -> tuple[dict[str, Any], list[str]]:
@@ -53,30 +59,40 @@ class SimulationRun:
     linear: np.ndarray | None
 
 
-def mode_start(system: System, start: ModeStart,
-               analysis: LinearAnalysis | None = None) -> System:
+def mode_start(system: System, start: ModeStart, analysis: LinearAnalysis | None = None) -> System:
     r"""``system`` placed at rest at :math:`q^* + a\,v_n` — the equilibrium displaced along the
     oscillating mode :math:`v_n` (shape normalised to a largest centre displacement of 1 m)
     with amplitude :math:`a` — by rolling the bodies there (:func:`rollspring.model.rolled`)."""
     analysis = analyze(system) if analysis is None else analysis
     modes = analysis.modes
     if not 0 <= start.mode < len(modes):
-        raise SimulationError(f"start.mode: no mode {start.mode} (the system has modes 0 to "
-                              f"{len(modes) - 1})")
+        raise SimulationError(
+            f"start.mode: no mode {start.mode} (the system has modes 0 to {len(modes) - 1})"
+        )
     mode = modes[start.mode]
     if mode.kind != "oscillating":
-        raise SimulationError(f"start.mode: mode {start.mode} is a {mode.kind} mode; only an "
-                              "oscillating mode can be played")
+        raise SimulationError(
+            f"start.mode: mode {start.mode} is a {mode.kind} mode; only an "
+            "oscillating mode can be played"
+        )
     if not analysis.equilibrium.found:
         raise SimulationError(f"start.mode: {analysis.equilibrium.reason}")
     q = analysis.equilibrium.q + start.amplitude * mode.shape_q
     return rolled(system, q, velocities=np.zeros(len(system.bodies)))
 
 
-def run_simulation(system: System, duration: float, *, rtol: float = 1e-8, outputs: int = 2001,
-                   on_slip: str = "stop", integrator: str = "auto",
-                   start: ModeStart | None = None, linear: bool = False,
-                   progress: Callable[[float], None] | None = None) -> SimulationRun:
+def run_simulation(
+    system: System,
+    duration: float,
+    *,
+    rtol: float = 1e-8,
+    outputs: int = 2001,
+    on_slip: str = "stop",
+    integrator: str = "auto",
+    start: ModeStart | None = None,
+    linear: bool = False,
+    progress: Callable[[float], None] | None = None,
+) -> SimulationRun:
     """Simulate ``system`` for ``duration`` s (:func:`rollspring.simulate`), from its file's
     placement or from a :class:`ModeStart`; with ``linear``, also the linear motion from the
     same start (:func:`rollspring.analysis.linear_motion`; None where the system has no
@@ -87,8 +103,15 @@ def run_simulation(system: System, duration: float, *, rtol: float = 1e-8, outpu
     if start is not None:
         system = mode_start(system, start, analysis)
         analysis = analyze(system) if linear else None
-    trajectory = simulate(system, duration, rtol=rtol, integrator=integrator, n_output=outputs,
-                          on_slip=on_slip, progress=progress)
+    trajectory = simulate(
+        system,
+        duration,
+        rtol=rtol,
+        integrator=integrator,
+        n_output=outputs,
+        on_slip=on_slip,
+        progress=progress,
+    )
     line = None
     if linear and analysis is not None and analysis.equilibrium.found:
         line = linear_motion(analysis, trajectory.t)
@@ -110,9 +133,12 @@ def simulation_payload(run: SimulationRun) -> dict[str, Any]:
     bodies = {}
     for i, name in enumerate(trajectory.ids):
         bodies[name] = {
-            "x": column(trajectory.x, i), "phi": column(trajectory.phi, i),
-            "v": column(trajectory.v, i), "omega": column(trajectory.omega, i),
-            "friction": column(trajectory.friction, i), "normal": column(trajectory.normal, i),
+            "x": column(trajectory.x, i),
+            "phi": column(trajectory.phi, i),
+            "v": column(trajectory.v, i),
+            "omega": column(trajectory.omega, i),
+            "friction": column(trajectory.friction, i),
+            "normal": column(trajectory.normal, i),
             "friction_ratio": column(trajectory.friction_ratio, i),
             "slipping": column(trajectory.slipping, i),
         }
@@ -120,14 +146,22 @@ def simulation_payload(run: SimulationRun) -> dict[str, Any]:
         "summary": summary_json(trajectory),
         "t": trajectory.t,
         "bodies": bodies,
-        "springs": [{"length": column(trajectory.spring_length, s),
-                     "tension": column(trajectory.spring_tension, s)}
-                    for s in range(len(trajectory.spring_names))],
-        "energy": {"kinetic": trajectory.kinetic, "potential": trajectory.potential,
-                   "total": trajectory.energy},
+        "springs": [
+            {
+                "length": column(trajectory.spring_length, s),
+                "tension": column(trajectory.spring_tension, s),
+            }
+            for s in range(len(trajectory.spring_names))
+        ],
+        "energy": {
+            "kinetic": trajectory.kinetic,
+            "potential": trajectory.potential,
+            "total": trajectory.energy,
+        },
         "cm_x": trajectory.cm_x,
         "stationary_x": trajectory.stationary_x,
         "initial": {body.id: {"x": body.x, "v": body.v} for body in run.system.bodies},
-        "linear": None if run.linear is None else {
-            name: column(run.linear, i) for i, name in enumerate(trajectory.ids)},
+        "linear": None
+        if run.linear is None
+        else {name: column(run.linear, i) for i, name in enumerate(trajectory.ids)},
     }

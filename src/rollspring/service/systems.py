@@ -23,8 +23,9 @@ from rollspring.model import (
 __all__ = ["preset_catalogue", "resolve_system", "system_forms"]
 
 
-def resolve_system(system: System | dict[str, Any] | str | None = None, *,
-                   toml: str | None = None) -> System:
+def resolve_system(
+    system: System | dict[str, Any] | str | None = None, *, toml: str | None = None
+) -> System:
     """One validated system from exactly one of: a :class:`System`, its JSON form (a dict), a
     preset name or file path (str), or ``toml`` (the text of a TOML system file)."""
     if (system is None) == (toml is None):
@@ -37,8 +38,10 @@ def resolve_system(system: System | dict[str, Any] | str | None = None, *,
         return system_from_dict(system, source="system")
     if isinstance(system, str):
         return load_system(system)
-    raise ModelError(f"system: must be a system, its JSON form, a preset name or a file path "
-                     f"(got {type(system).__name__})")
+    raise ModelError(
+        f"system: must be a system, its JSON form, a preset name or a file path "
+        f"(got {type(system).__name__})"
+    )
 
 
 def system_forms(system: System) -> dict[str, Any]:

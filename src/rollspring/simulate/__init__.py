@@ -16,8 +16,16 @@ from rollspring.simulate.status import Status
 
 # ``INTEGRATORS`` here is the tuple of names ``simulate`` accepts; the integrator objects are
 # ``rollspring.simulate.integrators.INTEGRATORS``.
-__all__ = ["INTEGRATORS", "BatchResult", "Integrator", "Status", "Trajectory", "choose_scheme",
-           "simulate", "simulate_batch"]
+__all__ = [
+    "INTEGRATORS",
+    "BatchResult",
+    "Integrator",
+    "Status",
+    "Trajectory",
+    "choose_scheme",
+    "simulate",
+    "simulate_batch",
+]
 
 
 class _CallableModule(types.ModuleType):

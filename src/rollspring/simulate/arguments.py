@@ -17,8 +17,15 @@ import numpy as np
 
 from rollspring.errors import SimulationError
 
-__all__ = ["ON_SLIP", "check_count", "check_choice", "check_duration", "check_positive",
-           "check_rtol", "check_step"]
+__all__ = [
+    "ON_SLIP",
+    "check_count",
+    "check_choice",
+    "check_duration",
+    "check_positive",
+    "check_rtol",
+    "check_step",
+]
 
 #: Accepted values of ``on_slip``.
 ON_SLIP = ("stop", "continue")
@@ -57,8 +64,7 @@ def check_step(step: Any, duration: float) -> float | None:
         return None
     value = _real(step)
     if value is None or not math.isfinite(value) or not 0 < value <= duration:
-        raise _bad("step", f"must be a positive number of seconds up to the duration, "
-                   f"got {step!r}")
+        raise _bad("step", f"must be a positive number of seconds up to the duration, got {step!r}")
     return value
 
 
@@ -66,8 +72,11 @@ def check_count(name: str, value: Any, minimum: int, *, optional: bool = False) 
     """An integer (Python or NumPy, not a bool) of at least ``minimum``; None if ``optional``."""
     if value is None and optional:
         return None
-    if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Integral) \
-            or value < minimum:
+    if (
+        isinstance(value, bool | np.bool_)
+        or not isinstance(value, numbers.Integral)
+        or value < minimum
+    ):
         raise _bad(name, f"must be an integer >= {minimum}, got {value!r}")
     return int(value)
 

@@ -47,8 +47,7 @@ class Integrator:
         r""":math:`\omega h` for a phase error of at most ``rtol`` after ``radians`` of the
         fastest mode: :math:`C_p(\omega h)^p\,\text{radians} \le \text{rtol}`, capped at
         :data:`MAX_OMEGA_STEP`."""
-        return min((rtol / (self.error_constant * radians)) ** (1.0 / self.order),
-                   MAX_OMEGA_STEP)
+        return min((rtol / (self.error_constant * radians)) ** (1.0 / self.order), MAX_OMEGA_STEP)
 
 
 def _symmetric(outer: tuple[float, ...]) -> tuple[float, ...]:
@@ -58,13 +57,20 @@ def _symmetric(outer: tuple[float, ...]) -> tuple[float, ...]:
 
 _Y4 = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))
 _Y6 = (0.784513610477560, 0.235573213359357, -1.17767998417887)  # Yoshida 1990, solution A
-_KL8 = (0.74167036435061295345, -0.40910082580003159400, 0.19075471029623837995,
-        -0.57386247111608226666, 0.29906418130365592384, 0.33462491824529818378,
-        0.31529309239676659663)  # Kahan and Li 1997
+_KL8 = (
+    0.74167036435061295345,
+    -0.40910082580003159400,
+    0.19075471029623837995,
+    -0.57386247111608226666,
+    0.29906418130365592384,
+    0.33462491824529818378,
+    0.31529309239676659663,
+)  # Kahan and Li 1997
 
 #: name -> :class:`Integrator`, lowest order first.
 INTEGRATORS: dict[str, Integrator] = {
-    integrator.name: integrator for integrator in (
+    integrator.name: integrator
+    for integrator in (
         Integrator("verlet", 2, 1.0 / 24.0, (1.0,)),
         Integrator("yoshida4", 4, 0.0662, _symmetric((_Y4,))),
         Integrator("yoshida6", 6, 0.00377, _symmetric(_Y6)),

@@ -80,20 +80,53 @@ def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple:
     ``x0`` overrides the reference centre positions (after a body re-sticks:
     ``x_i - R_i phi_i``). Few packed arrays keep the compiled calls cheap."""
     a = arrays
-    bodies = np.column_stack([
-        a.x0 if x0 is None else x0, a.scale, a.rolls, a.track + a.radius, a.inertia, a.mass,
-        a.mu_static, a.gamma * a.mass * a.radius**2, a.mu_kinetic, a.radius, 1.0 / a.inertia,
-    ]).astype(np.float64)
-    springs = np.column_stack([
-        a.end_r[:, 0], a.end_alpha[:, 0], a.end_r[:, 1], a.end_alpha[:, 1],
-        a.end_anchor[:, 0, 0], a.end_anchor[:, 0, 1], a.end_anchor[:, 1, 0],
-        a.end_anchor[:, 1, 1], a.stiffness, a.rest_length, a.damping,
-    ]).reshape(-1, 11).astype(np.float64)
-    forces = np.column_stack([a.force_r, a.force_alpha, a.force[:, 0], a.force[:, 1]]
-                             ).reshape(-1, 4).astype(np.float64)
-    return (np.ascontiguousarray(bodies), np.ascontiguousarray(springs),
-            np.ascontiguousarray(a.end_body, dtype=np.int64), np.ascontiguousarray(forces),
-            np.ascontiguousarray(a.force_body, dtype=np.int64), float(a.gravity))
+    bodies = np.column_stack(
+        [
+            a.x0 if x0 is None else x0,
+            a.scale,
+            a.rolls,
+            a.track + a.radius,
+            a.inertia,
+            a.mass,
+            a.mu_static,
+            a.gamma * a.mass * a.radius**2,
+            a.mu_kinetic,
+            a.radius,
+            1.0 / a.inertia,
+        ]
+    ).astype(np.float64)
+    springs = (
+        np.column_stack(
+            [
+                a.end_r[:, 0],
+                a.end_alpha[:, 0],
+                a.end_r[:, 1],
+                a.end_alpha[:, 1],
+                a.end_anchor[:, 0, 0],
+                a.end_anchor[:, 0, 1],
+                a.end_anchor[:, 1, 0],
+                a.end_anchor[:, 1, 1],
+                a.stiffness,
+                a.rest_length,
+                a.damping,
+            ]
+        )
+        .reshape(-1, 11)
+        .astype(np.float64)
+    )
+    forces = (
+        np.column_stack([a.force_r, a.force_alpha, a.force[:, 0], a.force[:, 1]])
+        .reshape(-1, 4)
+        .astype(np.float64)
+    )
+    return (
+        np.ascontiguousarray(bodies),
+        np.ascontiguousarray(springs),
+        np.ascontiguousarray(a.end_body, dtype=np.int64),
+        np.ascontiguousarray(forces),
+        np.ascontiguousarray(a.force_body, dtype=np.int64),
+        float(a.gravity),
+    )
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -211,8 +244,7 @@ def _scratch(n, n_springs):
 def _contact(model, i, gen_i, fx_i, fy_i):
     """(M8), (M9): friction needed to roll and the normal force."""
     b = model[0]
-    friction = (b[i, MASS] * b[i, SCALE] * gen_i / b[i, INERTIA] - fx_i
-                if b[i, ROLLS] > 0.0 else 0.0)
+    friction = b[i, MASS] * b[i, SCALE] * gen_i / b[i, INERTIA] - fx_i if b[i, ROLLS] > 0.0 else 0.0
     return friction, b[i, MASS] * model[5] - fy_i
 
 
@@ -294,15 +326,33 @@ def _hermite(model, theta, h, q0, v0, g0, q1, v1, g1, row, out_q, out_v):
     for i in range(q0.shape[0]):
         a0 = g0[i] * bodies[i, INV_INERTIA]
         a1 = g1[i] * bodies[i, INV_INERTIA]
-        out_q[row, i] = (h0 * q0[i] + h3 * q1[i] + h * (h1 * v0[i] + h4 * v1[i])
-                         + h * h * (h2 * a0 + h5 * a1))
-        out_v[row, i] = (d0 * (q0[i] - q1[i]) / h + d1 * v0[i] + d4 * v1[i]
-                         + h * (d2 * a0 + d5 * a1))
+        out_q[row, i] = (
+            h0 * q0[i] + h3 * q1[i] + h * (h1 * v0[i] + h4 * v1[i]) + h * h * (h2 * a0 + h5 * a1)
+        )
+        out_v[row, i] = d0 * (q0[i] - q1[i]) / h + d1 * v0[i] + d4 * v1[i] + h * (d2 * a0 + d5 * a1)
 
 
 @njit(cache=True, error_model="numpy")
-def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, check_contacts, out_times, out_q, out_v,
-                   extremes, extreme_states, weights, q_ref, crossing, crossing_states, before):
+def run_fixed_step(
+    model,
+    coeffs,
+    q,
+    v,
+    t0,
+    h,
+    n_steps,
+    check_contacts,
+    out_times,
+    out_q,
+    out_v,
+    extremes,
+    extreme_states,
+    weights,
+    q_ref,
+    crossing,
+    crossing_states,
+    before,
+):
     """Integrate ``n_steps`` steps of size ``h`` from (q, v) at time ``t0`` (updated in place),
     checking rolling validity after every step. The state at each of the sorted ``out_times``
     (within (t0, t0 + n_steps h]) is interpolated from the step holding it (``_hermite``) into
@@ -357,8 +407,9 @@ def run_fixed_step(model, coeffs, q, v, t0, h, n_steps, check_contacts, out_time
         t_end = t_start + h if step < n_steps else np.inf
         while rows < n_out and out_times[rows] <= t_end:
             theta = min(max((out_times[rows] - t_start) / h, 0.0), 1.0)
-            _hermite(model, theta, h, before[0], before[1], gen_before, q, v, gen, rows,
-                     out_q, out_v)
+            _hermite(
+                model, theta, h, before[0], before[1], gen_before, q, v, gen, rows, out_q, out_v
+            )
             rows += 1
         for i in range(n):
             friction, normal = _contact(model, i, gen[i], fx[i], fy[i])
@@ -430,8 +481,7 @@ def refine_extremes(model, coeffs, h, q0, v0, kinds, bodies, best):
         for _level in range(3):
             for p in range(9):
                 times[p] = lo + (hi - lo) * p / 8.0
-                _advance_into(model, coeffs, h, q0[j], v0[j], times[p], q, v, scratch, gen,
-                              fx, fy)
+                _advance_into(model, coeffs, h, q0[j], v0[j], times[p], q, v, scratch, gen, fx, fy)
                 friction, normal = _contact(model, b, gen[b], fx[b], fy[b])
                 if kinds[j] == 0:
                     values[p] = abs(friction) / normal if normal > 0.0 else np.inf
@@ -442,8 +492,7 @@ def refine_extremes(model, coeffs, h, q0, v0, kinds, bodies, best):
             middle = values[k]
             out[j] = max(out[j], np.max(values))
             curvature = a - 2.0 * middle + c
-            if (math.isfinite(a + middle + c) and curvature < 0.0
-                    and abs(a - c) <= -2.0 * curvature):
+            if math.isfinite(a + middle + c) and curvature < 0.0 and abs(a - c) <= -2.0 * curvature:
                 out[j] = max(out[j], middle - (c - a) ** 2 / (8.0 * curvature))
             lo, hi = times[k - 1], times[k + 1]
     return out
@@ -503,9 +552,9 @@ def slipping_derivatives(model, state, slipping, sign, damped, out):
     n = slipping.shape[0]
     b, g = model[0], model[5]
     x = state[:n]
-    phi = state[n:2 * n]
-    u = state[2 * n:3 * n]
-    w = state[3 * n:]
+    phi = state[n : 2 * n]
+    u = state[2 * n : 3 * n]
+    w = state[3 * n :]
     ns = model[1].shape[0]
     fx = np.empty(n)
     fy = np.empty(n)
@@ -530,8 +579,21 @@ def slipping_derivatives(model, state, slipping, sign, damped, out):
 
 
 @njit(cache=True, error_model="numpy")
-def observe(model, states, slipping, sign, damped, friction, normal, length, tension,
-            potential, central, ratio, kinetic):
+def observe(
+    model,
+    states,
+    slipping,
+    sign,
+    damped,
+    friction,
+    normal,
+    length,
+    tension,
+    potential,
+    central,
+    ratio,
+    kinetic,
+):
     r"""Per row of ``states`` (rows of ``[x, phi, u, omega]``): friction (the static friction
     a rolling body needs, (M8), or the kinetic friction of a slipping body, (M19)), normal force
     (M9), spring lengths and tensions, the potential energy
@@ -551,9 +613,20 @@ def observe(model, states, slipping, sign, damped, friction, normal, length, ten
     for row in range(states.shape[0]):
         state = states[row]
         x = state[:n]
-        phi = state[n:2 * n]
-        body_loads(model, x, phi, state[2 * n:3 * n], state[3 * n:], damped, fx, fy, tau,
-                   length[row], tension[row])
+        phi = state[n : 2 * n]
+        body_loads(
+            model,
+            x,
+            phi,
+            state[2 * n : 3 * n],
+            state[3 * n :],
+            damped,
+            fx,
+            fy,
+            tau,
+            length[row],
+            tension[row],
+        )
         energy = 0.0
         for s in range(springs.shape[0]):
             energy += 0.5 * springs[s, STIFF] * (length[row, s] - springs[s, REST]) ** 2
@@ -570,8 +643,10 @@ def observe(model, states, slipping, sign, damped, friction, normal, length, ten
             elif slipping[row, i]:
                 friction[row, i] = -b[i, MU_K] * normal[row, i] * sign[row, i]
             else:
-                friction[row, i] = (b[i, MASS] * b[i, SCALE] * (b[i, SCALE] * fx[i] + tau[i])
-                                    / b[i, INERTIA] - fx[i])
+                friction[row, i] = (
+                    b[i, MASS] * b[i, SCALE] * (b[i, SCALE] * fx[i] + tau[i]) / b[i, INERTIA]
+                    - fx[i]
+                )
         moving = 0.0
         for i in range(n):
             u = state[2 * n + i]

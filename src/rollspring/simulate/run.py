@@ -108,11 +108,16 @@ class Trajectory:
         """Every output as ``name -> (unit, values)``, named ``<body>.<quantity>``,
         ``<spring>.<quantity>`` or the quantity alone (the CSV columns)."""
         out: dict[str, tuple[str, FloatArray]] = {"t": ("s", self.t)}
-        per_body = [("x", "m", self.x), ("phi", "rad", self.phi), ("v", "m/s", self.v),
-                    ("omega", "rad/s", self.omega), ("friction", "N", self.friction),
-                    ("normal_force", "N", self.normal),
-                    ("friction_ratio", "1", self.friction_ratio),
-                    ("slipping", "1", self.slipping.astype(float))]
+        per_body = [
+            ("x", "m", self.x),
+            ("phi", "rad", self.phi),
+            ("v", "m/s", self.v),
+            ("omega", "rad/s", self.omega),
+            ("friction", "N", self.friction),
+            ("normal_force", "N", self.normal),
+            ("friction_ratio", "1", self.friction_ratio),
+            ("slipping", "1", self.slipping.astype(float)),
+        ]
         for i, name in enumerate(self.ids):
             for quantity, unit, values in per_body:
                 out[f"{name}.{quantity}"] = (unit, values[:, i])
@@ -144,8 +149,10 @@ def _presenter(name: str) -> Callable[..., Any]:
     try:
         return PRESENTERS[name]
     except KeyError:
-        raise SimulationError(f"Trajectory.{name} is provided by rollspring.outputs: "
-                              "it was not registered (import rollspring.outputs)") from None
+        raise SimulationError(
+            f"Trajectory.{name} is provided by rollspring.outputs: "
+            "it was not registered (import rollspring.outputs)"
+        ) from None
 
 
 class _Observed(NamedTuple):
@@ -187,8 +194,9 @@ class _Segment:
     start: _Start | None = None
 
 
-def _check_arguments(duration, rtol, integrator, on_slip, n_output, energy_tolerance,
-                     step=None) -> tuple[float, float, float | None]:
+def _check_arguments(
+    duration, rtol, integrator, on_slip, n_output, energy_tolerance, step=None
+) -> tuple[float, float, float | None]:
     """The shared validator (:mod:`rollspring.simulate.arguments`): (duration, rtol, step)."""
     duration = arguments.check_duration(duration)
     rtol = arguments.check_rtol(rtol)
@@ -214,9 +222,11 @@ def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = 
             step = duration
         else:
             radians = max(omega * duration, 2 * math.pi)
-            omega_step = min(scheme.omega_step(rtol, radians),
-                             (_HERMITE_POSITION * rtol) ** (1.0 / 6.0),
-                             (_HERMITE_VELOCITY * rtol) ** (1.0 / 5.0))
+            omega_step = min(
+                scheme.omega_step(rtol, radians),
+                (_HERMITE_POSITION * rtol) ** (1.0 / 6.0),
+                (_HERMITE_VELOCITY * rtol) ** (1.0 / 5.0),
+            )
             step = omega_step / omega
         cost = scheme.stages * duration / step
         if best is None or cost < best[2]:
@@ -249,8 +259,9 @@ def simulate(
     (``auto`` then means Yoshida-4; rounded down so that whole steps fill each rolling
     stretch); ``progress`` is called with the fraction done.
     """
-    duration, rtol, step = _check_arguments(duration, rtol, integrator, on_slip, n_output,
-                                            energy_tolerance, step)
+    duration, rtol, step = _check_arguments(
+        duration, rtol, integrator, on_slip, n_output, energy_tolerance, step
+    )
     n_output = None if n_output is None else int(n_output)
     clock = time.perf_counter()
     duration = float(duration)
@@ -267,20 +278,25 @@ def simulate(
         return k
 
     equilibrium = find_equilibrium(
-        arrays, forces=lambda q: kernels.generalized_forces(start_model, np.asarray(q, float)),
-        stiffness=stiffness_of)
+        arrays,
+        forces=lambda q: kernels.generalized_forces(start_model, np.asarray(q, float)),
+        stiffness=stiffness_of,
+    )
     if equilibrium.modes is not None:
         omegas_eq, vectors_eq, kinds_eq = equilibrium.modes
     else:
-        omegas_eq, vectors_eq, kinds_eq = normal_modes(mass, stiffness_matrix(arrays,
-                                                                              equilibrium.q))
-    stiffness_0 = start_stiffness[0] if start_stiffness else stiffness_matrix(arrays,
-                                                                              np.zeros(n))
+        omegas_eq, vectors_eq, kinds_eq = normal_modes(
+            mass, stiffness_matrix(arrays, equilibrium.q)
+        )
+    stiffness_0 = start_stiffness[0] if start_stiffness else stiffness_matrix(arrays, np.zeros(n))
     omegas_0, _, _ = normal_modes(mass, stiffness_0)
     omega_max = float(np.sqrt(max(np.max(np.abs(omegas_eq)), np.max(np.abs(omegas_0)), 0.0)))
     oscillating = np.flatnonzero(kinds_eq == "oscillating")
-    period_linear = (2 * math.pi / math.sqrt(omegas_eq[oscillating[0]])
-                     if equilibrium.found and oscillating.size else None)
+    period_linear = (
+        2 * math.pi / math.sqrt(omegas_eq[oscillating[0]])
+        if equilibrium.found and oscillating.size
+        else None
+    )
     damped = bool(np.any(arrays.damping > 0))
     if damped or integrator == "dop853":
         name, step = "dop853", None
@@ -300,8 +316,9 @@ def simulate(
     timings = {"setup": run.started - clock, "integrate": run.integrate_time}
     trajectory = run.trajectory(system)
     lowest = vectors_eq[:, oscillating[0]] if oscillating.size else None
-    trajectory.summary = _summary(trajectory, run, arrays, equilibrium.q, lowest, mass,
-                                  period_linear, (vectors_eq, kinds_eq))
+    trajectory.summary = _summary(
+        trajectory, run, arrays, equilibrium.q, lowest, mass, period_linear, (vectors_eq, kinds_eq)
+    )
     timings["total"] = time.perf_counter() - clock
     trajectory.timings = timings
     return trajectory
@@ -310,8 +327,9 @@ def simulate(
 class _Run:
     """The state machine of one run: rolling (symplectic) and general (DOP853) segments."""
 
-    def __init__(self, arrays: SystemArrays, grid, scheme, step, rtol, on_slip, damped,
-                 tolerance, progress) -> None:
+    def __init__(
+        self, arrays: SystemArrays, grid, scheme, step, rtol, on_slip, damped, tolerance, progress
+    ) -> None:
         self.arrays = arrays
         self.model = kernels.kernel_model(arrays)
         self.grid = grid
@@ -355,15 +373,14 @@ class _Run:
     def general_state(self, q, v, x0) -> FloatArray:
         """[x, phi, u, omega] of an all-rolling state (q, qdot) with reference positions x0."""
         a = self.arrays
-        return np.concatenate([x0 + a.scale * q, a.rolls * q, a.scale * v, a.rolls * v],
-                              axis=-1)
+        return np.concatenate([x0 + a.scale * q, a.rolls * q, a.scale * v, a.rolls * v], axis=-1)
 
     def rolling_state(self, state):
         """(q, qdot, x0) of a general state in which every body rolls."""
         a, n = self.arrays, self.n
-        x, phi, u = state[:n], state[n:2 * n], state[2 * n:3 * n]
+        x, phi, u = state[:n], state[n : 2 * n], state[2 * n : 3 * n]
         q = np.where(self.rolls, phi, x - a.x0)
-        qdot = np.where(self.rolls, state[3 * n:], u)
+        qdot = np.where(self.rolls, state[3 * n :], u)
         x0 = np.where(self.rolls, x - a.scale * phi, a.x0)
         return q, qdot, x0
 
@@ -390,8 +407,7 @@ class _Run:
                 t, state, slipping, sign = self._general_segment(t, state, slipping, sign)
 
     def _record(self, t, state, slipping, sign) -> None:
-        self._record_block(np.array([t]), np.asarray(state, dtype=float)[None, :], slipping,
-                           sign)
+        self._record_block(np.array([t]), np.asarray(state, dtype=float)[None, :], slipping, sign)
 
     def _record_block(self, times, states, slipping, sign) -> _Observed:
         """Keep output rows with everything observed at them; returns what was observed."""
@@ -410,26 +426,46 @@ class _Run:
     def _observe(self, states, slipping, sign) -> _Observed:
         rows = states.shape[0]
         ns = self.arrays.n_springs
-        out = _Observed(np.empty((rows, self.n)), np.empty((rows, self.n)),
-                        np.empty((rows, self.n)), np.empty((rows, ns)), np.empty((rows, ns)),
-                        np.empty(rows), np.empty(rows))
-        kernels.observe(self.model, np.ascontiguousarray(states), np.asarray(slipping),
-                        np.asarray(sign, dtype=float), self.damped, out.friction, out.normal,
-                        out.length, out.tension, out.potential, self.central, out.ratio,
-                        out.kinetic)
+        out = _Observed(
+            np.empty((rows, self.n)),
+            np.empty((rows, self.n)),
+            np.empty((rows, self.n)),
+            np.empty((rows, ns)),
+            np.empty((rows, ns)),
+            np.empty(rows),
+            np.empty(rows),
+        )
+        kernels.observe(
+            self.model,
+            np.ascontiguousarray(states),
+            np.asarray(slipping),
+            np.asarray(sign, dtype=float),
+            self.damped,
+            out.friction,
+            out.normal,
+            out.length,
+            out.tension,
+            out.potential,
+            self.central,
+            out.ratio,
+            out.kinetic,
+        )
         return out
 
     def _contact_verdict(self, state, slipping):
         """('liftoff' | 'slip', body) if a rolling body violates its contact now, else None."""
-        friction, normal, *_ = self._observe(state[None, :], slipping[None],
-                                             np.zeros((1, self.n)))
+        friction, normal, *_ = self._observe(state[None, :], slipping[None], np.zeros((1, self.n)))
         mu = self.arrays.mu_static
         for i in range(self.n):
             if normal[0, i] < 0:
                 return "liftoff", i
         for i in range(self.n):
-            if self.rolls[i] and not slipping[i] and abs(friction[0, i]) >= mu[i] * normal[0, i] \
-                    and friction[0, i] != 0.0:
+            if (
+                self.rolls[i]
+                and not slipping[i]
+                and abs(friction[0, i]) >= mu[i] * normal[0, i]
+                and friction[0, i] != 0.0
+            ):
                 return "slip", i
         return None
 
@@ -439,14 +475,18 @@ class _Run:
         self.events.append({"kind": kind, "time": t, "body": name})
         if kind == "liftoff":
             self.status = Status.LIFTOFF.label
-            self.message = (f"'{name}' leaves its track at t = {t:.12g} s (N = 0); flight is "
-                            f"not modelled, the run ends here")
+            self.message = (
+                f"'{name}' leaves its track at t = {t:.12g} s (N = 0); flight is "
+                f"not modelled, the run ends here"
+            )
             return True
         if kind == "slip" and self.on_slip == "stop":
             self.status = Status.SLIP.label
-            self.message = (f"'{name}' starts to slip at t = {t:.12g} s (|f| = mu_s N); "
-                            f"the run ends here (on_slip='continue' runs on with kinetic "
-                            f"friction)")
+            self.message = (
+                f"'{name}' starts to slip at t = {t:.12g} s (|f| = mu_s N); "
+                f"the run ends here (on_slip='continue' runs on with kinetic "
+                f"friction)"
+            )
             return True
         if kind == "slip":
             friction, *_ = self._observe(state[None, :], slipping[None], sign[None])
@@ -467,8 +507,9 @@ class _Run:
     def _rolling_segment(self, t, state):
         q, qdot, x0 = self.rolling_state(state)
         # energy is conserved from here on: the reference is its value now (slip lost some)
-        self.e_segment = self._energy(state[None, :], np.zeros((1, self.n), dtype=bool),
-                                      np.zeros((1, self.n)))[0]
+        self.e_segment = self._energy(
+            state[None, :], np.zeros((1, self.n), dtype=bool), np.zeros((1, self.n))
+        )[0]
         model = kernels.kernel_model(self.arrays, x0)
         slipping = np.zeros(self.n, dtype=bool)
         sign = np.zeros(self.n)
@@ -511,9 +552,25 @@ class _Run:
             out_v = np.empty((out_times.size, n))
             began = time.perf_counter()
             status, taken, body, filled = kernels.run_fixed_step(
-                model, self.coeffs, q, qdot, t_chunk, h, steps, True, out_times, out_q, out_v,
-                extremes, extreme_states, self.mode_weights, self.q_ref, crossing,
-                crossing_states, before)
+                model,
+                self.coeffs,
+                q,
+                qdot,
+                t_chunk,
+                h,
+                steps,
+                True,
+                out_times,
+                out_q,
+                out_v,
+                extremes,
+                extreme_states,
+                self.mode_weights,
+                self.q_ref,
+                crossing,
+                crossing_states,
+                before,
+            )
             self.integrate_time += time.perf_counter() - began
             self.n_steps += taken
             row_times.append(out_times[:filled])
@@ -521,30 +578,27 @@ class _Run:
             row_v.append(out_v[:filled])
             states = self.general_state(out_q[:filled], out_v[:filled], x0)
             if filled and not self._energy_ok(
-                    self._record_block(out_times[:filled], states, slipping, sign)):
-                self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h,
-                                                             x0))
-                self._offer_steps(model, x0, extremes, extreme_states, crossing,
-                                  crossing_states, h)
+                self._record_block(out_times[:filled], states, slipping, sign)
+            ):
+                self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
+                self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
                 return float(self.times[-1][-1]), self.rows[-1][-1], slipping, sign
             if status != kernels.STATUS_FINISHED:
                 t_before = t_chunk + (taken - 1) * h
                 row_times.append(np.array([t_before]))
                 row_q.append(before[0][None, :].copy())
                 row_v.append(before[1][None, :].copy())
-                self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h,
-                                                             x0))
-                self._offer_steps(model, x0, extremes, extreme_states, crossing,
-                                  crossing_states, h)
+                self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
+                self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
                 if status == kernels.STATUS_NONFINITE:
                     self.status = Status.NONFINITE.label
-                    self.message = (f"the state became non-finite at t = {t_before + h:.6g} s "
-                                    f"('{self.arrays.ids[body]}'); the step cannot resolve the "
-                                    f"motion")
-                    return t_before, self.general_state(before[0], before[1], x0), slipping, \
-                        sign
-                return self._locate(model, t_before, before[0].copy(), before[1].copy(), h, 1,
-                                    x0)
+                    self.message = (
+                        f"the state became non-finite at t = {t_before + h:.6g} s "
+                        f"('{self.arrays.ids[body]}'); the step cannot resolve the "
+                        f"motion"
+                    )
+                    return t_before, self.general_state(before[0], before[1], x0), slipping, sign
+                return self._locate(model, t_before, before[0].copy(), before[1].copy(), h, 1, x0)
             first += filled
             done += steps
             self._report(t + done * h)
@@ -554,13 +608,15 @@ class _Run:
 
     def _local(self, model, x0, t_start, q, v, h) -> _Segment:
         """A segment of two steps from the state (q, v) at ``t_start``."""
-        segment = self._rolling_evaluator(model, [t_start], [q.copy()], [v.copy()], h, x0,
-                                          t_end=t_start + 2 * h)
+        segment = self._rolling_evaluator(
+            model, [t_start], [q.copy()], [v.copy()], h, x0, t_end=t_start + 2 * h
+        )
         segment.start = _Start(t_start, q.copy(), v.copy(), model, self.coeffs, h, x0)
         return segment
 
-    def _offer_steps(self, model, x0, extremes, extreme_states, crossing, crossing_states,
-                     h) -> None:
+    def _offer_steps(
+        self, model, x0, extremes, extreme_states, crossing, crossing_states, h
+    ) -> None:
         """Hand the kernel's extremes and crossings over, each with the state it starts from."""
         for i in range(self.n):
             for kind, row, better in (("ratio", 0, np.greater), ("normal", 2, np.less)):
@@ -571,12 +627,26 @@ class _Run:
                 if old is None or better(value, old[0]):
                     k = 0 if kind == "ratio" else 1
                     t_start = float(extremes[row + 1, i])
-                    local = self._local(model, x0, t_start, extreme_states[k, i, 0],
-                                        extreme_states[k, i, 1], h)
+                    local = self._local(
+                        model, x0, t_start, extreme_states[k, i, 0], extreme_states[k, i, 1], h
+                    )
                     self.step_extremes[(kind, i)] = (value, t_start + h, h, local)
-        self.crossings.append((int(crossing[0]), [
-            self._local(model, x0, float(crossing[1 + j]), crossing_states[j, 0],
-                        crossing_states[j, 1], h) for j in range(2)]))
+        self.crossings.append(
+            (
+                int(crossing[0]),
+                [
+                    self._local(
+                        model,
+                        x0,
+                        float(crossing[1 + j]),
+                        crossing_states[j, 0],
+                        crossing_states[j, 1],
+                        h,
+                    )
+                    for j in range(2)
+                ],
+            )
+        )
 
     def _violation(self, friction, normal):
         mu = self.arrays.mu_static
@@ -597,11 +667,13 @@ class _Run:
             return False
         if error > self.tolerance and abs(self.e0) > 0:
             self.status = Status.ENERGY_ERROR.label
-            self.message = (f"the energy error {error:.3g} exceeds its tolerance "
-                            f"{self.tolerance:.3g} (at t = {float(self.times[-1][-1]):.6g} s): "
-                            f"the step "
-                            f"does not resolve the motion; lower rtol or use a higher-order "
-                            f"integrator")
+            self.message = (
+                f"the energy error {error:.3g} exceeds its tolerance "
+                f"{self.tolerance:.3g} (at t = {float(self.times[-1][-1]):.6g} s): "
+                f"the step "
+                f"does not resolve the motion; lower rtol or use a higher-order "
+                f"integrator"
+            )
             return False
         return True
 
@@ -622,16 +694,22 @@ class _Run:
                 rows = np.clip(np.searchsorted(times, at, side="right") - 1, 0, len(times) - 1)
             spans = at - times[rows]
             pieces = np.where(spans > 0, np.maximum(1, np.ceil(spans / h * (1 - 1e-12))), 0)
-            q, v = kernels.advance_many(model, coeffs, qs[rows], vs[rows], spans,
-                                        pieces.astype(np.int64))
+            q, v = kernels.advance_many(
+                model, coeffs, qs[rows], vs[rows], spans, pieces.astype(np.int64)
+            )
             states = self.general_state(q, v, x0)
             return states if np.ndim(t) else states[0]
 
         # extremes: every step boundary is a candidate; sample at output rows and midpoints
         samples = np.empty(0)  # the output rows and the kernel extremes cover it
-        return _Segment(float(times[0]), float(times[-1] if t_end is None else t_end),
-                        np.zeros(self.n, dtype=bool),
-                        np.zeros(self.n), evaluate, samples)
+        return _Segment(
+            float(times[0]),
+            float(times[-1] if t_end is None else t_end),
+            np.zeros(self.n, dtype=bool),
+            np.zeros(self.n),
+            evaluate,
+            samples,
+        )
 
     def _locate(self, model, t_before, q, v, span, pieces, x0):
         """An event happened within ``span`` after ``t_before``: find its instant."""
@@ -662,8 +740,13 @@ class _Run:
             if not np.isfinite(start[j]) or start[j] <= 0:
                 root = 0.0
             else:
-                root = scipy.optimize.brentq(lambda tau, j=j: margins(tau)[j], 0.0, h,
-                                             xtol=1e-15, rtol=4 * np.finfo(float).eps)
+                root = scipy.optimize.brentq(
+                    lambda tau, j=j: margins(tau)[j],
+                    0.0,
+                    h,
+                    xtol=1e-15,
+                    rtol=4 * np.finfo(float).eps,
+                )
             if best is None or root < best[0]:
                 best = (root, j)
         if best is None:  # non-finite state
@@ -676,8 +759,11 @@ class _Run:
         q_e, v_e, _, _ = kernels.advance(model, self.coeffs, q, v, root, 1 if root > 0 else 0)
         t_event = t_before + root
         state = self.general_state(q_e, v_e, x0)
-        self.segments.append(self._rolling_evaluator(model, [t_before, t_event], [q, q_e],
-                                                     [v, v_e], max(root, 1e-300), x0))
+        self.segments.append(
+            self._rolling_evaluator(
+                model, [t_before, t_event], [q, q_e], [v, v_e], max(root, 1e-300), x0
+            )
+        )
         if self._event(kind, body, t_event, state, slipping, sign):
             self._record(t_event, state, slipping, sign)
             return t_event, state, slipping, sign
@@ -703,8 +789,9 @@ class _Run:
         labels = []
         for i in range(n):
             if self.rolls[i] and not slipping[i] and np.isfinite(mu_s[i]):
-                events.append(lambda _t, y, i=i: (lambda f, nn: mu_s[i] * nn[i] - abs(f[i]))(
-                    *contacts(y)))
+                events.append(
+                    lambda _t, y, i=i: (lambda f, nn: mu_s[i] * nn[i] - abs(f[i]))(*contacts(y))
+                )
                 labels.append(("slip", i))
             if self.rolls[i] and slipping[i]:
                 events.append(lambda _t, y, i=i: y[2 * n + i] - a.radius[i] * y[3 * n + i])
@@ -720,9 +807,16 @@ class _Run:
 
         began = time.perf_counter()
         solution = scipy.integrate.solve_ivp(
-            rhs, (t, self.grid[-1]), state, method="DOP853", t_eval=t_eval,
-            rtol=max(self.rtol, 1e-13), atol=max(self.rtol, 1e-13) * scale * 1e-2,
-            events=events, dense_output=True)
+            rhs,
+            (t, self.grid[-1]),
+            state,
+            method="DOP853",
+            t_eval=t_eval,
+            rtol=max(self.rtol, 1e-13),
+            atol=max(self.rtol, 1e-13) * scale * 1e-2,
+            events=events,
+            dense_output=True,
+        )
         self.integrate_time += time.perf_counter() - began
         if solution.sol is not None:  # the adaptive steps taken
             self.n_steps += len(solution.sol.ts) - 1
@@ -733,12 +827,22 @@ class _Run:
         if solution.t.size:
             self._record_block(solution.t, solution.y.T, slipping, sign)
         dense = solution.sol
-        t_end = float(solution.t_events and max(
-            (float(te[0]) for te in solution.t_events if len(te)), default=self.grid[-1])
-            if solution.status == 1 else self.grid[-1])
-        self.segments.append(_Segment(t, t_end, slipping.copy(), sign.copy(),
-                                      lambda tt, d=dense: np.asarray(d(tt)).T,
-                                      np.asarray(dense.ts)))
+        t_end = float(
+            solution.t_events
+            and max((float(te[0]) for te in solution.t_events if len(te)), default=self.grid[-1])
+            if solution.status == 1
+            else self.grid[-1]
+        )
+        self.segments.append(
+            _Segment(
+                t,
+                t_end,
+                slipping.copy(),
+                sign.copy(),
+                lambda tt, d=dense: np.asarray(d(tt)).T,
+                np.asarray(dense.ts),
+            )
+        )
         self._report(t_end)
         if solution.status != 1:
             return self.grid[-1], solution.y[:, -1] if solution.y.size else state, slipping, sign
@@ -778,24 +882,50 @@ class _Run:
 
         times = times if pick is None else times[pick]
         states = column(self.rows)
-        observed = {name: column([getattr(o, name) for o in self.observed])
-                    for name in _Observed._fields}
+        observed = {
+            name: column([getattr(o, name) for o in self.observed]) for name in _Observed._fields
+        }
         kinetic, potential = observed["kinetic"], observed["potential"]
         x = states[:, :n]
         return Trajectory(
-            system=system, ids=a.ids, spring_names=a.spring_names, t=times, x=x,
-            phi=states[:, n:2 * n], v=states[:, 2 * n:3 * n], omega=states[:, 3 * n:],
-            friction=observed["friction"], normal=observed["normal"],
-            friction_ratio=observed["ratio"], slipping=column(self.row_slipping),
-            spring_length=observed["length"], spring_tension=observed["tension"],
-            kinetic=kinetic, potential=potential, energy=kinetic + potential,
-            cm_x=x @ a.mass / np.sum(a.mass), stationary_x=None, status=self.status,
-            message=self.message, integrator=self.scheme, step=self.h, n_steps=self.n_steps,
-            events=list(self.events))
+            system=system,
+            ids=a.ids,
+            spring_names=a.spring_names,
+            t=times,
+            x=x,
+            phi=states[:, n : 2 * n],
+            v=states[:, 2 * n : 3 * n],
+            omega=states[:, 3 * n :],
+            friction=observed["friction"],
+            normal=observed["normal"],
+            friction_ratio=observed["ratio"],
+            slipping=column(self.row_slipping),
+            spring_length=observed["length"],
+            spring_tension=observed["tension"],
+            kinetic=kinetic,
+            potential=potential,
+            energy=kinetic + potential,
+            cm_x=x @ a.mass / np.sum(a.mass),
+            stationary_x=None,
+            status=self.status,
+            message=self.message,
+            integrator=self.scheme,
+            step=self.h,
+            n_steps=self.n_steps,
+            events=list(self.events),
+        )
 
 
-def _summary(trajectory: Trajectory, run: _Run, arrays: SystemArrays, q_eq, lowest, mass,
-             period_linear, modes) -> dict[str, Any]:
+def _summary(
+    trajectory: Trajectory,
+    run: _Run,
+    arrays: SystemArrays,
+    q_eq,
+    lowest,
+    mass,
+    period_linear,
+    modes,
+) -> dict[str, Any]:
     """The JSON summary (see the README): status, energies, periods, extremes, events."""
     n = arrays.n_bodies
     ids = arrays.ids
@@ -813,14 +943,25 @@ def _summary(trajectory: Trajectory, run: _Run, arrays: SystemArrays, q_eq, lowe
     if weights is not None:
         trajectory.stationary_x = trajectory.x @ weights
     period = _measured_period(run, trajectory, lowest, mass, q_eq) if lowest is not None else None
-    first = {kind: next(({"time": e["time"], "body": e["body"]} for e in run.events
-                         if e["kind"] == kind), None) for kind in ("slip", "liftoff")}
-    final = {"time": float(trajectory.t[-1]), "cm_x": float(trajectory.cm_x[-1]),
-             "bodies": {name: {"x": float(trajectory.x[-1, i]),
-                               "phi": float(trajectory.phi[-1, i]),
-                               "v": float(trajectory.v[-1, i]),
-                               "omega": float(trajectory.omega[-1, i])}
-                        for i, name in enumerate(ids)}}
+    first = {
+        kind: next(
+            ({"time": e["time"], "body": e["body"]} for e in run.events if e["kind"] == kind), None
+        )
+        for kind in ("slip", "liftoff")
+    }
+    final = {
+        "time": float(trajectory.t[-1]),
+        "cm_x": float(trajectory.cm_x[-1]),
+        "bodies": {
+            name: {
+                "x": float(trajectory.x[-1, i]),
+                "phi": float(trajectory.phi[-1, i]),
+                "v": float(trajectory.v[-1, i]),
+                "omega": float(trajectory.omega[-1, i]),
+            }
+            for i, name in enumerate(ids)
+        },
+    }
     return {
         "status": trajectory.status,
         "message": trajectory.message,
@@ -832,8 +973,9 @@ def _summary(trajectory: Trajectory, run: _Run, arrays: SystemArrays, q_eq, lowe
         "energy_error": energy_error,
         "period_measured": period,
         "period_linear": period_linear,
-        "max_friction_ratio": {ids[i]: extremes["ratio"][i] for i in range(n)
-                               if arrays.rolls[i] > 0},
+        "max_friction_ratio": {
+            ids[i]: extremes["ratio"][i] for i in range(n) if arrays.rolls[i] > 0
+        },
         "min_normal_force": {ids[i]: extremes["normal"][i] for i in range(n)},
         "first_slip": first["slip"],
         "first_liftoff": first["liftoff"],
@@ -853,8 +995,9 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     n = run.n
     spacing = float(run.grid[1] - run.grid[0])
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(trajectory.normal > 0, np.abs(trajectory.friction) / trajectory.normal,
-                         np.inf)
+        ratio = np.where(
+            trajectory.normal > 0, np.abs(trajectory.friction) / trajectory.normal, np.inf
+        )
     ratio = np.where(trajectory.slipping, -np.inf, ratio)
     best: dict[tuple[str, int], tuple[float, float, float]] = {}
 
@@ -891,9 +1034,13 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
             offer("normal", i, float(normal[k, i]), float(segment.samples[k]), width)
 
     result = {"ratio": [0.0] * n, "normal": [math.inf] * n}
-    batched = {key: entry for key, entry in best.items()
-               if entry[3] is not None and getattr(entry[3], "start", None) is not None
-               and np.isfinite(entry[0])}
+    batched = {
+        key: entry
+        for key, entry in best.items()
+        if entry[3] is not None
+        and getattr(entry[3], "start", None) is not None
+        and np.isfinite(entry[0])
+    }
     groups: dict[int, dict] = {}  # one group per rolling segment (its model)
     for key, entry in batched.items():
         groups.setdefault(id(entry[3].start.model), {})[key] = entry
@@ -920,13 +1067,21 @@ def _refine_together(run: _Run, entries: dict) -> dict[tuple[str, int], float]:
     bodies = np.array([i for _, i in keys], dtype=np.int64)
     sign = np.where(kinds == 0, 1.0, -1.0)
     best = np.array([entries[k][0] for k in keys]) * sign
-    refined = kernels.refine_extremes(first.model, first.coeffs, first.h, q0, v0, kinds, bodies,
-                                      best)
+    refined = kernels.refine_extremes(
+        first.model, first.coeffs, first.h, q0, v0, kinds, bodies, best
+    )
     return {key: float(refined[j] * sign[j]) for j, key in enumerate(keys)}
 
 
-def _refine(run: _Run, kind: str, i: int, value: float, t: float, width: float,
-            segment: _Segment | None = None) -> float:
+def _refine(
+    run: _Run,
+    kind: str,
+    i: int,
+    value: float,
+    t: float,
+    width: float,
+    segment: _Segment | None = None,
+) -> float:
     """The extreme near ``t`` (within ``width``), on the interpolant of ``segment`` (by default
     the segment holding ``t``)."""
     if segment is None:
@@ -954,10 +1109,10 @@ def _refine(run: _Run, kind: str, i: int, value: float, t: float, width: float,
         times = np.linspace(lo, hi, 9)
         values = values_at(times)
         k = int(np.clip(np.argmax(values), 1, 7))
-        if not np.all(np.isfinite(values[k - 1:k + 2])):
+        if not np.all(np.isfinite(values[k - 1 : k + 2])):
             best = float(np.max(values))
             break
-        a, b, c = values[k - 1:k + 2]
+        a, b, c = values[k - 1 : k + 2]
         curvature = a - 2 * b + c
         best = float(np.max(values))
         if curvature < 0 and abs(a - c) <= -2 * curvature:  # the vertex lies between a and c
@@ -975,20 +1130,30 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
 
     def signal_of(states):
         n = run.n
-        q = np.where(run.rolls, states[..., n:2 * n], states[..., :n] - arrays.x0)
+        q = np.where(run.rolls, states[..., n : 2 * n], states[..., :n] - arrays.x0)
         return (q - q_eq) @ weights
 
     if len(run.crossings) == 1 and len(run.segments) == 1 and run.crossings[0][0] >= 2:
         # one rolling segment: the kernel counted the upward zero crossings of the signal at
         # every step and kept the states before the first and the last
         count, (first, last) = run.crossings[0]
-        times = [seg.start.t + kernels.signal_zero(seg.start.model, seg.start.coeffs, seg.start.h,
-                                                   seg.start.q, seg.start.v, run.mode_weights,
-                                                   run.q_ref)
-                 for seg in (first, last)]
+        times = [
+            seg.start.t
+            + kernels.signal_zero(
+                seg.start.model,
+                seg.start.coeffs,
+                seg.start.h,
+                seg.start.q,
+                seg.start.v,
+                run.mode_weights,
+                run.q_ref,
+            )
+            for seg in (first, last)
+        ]
         return (times[1] - times[0]) / (count - 1)
-    signal = signal_of(np.concatenate([trajectory.x, trajectory.phi, trajectory.v,
-                                       trajectory.omega], axis=1))
+    signal = signal_of(
+        np.concatenate([trajectory.x, trajectory.phi, trajectory.v, trajectory.omega], axis=1)
+    )
     level = 0.5 * (float(np.max(signal)) + float(np.min(signal)))
     values = signal - level
     upward = np.flatnonzero((values[:-1] < 0) & (values[1:] >= 0))
@@ -1002,7 +1167,13 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
         segment = next((s for s in run.segments if s.t0 <= lo and hi <= s.t1 + 1e-15), None)
         if segment is None:
             return None
-        crossings.append(scipy.optimize.brentq(
-            lambda tt, seg=segment: float(signal_of(seg.evaluate(tt))) - level, lo, hi,
-            xtol=1e-15, rtol=4 * np.finfo(float).eps))
+        crossings.append(
+            scipy.optimize.brentq(
+                lambda tt, seg=segment: float(signal_of(seg.evaluate(tt))) - level,
+                lo,
+                hi,
+                xtol=1e-15,
+                rtol=4 * np.finfo(float).eps,
+            )
+        )
     return (crossings[-1] - crossings[0]) / (upward.size - 1)

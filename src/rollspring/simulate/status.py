@@ -49,21 +49,22 @@ class Status(IntEnum):
         try:
             return cls[label.upper()]
         except KeyError:
-            raise ValueError(f"unknown status {label!r}; one of "
-                             f"{', '.join(s.label for s in cls)}") from None
+            raise ValueError(
+                f"unknown status {label!r}; one of {', '.join(s.label for s in cls)}"
+            ) from None
 
 
 _MESSAGES = {
     Status.FINISHED: "every body rolled to the end",
     Status.NONFINITE: "the state became non-finite: the step cannot resolve the motion (or the "
-                      "system diverges); the metrics are meaningless",
+    "system diverges); the metrics are meaningless",
     Status.SLIP: "a body's needed friction reached mu_s N: it starts to slip",
     Status.LIFTOFF: "a body's normal force fell below zero: it lifts off",
     Status.ENERGY_ERROR: "the energy error exceeded its tolerance: the step does not resolve "
-                         "the motion",
+    "the motion",
     Status.INVALID: "the run's values overflow double precision; it was not integrated",
     Status.UNRESOLVED: "the run's linear frequency is beyond what the step can resolve; it was "
-                       "not integrated",
+    "not integrated",
 }
 
 #: CF ``flag_values`` of a stored status variable (every code, in order).

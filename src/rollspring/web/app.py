@@ -45,6 +45,7 @@ UPLOT = STATIC / "node_modules" / "uplot" / "dist"
 
 # ---------------------------------------------------------------- request and response models
 
+
 class SystemRequest(BaseModel):
     """A system: its JSON form (``system``) or the text of a TOML system file (``toml``)."""
 
@@ -66,20 +67,28 @@ class ModeStartRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     mode: int = Field(ge=0, le=MAX_BODIES, description="Index into analyze's `modes`.")
-    amplitude: float = Field(allow_inf_nan=False, ge=-1.0, le=1.0,
-                             description="Largest centre displacement (m).")
+    amplitude: float = Field(
+        allow_inf_nan=False, ge=-1.0, le=1.0, description="Largest centre displacement (m)."
+    )
 
 
 class SimulateRequest(SystemRequest):
     """What to simulate and how."""
 
-    duration: float = Field(gt=0, le=MAX_DURATION, allow_inf_nan=False,
-                            description="Simulated time (s).")
-    rtol: float = Field(default=1e-8, gt=0, le=0.1, allow_inf_nan=False,
-                        description="Relative accuracy of the motion over the run.")
+    duration: float = Field(
+        gt=0, le=MAX_DURATION, allow_inf_nan=False, description="Simulated time (s)."
+    )
+    rtol: float = Field(
+        default=1e-8,
+        gt=0,
+        le=0.1,
+        allow_inf_nan=False,
+        description="Relative accuracy of the motion over the run.",
+    )
     outputs: int = Field(default=601, ge=2, le=MAX_OUTPUTS, description="Output times.")
     on_slip: Literal["stop", "continue"] = Field(
-        default="stop", description="stop at the first slip, or continue (stick-slip).")
+        default="stop", description="stop at the first slip, or continue (stick-slip)."
+    )
     start: ModeStartRequest | None = None
     linear: bool = Field(default=False, description="Also return the linear modal solution.")
 
@@ -87,9 +96,12 @@ class SimulateRequest(SystemRequest):
 class DeriveRequest(SystemRequest):
     """Which derivations."""
 
-    method: str = Field(default="all", max_length=200,
-                        description="all, or comma-separated methods: newton, conservation, "
-                        "lagrange, natural-frequencies, hamilton.")
+    method: str = Field(
+        default="all",
+        max_length=200,
+        description="all, or comma-separated methods: newton, conservation, "
+        "lagrange, natural-frequencies, hamilton.",
+    )
 
 
 class ReportRequest(SystemRequest):
@@ -176,7 +188,8 @@ class SimulateResponse(BaseModel):
 
 #: A JSON object answer, documented as one (its fields: docs/web-api.md and the README).
 _OBJECT: dict[int | str, dict[str, Any]] = {
-    200: {"content": {"application/json": {"schema": {"type": "object"}}}}}
+    200: {"content": {"application/json": {"schema": {"type": "object"}}}}
+}
 
 _ERRORS: dict[int | str, dict[str, Any]] = {
     422: {"model": InvalidRequest, "description": "An invalid request."},
@@ -192,8 +205,14 @@ class JSONBytes(Response):
 
 # ------------------------------------------------------------------------------------ the app
 
-def create_app(system: System | None = None, *, preset: str | None = None,
-               budget: float = DEFAULT_BUDGET, workers: int | None = None) -> FastAPI:
+
+def create_app(
+    system: System | None = None,
+    *,
+    preset: str | None = None,
+    budget: float = DEFAULT_BUDGET,
+    workers: int | None = None,
+) -> FastAPI:
     """The ASGI app: the page at ``/`` (opening on ``system``, default the default preset),
     the JSON API under ``/api``, with ``workers`` worker processes (default: one per core)
     and ``budget`` seconds for each computation."""
@@ -213,9 +232,13 @@ def create_app(system: System | None = None, *, preset: str | None = None,
         finally:
             holder.pop("pool").close()
 
-    app = FastAPI(title="rollspring", version=_version(), lifespan=lifespan,
-                  description="Coupled rolling oscillators: the interactive page's API. "
-                  "SI units throughout; see docs/web-api.md.")
+    app = FastAPI(
+        title="rollspring",
+        version=_version(),
+        lifespan=lifespan,
+        description="Coupled rolling oscillators: the interactive page's API. "
+        "SI units throughout; see docs/web-api.md.",
+    )
     app.add_middleware(_BodyLimit, limit=MAX_REQUEST_BYTES)  # type: ignore[arg-type]
 
     @app.exception_handler(RequestValidationError)
@@ -225,12 +248,14 @@ def create_app(system: System | None = None, *, preset: str | None = None,
     @app.exception_handler(StarletteHTTPException)
     async def unreadable(request: Request, exc: StarletteHTTPException) -> Response:
         if exc.status_code == 400:  # a body FastAPI cannot even decode (not UTF-8, not JSON)
-            return _problem(["body"], f"body: cannot be read as JSON ({exc.detail})",
-                            "json_invalid")
+            return _problem(
+                ["body"], f"body: cannot be read as JSON ({exc.detail})", "json_invalid"
+            )
         return await http_exception_handler(request, exc)
 
-    def compute(job: str, request: dict[str, Any], media: type[Response] = JSONBytes,
-                **kwargs: Any) -> Response:
+    def compute(
+        job: str, request: dict[str, Any], media: type[Response] = JSONBytes, **kwargs: Any
+    ) -> Response:
         try:
             return media(holder["pool"].run(job, request), **kwargs)
         except (OverBudget, Overloaded) as exc:
@@ -255,21 +280,30 @@ def create_app(system: System | None = None, *, preset: str | None = None,
     def schema() -> dict[str, Any]:
         return system_json_schema()
 
-    @app.get("/api/start", response_model=StartSystem,
-             summary="The system the server was started with")
+    @app.get(
+        "/api/start", response_model=StartSystem, summary="The system the server was started with"
+    )
     def start_system() -> Any:
         return start
 
-    @app.post("/api/system", response_model=SystemForms, responses=_ERRORS,
-              summary="Validate a system; its JSON form and TOML text")
+    @app.post(
+        "/api/system",
+        response_model=SystemForms,
+        responses=_ERRORS,
+        summary="Validate a system; its JSON form and TOML text",
+    )
     def system_endpoint(request: SystemRequest) -> Any:
         resolved = _resolve(request)
         if isinstance(resolved, Response):
             return resolved
         return system_forms(resolved)
 
-    @app.post("/api/analyze", response_class=JSONBytes, responses={**_OBJECT, **_ERRORS},
-              summary="Linear analysis (= rollspring analyze --json)")
+    @app.post(
+        "/api/analyze",
+        response_class=JSONBytes,
+        responses={**_OBJECT, **_ERRORS},
+        summary="Linear analysis (= rollspring analyze --json)",
+    )
     def analyze(request: SystemRequest) -> Response:
         resolved = _resolve(request)
         if isinstance(resolved, Response):
@@ -280,45 +314,72 @@ def create_app(system: System | None = None, *, preset: str | None = None,
         resolved = _resolve(request)
         if isinstance(resolved, Response):
             return resolved
-        return {"system": resolved, "duration": request.duration, "rtol": request.rtol,
-                "outputs": request.outputs, "on_slip": request.on_slip,
-                "start": None if request.start is None else request.start.model_dump(),
-                "linear": request.linear}
+        return {
+            "system": resolved,
+            "duration": request.duration,
+            "rtol": request.rtol,
+            "outputs": request.outputs,
+            "on_slip": request.on_slip,
+            "start": None if request.start is None else request.start.model_dump(),
+            "linear": request.linear,
+        }
 
-    @app.post("/api/simulate", response_class=JSONBytes,
-              responses={200: {"model": SimulateResponse}, **_ERRORS},
-              summary="The exact nonlinear motion (summary = rollspring simulate --json)")
+    @app.post(
+        "/api/simulate",
+        response_class=JSONBytes,
+        responses={200: {"model": SimulateResponse}, **_ERRORS},
+        summary="The exact nonlinear motion (summary = rollspring simulate --json)",
+    )
     def simulate(request: SimulateRequest) -> Response:
         job = simulation(request)
         return job if isinstance(job, Response) else compute("simulate", job)
 
-    @app.post("/api/simulate.csv", response_class=Response,
-              responses={200: {"content": {"text/csv": {}}}, **_ERRORS},
-              summary="The trajectory as CSV (= trajectory.csv of simulate --out)")
+    @app.post(
+        "/api/simulate.csv",
+        response_class=Response,
+        responses={200: {"content": {"text/csv": {}}}, **_ERRORS},
+        summary="The trajectory as CSV (= trajectory.csv of simulate --out)",
+    )
     def simulate_csv(request: SimulateRequest) -> Response:
         job = simulation(request)
         if isinstance(job, Response):
             return job
-        return compute("simulate_csv", job, Response, media_type="text/csv",
-                       headers={"Content-Disposition": 'attachment; filename="trajectory.csv"'})
+        return compute(
+            "simulate_csv",
+            job,
+            Response,
+            media_type="text/csv",
+            headers={"Content-Disposition": 'attachment; filename="trajectory.csv"'},
+        )
 
-    @app.post("/api/derive", response_class=JSONBytes, responses={**_OBJECT, **_ERRORS},
-              summary="The derivation by the paper's five methods, as MathML and LaTeX")
+    @app.post(
+        "/api/derive",
+        response_class=JSONBytes,
+        responses={**_OBJECT, **_ERRORS},
+        summary="The derivation by the paper's five methods, as MathML and LaTeX",
+    )
     def derive(request: DeriveRequest) -> Response:
         resolved = _resolve(request)
         if isinstance(resolved, Response):
             return resolved
         return compute("derive", {"system": resolved, "method": request.method})
 
-    @app.post("/api/report", response_class=Response,
-              responses={200: {"content": {"text/html": {}}}, **_ERRORS},
-              summary="The self-contained HTML report")
+    @app.post(
+        "/api/report",
+        response_class=Response,
+        responses={200: {"content": {"text/html": {}}}, **_ERRORS},
+        summary="The self-contained HTML report",
+    )
     def report(request: ReportRequest) -> Response:
         resolved = _resolve(request)
         if isinstance(resolved, Response):
             return resolved
-        return compute("report", {"system": resolved, "duration": request.duration},
-                       Response, media_type="text/html")
+        return compute(
+            "report",
+            {"system": resolved, "duration": request.duration},
+            Response,
+            media_type="text/html",
+        )
 
     if STATIC.is_dir():
         app.mount("/static", StaticFiles(directory=STATIC), name="static")
@@ -327,6 +388,7 @@ def create_app(system: System | None = None, *, preset: str | None = None,
 
 
 # ---------------------------------------------------------------------------------- helpers
+
 
 def _version() -> str:
     from importlib.metadata import PackageNotFoundError, version
@@ -345,14 +407,20 @@ def _resolve(request: SystemRequest) -> System | Response:
     except RollspringError as exc:
         return _problem(["body", field], " ".join(str(exc).split()), "value_error")
     if len(system.bodies) > MAX_BODIES:
-        return _problem(["body", field, "bodies"], f"{field}.bodies: at most {MAX_BODIES} bodies "
-                        f"in one request (got {len(system.bodies)})", "too_long")
+        return _problem(
+            ["body", field, "bodies"],
+            f"{field}.bodies: at most {MAX_BODIES} bodies "
+            f"in one request (got {len(system.bodies)})",
+            "too_long",
+        )
     return system
 
 
 def _problem(loc: list[Any], message: str, kind: str) -> JSONResponse:
-    return JSONResponse({"detail": [{"loc": loc, "msg": message, "type": kind}],
-                         "message": message}, status_code=422)
+    return JSONResponse(
+        {"detail": [{"loc": loc, "msg": message, "type": kind}], "message": message},
+        status_code=422,
+    )
 
 
 def _invalid_response(errors: Any, body: Any) -> JSONResponse:
@@ -420,9 +488,12 @@ class _BodyLimit:
         await self.app(scope, replay, send)
 
     async def _refuse(self, scope: dict[str, Any], receive: Any, send: Any) -> None:
-        message = (f"body: the request is larger than {self.limit // 1024} kB (the largest a "
-                   "request may be)")
-        response = JSONResponse({"detail": [{"loc": ["body"], "msg": message,
-                                             "type": "too_long"}], "message": message},
-                                status_code=422)
+        message = (
+            f"body: the request is larger than {self.limit // 1024} kB (the largest a "
+            "request may be)"
+        )
+        response = JSONResponse(
+            {"detail": [{"loc": ["body"], "msg": message, "type": "too_long"}], "message": message},
+            status_code=422,
+        )
         await response(scope, receive, send)

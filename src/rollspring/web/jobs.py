@@ -37,10 +37,14 @@ def analyze(request: dict[str, Any]) -> bytes:
 def _run(request: dict[str, Any]) -> runs.SimulationRun:
     start = request.get("start")
     return runs.run_simulation(
-        request["system"], request["duration"], rtol=request["rtol"],
-        outputs=request["outputs"], on_slip=request["on_slip"],
+        request["system"],
+        request["duration"],
+        rtol=request["rtol"],
+        outputs=request["outputs"],
+        on_slip=request["on_slip"],
         start=None if start is None else runs.ModeStart(start["mode"], start["amplitude"]),
-        linear=request.get("linear", False))
+        linear=request.get("linear", False),
+    )
 
 
 def simulate(request: dict[str, Any]) -> bytes:
@@ -71,13 +75,18 @@ def report(request: dict[str, Any]) -> bytes:
 
 
 JOBS: dict[str, Callable[[dict[str, Any]], bytes]] = {
-    "analyze": analyze, "simulate": simulate, "simulate_csv": simulate_csv,
-    "derive": derive, "report": report,
+    "analyze": analyze,
+    "simulate": simulate,
+    "simulate_csv": simulate_csv,
+    "derive": derive,
+    "report": report,
 }
 
 #: A message that starts with one of the request's fields names it (``duration: must be …``).
-_FIELD = re.compile(r"^(system|toml|duration|rtol|outputs|on_slip|start(?:\.\w+)?|method|"
-                    r"linear)\b")
+_FIELD = re.compile(
+    r"^(system|toml|duration|rtol|outputs|on_slip|start(?:\.\w+)?|method|"
+    r"linear)\b"
+)
 
 
 def execute(job: str, request: dict[str, Any]) -> tuple[str, Any]:
@@ -94,8 +103,10 @@ def execute(job: str, request: dict[str, Any]) -> tuple[str, Any]:
         loc = ["body", *match.group(1).split(".")] if match else ["body"]
         return "error", ("invalid", message, loc)
     except (ArithmeticError, np.linalg.LinAlgError, ValueError) as exc:
-        message = (f"the computation failed for these values ({type(exc).__name__}: "
-                   f"{' '.join(str(exc).split())[:300]})")
+        message = (
+            f"the computation failed for these values ({type(exc).__name__}: "
+            f"{' '.join(str(exc).split())[:300]})"
+        )
         return "error", ("invalid", message, ["body", "system"])
     except Exception as exc:  # a bug: reported as HTTP 500 with its type
         return "error", ("crash", f"internal error: {type(exc).__name__}: {exc}"[:500], [])
@@ -104,5 +115,14 @@ def execute(job: str, request: dict[str, Any]) -> tuple[str, Any]:
 def warm_up() -> None:
     """Load the compiled kernels (Numba's disk cache) before the first request."""
     system = load_system("hoop-cylinder")
-    execute("simulate", {"system": system, "duration": 0.05, "rtol": 1e-8, "outputs": 11,
-                         "on_slip": "stop", "linear": True})
+    execute(
+        "simulate",
+        {
+            "system": system,
+            "duration": 0.05,
+            "rtol": 1e-8,
+            "outputs": 11,
+            "on_slip": "stop",
+            "linear": True,
+        },
+    )

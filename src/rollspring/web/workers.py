@@ -57,8 +57,9 @@ class JobFailed(Exception):
 class _Worker:
     def __init__(self, context: Any) -> None:
         self.connection, child = context.Pipe()
-        self.process = context.Process(target=_serve, args=(child,), daemon=True,
-                                       name="rollspring-worker")
+        self.process = context.Process(
+            target=_serve, args=(child,), daemon=True, name="rollspring-worker"
+        )
         self.process.start()
         child.close()
 
@@ -133,8 +134,9 @@ class ComputePool:
         try:
             worker = self._idle.get(timeout=limit)
         except queue.Empty:
-            raise Overloaded(f"the server is busy: no worker was free within {limit:g} s; "
-                             "try again") from None
+            raise Overloaded(
+                f"the server is busy: no worker was free within {limit:g} s; try again"
+            ) from None
         try:
             worker.connection.send((job, payload))
             ready = worker.connection.poll(limit)
@@ -143,9 +145,11 @@ class ComputePool:
             raise JobFailed("crash", "a worker process died; try again") from None
         if not ready:
             self._replace(worker)
-            raise OverBudget(f"the computation ran past its time budget of {limit:g} s and was "
-                             "abandoned; ask for less (a shorter duration, fewer outputs, a "
-                             "larger rtol)")
+            raise OverBudget(
+                f"the computation ran past its time budget of {limit:g} s and was "
+                "abandoned; ask for less (a shorter duration, fewer outputs, a "
+                "larger rtol)"
+            )
         try:
             status, value = worker.connection.recv()
         except (OSError, EOFError):

@@ -58,19 +58,25 @@ class CrossCheck:
         for check in self.checks:
             verdict = {True: "agrees", False: "DIFFERS", None: "undecided (time budget)"}
             # (an Eq of a symbol and a Matrix would evaluate to False: the LaTeX is built here)
-            section.add(check.residual, f"{check.method}: {check.what} {verdict[check.agrees]}.",
-                        latex=r"\mathrm{residual} = " + latex_of(check.residual))
+            section.add(
+                check.residual,
+                f"{check.method}: {check.what} {verdict[check.agrees]}.",
+                latex=r"\mathrm{residual} = " + latex_of(check.residual),
+            )
         for name, reason in self.not_applicable.items():
-            section.add(named("not applicable", r"\text{not applicable}"),
-                        f"{name} does not apply: {reason}.", latex=r"\text{not applicable}")
+            section.add(
+                named("not applicable", r"\text{not applicable}"),
+                f"{name} does not apply: {reason}.",
+                latex=r"\text{not applicable}",
+            )
         overall = "all methods agree" if self.agree else "the methods DO NOT all agree"
-        section.note = (f"{len(self.applied)} method(s) applied ({', '.join(self.applied)}); "
-                        f"{overall}.")
+        section.note = (
+            f"{len(self.applied)} method(s) applied ({', '.join(self.applied)}); {overall}."
+        )
         return section
 
 
-def equations_matrix(equations: list[sp.Eq], sym: SymbolicSystem
-                     ) -> tuple[sp.Matrix, sp.Matrix]:
+def equations_matrix(equations: list[sp.Eq], sym: SymbolicSystem) -> tuple[sp.Matrix, sp.Matrix]:
     r"""Linear equations :math:`c_i\ddot q_i = a_i + \sum_j b_{ij} q_j` as
     :math:`\ddot q = A q + c` (A, c returned)."""
     n = sym.n
@@ -106,48 +112,66 @@ def _zero(expr: Any, budget: float | None) -> tuple[Any, bool | None]:
     return result, all(item == 0 for item in out)
 
 
-def cross_check(sym: SymbolicSystem, results: dict[str, MethodResult], frequencies: Frequencies,
-                *, budget: float | None = 20.0) -> CrossCheck:
+def cross_check(
+    sym: SymbolicSystem,
+    results: dict[str, MethodResult],
+    frequencies: Frequencies,
+    *,
+    budget: float | None = 20.0,
+) -> CrossCheck:
     """Compare every applicable method with the reference (see the module docstring)."""
     applied = [name for name, r in results.items() if r.applies]
     skipped = {name: r.reason for name, r in results.items() if not r.applies}
     report = CrossCheck(applied, skipped)
     J = [b.J for b in sym.bodies]
-    reference_A = sp.Matrix(sym.n, sym.n, lambda i, j: sp.cancel(-sym.stiffness_matrix[i, j]
-                                                                 / J[i]))
+    reference_A = sp.Matrix(
+        sym.n, sym.n, lambda i, j: sp.cancel(-sym.stiffness_matrix[i, j] / J[i])
+    )
     reference_c = sp.Matrix([sp.cancel(sym.reference_forces[i] / J[i]) for i in range(sym.n)])
     reference_Q = sym.generalized_forces
     for name in applied:
         result = results[name]
         if result.nonlinear is not None:
-            residual = sp.Matrix([result.nonlinear[i].rhs - reference_Q[i]
-                                  for i in range(sym.n)])
-            lhs_ok = all(sp.expand(result.nonlinear[i].lhs - J[i] * sym.qdd[i]) == 0
-                         for i in range(sym.n))
+            residual = sp.Matrix([result.nonlinear[i].rhs - reference_Q[i] for i in range(sym.n)])
+            lhs_ok = all(
+                sp.expand(result.nonlinear[i].lhs - J[i] * sym.qdd[i]) == 0 for i in range(sym.n)
+            )
             simplified, zero = _zero(residual, budget)
-            report.checks.append(Check(name, "exact equations of motion vs -dV/dphi",
-                                       simplified, zero if lhs_ok else False))
+            report.checks.append(
+                Check(
+                    name,
+                    "exact equations of motion vs -dV/dphi",
+                    simplified,
+                    zero if lhs_ok else False,
+                )
+            )
         if result.equations is not None:
             A, c = equations_matrix(result.equations, sym)
             simplified, zero = _zero((A - reference_A).row_join(c - reference_c), budget)
-            report.checks.append(Check(name, "linearised equations vs -M^-1 K", simplified,
-                                       zero))
+            report.checks.append(Check(name, "linearised equations vs -M^-1 K", simplified, zero))
         if result.omega2 or frequencies.omega2:
             report.checks.append(_compare_omega2(name, result.omega2, frequencies, sym, budget))
         mechanics = result.extras.get("mechanics")
         if mechanics is not None:
-            report.checks.append(Check("LagrangesMethod", "exact equations vs the structure "
-                                       "route J phi'' = -dV/dphi", mechanics["residual"],
-                                       mechanics["agrees"]))
+            report.checks.append(
+                Check(
+                    "LagrangesMethod",
+                    "exact equations vs the structure route J phi'' = -dV/dphi",
+                    mechanics["residual"],
+                    mechanics["agrees"],
+                )
+            )
     return report
 
 
-def _compare_omega2(name: str, omega2: list, frequencies: Frequencies, sym: SymbolicSystem,
-                    budget: float | None) -> Check:
+def _compare_omega2(
+    name: str, omega2: list, frequencies: Frequencies, sym: SymbolicSystem, budget: float | None
+) -> Check:
     reference = frequencies.omega2
     if len(omega2) != len(reference):
-        return Check(name, f"Omega^2 ({len(omega2)} values vs {len(reference)})",
-                     sp.Symbol("count"), False)
+        return Check(
+            name, f"Omega^2 ({len(omega2)} values vs {len(reference)})", sp.Symbol("count"), False
+        )
     residuals = []
     decided: list[bool | None] = []
     for mine, ref in zip(omega2, reference, strict=True):
@@ -167,5 +191,9 @@ def _compare_omega2(name: str, omega2: list, frequencies: Frequencies, sym: Symb
         agrees = False
     elif any(d is None for d in decided):
         agrees = None
-    return Check(name, "Omega^2 vs the roots of det(K - Omega^2 M)", sp.Matrix(residuals)
-                 if len(residuals) != 1 else residuals[0], agrees)
+    return Check(
+        name,
+        "Omega^2 vs the roots of det(K - Omega^2 M)",
+        sp.Matrix(residuals) if len(residuals) != 1 else residuals[0],
+        agrees,
+    )

@@ -58,12 +58,18 @@ class Derivation:
     @property
     def subtitle(self) -> str:
         """What the parameters are (symbols or exact numbers) and the reference."""
-        kind = ("parameters as symbols" if self.symbolic.symbolic else
-                "parameters as exact numbers (SI units)")
+        kind = (
+            "parameters as symbols"
+            if self.symbolic.symbolic
+            else "parameters as exact numbers (SI units)"
+        )
         extra = "; ".join(self.symbolic.notes)
-        return (f"{self.symbolic.n} bodies, {len(self.symbolic.springs)} springs; {kind}; "
-                f"angles measured from the {self.symbolic.reference}" +
-                (f"; {extra}" if extra else "") + ".")
+        return (
+            f"{self.symbolic.n} bodies, {len(self.symbolic.springs)} springs; {kind}; "
+            f"angles measured from the {self.symbolic.reference}"
+            + (f"; {extra}" if extra else "")
+            + "."
+        )
 
     @property
     def sections(self) -> list[Section]:
@@ -73,8 +79,11 @@ class Derivation:
             if result.applies:
                 out.append(result.section)
             else:
-                section = Section(result.title, list(result.section.steps),
-                                  note=f"Does not apply: {result.reason}.")
+                section = Section(
+                    result.title,
+                    list(result.section.steps),
+                    note=f"Does not apply: {result.reason}.",
+                )
                 out.append(section)
         out.append(self.forces)
         if self.appendix is not None:
@@ -127,13 +136,19 @@ def parse_methods(method: str | Sequence[str]) -> list[str]:
         return list(METHODS)
     for name in names:
         if name not in METHODS:
-            raise DerivationError(f"method: unknown method '{name}' "
-                                  f"(methods: {', '.join(METHODS)}, {ALL})")
+            raise DerivationError(
+                f"method: unknown method '{name}' (methods: {', '.join(METHODS)}, {ALL})"
+            )
     return [name for name in METHODS if name in names]
 
 
-def derive(system: System | str, method: str | Sequence[str] = ALL, *, symbols: bool = False,
-           budget: float | None = 10.0) -> Derivation:
+def derive(
+    system: System | str,
+    method: str | Sequence[str] = ALL,
+    *,
+    symbols: bool = False,
+    budget: float | None = 10.0,
+) -> Derivation:
     r"""Derive the equations of motion of ``system`` step by step, by each ``method``.
 
     ``system``: a :class:`~rollspring.model.System` or a preset name / file path;
@@ -158,8 +173,17 @@ def derive(system: System | str, method: str | Sequence[str] = ALL, *, symbols: 
     forces, force_results = contact_force_section(sym)
     appendix = appendix_a_friction()[0] if names == list(METHODS) else None
     check = cross_check(sym, results, frequencies, budget=budget)
-    return Derivation(system, sym, setup, results, forces, frequencies, check, appendix,
-                      extras={"forces": force_results})
+    return Derivation(
+        system,
+        sym,
+        setup,
+        results,
+        forces,
+        frequencies,
+        check,
+        appendix,
+        extras={"forces": force_results},
+    )
 
 
 def setup_section(sym: SymbolicSystem) -> Section:
@@ -169,37 +193,58 @@ def setup_section(sym: SymbolicSystem) -> Section:
     for b in sym.bodies:
         kind = f"{b.shape} (gamma = {b.gamma})" if b.rolls else "slider"
         rows.append(f"{b.label} = {b.id}: {kind}")
-    section.add(sp.Matrix([[b.q, b.m, b.R if b.rolls else sp.Integer(0), b.gamma]
-                           for b in sym.bodies]),
-                "Bodies " + "; ".join(rows) + ". Columns: coordinate, mass, radius, inertia "
-                "factor gamma (I = gamma m R^2).", "docs/physics.md Sec. 1")
+    section.add(
+        sp.Matrix([[b.q, b.m, b.R if b.rolls else sp.Integer(0), b.gamma] for b in sym.bodies]),
+        "Bodies " + "; ".join(rows) + ". Columns: coordinate, mass, radius, inertia "
+        "factor gamma (I = gamma m R^2).",
+        "docs/physics.md Sec. 1",
+    )
     if sym.symbolic and sym.values:
-        section.add([sp.Eq(s, sp.Float(v, 6)) for s, v in sorted(sym.values.items(),
-                                                                  key=lambda p: p[0].name)],
-                    "The numbers of this system (SI units).")
+        section.add(
+            [
+                sp.Eq(s, sp.Float(v, 6))
+                for s, v in sorted(sym.values.items(), key=lambda p: p[0].name)
+            ],
+            "The numbers of this system (SI units).",
+        )
     if sym.springs:
-        section.add([matrix_equation(f"d_{s.index + 1}", sp.Matrix(s.d0).T)
-                     for s in sym.springs],
-                    "Each spring's vector from its first to its second end at the reference: "
-                    "length ell, tilt beta above the horizontal.", "(M1)")
-    section.add(matrix_equation("M", sym.mass_matrix), "Mass matrix: the inertias about the "
-                "contact lines, constant and diagonal for any geometry.", "(M4), (M12)")
+        section.add(
+            [matrix_equation(f"d_{s.index + 1}", sp.Matrix(s.d0).T) for s in sym.springs],
+            "Each spring's vector from its first to its second end at the reference: "
+            "length ell, tilt beta above the horizontal.",
+            "(M1)",
+        )
+    section.add(
+        matrix_equation("M", sym.mass_matrix),
+        "Mass matrix: the inertias about the "
+        "contact lines, constant and diagonal for any geometry.",
+        "(M4), (M12)",
+    )
     summed = named("sum_s k_s (l_s - L_s)^2/2", r"\sum_s \tfrac12 k_s (l_s - L_s)^2")
-    section.add(sp.Eq(sp.Symbol("V"), sym.potential if sp.count_ops(sym.potential) < 400
-                      else summed),
-                "Potential energy, exact (gravity is a constant while the bodies roll).", "(M5)")
+    section.add(
+        sp.Eq(sp.Symbol("V"), sym.potential if sp.count_ops(sym.potential) < 400 else summed),
+        "Potential energy, exact (gravity is a constant while the bodies roll).",
+        "(M5)",
+    )
     forces = sym.reference_forces
     if any(f != 0 for f in forces):
         if sym.symbolic:
-            section.add([sp.Eq(f, 0) for f in forces if f != 0],
-                        "Equilibrium conditions Q(0) = 0 the parameters satisfy (pre-tensioned "
-                        "springs or constant forces).", "(M7)")
+            section.add(
+                [sp.Eq(f, 0) for f in forces if f != 0],
+                "Equilibrium conditions Q(0) = 0 the parameters satisfy (pre-tensioned "
+                "springs or constant forces).",
+                "(M7)",
+            )
         else:
-            section.add(matrix_equation("Q(0)", sp.Matrix([sp.Float(sym.numeric(f), 3)
-                                                          for f in forces])),
-                        "Generalised forces at the reference: zero to rounding (the equilibrium "
-                        "angles are found numerically; the exact numbers carry it).", "(M7)")
-    section.add(matrix_equation("K", sym.stiffness_matrix),
-                "Stiffness matrix K = d2V/dq2 at the reference, spring by spring.",
-                "(M12), (M13)")
+            section.add(
+                matrix_equation("Q(0)", sp.Matrix([sp.Float(sym.numeric(f), 3) for f in forces])),
+                "Generalised forces at the reference: zero to rounding (the equilibrium "
+                "angles are found numerically; the exact numbers carry it).",
+                "(M7)",
+            )
+    section.add(
+        matrix_equation("K", sym.stiffness_matrix),
+        "Stiffness matrix K = d2V/dq2 at the reference, spring by spring.",
+        "(M12), (M13)",
+    )
     return section

@@ -41,38 +41,63 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
     newton = sp.Eq(F - f, m * a)
     torque = sp.Eq(F * y, (I + m * R**2) * acc)
     rolling = sp.Eq(a, R * acc)
-    section.add([newton, torque], "Newton's law for the centre and rotation about the contact "
-                "line; f is the static friction, counted against the pull F.", "paper (a1), (a2)")
+    section.add(
+        [newton, torque],
+        "Newton's law for the centre and rotation about the contact "
+        "line; f is the static friction, counted against the pull F.",
+        "paper (a1), (a2)",
+    )
     section.add(rolling, "Rolling without slipping.", "paper a = R phi''")
     from_newton = sp.solve(newton.subs(a, R * acc), acc)[0]
     from_torque = sp.solve(torque, acc)[0]
-    section.add([sp.Eq(acc, from_newton), sp.Eq(acc, from_torque)],
-                "The angular acceleration from each equation.", "paper App. A")
+    section.add(
+        [sp.Eq(acc, from_newton), sp.Eq(acc, from_torque)],
+        "The angular acceleration from each equation.",
+        "paper App. A",
+    )
     friction = sp.solve(sp.Eq(from_newton, from_torque), f)[0]
     friction = sp.collect(sp.expand(friction), F)
-    section.add(sp.Eq(sp.Function("f")(y), F * (1 - m * R * y / (I + m * R**2))),
-                "Eliminating the angular acceleration: the friction decreases linearly with the "
-                "height of the pull.", "paper (fric)")
+    section.add(
+        sp.Eq(sp.Function("f")(y), F * (1 - m * R * y / (I + m * R**2))),
+        "Eliminating the angular acceleration: the friction decreases linearly with the "
+        "height of the pull.",
+        "paper (fric)",
+    )
     y_star = sp.solve(sp.Eq(friction, 0), y)[0]
     y_star = sp.expand(y_star)
-    section.add(sp.Eq(sp.Symbol("y^*"), y_star), "No friction is needed for a pull at this "
-                "height, whatever F (the percussion point).", "paper y1 = 2R, y2 = 3R/2; (M10)")
+    section.add(
+        sp.Eq(sp.Symbol("y^*"), y_star),
+        "No friction is needed for a pull at this height, whatever F (the percussion point).",
+        "paper y1 = 2R, y2 = 3R/2; (M10)",
+    )
     gamma = sp.Symbol("gamma", positive=True)
-    section.add(sp.Eq(sp.Symbol("y^*"), sp.factor(y_star.subs(I, gamma * m * R**2))),
-                "With I = gamma m R^2.", "(M10)")
+    section.add(
+        sp.Eq(sp.Symbol("y^*"), sp.factor(y_star.subs(I, gamma * m * R**2))),
+        "With I = gamma m R^2.",
+        "(M10)",
+    )
     heights = zero_friction_heights()
-    section.add([sp.Eq(sp.Symbol(f"y^*_{{{shape}}}"), h) for shape, h in heights.items()],
-                "For each shape: hoop, solid cylinder, solid sphere, thin spherical shell.",
-                "paper Sec. 3: 2R (hoop), 3R/2 (cylinder)")
-    return section, {"f": friction, "y_star": y_star, "phi_ddot": from_torque,
-                     "symbols": {"m": m, "R": R, "I": I, "F": F, "y": y}}
+    section.add(
+        [sp.Eq(sp.Symbol(f"y^*_{{{shape}}}"), h) for shape, h in heights.items()],
+        "For each shape: hoop, solid cylinder, solid sphere, thin spherical shell.",
+        "paper Sec. 3: 2R (hoop), 3R/2 (cylinder)",
+    )
+    return section, {
+        "f": friction,
+        "y_star": y_star,
+        "phi_ddot": from_torque,
+        "symbols": {"m": m, "R": R, "I": I, "F": F, "y": y},
+    }
 
 
 def zero_friction_heights() -> dict[str, sp.Expr]:
     r""":math:`y^* = R + I/(mR) = (1+\gamma)R` for every built-in shape (in units of a symbol R)."""
     R = sp.Symbol("R", positive=True)
-    return {shape: (1 + gamma) * R for shape, gamma in EXACT_INERTIA_FACTORS.items()
-            if shape != "slider"}
+    return {
+        shape: (1 + gamma) * R
+        for shape, gamma in EXACT_INERTIA_FACTORS.items()
+        if shape != "slider"
+    }
 
 
 def contact_force_section(sym: SymbolicSystem) -> tuple[Section, dict[str, Any]]:
@@ -84,18 +109,31 @@ def contact_force_section(sym: SymbolicSystem) -> tuple[Section, dict[str, Any]]
     Fy = [sp.Symbol(f"F_{{{b.label}y}}") for b in sym.bodies]
     f_syms = [sp.Symbol(f"f_{b.label}") for b in sym.bodies]
     n_syms = [sp.Symbol(f"N_{b.label}") for b in sym.bodies]
-    section.add([sp.Eq(f_syms[i], sym.bodies[i].m * sym.bodies[i].s * sym.bodies[i].qdd - Fx[i])
-                 for i in rolling] +
-                [sp.Eq(n_syms[i], sym.bodies[i].m * sym.g - Fy[i]) for i in range(n)],
-                "Newton's second law for each centre (it moves horizontally, x'' = R phi''): "
-                "friction f along +x, normal force N; F_i is the applied force on body i.",
-                "(M8), (M9)")
+    section.add(
+        [
+            sp.Eq(f_syms[i], sym.bodies[i].m * sym.bodies[i].s * sym.bodies[i].qdd - Fx[i])
+            for i in rolling
+        ]
+        + [sp.Eq(n_syms[i], sym.bodies[i].m * sym.g - Fy[i]) for i in range(n)],
+        "Newton's second law for each centre (it moves horizontally, x'' = R phi''): "
+        "friction f along +x, normal force N; F_i is the applied force on body i.",
+        "(M8), (M9)",
+    )
     if rolling:
-        section.add([sp.Eq(f_syms[i], sp.Symbol(f"Q_{sym.bodies[i].label}")
-                           / ((1 + sym.bodies[i].gamma) * sym.bodies[i].R) - Fx[i])
-                     for i in rolling],
-                    "With the equation of motion J phi'' = Q: the friction depends on the "
-                    "configuration only, not on the velocities.", "(M8)")
+        section.add(
+            [
+                sp.Eq(
+                    f_syms[i],
+                    sp.Symbol(f"Q_{sym.bodies[i].label}")
+                    / ((1 + sym.bodies[i].gamma) * sym.bodies[i].R)
+                    - Fx[i],
+                )
+                for i in rolling
+            ],
+            "With the equation of motion J phi'' = Q: the friction depends on the "
+            "configuration only, not on the velocities.",
+            "(M8)",
+        )
     results: dict[str, Any] = {}
     small = n <= 4
     if small:
@@ -111,35 +149,55 @@ def contact_force_section(sym: SymbolicSystem) -> tuple[Section, dict[str, Any]]
         linear_n = [_compact(e) for e in linear_n]
     results["friction_linear"] = linear_f
     results["normal_linear"] = linear_n
-    section.add([sp.Eq(f_syms[i], linear_f[i]) for i in rolling] +
-                [sp.Eq(n_syms[i], linear_n[i]) for i in range(n)],
-                "To first order in the angles about the reference.", "(M8), (M9)")
+    section.add(
+        [sp.Eq(f_syms[i], linear_f[i]) for i in rolling]
+        + [sp.Eq(n_syms[i], linear_n[i]) for i in range(n)],
+        "To first order in the angles about the reference.",
+        "(M8), (M9)",
+    )
     lam = _percussion_ratios(sym)
     if lam is not None:
         lsyms = [sp.Symbol(f"lambda_{b.label}") for b in sym.bodies]
         heights = [sp.Symbol(f"eta_{b.label}") for b in sym.bodies]
-        section.add([sp.Eq(lsyms[i], heights[i] / ((1 + sym.bodies[i].gamma) * sym.bodies[i].R))
-                     for i in range(2)] + [sp.Eq(lsyms[i], lam[i]) for i in range(2)],
-                    "Where the spring line crosses each centre vertical (height eta above the "
-                    "contact), relative to the percussion height (1 + gamma) R.", "(M10), (M16)")
+        section.add(
+            [
+                sp.Eq(lsyms[i], heights[i] / ((1 + sym.bodies[i].gamma) * sym.bodies[i].R))
+                for i in range(2)
+            ]
+            + [sp.Eq(lsyms[i], lam[i]) for i in range(2)],
+            "Where the spring line crosses each centre vertical (height eta above the "
+            "contact), relative to the percussion height (1 + gamma) R.",
+            "(M10), (M16)",
+        )
         fx_sym = sp.Symbol("F_x")
-        section.add([sp.Eq(f_syms[0], -(1 - lam[0]) * fx_sym),
-                     sp.Eq(f_syms[1], (1 - lam[1]) * fx_sym)],
-                    "With F_x the spring's horizontal pull on body 1 (body 2 gets -F_x): f_i = "
-                    "-(1 - lambda_i) F_ix.", "(M17); paper App. A: F/2 and F/3")
+        section.add(
+            [sp.Eq(f_syms[0], -(1 - lam[0]) * fx_sym), sp.Eq(f_syms[1], (1 - lam[1]) * fx_sym)],
+            "With F_x the spring's horizontal pull on body 1 (body 2 gets -F_x): f_i = "
+            "-(1 - lambda_i) F_ix.",
+            "(M17); paper App. A: F/2 and F/3",
+        )
         if lam[1] != 1:
             ratio = sp.factor(-(1 - lam[0]) / (1 - lam[1]))
-            section.add(sp.Eq(f_syms[0] / f_syms[1], ratio),
-                        "Ratio of the frictions, signed: the paper's f1/f2 = 3/2 is a ratio "
-                        "of magnitudes (they point opposite ways).", "paper f1/f2 = 3/2; (M17)")
+            section.add(
+                sp.Eq(f_syms[0] / f_syms[1], ratio),
+                "Ratio of the frictions, signed: the paper's f1/f2 = 3/2 is a ratio "
+                "of magnitudes (they point opposite ways).",
+                "paper f1/f2 = 3/2; (M17)",
+            )
             results["friction_ratio"] = ratio
         results["lambda"] = lam
     shapes = {b.shape for b in sym.bodies if b.rolls}
     if shapes:
-        section.add([sp.Eq(sp.Symbol(f"y^*_{b.label}"), sp.factor((1 + b.gamma) * b.R))
-                     for b in sym.bodies if b.rolls],
-                    "Height above each body's track where a pull needs no friction, y* = R + "
-                    "I/(mR) = (1 + gamma) R.", "paper (fric) = 0; (M10)")
+        section.add(
+            [
+                sp.Eq(sp.Symbol(f"y^*_{b.label}"), sp.factor((1 + b.gamma) * b.R))
+                for b in sym.bodies
+                if b.rolls
+            ],
+            "Height above each body's track where a pull needs no friction, y* = R + "
+            "I/(mR) = (1 + gamma) R.",
+            "paper (fric) = 0; (M10)",
+        )
     return section, results
 
 

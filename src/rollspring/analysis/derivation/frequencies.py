@@ -28,6 +28,7 @@ OMEGA2 = sp.Symbol("Omega^2")
 #: Largest number of bodies whose characteristic polynomial is expanded.
 MAX_POLYNOMIAL = 12
 
+
 class BudgetExceeded(Exception):
     """A symbolic computation ran out of its time budget."""
 
@@ -36,8 +37,12 @@ class BudgetExceeded(Exception):
 def time_budget(seconds: float | None) -> Iterator[None]:
     """Raise :class:`BudgetExceeded` inside the block after ``seconds`` (main thread on POSIX;
     elsewhere the block runs without a limit)."""
-    usable = (seconds is not None and seconds > 0 and hasattr(signal, "setitimer")
-              and threading.current_thread() is threading.main_thread())
+    usable = (
+        seconds is not None
+        and seconds > 0
+        and hasattr(signal, "setitimer")
+        and threading.current_thread() is threading.main_thread()
+    )
     if not usable:
         yield
         return
@@ -90,14 +95,17 @@ def characteristic_polynomial(A: sp.Matrix, variable: sp.Symbol = OMEGA2) -> sp.
     if _is_tridiagonal(A):
         previous, current = sp.Integer(1), variable - A[0, 0]
         for k in range(1, n):
-            previous, current = current, sp.expand(
-                (variable - A[k, k]) * current - A[k, k - 1] * A[k - 1, k] * previous)
+            previous, current = (
+                current,
+                sp.expand((variable - A[k, k]) * current - A[k, k - 1] * A[k - 1, k] * previous),
+            )
         return sp.expand(current)
     return A.charpoly(variable).as_expr()
 
 
-def normal_frequencies(sym: SymbolicSystem, *, budget: float | None = 10.0,
-                       matrix: sp.Matrix | None = None) -> Frequencies:
+def normal_frequencies(
+    sym: SymbolicSystem, *, budget: float | None = 10.0, matrix: sp.Matrix | None = None
+) -> Frequencies:
     """Closed forms of the squared normal frequencies where SymPy finds them (see module).
 
     ``matrix``: the dynamic matrix to use instead of :math:`M^{-1}K` (any matrix similar to
@@ -134,8 +142,10 @@ def normal_frequencies(sym: SymbolicSystem, *, budget: float | None = 10.0,
         roots.sort(key=lambda r: _value(sym, r))
         return Frequencies(poly, roots, numeric, n_zero)
     if any(entry.has(sp.sin, sp.cos, sp.atan2) for entry in A):
-        notes.append("the stiffness holds transcendental constants (sines and cosines of the "
-                     "equilibrium angles): the frequencies are given numerically")
+        notes.append(
+            "the stiffness holds transcendental constants (sines and cosines of the "
+            "equilibrium angles): the frequencies are given numerically"
+        )
         try:
             with time_budget(left()):
                 poly = characteristic_polynomial(A) if n <= 4 else None
@@ -143,8 +153,10 @@ def normal_frequencies(sym: SymbolicSystem, *, budget: float | None = 10.0,
             poly = None
         return Frequencies(poly, [None] * len(numeric), numeric, n_zero, notes)
     if n > MAX_POLYNOMIAL and sym.symbolic:
-        notes.append(f"{n} bodies: the characteristic polynomial (degree {n}) is left "
-                     "unexpanded; the frequencies are given numerically")
+        notes.append(
+            f"{n} bodies: the characteristic polynomial (degree {n}) is left "
+            "unexpanded; the frequencies are given numerically"
+        )
         return Frequencies(None, [None] * len(numeric), numeric, n_zero, notes)
     try:
         with time_budget(left()):
@@ -169,19 +181,29 @@ def normal_frequencies(sym: SymbolicSystem, *, budget: float | None = 10.0,
                     found = [_tidy(r) for r in sp.roots(fpoly, OMEGA2, multiple=True)]
                 else:
                     found = [None] * fpoly.degree()
-                    notes.append(f"a factor of degree {fpoly.degree()} of the characteristic "
-                                 "polynomial: no closed form offered (its roots are given "
-                                 "numerically)")
+                    notes.append(
+                        f"a factor of degree {fpoly.degree()} of the characteristic "
+                        "polynomial: no closed form offered (its roots are given "
+                        "numerically)"
+                    )
                 roots.extend(found * multiplicity)
     except BudgetExceeded:
-        notes.append(f"factoring the characteristic polynomial took longer than the {budget:g} s "
-                     "budget; the frequencies are given numerically")
+        notes.append(
+            f"factoring the characteristic polynomial took longer than the {budget:g} s "
+            "budget; the frequencies are given numerically"
+        )
         roots = [None] * len(numeric)
     known = sorted((r for r in roots if r is not None), key=lambda r: _value(sym, r))
     ordered: list[sp.Expr | None] = []
     for value in numeric:  # match closed forms to the numbers
-        match = next((r for r in known if math.isclose(_value(sym, r), value, rel_tol=1e-8,
-                                                       abs_tol=1e-12 * max(numeric))), None)
+        match = next(
+            (
+                r
+                for r in known
+                if math.isclose(_value(sym, r), value, rel_tol=1e-8, abs_tol=1e-12 * max(numeric))
+            ),
+            None,
+        )
         if match is not None:
             known.remove(match)
         ordered.append(match)

@@ -110,9 +110,18 @@ def latex_document(title: str, subtitle: str, sections: Sequence[Section]) -> st
 
 
 _LATEX_SPECIAL = {
-    "\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
-    "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}",
-    "<": r"\textless{}", ">": r"\textgreater{}",
+    "\\": r"\textbackslash{}",
+    "&": r"\&",
+    "%": r"\%",
+    "$": r"\$",
+    "#": r"\#",
+    "_": r"\_",
+    "{": r"\{",
+    "}": r"\}",
+    "~": r"\textasciitilde{}",
+    "^": r"\textasciicircum{}",
+    "<": r"\textless{}",
+    ">": r"\textgreater{}",
 }
 
 
@@ -122,9 +131,17 @@ def latex_text(words: str) -> str:
 
 
 def _ascii(value: str) -> str:
-    replaced = (value.replace("\u2014", "---").replace("\u2013", "--").replace("\u2019", "'")
-                .replace("\u2018", "'").replace("\u201c", '"').replace("\u201d", '"')
-                .replace("\u2212", "-").replace("\u00d7", "x").replace("\u00b7", "."))
+    replaced = (
+        value.replace("\u2014", "---")
+        .replace("\u2013", "--")
+        .replace("\u2019", "'")
+        .replace("\u2018", "'")
+        .replace("\u201c", '"')
+        .replace("\u201d", '"')
+        .replace("\u2212", "-")
+        .replace("\u00d7", "x")
+        .replace("\u00b7", ".")
+    )
     decomposed = unicodedata.normalize("NFKD", replaced)
     kept = "".join(c for c in decomposed if not unicodedata.combining(c))
     return kept.encode("ascii", "replace").decode("ascii")

@@ -13,8 +13,16 @@ from typing import Any
 
 import sympy as sp
 
-__all__ = ["MAX_SHOWN", "Named", "Section", "Step", "latex_of", "make_step", "matrix_equation",
-           "named"]
+__all__ = [
+    "MAX_SHOWN",
+    "Named",
+    "Section",
+    "Step",
+    "latex_of",
+    "make_step",
+    "matrix_equation",
+    "named",
+]
 
 #: Matrices larger than this are shown by their non-zero entries, lists by their first entries.
 MAX_SHOWN = 8
@@ -82,11 +90,12 @@ def latex_of(obj: Any) -> str:
         return _matrix_latex(obj)
     if isinstance(obj, Sequence) and not isinstance(obj, str):
         items = list(obj)
-        shown = items if len(items) <= _MAX_LIST else items[:_MAX_LIST - 2] + [items[-1]]
+        shown = items if len(items) <= _MAX_LIST else items[: _MAX_LIST - 2] + [items[-1]]
         lines = [_aligned(latex_of(item)) for item in shown]
         if len(items) > _MAX_LIST:
-            lines.insert(_MAX_LIST - 2, r"&\;\;\vdots \quad\text{(%d equations in all)}"
-                         % len(items))
+            lines.insert(
+                _MAX_LIST - 2, r"&\;\;\vdots \quad\text{(%d equations in all)}" % len(items)
+            )
         return r"\begin{aligned}" + r" \\ ".join(lines) + r"\end{aligned}"
     if isinstance(obj, str):
         return obj
@@ -104,7 +113,7 @@ def _aligned(line: str) -> str:
         elif char in "})":
             depth -= 1
         elif char == "=" and depth == 0:
-            return line[:i] + "&=" + line[i + 1:]
+            return line[:i] + "&=" + line[i + 1 :]
     return "&" + line
 
 
@@ -112,10 +121,17 @@ def _matrix_latex(matrix: sp.MatrixBase) -> str:
     rows, cols = matrix.shape
     if rows <= MAX_SHOWN and cols <= MAX_SHOWN:
         return sp.latex(matrix, mat_delim="", mat_str="pmatrix")
-    entries = [(i, j, matrix[i, j]) for i in range(rows) for j in range(cols)
-               if matrix[i, j] != 0 and j >= i]
+    entries = [
+        (i, j, matrix[i, j])
+        for i in range(rows)
+        for j in range(cols)
+        if matrix[i, j] != 0 and j >= i
+    ]
     shown = entries[:6]
     body = r",\; ".join(f"({i + 1},{j + 1}):\\ {sp.latex(v)}" for i, j, v in shown)
-    more = (rf",\;\dots\ \text{{({len(entries)} non-zero entries on and above the diagonal)}}"
-            if len(entries) > len(shown) else "")
+    more = (
+        rf",\;\dots\ \text{{({len(entries)} non-zero entries on and above the diagonal)}}"
+        if len(entries) > len(shown)
+        else ""
+    )
     return rf"\text{{a }}{rows}\times{cols}\text{{ matrix; entries }}{body}{more}"

@@ -202,8 +202,10 @@ class Attachment:
         if self.r == 0:
             return body.s * q, sp.Integer(0)
         theta = self.theta0 + body.rho * q
-        return (body.s * q + self.r * (sp.sin(theta) - sp.sin(self.theta0)),
-                self.r * (sp.cos(theta) - sp.cos(self.theta0)))
+        return (
+            body.s * q + self.r * (sp.sin(theta) - sp.sin(self.theta0)),
+            self.r * (sp.cos(theta) - sp.cos(self.theta0)),
+        )
 
     def relative_to_contact(self, body: SymbolicBody) -> tuple[sp.Expr, sp.Expr]:
         """:math:`P - K_i` (position relative to the contact point) as a function of q."""
@@ -594,16 +596,19 @@ class SymbolicSystem:
     def friction(self) -> list[sp.Expr]:
         r"""Required static friction :math:`f_i = m_i R_i\ddot\varphi_i - F_{ix}` (M8), in q and
         qdd, positive along +x (0 for a slider, on a frictionless floor)."""
-        return [b.m * b.s * b.qdd - F[0] if b.rolls else sp.Integer(0)
-                for b, F in zip(self.bodies, self.body_forces, strict=True)]
+        return [
+            b.m * b.s * b.qdd - F[0] if b.rolls else sp.Integer(0)
+            for b, F in zip(self.bodies, self.body_forces, strict=True)
+        ]
 
     @cached_property
     def friction_configuration(self) -> list[sp.Expr]:
         r""":math:`f_i = Q_i/((1+\gamma_i)R_i) - F_{ix}` (M8 with M7 substituted): a function
         of the configuration only."""
-        return [b.m * b.s * Q / b.J - F[0] if b.rolls else sp.Integer(0)
-                for b, Q, F in zip(self.bodies, self.generalized_forces, self.body_forces,
-                                   strict=True)]
+        return [
+            b.m * b.s * Q / b.J - F[0] if b.rolls else sp.Integer(0)
+            for b, Q, F in zip(self.bodies, self.generalized_forces, self.body_forces, strict=True)
+        ]
 
     @cached_property
     def normal(self) -> list[sp.Expr]:
@@ -667,8 +672,11 @@ class SymbolicSystem:
         friction, normal = [], []
         for i, b in enumerate(self.bodies):
             Fx0, Fy0 = self.reference_body_forces[i]
-            normal.append(sp.Add(b.m * self.g - Fy0,
-                                 *[-jac[i][j][1] * self.bodies[j].q for j in range(self.n)]))
+            normal.append(
+                sp.Add(
+                    b.m * self.g - Fy0, *[-jac[i][j][1] * self.bodies[j].q for j in range(self.n)]
+                )
+            )
             if not b.rolls:
                 friction.append(sp.Integer(0))
                 continue
@@ -707,16 +715,18 @@ class SymbolicSystem:
             from rollspring.analysis.linear import normal_modes
 
             mass = np.array(sp.matrix2numpy(self.mass_matrix.xreplace(self.values)), dtype=float)
-            stiff = np.array(sp.matrix2numpy(self.stiffness_matrix.xreplace(self.values)),
-                             dtype=float)
+            stiff = np.array(
+                sp.matrix2numpy(self.stiffness_matrix.xreplace(self.values)), dtype=float
+            )
             _, _, kinds = normal_modes(mass, stiff)
             self._cache["n_zero"] = int(np.sum(kinds == "zero"))
             self._cache["n_unstable"] = int(np.sum(kinds == "unstable"))
         return self._cache["n_zero"]
 
 
-def _derivatives_at_reference(at: Attachment, body: SymbolicBody
-                              ) -> tuple[tuple[sp.Expr, sp.Expr], tuple[sp.Expr, sp.Expr]]:
+def _derivatives_at_reference(
+    at: Attachment, body: SymbolicBody
+) -> tuple[tuple[sp.Expr, sp.Expr], tuple[sp.Expr, sp.Expr]]:
     """dP/dq and d2P/dq2 of a body point at q = 0, (M2), (M3)."""
     if at.r == 0 or not body.rolls:
         return (body.s, sp.Integer(0)), (sp.Integer(0), sp.Integer(0))
@@ -859,8 +869,9 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
         moved = float(q_ref[body_index]) * (1.0 if model.rolls else 0.0)
         label = body.label if single is False else ""
         if r_value == 0.0:
-            return Attachment(body_index, sp.Integer(0), sp.Integer(0), body.R if model.rolls
-                              else None)
+            return Attachment(
+                body_index, sp.Integer(0), sp.Integer(0), body.R if model.rolls else None
+            )
         if at.height is not None and moved == 0.0:
             many = uses.get(body_index, 0) > 1
             ratio = _nice_ratio(at.height / model.radius)
@@ -932,9 +943,22 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
             exact_length = vx if dx > 0 else -vx
         else:
             exact_length = sp.sqrt(vx**2 + vy**2)
-        springs.append(SymbolicSpring(
-            s, arrays.spring_names[s], (spring.ends[0], spring.ends[1]),
-            (ats[0], ats[1]), k, L, ell, beta, d0, (vx, vy), exact_length, stays))
+        springs.append(
+            SymbolicSpring(
+                s,
+                arrays.spring_names[s],
+                (spring.ends[0], spring.ends[1]),
+                (ats[0], ats[1]),
+                k,
+                L,
+                ell,
+                beta,
+                d0,
+                (vx, vy),
+                exact_length,
+                stays,
+            )
+        )
 
     forces = []
     n_forces = len(system.forces)
@@ -951,18 +975,26 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
     g = name("g", system.gravity, positive=True)
     notes = []
     if not equilibrium.found:
-        notes.append("no equilibrium near the initial placement: coordinates are measured from "
-                     "the initial placement and the expansions are about it")
+        notes.append(
+            "no equilibrium near the initial placement: coordinates are measured from "
+            "the initial placement and the expansions are about it"
+        )
     if any(s.damping > 0 for s in system.springs):
         notes.append("spring damping is left out of the derivations (conservative forces only)")
-    return SymbolicSystem(system=system, symbolic=symbols, bodies=bodies_t,
-                          springs=tuple(springs), forces=tuple(forces), g=g,
-                          values=dict(name.values), reference=reference, q_reference=q_ref,
-                          notes=notes)
+    return SymbolicSystem(
+        system=system,
+        symbolic=symbols,
+        bodies=bodies_t,
+        springs=tuple(springs),
+        forces=tuple(forces),
+        g=g,
+        values=dict(name.values),
+        reference=reference,
+        q_reference=q_ref,
+        notes=notes,
+    )
 
 
 def matrix_to_float(matrix: sp.Matrix, values: dict) -> np.ndarray:
     """A SymPy matrix of parameters as a float array, for the values given."""
     return np.array(sp.matrix2numpy(matrix.xreplace(values).evalf(17)), dtype=float)
-
-

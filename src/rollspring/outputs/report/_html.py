@@ -80,8 +80,14 @@ def _cell(value: object) -> Markup:
     return Markup(f"<td>{esc(value)}</td>")
 
 
-def table(headers: Sequence[object], rows: Iterable[Sequence[object]], *,
-          caption: object = "", table_id: str = "", css_class: str = "") -> Markup:
+def table(
+    headers: Sequence[object],
+    rows: Iterable[Sequence[object]],
+    *,
+    caption: object = "",
+    table_id: str = "",
+    css_class: str = "",
+) -> Markup:
     """A ``<table>``: headers (text or Markup), rows of cells (text, Markup or :class:`Num`)."""
     attributes = ""
     if table_id:
@@ -91,8 +97,9 @@ def table(headers: Sequence[object], rows: Iterable[Sequence[object]], *,
     parts = [f"<table{attributes}>"]
     if caption:
         parts.append(f"<caption>{esc(caption)}</caption>")
-    parts.append("<thead><tr>" + "".join(f"<th>{esc(h)}</th>" for h in headers)
-                 + "</tr></thead><tbody>")
+    parts.append(
+        "<thead><tr>" + "".join(f"<th>{esc(h)}</th>" for h in headers) + "</tr></thead><tbody>"
+    )
     for row in rows:
         parts.append("<tr>" + "".join(_cell(c) for c in row) + "</tr>")
     parts.append("</tbody></table>")
@@ -117,23 +124,30 @@ def latex_to_mathml(latex: str, *, display: bool = True) -> Markup:
     latex2mathml does not know (it would otherwise show the command's name as text).
     """
     try:
-        mathml = latex2mathml.converter.convert(_ALIGNED.sub(r"\\\1{split}", latex),
-                                                display="block" if display else "inline")
+        mathml = latex2mathml.converter.convert(
+            _ALIGNED.sub(r"\\\1{split}", latex), display="block" if display else "inline"
+        )
     except Exception as exc:  # latex2mathml raises its own exception types, and IndexError
         raise MathConversionError(
-            f"cannot convert LaTeX to MathML ({type(exc).__name__}): {latex[:80]}") from None
+            f"cannot convert LaTeX to MathML ({type(exc).__name__}): {latex[:80]}"
+        ) from None
     unknown = _UNCONVERTED.search(mathml)
     if unknown:
         token = unknown.group(0)
-        what = ("a line break outside an aligned environment" if "mspace" in token else
-                "an alignment mark & outside an aligned environment" if "&<" in token else
-                token.split(">", 1)[1])
+        what = (
+            "a line break outside an aligned environment"
+            if "mspace" in token
+            else "an alignment mark & outside an aligned environment"
+            if "&<" in token
+            else token.split(">", 1)[1]
+        )
         raise MathConversionError(f"latex2mathml does not know {what} in: {latex[:80]}")
     return Markup(mathml)
 
 
-def math_or_source(latex: str, *, display: bool = True,
-                   failures: list[str] | None = None) -> Markup:
+def math_or_source(
+    latex: str, *, display: bool = True, failures: list[str] | None = None
+) -> Markup:
     """MathML of ``latex``; if it cannot be converted, the LaTeX source itself, visibly marked as
     such (and the reason appended to ``failures``) — never a silent blank."""
     try:
@@ -142,5 +156,6 @@ def math_or_source(latex: str, *, display: bool = True,
         if failures is not None:
             failures.append(str(exc))
         tag = "pre" if display else "code"
-        return Markup(f'<{tag} class="tex-source" title="LaTeX not converted to MathML">'
-                      f"{esc(latex)}</{tag}>")
+        return Markup(
+            f'<{tag} class="tex-source" title="LaTeX not converted to MathML">{esc(latex)}</{tag}>'
+        )

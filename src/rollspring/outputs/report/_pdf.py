@@ -34,19 +34,27 @@ def find_chromium(chromium: str | os.PathLike[str] | None = None) -> str:
     if chromium is not None:
         found = shutil.which(str(chromium))
         if found is None:
-            raise ReportError(f"--format pdf needs Chromium, not found at {source}: {_INSTALL} "
-                              f"or set {CHROMIUM_ENV} to its path")
+            raise ReportError(
+                f"--format pdf needs Chromium, not found at {source}: {_INSTALL} "
+                f"or set {CHROMIUM_ENV} to its path"
+            )
         return found
     for name in _NAMES:
         found = shutil.which(name)
         if found is not None:
             return found
-    raise ReportError(f"--format pdf needs Chromium, none on PATH: {_INSTALL} or set "
-                      f"{CHROMIUM_ENV} to its path")
+    raise ReportError(
+        f"--format pdf needs Chromium, none on PATH: {_INSTALL} or set {CHROMIUM_ENV} to its path"
+    )
 
 
-def html_to_pdf(html: str, path: str | os.PathLike[str], *,
-                chromium: str | os.PathLike[str] | None = None, timeout: float = 120.0) -> Path:
+def html_to_pdf(
+    html: str,
+    path: str | os.PathLike[str],
+    *,
+    chromium: str | os.PathLike[str] | None = None,
+    timeout: float = 120.0,
+) -> Path:
     """Print ``html`` to a PDF file at ``path`` (written atomically) with headless Chromium.
 
     The page is loaded from a private temporary folder with a throw-away browser profile;
@@ -60,26 +68,49 @@ def html_to_pdf(html: str, path: str | os.PathLike[str], *,
         page.write_text(html, encoding="utf-8")
         printed = Path(folder) / "report.pdf"
         command = [
-            executable, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-            "--disable-background-networking", "--disable-component-update", "--disable-sync",
-            "--disable-extensions", "--no-default-browser-check", "--hide-scrollbars",
-            f"--user-data-dir={Path(folder) / 'profile'}", "--no-pdf-header-footer",
-            "--run-all-compositor-stages-before-draw", "--virtual-time-budget=2000",
-            f"--print-to-pdf={printed}", page.as_uri(),
+            executable,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--disable-extensions",
+            "--no-default-browser-check",
+            "--hide-scrollbars",
+            f"--user-data-dir={Path(folder) / 'profile'}",
+            "--no-pdf-header-footer",
+            "--run-all-compositor-stages-before-draw",
+            "--virtual-time-budget=2000",
+            f"--print-to-pdf={printed}",
+            page.as_uri(),
         ]
         try:
-            result = subprocess.run(command, capture_output=True, text=True, timeout=timeout,
-                                    check=False, stdin=subprocess.DEVNULL)
+            result = subprocess.run(
+                command,
+                capture_output=True,
+                text=True,
+                timeout=timeout,
+                check=False,
+                stdin=subprocess.DEVNULL,
+            )
         except subprocess.TimeoutExpired:
-            raise ReportError(f"--format pdf: Chromium ({executable}) did not finish printing "
-                              f"within {timeout:g} s") from None
+            raise ReportError(
+                f"--format pdf: Chromium ({executable}) did not finish printing "
+                f"within {timeout:g} s"
+            ) from None
         except OSError as exc:
-            raise ReportError(f"--format pdf: cannot run Chromium ({executable}): "
-                              f"{exc.strerror or exc}") from None
+            raise ReportError(
+                f"--format pdf: cannot run Chromium ({executable}): {exc.strerror or exc}"
+            ) from None
         data = printed.read_bytes() if printed.exists() else b""
         if not data.startswith(b"%PDF"):
-            lines = [line for line in (result.stderr or "").splitlines()
-                     if line.strip() and "dbus" not in line]
+            lines = [
+                line
+                for line in (result.stderr or "").splitlines()
+                if line.strip() and "dbus" not in line
+            ]
             reason = lines[-1].strip() if lines else f"exit code {result.returncode}"
             raise ReportError(f"--format pdf: Chromium ({executable}) printed no PDF: {reason}")
     try:

@@ -136,7 +136,8 @@ class BatchResult:
             out["message"] = self.messages
         out["first_slip_time"] = self.first_slip_time
         out["first_slip_body"] = np.array(
-            [self.ids[b] if b >= 0 else "" for b in self.first_slip_body], dtype=object)
+            [self.ids[b] if b >= 0 else "" for b in self.first_slip_body], dtype=object
+        )
         out["period_measured"] = self.period_measured
         out["cm_amplitude"] = self.cm_amplitude
         out["stationary_amplitude"] = self.stationary_amplitude
@@ -150,6 +151,7 @@ class BatchResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form: the integration settings and every column as a list."""
+
         def plain(values: np.ndarray) -> list[Any]:
             """Numbers as floats/ints (None where not finite), names as strings."""
             if values.dtype.kind in "iu":
@@ -174,9 +176,16 @@ class BatchResult:
         """A plain-text table of the first ``max_rows`` runs (parameters, status, period,
         amplitudes, friction ratios, energy error)."""
         cols = self.columns()
-        keep = [*self.parameters, "status", "first_slip_time", "period_measured",
-                "cm_amplitude", "stationary_amplitude",
-                *(f"{i}.max_friction_ratio" for i in self.ids), "energy_error"]
+        keep = [
+            *self.parameters,
+            "status",
+            "first_slip_time",
+            "period_measured",
+            "cm_amplitude",
+            "stationary_amplitude",
+            *(f"{i}.max_friction_ratio" for i in self.ids),
+            "energy_error",
+        ]
         rows = min(self.n_runs, max_rows)
 
         def cell(v: Any) -> str:
@@ -190,10 +199,9 @@ class BatchResult:
         return "\n".join(lines)
 
 
-
-
-def kernel_fields(plan: Plan, given: set[str] | None, included: np.ndarray, n_pad: int
-                  ) -> tuple[list[str], list[str], FloatArray, FloatArray]:
+def kernel_fields(
+    plan: Plan, given: set[str] | None, included: np.ndarray, n_pad: int
+) -> tuple[list[str], list[str], FloatArray, FloatArray]:
     """The fields the kernel reads per lane (``varying``: those the parameter keys change, see
     :func:`~rollspring.simulate.batch.plan.probe`) and once per block (``constant``), with
     their values: ``P`` (n_varying, n_pad) for the runs ``included`` (padded with the last)
@@ -202,16 +210,16 @@ def kernel_fields(plan: Plan, given: set[str] | None, included: np.ndarray, n_pa
     varying, constant = [], []
     for key in sorted(plan.fields):
         values = plan.fields[key][included]
-        per_run = given is None or key in given or bool(values.size
-                                                        and np.any(values != values[0]))
+        per_run = given is None or key in given or bool(values.size and np.any(values != values[0]))
         (varying if per_run else constant).append(key)
     P = np.empty((len(varying), n_pad))
     for r, key in enumerate(varying):
         if n_live:
             P[r, :n_live] = plan.fields[key][included]
             P[r, n_live:] = plan.fields[key][included[-1]]
-    C = np.array([plan.fields[key][included[0]] if n_live else 0.0 for key in constant],
-                 dtype=np.float64)
+    C = np.array(
+        [plan.fields[key][included[0]] if n_live else 0.0 for key in constant], dtype=np.float64
+    )
     return varying, constant, P, C
 
 
@@ -294,8 +302,10 @@ def simulate_batch(
         raise ModelError(f"system: must be a rollspring System, got {type(system).__name__}")
     damped = [k for k, s in enumerate(system.springs) if s.damping > 0]
     if damped:
-        raise ModelError(f"springs[{damped[0]}].damping: batch runs need undamped springs "
-                         "(symplectic integrators); use rollspring.simulate")
+        raise ModelError(
+            f"springs[{damped[0]}].damping: batch runs need undamped springs "
+            "(symplectic integrators); use rollspring.simulate"
+        )
     with np.errstate(all="ignore"):  # extreme values are found below, run by run
         runs = parse_parameters(system, parameters)
         topology, given = probe(system, runs.targets)
@@ -312,8 +322,10 @@ def simulate_batch(
         return f"run {run}" + (f" ({values})" if values else "")
 
     for run in np.flatnonzero(invalid):
-        messages[run] = (f"{describe(run)}: {reasons[run]}; its values overflow double "
-                         "precision (not integrated)")
+        messages[run] = (
+            f"{describe(run)}: {reasons[run]}; its values overflow double "
+            "precision (not integrated)"
+        )
     if step is None:
         need = steps_needed(np.where(invalid, 0.0, omegas), duration, rtol, integrator)
         unresolved = ~invalid & (need > MAX_STEPS)
@@ -324,7 +336,8 @@ def simulate_batch(
                     f"{describe(run)}: its linear frequency {float(omegas[run]):.4g} rad/s "
                     f"would need {float(need[run]):.3g} steps over {duration:g} s at rtol "
                     f"{rtol:g} (at most {MAX_STEPS:.0e}; frequencies up to {limit:.4g} rad/s "
-                    "are resolved); not integrated, or pass step= to force it")
+                    "are resolved); not integrated, or pass step= to force it"
+                )
             status[unresolved] = Status.UNRESOLVED
     included = np.flatnonzero(status == 0)
     omega = float(np.max(omegas[included])) if included.size else 0.0
@@ -358,8 +371,20 @@ def simulate_batch(
     traj_live = np.full((n_pad, n_output, n) if keep_trajectories else (1, 1, 1), np.nan)
     if n_live:
         kernel = cache.load_kernel(source)
-        args = (n_blocks, P, C, drift, kick, h, n_steps, every, stride, traj_live, out_live,
-                outi_live)
+        args = (
+            n_blocks,
+            P,
+            C,
+            drift,
+            kick,
+            h,
+            n_steps,
+            every,
+            stride,
+            traj_live,
+            out_live,
+            outi_live,
+        )
         if not kernel.signatures:
             import numba
 
@@ -380,11 +405,12 @@ def simulate_batch(
         count = out[:, 9]
         period = np.where(count >= 2, (out[:, 8] - out[:, 7]) / np.maximum(count - 1, 1), np.nan)
         e0, de = np.abs(out[:, 1]), out[:, 2]
-        energy_error = np.where(e0 > 0, de / np.where(e0 > 0, e0, 1.0),
-                                np.where(de == 0, 0.0, np.inf))
+        energy_error = np.where(
+            e0 > 0, de / np.where(e0 > 0, e0, 1.0), np.where(de == 0, 0.0, np.inf)
+        )
         energy_error = np.where(np.isnan(de), np.nan, energy_error)
         fb = out[:, OUT_BODY::5][:, :n]
-        nb = out[:, OUT_BODY + 1::5][:, :n]
+        nb = out[:, OUT_BODY + 1 :: 5][:, :n]
         ratio = np.where(fb == 0, 0.0, np.where(nb > 0, fb / np.where(nb > 0, nb, 1.0), np.inf))
         ratio = np.where(np.isnan(fb) | np.isnan(nb), np.nan, ratio)
         ratio[np.ix_(included, ~np.array(plan.rolls))] = 0.0
@@ -410,14 +436,18 @@ def simulate_batch(
         cm_amplitude=cm_amplitude,
         stationary_amplitude=stationary_amplitude,
         max_friction_ratio=ratio,
-        min_normal_force=out[:, OUT_BODY + 2::5][:, :n].copy(),
+        min_normal_force=out[:, OUT_BODY + 2 :: 5][:, :n].copy(),
         energy_error=energy_error,
-        final_x=out[:, OUT_BODY + 3::5][:, :n].copy(),
-        final_v=out[:, OUT_BODY + 4::5][:, :n].copy(),
+        final_x=out[:, OUT_BODY + 3 :: 5][:, :n].copy(),
+        final_v=out[:, OUT_BODY + 4 :: 5][:, :n].copy(),
         t=t_out,
         x=traj if keep_trajectories else None,
-        timings={"prepare": prepared - clock, "compile": compiled - prepared,
-                 "integrate": finished - compiled, "total": time.perf_counter() - clock},
+        timings={
+            "prepare": prepared - clock,
+            "compile": compiled - prepared,
+            "integrate": finished - compiled,
+            "total": time.perf_counter() - clock,
+        },
         omega=omegas,
         messages=messages,
     )

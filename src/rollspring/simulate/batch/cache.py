@@ -132,8 +132,10 @@ def load_module(source: str) -> Any:
             except OSError:
                 continue
         if path is None:
-            raise SimulationError("cannot write the generated batch kernel: no writable cache "
-                                  "directory (set ROLLSPRING_CACHE_DIR)")
+            raise SimulationError(
+                "cannot write the generated batch kernel: no writable cache "
+                "directory (set ROLLSPRING_CACHE_DIR)"
+            )
         spec = importlib.util.spec_from_file_location(name, path)
         assert spec is not None and spec.loader is not None
         module = importlib.util.module_from_spec(spec)

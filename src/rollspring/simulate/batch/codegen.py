@@ -26,8 +26,17 @@ STATUS_LIFTOFF = int(Status.LIFTOFF)
 # columns of OUT: event time, E0, max |E - E0|, CM and X-hat extremes, crossings, then per body
 # (best |f|, its N, min N, final x, final v)
 OUT_EVENT_TIME = 0
-OUT_COLUMNS = {"E0": 1, "DE": 2, "CMLO": 3, "CMHI": 4, "XHLO": 5, "XHHI": 6, "CF": 7, "CL": 8,
-             "CN": 9}
+OUT_COLUMNS = {
+    "E0": 1,
+    "DE": 2,
+    "CMLO": 3,
+    "CMHI": 4,
+    "XHLO": 5,
+    "XHHI": 6,
+    "CF": 7,
+    "CL": 8,
+    "CN": 9,
+}
 OUT_BODY = 10
 _C_TEV, _OUT_ROWS, _C_BODY = OUT_EVENT_TIME, OUT_COLUMNS, OUT_BODY
 
@@ -52,8 +61,7 @@ class Source:
         self.stop = stop
         n = self.n
         rows = [f"y{i}" for i in range(n)] + [f"u{i}" for i in range(n)]
-        rows += ["E0", "DE", "CMLO", "CMHI", "XHLO", "XHHI", "CP", "CF", "CL", "CN", "ACT",
-                 "LIVE"]
+        rows += ["E0", "DE", "CMLO", "CMHI", "XHLO", "XHHI", "CP", "CF", "CL", "CN", "ACT", "LIVE"]
         for i in range(n):
             rows += [f"FB{i}", f"NB{i}", f"NMIN{i}"]
         # a body on one horizontal centre spring: |f| = |m s^2/J - 1| |T|, so the largest |T|
@@ -66,8 +74,12 @@ class Source:
         self.used_const: set[str] = set()
         self.period = bool(plan.springs)
         # bodies whose generalised force has a torque about the centre (off-centre points)
-        self.torqued = {i for sp in plan.springs for i, kind in zip(sp.ends, sp.kinds,
-                                                                    strict=True) if kind == "off"}
+        self.torqued = {
+            i
+            for sp in plan.springs
+            for i, kind in zip(sp.ends, sp.kinds, strict=True)
+            if kind == "off"
+        }
         self.torqued |= {i for i, off in plan.forces if off}
 
     # -- helpers -------------------------------------------------------------------------
@@ -82,13 +94,19 @@ class Source:
     def row(self, name: str, lane: str) -> str:
         return f"S[{self.rows[name]} + {lane}]"
 
-    def function(self, name: str, args: str, body: list[str], returns: str | None = None
-                 ) -> list[str]:
+    def function(
+        self, name: str, args: str, body: list[str], returns: str | None = None
+    ) -> list[str]:
         """A compiled function: the block constants it uses, then ``body``."""
         consts = [f"c_{c} = C[{self.constant[c]}]" for c in sorted(self.used_const)]
         self.used_const = set()
-        lines = ["", "", f'@njit(cache=True, error_model="numpy", fastmath={_FASTMATH})',
-                 f"def {name}({args}):", *_indent(consts + body)]
+        lines = [
+            "",
+            "",
+            f'@njit(cache=True, error_model="numpy", fastmath={_FASTMATH})',
+            f"def {name}({args}):",
+            *_indent(consts + body),
+        ]
         if returns is not None:
             lines.append(f"    return {returns}")
         return lines
@@ -99,8 +117,9 @@ class Source:
         return ["for j in range(B):", *_indent(self.loads("j") + body)]
 
     def loads(self, lane: str) -> list[str]:
-        lines = [f"p_{name} = Pl[{self.varying[name] * _RS} + {lane}]"
-                 for name in sorted(self.used)]
+        lines = [
+            f"p_{name} = Pl[{self.varying[name] * _RS} + {lane}]" for name in sorted(self.used)
+        ]
         self.used = set()
         return lines
 
@@ -126,26 +145,54 @@ class Source:
             general = sp.geometry == "general"  # (positions needed; else offsets at rest)
             for e, (i, kind) in enumerate(zip(sp.ends, sp.kinds, strict=True)):
                 if kind == "anchor":
-                    ends.append((F(f"ax_{k}_{e}") if general else None,
-                                 F(f"ay_{k}_{e}") if general else None, None, None, "0.0", "0.0"))
+                    ends.append(
+                        (
+                            F(f"ax_{k}_{e}") if general else None,
+                            F(f"ay_{k}_{e}") if general else None,
+                            None,
+                            None,
+                            "0.0",
+                            "0.0",
+                        )
+                    )
                 elif kind == "centre":
-                    ends.append((f"({F(f'x0_{i}')} + {y[i]})" if general else None,
-                                 F(f"cy_{i}") if general else None, None, None, "1.0", "0.0"))
+                    ends.append(
+                        (
+                            f"({F(f'x0_{i}')} + {y[i]})" if general else None,
+                            F(f"cy_{i}") if general else None,
+                            None,
+                            None,
+                            "1.0",
+                            "0.0",
+                        )
+                    )
                 else:
                     r = F(f"r_{k}_{e}")
-                    lines += [f"sn, cs = sincos({F(f'al_{k}_{e}')} + {y[i]} * {F(f'is_{i}')})",
-                              f"ox{k}_{e} = {r} * sn", f"oy{k}_{e} = {r} * cs"]
-                    ends.append((f"({F(f'x0_{i}')} + {y[i]} + ox{k}_{e})",
-                                 f"({F(f'cy_{i}')} + oy{k}_{e})", f"ox{k}_{e}", f"oy{k}_{e}",
-                                 f"(1.0 + oy{k}_{e} * {F(f'is_{i}')})",
-                                 f"(-ox{k}_{e} * {F(f'is_{i}')})"))
+                    lines += [
+                        f"sn, cs = sincos({F(f'al_{k}_{e}')} + {y[i]} * {F(f'is_{i}')})",
+                        f"ox{k}_{e} = {r} * sn",
+                        f"oy{k}_{e} = {r} * cs",
+                    ]
+                    ends.append(
+                        (
+                            f"({F(f'x0_{i}')} + {y[i]} + ox{k}_{e})",
+                            f"({F(f'cy_{i}')} + oy{k}_{e})",
+                            f"ox{k}_{e}",
+                            f"oy{k}_{e}",
+                            f"(1.0 + oy{k}_{e} * {F(f'is_{i}')})",
+                            f"(-ox{k}_{e} * {F(f'is_{i}')})",
+                        )
+                    )
             (ax, ay, aox, aoy, awx, awy), (bx, by, box, boy, bwx, bwy) = ends
             ia, ib = sp.ends
             if sp.geometry == "general":
                 lines.append(f"d{k} = {bx} - {ax}")
             else:  # ends at centres or anchors: the x-offset at rest plus the displacements
-                shift = " ".join(t for t in (f"+ {y[ib]}" if ib >= 0 else "",
-                                             f"- {y[ia]}" if ia >= 0 else "") if t)
+                shift = " ".join(
+                    t
+                    for t in (f"+ {y[ib]}" if ib >= 0 else "", f"- {y[ia]}" if ia >= 0 else "")
+                    if t
+                )
                 lines.append(f"d{k} = {F(f'dx_{k}')} {shift}")
             if sp.geometry == "flat":
                 lines.append(f"tx{k} = {stiff} * (d{k} - math.copysign({rest}, d{k}))")
@@ -157,11 +204,14 @@ class Source:
                     ex, ey = f"ex{k}", None
             else:
                 dy = F(f"dy_{k}") if sp.geometry == "fixed" else f"({by} - {ay})"
-                lines += [f"e{k} = {dy}",
-                          f"l{k} = math.sqrt(d{k} * d{k} + e{k} * e{k})",
-                          f"ext{k} = l{k} - {rest}",
-                          f"tl{k} = {stiff} * ext{k} / l{k}",
-                          f"tx{k} = tl{k} * d{k}", f"ty{k} = tl{k} * e{k}"]
+                lines += [
+                    f"e{k} = {dy}",
+                    f"l{k} = math.sqrt(d{k} * d{k} + e{k} * e{k})",
+                    f"ext{k} = l{k} - {rest}",
+                    f"tl{k} = {stiff} * ext{k} / l{k}",
+                    f"tx{k} = tl{k} * d{k}",
+                    f"ty{k} = tl{k} * e{k}",
+                ]
                 ty = f"ty{k}"
                 if lever and k == 0:
                     lines += [f"ex{k} = d{k} / l{k}", f"ey{k} = e{k} / l{k}"]
@@ -189,12 +239,17 @@ class Source:
             fxj, fyj = F(f"Fx_{j}"), F(f"Fy_{j}")
             if off:
                 r = F(f"fr_{j}")
-                lines += [f"sn, cs = sincos({F(f'fal_{j}')} + {y[i]} * {F(f'is_{i}')})",
-                          f"fox{j} = {r} * sn", f"foy{j} = {r} * cs"]
+                lines += [
+                    f"sn, cs = sincos({F(f'fal_{j}')} + {y[i]} * {F(f'is_{i}')})",
+                    f"fox{j} = {r} * sn",
+                    f"foy{j} = {r} * cs",
+                ]
                 tau[i].append(f"+ ({fxj} * foy{j} - {fyj} * fox{j})")
                 if energy:
-                    energy_terms.append(f"- ({fxj} * ({y[i]} + fox{j} - {F(f'frs_{j}')})"
-                                        f" + {fyj} * (foy{j} - {F(f'frc_{j}')}))")
+                    energy_terms.append(
+                        f"- ({fxj} * ({y[i]} + fox{j} - {F(f'frs_{j}')})"
+                        f" + {fyj} * (foy{j} - {F(f'frc_{j}')}))"
+                    )
             elif energy:
                 energy_terms.append(f"- {fxj} * {y[i]}")
         has_force = {i for i, _ in p.forces}
@@ -246,8 +301,7 @@ class Source:
 
     def energy(self, ve: list[str]) -> str:
         F = self.fld
-        return "E = U + " + " + ".join(f"{F(f'ku_{i}')} * {ve[i]} * {ve[i]}"
-                                       for i in range(self.n))
+        return "E = U + " + " + ".join(f"{F(f'ku_{i}')} * {ve[i]} * {ve[i]}" for i in range(self.n))
 
     def ldot(self, ve: list[str]) -> str:
         ia, ib = self.p.springs[0].ends
@@ -261,46 +315,69 @@ class Source:
     def metrics(self, lane: str, ve: list[str], y: list[str], crossing: bool) -> list[str]:
         """Update the sampled metrics of ``lane`` (needs forces, contact, E, t, dT)."""
         F, S = self.fld, (lambda name: self.row(name, lane))
-        lines = [f"dE = abs(E - {S('E0')})", f"o = {S('DE')}",
-                 _MAX.format(dst=S("DE"), x="dE", old="o")]
+        lines = [
+            f"dE = abs(E - {S('E0')})",
+            f"o = {S('DE')}",
+            _MAX.format(dst=S("DE"), x="dE", old="o"),
+        ]
         cm = " + ".join(f"{F(f'cq_{i}')} * {y[i]}" for i in range(self.n))
         xh = " + ".join(f"{F(f'xq_{i}')} * {y[i]}" for i in range(self.n))
         lines += [f"cm = {cm}", f"xh = {xh} - {F('vhat')} * t"]
-        for name, x, fmt in (("CMLO", "cm", _MIN), ("CMHI", "cm", _MAX), ("XHLO", "xh", _MIN),
-                             ("XHHI", "xh", _MAX)):
+        for name, x, fmt in (
+            ("CMLO", "cm", _MIN),
+            ("CMHI", "cm", _MAX),
+            ("XHLO", "xh", _MIN),
+            ("XHHI", "xh", _MAX),
+        ):
             lines += [f"o = {S(name)}", fmt.format(dst=S(name), x=x, old="o")]
         for k in sorted(self.p.simple):
-            lines += [f"at = abs(tx{k})", f"o = {S(f'TM{k}')}",
-                      _MAX.format(dst=S(f"TM{k}"), x="at", old="o")]
+            lines += [
+                f"at = abs(tx{k})",
+                f"o = {S(f'TM{k}')}",
+                _MAX.format(dst=S(f"TM{k}"), x="at", old="o"),
+            ]
         for i in range(self.n):
             if self.p.rolls[i] and i not in self.tension_of:
                 lines.append(f"af = abs(f{i})")
                 if self.p.normal_const[i]:
                     lines += [f"o = {S(f'FB{i}')}", _MAX.format(dst=S(f"FB{i}"), x="af", old="o")]
                 else:  # the best |f|/N as a pair: compare by cross-multiplication
-                    lines += [f"fb = {S(f'FB{i}')}", f"nb = {S(f'NB{i}')}",
-                              f"better = (N{i} >= 0.0) & (af * nb > fb * N{i})",
-                              f"{S(f'FB{i}')} = af if better else fb + 0.0",
-                              f"{S(f'NB{i}')} = N{i} if better else nb + 0.0"]
+                    lines += [
+                        f"fb = {S(f'FB{i}')}",
+                        f"nb = {S(f'NB{i}')}",
+                        f"better = (N{i} >= 0.0) & (af * nb > fb * N{i})",
+                        f"{S(f'FB{i}')} = af if better else fb + 0.0",
+                        f"{S(f'NB{i}')} = N{i} if better else nb + 0.0",
+                    ]
             if not self.p.normal_const[i]:
-                lines += [f"o = {S(f'NMIN{i}')}",
-                          _MIN.format(dst=S(f"NMIN{i}"), x=f"N{i}", old="o")]
+                lines += [
+                    f"o = {S(f'NMIN{i}')}",
+                    _MIN.format(dst=S(f"NMIN{i}"), x=f"N{i}", old="o"),
+                ]
         if crossing and self.period:
-            lines += [f"ld = {self.ldot(ve)}", f"pv = {S('CP')}", "up = (pv < 0.0) & (ld >= 0.0)",
-                      "tc = t - dT * ld / (ld - pv)", f"cn = {S('CN')}", f"cf = {S('CF')}",
-                      f"cl = {S('CL')}",
-                      f"{S('CF')} = tc if (up & (cn == 0.0)) else cf + 0.0",
-                      f"{S('CL')} = tc if up else cl + 0.0",
-                      f"{S('CN')} = cn + 1.0 if up else cn + 0.0",
-                      f"{S('CP')} = ld"]
+            lines += [
+                f"ld = {self.ldot(ve)}",
+                f"pv = {S('CP')}",
+                "up = (pv < 0.0) & (ld >= 0.0)",
+                "tc = t - dT * ld / (ld - pv)",
+                f"cn = {S('CN')}",
+                f"cf = {S('CF')}",
+                f"cl = {S('CL')}",
+                f"{S('CF')} = tc if (up & (cn == 0.0)) else cf + 0.0",
+                f"{S('CL')} = tc if up else cl + 0.0",
+                f"{S('CN')} = cn + 1.0 if up else cn + 0.0",
+                f"{S('CP')} = ld",
+            ]
         return lines
 
     # -- functions -----------------------------------------------------------------------
     def _drift(self) -> list[str]:
         lines = []
         for i in range(self.n):
-            lines += [f"u{i} = {self.row(f'u{i}', 'j')}",
-                      f"y{i} = {self.row(f'y{i}', 'j')} + dk * u{i}"]
+            lines += [
+                f"u{i} = {self.row(f'u{i}', 'j')}",
+                f"y{i} = {self.row(f'y{i}', 'j')} + dk * u{i}",
+            ]
         return lines
 
     def _kicks(self, coefficient: str) -> tuple[list[str], list[str]]:
@@ -323,8 +400,7 @@ class Source:
         body += self.forces([f"y{i}" for i in range(n)], energy=False, lever=False)
         before, kicked = self._kicks("ck")
         for i in range(n):
-            body += [f"{self.row(f'u{i}', 'j')} = {kicked[i]}",
-                     f"{self.row(f'y{i}', 'j')} = y{i}"]
+            body += [f"{self.row(f'u{i}', 'j')} = {kicked[i]}", f"{self.row(f'y{i}', 'j')} = y{i}"]
         loop = [*before, *self.lane_loop(body)]
         return self.function("stage", "S, Pl, C, dk, ck", loop)
 
@@ -344,8 +420,7 @@ class Source:
         for i in range(n):
             if sample:
                 body.append(f"ve{i} = u{i} + kl * acc{i}")
-            body += [f"{self.row(f'u{i}', 'j')} = {kicked[i]}",
-                     f"{self.row(f'y{i}', 'j')} = y{i}"]
+            body += [f"{self.row(f'u{i}', 'j')} = {kicked[i]}", f"{self.row(f'y{i}', 'j')} = y{i}"]
         body += self.contact()
         cond = self.condition()
         if sample:
@@ -373,14 +448,26 @@ class Source:
         body.append(self.energy(ve))
         for i in range(n):
             body += [f"{S(f'y{i}')} = 0.0", f"{S(f'u{i}')} = ve{i} + k0 * acc{i}"]
-        body += [f"{S('E0')} = E", f"{S('DE')} = 0.0", f"{S('CMLO')} = 0.0",
-                 f"{S('CMHI')} = 0.0", f"{S('XHLO')} = 0.0", f"{S('XHHI')} = 0.0",
-                 f"{S('CF')} = np.nan", f"{S('CL')} = np.nan", f"{S('CN')} = 0.0",
-                 f"{S('ACT')} = 1.0", f"{S('LIVE')} = 1.0"]
+        body += [
+            f"{S('E0')} = E",
+            f"{S('DE')} = 0.0",
+            f"{S('CMLO')} = 0.0",
+            f"{S('CMHI')} = 0.0",
+            f"{S('XHLO')} = 0.0",
+            f"{S('XHHI')} = 0.0",
+            f"{S('CF')} = np.nan",
+            f"{S('CL')} = np.nan",
+            f"{S('CN')} = 0.0",
+            f"{S('ACT')} = 1.0",
+            f"{S('LIVE')} = 1.0",
+        ]
         body.append(f"{S('CP')} = {self.ldot(ve)}" if self.period else f"{S('CP')} = 0.0")
         for i in range(n):
-            body += [f"{S(f'FB{i}')} = abs(f{i})", f"{S(f'NB{i}')} = N{i}",
-                     f"{S(f'NMIN{i}')} = N{i}"]
+            body += [
+                f"{S(f'FB{i}')} = abs(f{i})",
+                f"{S(f'NB{i}')} = N{i}",
+                f"{S(f'NMIN{i}')} = N{i}",
+            ]
         body += [f"{S(f'TM{k}')} = abs(tx{k})" for k in sorted(self.p.simple)]
         # at t = 0 every body is checked, lift-off included
         terms = [f"(N{i} < 0.0)" for i in range(n)]
@@ -403,8 +490,7 @@ class Source:
         y = [f"y{i}" for i in range(n)]
         body = self.forces(y, energy=True, lever=False) + self.contact()
         body = self.loads("jj") + body
-        return self.function("lane_state", "Pl, C, jj, " + ", ".join(y), body,
-                             self._outputs())
+        return self.function("lane_state", "Pl, C, jj, " + ", ".join(y), body, self._outputs())
 
     def events(self) -> list[str]:
         """The scalar pass over the lanes of a block after a step in which some lane met the
@@ -430,14 +516,24 @@ class Source:
             candidates.append((f"N{i} < 0.0", f"-N{i}", f"-Nb{i}", STATUS_LIFTOFF, i))
             if self.p.rolls[i]:
                 mu = F(f"mu_{i}")
-                candidates.append((f"(N{i} >= 0.0 and abs(f{i}) >= {mu} * N{i})",
-                                   f"abs(f{i}) - {mu} * N{i}",
-                                   f"abs(fb{i}) - {mu} * Nb{i}", STATUS_SLIP, i))
-        inner += ["kind = 0", "who = -1", "tev = np.inf",
-                  f"if not (abs(E - {S('E0')}) <= 1e308):",
-                  f"    kind = {STATUS_NONFINITE}",
-                  "    tev = t",
-                  f"elif {S('ACT')} > 0.0 and ({' or '.join(c[0] for c in candidates)}):"]
+                candidates.append(
+                    (
+                        f"(N{i} >= 0.0 and abs(f{i}) >= {mu} * N{i})",
+                        f"abs(f{i}) - {mu} * N{i}",
+                        f"abs(fb{i}) - {mu} * Nb{i}",
+                        STATUS_SLIP,
+                        i,
+                    )
+                )
+        inner += [
+            "kind = 0",
+            "who = -1",
+            "tev = np.inf",
+            f"if not (abs(E - {S('E0')}) <= 1e308):",
+            f"    kind = {STATUS_NONFINITE}",
+            "    tev = t",
+            f"elif {S('ACT')} > 0.0 and ({' or '.join(c[0] for c in candidates)}):",
+        ]
         yb = ", ".join(f"yb{i}" for i in range(n))
         back = [f"yb{i} = y{i}" for i in range(n)]
         back += [f"vb{i} = ve{i} - k0 * acc{i}" for i in range(n)]
@@ -449,23 +545,34 @@ class Source:
         back += ["for kk in range(nst):", *_indent(loop)]
         pick = ["if t > 0.0:", *_indent(back)]
         for cond, now, before, code, i in candidates:
-            pick += [f"if {cond}:",
-                     "    tc = 0.0",
-                     "    if t > 0.0:",
-                     f"        now = {now}",
-                     f"        before = {before}",
-                     "        tc = t",
-                     "        if before < 0.0 and now > before:",
-                     "            tc = t - h * (now / (now - before))",
-                     "    if tc < tev:",
-                     "        tev = tc", f"        kind = {code}", f"        who = {i}"]
+            pick += [
+                f"if {cond}:",
+                "    tc = 0.0",
+                "    if t > 0.0:",
+                f"        now = {now}",
+                f"        before = {before}",
+                "        tc = t",
+                "        if before < 0.0 and now > before:",
+                "            tc = t - h * (now / (now - before))",
+                "    if tc < tev:",
+                "        tev = tc",
+                f"        kind = {code}",
+                f"        who = {i}",
+            ]
         inner += _indent(pick)
         inner += ["if kind == 0:", "    continue"]
-        inner += [f"if kind == {STATUS_NONFINITE}:", "    OUTI[lo + jj, 0] = kind",
-                  "else:", "    OUTI[lo + jj, 0] = kind", "    OUTI[lo + jj, 1] = who",
-                  f"    OUT[lo + jj, {_C_TEV}] = tev"]
-        stop = [f"if kind != {STATUS_NONFINITE}:",
-                *_indent(self.metrics("jj", ve, y, crossing=False))]
+        inner += [
+            f"if kind == {STATUS_NONFINITE}:",
+            "    OUTI[lo + jj, 0] = kind",
+            "else:",
+            "    OUTI[lo + jj, 0] = kind",
+            "    OUTI[lo + jj, 1] = who",
+            f"    OUT[lo + jj, {_C_TEV}] = tev",
+        ]
+        stop = [
+            f"if kind != {STATUS_NONFINITE}:",
+            *_indent(self.metrics("jj", ve, y, crossing=False)),
+        ]
         stop += self.write_out("jj")
         for i in range(n):
             stop += [f"{S(f'y{i}')} = np.nan", f"{S(f'u{i}')} = np.nan"]
@@ -473,11 +580,20 @@ class Source:
         if self.stop:
             inner += stop
         else:
-            inner += [f"if kind == {STATUS_NONFINITE}:", *_indent(stop),
-                      "else:", f"    {S('ACT')} = 0.0"]
+            inner += [
+                f"if kind == {STATUS_NONFINITE}:",
+                *_indent(stop),
+                "else:",
+                f"    {S('ACT')} = 0.0",
+            ]
         body += self.loads("jj") + inner
-        loop = ["nst = dr.shape[0]", "k0 = 0.5 * dr[0]", "stopped = 0",
-                "for jj in range(B):", *_indent(body)]
+        loop = [
+            "nst = dr.shape[0]",
+            "k0 = 0.5 * dr[0]",
+            "stopped = 0",
+            "for jj in range(B):",
+            *_indent(body),
+        ]
         return self.function("events", "lo, S, Pl, C, dr, kc, h, t, OUT, OUTI", loop, "stopped")
 
     def write_out(self, lane: str) -> list[str]:
@@ -489,13 +605,16 @@ class Source:
             base = _C_BODY + 5 * i
             if i in self.tension_of:
                 k = self.tension_of[i]
-                lines.append(f"{S(f'FB{i}')} = abs({F(f'm_{i}')} * {F(f'xa_{i}')} - 1.0) * "
-                             f"{S(f'TM{k}')}")
-            lines += [f"OUT[lo + {lane}, {base}] = {S(f'FB{i}')}",
-                      f"OUT[lo + {lane}, {base + 1}] = {S(f'NB{i}')}",
-                      f"OUT[lo + {lane}, {base + 2}] = {S(f'NMIN{i}')}",
-                      f"OUT[lo + {lane}, {base + 3}] = {F(f'x0_{i}')} + y{i}",
-                      f"OUT[lo + {lane}, {base + 4}] = ve{i}"]
+                lines.append(
+                    f"{S(f'FB{i}')} = abs({F(f'm_{i}')} * {F(f'xa_{i}')} - 1.0) * {S(f'TM{k}')}"
+                )
+            lines += [
+                f"OUT[lo + {lane}, {base}] = {S(f'FB{i}')}",
+                f"OUT[lo + {lane}, {base + 1}] = {S(f'NB{i}')}",
+                f"OUT[lo + {lane}, {base + 2}] = {S(f'NMIN{i}')}",
+                f"OUT[lo + {lane}, {base + 3}] = {F(f'x0_{i}')} + y{i}",
+                f"OUT[lo + {lane}, {base + 4}] = ve{i}",
+            ]
         return lines
 
     def epilogue(self) -> list[str]:
@@ -503,8 +622,9 @@ class Source:
         n = self.n
         S = lambda name: self.row(name, "jj")  # noqa: E731
         inner = [f"y{i} = {S(f'y{i}')}" for i in range(n)]
-        inner.append(f"{self._outputs()} = lane_state(Pl, C, jj, "
-                     f"{', '.join(f'y{i}' for i in range(n))})")
+        inner.append(
+            f"{self._outputs()} = lane_state(Pl, C, jj, {', '.join(f'y{i}' for i in range(n))})"
+        )
         inner += [f"ve{i} = {S(f'u{i}')} - k0 * acc{i}" for i in range(n)]
         state = " + ".join(f"abs(y{i}) + abs(ve{i})" for i in range(n))
         inner += [f"if not ({state} <= 1e308):", f"    OUTI[lo + jj, 0] = {STATUS_NONFINITE}"]
@@ -516,8 +636,10 @@ class Source:
     def sample(self) -> list[str]:
         """Centre positions of every lane into row ``row`` of the trajectories."""
         F = self.fld
-        body = [f"traj[lo + j, row, {i}] = {F(f'x0_{i}')} + {self.row(f'y{i}', 'j')}"
-                for i in range(self.n)]
+        body = [
+            f"traj[lo + j, row, {i}] = {F(f'x0_{i}')} + {self.row(f'y{i}', 'j')}"
+            for i in range(self.n)
+        ]
         loop = ["for j in range(B):", *_indent(self.loads("j") + body)]
         return self.function("sample", "lo, row, S, Pl, C, traj", loop)
 
@@ -566,8 +688,13 @@ class Source:
             "from numba import njit, prange",
             f"B = {BLOCK}",
             SINCOS,
-            *self.stage(), *self.last(sample=False), *self.last(sample=True),
-            *self.prologue(), *self.lane_state(), *self.events(), *self.epilogue(),
+            *self.stage(),
+            *self.last(sample=False),
+            *self.last(sample=True),
+            *self.prologue(),
+            *self.lane_state(),
+            *self.events(),
+            *self.epilogue(),
             *self.sample(),
             "",
             "",
@@ -589,7 +716,7 @@ class Source:
 #: keeps a loop scalar without Intel's SVML): reduction by the nearest multiple of pi/2 in three
 #: parts (Cody-Waite, exact for |x| < 2^20 pi/2) and fdlibm's minimax polynomials on
 #: [-pi/4, pi/4] (errors of about one unit in the last place).
-SINCOS = '''
+SINCOS = """
 
 @njit(error_model="numpy", fastmath={"contract"})
 def sincos(x):
@@ -609,7 +736,7 @@ def sincos(x):
     c = sn if odd else cs
     s = -s if quadrant >= 2.0 else s
     c = -c if (quadrant == 1.0) | (quadrant == 2.0) else c
-    return s, c'''
+    return s, c"""
 
 
 def _sum(terms: list[str]) -> str:

@@ -49,16 +49,18 @@ class Runs:
 def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Runs:
     """Check the parameter paths and values, broadcast them to one run count."""
     if not isinstance(parameters, Mapping):
-        raise ModelError(f"parameters: must be a mapping of paths to arrays, got "
-                         f"{type(parameters).__name__}")
+        raise ModelError(
+            f"parameters: must be a mapping of paths to arrays, got {type(parameters).__name__}"
+        )
     index = {b.id: i for i, b in enumerate(system.bodies)}
     n_springs = len(system.springs)
     targets: dict[str, tuple[str, int]] = {}
     values: dict[str, FloatArray] = {}
     for key, raw in parameters.items():
         if not isinstance(key, str):
-            raise ModelError(f"parameters: keys must be strings like 'bodies.<id>.mass', "
-                             f"got {key!r}")
+            raise ModelError(
+                f"parameters: keys must be strings like 'bodies.<id>.mass', got {key!r}"
+            )
         parts = key.split(".")
         if parts == ["gravity"]:
             targets[key] = ("gravity", 0)
@@ -67,24 +69,38 @@ def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Run
             if ident not in index:
                 raise _bad(key, f"no body '{ident}' (bodies: {', '.join(index)})")
             if quantity not in PARAMETER_QUANTITIES["bodies"]:
-                raise _bad(key, f"unknown body quantity '{quantity}' (one of "
-                           f"{', '.join(PARAMETER_QUANTITIES['bodies'])})")
+                raise _bad(
+                    key,
+                    f"unknown body quantity '{quantity}' (one of "
+                    f"{', '.join(PARAMETER_QUANTITIES['bodies'])})",
+                )
             targets[key] = (quantity, index[ident])
         elif len(parts) == 3 and parts[0] == "springs":
             _, number, quantity = parts
             if not number.isdigit() or int(number) >= n_springs:
-                raise _bad(key, f"no spring '{number}' (springs are numbered 0 to "
-                           f"{n_springs - 1} in file order)" if n_springs else
-                           f"no spring '{number}' (the system has no springs)")
+                raise _bad(
+                    key,
+                    f"no spring '{number}' (springs are numbered 0 to "
+                    f"{n_springs - 1} in file order)"
+                    if n_springs
+                    else f"no spring '{number}' (the system has no springs)",
+                )
             if quantity not in PARAMETER_QUANTITIES["springs"]:
-                raise _bad(key, f"unknown spring quantity '{quantity}' (one of "
-                           f"{', '.join(PARAMETER_QUANTITIES['springs'])})")
+                raise _bad(
+                    key,
+                    f"unknown spring quantity '{quantity}' (one of "
+                    f"{', '.join(PARAMETER_QUANTITIES['springs'])})",
+                )
             targets[key] = (quantity, int(number))
         else:
-            raise _bad(key, "unknown parameter path (use 'bodies.<id>.<quantity>', "
-                       "'springs.<index>.<quantity>' or 'gravity')")
-        same = [other for other, target in targets.items() if other != key
-                and target == targets[key]]
+            raise _bad(
+                key,
+                "unknown parameter path (use 'bodies.<id>.<quantity>', "
+                "'springs.<index>.<quantity>' or 'gravity')",
+            )
+        same = [
+            other for other, target in targets.items() if other != key and target == targets[key]
+        ]
         if same:
             raise _bad(key, f"names the same parameter as {same[0]!r}")
         try:
@@ -100,8 +116,11 @@ def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Run
         first = next(key for key, size in lengths.items() if size != 1)
         for key, size in lengths.items():
             if size not in (1, lengths[first]):
-                raise _bad(key, f"has {size} values but '{first}' has {lengths[first]}: "
-                           "all arrays must have one length (or one value)")
+                raise _bad(
+                    key,
+                    f"has {size} values but '{first}' has {lengths[first]}: "
+                    "all arrays must have one length (or one value)",
+                )
     n_runs = sizes.pop() if sizes else 1
     if n_runs == 0:
         raise _bad(next(iter(lengths)), "is empty: a batch needs at least one run")
@@ -122,10 +141,15 @@ def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Run
     over = runs.mu_kinetic > runs.mu_static
     if np.any(over):
         run, i = (int(v[0]) for v in np.nonzero(over))
-        key = next((k for k, (q, j) in targets.items() if q in ("mu_static", "mu_kinetic")
-                    and j == i), f"bodies.{system.bodies[i].id}.mu_kinetic")
-        raise _bad(key, f"mu_kinetic ({runs.mu_kinetic[run, i]:g}) exceeds mu_static "
-                   f"({runs.mu_static[run, i]:g}) in run {run}")
+        key = next(
+            (k for k, (q, j) in targets.items() if q in ("mu_static", "mu_kinetic") and j == i),
+            f"bodies.{system.bodies[i].id}.mu_kinetic",
+        )
+        raise _bad(
+            key,
+            f"mu_kinetic ({runs.mu_kinetic[run, i]:g}) exceeds mu_static "
+            f"({runs.mu_static[run, i]:g}) in run {run}",
+        )
     return runs
 
 
@@ -140,14 +164,18 @@ def system_runs(system: System, n_runs: int) -> Runs:
 
     return Runs(
         n_runs=n_runs,
-        mass=per_body(arrays.mass), radius=per_body(arrays.radius),
+        mass=per_body(arrays.mass),
+        radius=per_body(arrays.radius),
         mu_static=per_body(arrays.mu_static),
-        mu_kinetic=per_body([b.mu_kinetic if b.mu_kinetic is not None else np.nan
-                             for b in system.bodies]),
-        x=per_body(arrays.x0), v=per_body(arrays.v0),
+        mu_kinetic=per_body(
+            [b.mu_kinetic if b.mu_kinetic is not None else np.nan for b in system.bodies]
+        ),
+        x=per_body(arrays.x0),
+        v=per_body(arrays.v0),
         stiffness=per_body(arrays.stiffness).reshape(n_runs, n_springs),
-        rest_length=per_body([s.rest_length if s.rest_length is not None else np.nan
-                              for s in system.springs]).reshape(n_runs, n_springs),
+        rest_length=per_body(
+            [s.rest_length if s.rest_length is not None else np.nan for s in system.springs]
+        ).reshape(n_runs, n_springs),
         gravity=np.full(n_runs, float(arrays.gravity)),
         parameters={},
         targets={},
@@ -176,5 +204,3 @@ def _check_values(key: str, quantity: str, value: FloatArray) -> None:
         raise _bad(key, f"must be > 0 ({first(value <= 0)})")
     if quantity in ("mu_kinetic", "rest_length", "gravity") and np.any(value < 0):
         raise _bad(key, f"must be >= 0 ({first(value < 0)})")
-
-

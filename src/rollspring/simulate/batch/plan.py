@@ -15,9 +15,24 @@ from rollspring.physics.arrays import FloatArray
 from rollspring.simulate.batch.parameters import Runs, fill_defaults, system_runs
 from rollspring.simulate.integrators import INTEGRATORS, MAX_OMEGA_STEP
 
-__all__ = ["AUTO_SCHEMES", "CHECK_COST", "MAX_STEPS", "METRIC_PHASE", "SAMPLE_COST", "Plan", "SpringPlan",
-           "check_runs", "choose_step", "make_plan", "metric_every_for", "omega_limit", "probe",
-           "run_cost", "run_omegas", "steps_needed"]
+__all__ = [
+    "AUTO_SCHEMES",
+    "CHECK_COST",
+    "MAX_STEPS",
+    "METRIC_PHASE",
+    "SAMPLE_COST",
+    "Plan",
+    "SpringPlan",
+    "check_runs",
+    "choose_step",
+    "make_plan",
+    "metric_every_for",
+    "omega_limit",
+    "probe",
+    "run_cost",
+    "run_omegas",
+    "steps_needed",
+]
 
 #: Costs, in stages (force evaluations), of a step's slip and lift-off checks and of a metric
 #: sample, measured on the hoop-cylinder kernel (0.66 ns a lane for a stage, 0.58-0.8 with the
@@ -82,8 +97,10 @@ def _attachment_polar(at, radius: FloatArray) -> tuple[FloatArray, FloatArray]:
         dy = at.height - radius
         return np.abs(dy), np.where(dy >= 0, 0.0, math.pi)
     if at.radius is not None:
-        return (np.full_like(radius, at.radius),
-                np.full_like(radius, math.radians(at.angle or 0.0)))
+        return (
+            np.full_like(radius, at.radius),
+            np.full_like(radius, math.radians(at.angle or 0.0)),
+        )
     return np.zeros_like(radius), np.zeros_like(radius)
 
 
@@ -132,7 +149,8 @@ def make_plan(system: System, runs: Runs, topology: Plan | None = None) -> Plan:
                     raise ModelError(
                         f"springs[{k}].at[{e}]: '{end}' is a slider (it does not rotate) and "
                         f"this height is off its centre in run {run} (radius "
-                        f"{float(R[run, i])!r})")
+                        f"{float(R[run, i])!r})"
+                    )
                 if topology is not None and topology.springs[k].kinds[e] == "off" and rolls[i]:
                     off = True
                 kinds.append("off" if off else "centre")
@@ -154,8 +172,10 @@ def make_plan(system: System, runs: Runs, topology: Plan | None = None) -> Plan:
         bad = ~np.isfinite(length) | (length == 0.0)
         if np.any(bad):
             run = int(np.flatnonzero(bad)[0])
-            raise ModelError(f"springs[{k}]: its two ends coincide in the initial placement of "
-                             f"run {run} (length {length[run]:g})")
+            raise ModelError(
+                f"springs[{k}]: its two ends coincide in the initial placement of "
+                f"run {run} (length {length[run]:g})"
+            )
         rest = runs.rest_length[:, k]
         f[f"L_{k}"] = np.where(np.isnan(rest), length, rest)
         f[f"k_{k}"] = runs.stiffness[:, k]
@@ -183,9 +203,11 @@ def make_plan(system: System, runs: Runs, topology: Plan | None = None) -> Plan:
             off = True
         if off and not rolls[i]:
             run = int(np.flatnonzero(r != 0.0)[0])
-            raise ModelError(f"forces[{j}].at: '{force.body}' is a slider (it does not rotate) "
-                             f"and this height is off its centre in run {run} (radius "
-                             f"{float(R[run, i])!r})")
+            raise ModelError(
+                f"forces[{j}].at: '{force.body}' is a slider (it does not rotate) "
+                f"and this height is off its centre in run {run} (radius "
+                f"{float(R[run, i])!r})"
+            )
         forces.append((i, off))
         f[f"Fx_{j}"] = np.full(runs.n_runs, float(force.fx))
         f[f"Fy_{j}"] = np.full(runs.n_runs, float(force.fy))
@@ -206,9 +228,16 @@ def make_plan(system: System, runs: Runs, topology: Plan | None = None) -> Plan:
         mu = f[f"mu_{i}"]
         with np.errstate(invalid="ignore", over="ignore"):
             f[f"mn_{i}"] = np.where(np.isinf(mu), np.inf, mu * nn)
-    slip_check = tuple(bool(rolls[i] and (np.any(np.isfinite(runs.mu_static[:, i]))
-                                          or (topology is not None and topology.slip_check[i])))
-                       for i in range(n))
+    slip_check = tuple(
+        bool(
+            rolls[i]
+            and (
+                np.any(np.isfinite(runs.mu_static[:, i]))
+                or (topology is not None and topology.slip_check[i])
+            )
+        )
+        for i in range(n)
+    )
     # A body on one horizontal centre spring and nothing else needs the friction
     # f = (m s^2/J - 1) F_x = -(gamma/(1+gamma)) (+-T) (M10): its slip test is |T| >= mu N /
     # |m s^2/J - 1|, one threshold per spring for all such bodies (the cheapest per-step check).
@@ -216,20 +245,34 @@ def make_plan(system: System, runs: Runs, topology: Plan | None = None) -> Plan:
     simple: dict[int, list[int]] = {}
     for i in range(n):
         on = ends_on[i]
-        if (slip_check[i] and len(on) == 1 and springs[on[0]].geometry == "flat"
-                and all(b != i for b, _ in forces)):
+        if (
+            slip_check[i]
+            and len(on) == 1
+            and springs[on[0]].geometry == "flat"
+            and all(b != i for b, _ in forces)
+        ):
             simple.setdefault(on[0], []).append(i)
     for k, members in simple.items():
         with np.errstate(divide="ignore", invalid="ignore"):
             limits = [f[f"mn_{i}"] / np.abs(f[f"m_{i}"] * f[f"xa_{i}"] - 1.0) for i in members]
         f[f"tth_{k}"] = np.minimum.reduce(limits)
-    return Plan(n=n, rolls=rolls, springs=tuple(springs), forces=tuple(forces),
-                 normal_const=tuple(normal_const), slip_check=slip_check, fields=f,
-                 scale=s, inertia=J, simple=simple)
+    return Plan(
+        n=n,
+        rolls=rolls,
+        springs=tuple(springs),
+        forces=tuple(forces),
+        normal_const=tuple(normal_const),
+        slip_check=slip_check,
+        fields=f,
+        scale=s,
+        inertia=J,
+        simple=simple,
+    )
 
 
-def probe(system: System, targets: dict[str, tuple[str, int]]) -> tuple[Plan | None,
-                                                                          set[str] | None]:
+def probe(
+    system: System, targets: dict[str, tuple[str, int]]
+) -> tuple[Plan | None, set[str] | None]:
     """The topology and the per-run ("varying") fields for a set of parameter keys, from probe
     runs of the system's own values with one given parameter changed at a time, up and down:
     the fields that change, and the topology that holds for all of them. Both depend on the
@@ -321,8 +364,9 @@ def run_omegas(plan: Plan, chunk: int = 1 << 15) -> FloatArray:
                     k_full[:, i, j] += stiffness * bi * bj + tension * geometric
         for j, (i, off) in enumerate(plan.forces):
             if off:
-                k_full[:, i, i] += (f[f"Fx_{j}"][sl] * f[f"frs_{j}"][sl]
-                                    + f[f"Fy_{j}"][sl] * f[f"frc_{j}"][sl])
+                k_full[:, i, i] += (
+                    f[f"Fx_{j}"][sl] * f[f"frs_{j}"][sl] + f[f"Fy_{j}"][sl] * f[f"frc_{j}"][sl]
+                )
         scale = 1.0 / np.sqrt(plan.inertia[sl])
         for matrix in (k_full, k_elastic):
             scaled = matrix * scale[:, :, None] * scale[:, None, :]
@@ -335,8 +379,9 @@ def run_omegas(plan: Plan, chunk: int = 1 << 15) -> FloatArray:
     return np.sqrt(best)
 
 
-def choose_step(omega: float, duration: float, rtol: float, integrator: str,
-                 step: float | None) -> tuple[str, int]:
+def choose_step(
+    omega: float, duration: float, rtol: float, integrator: str, step: float | None
+) -> tuple[str, int]:
     r"""Scheme and number of steps: the accumulated phase error :math:`C_p(\omega h)^p\,\omega T`
     at most ``rtol`` (``omega h <= 0.5``), the cheapest scheme for ``auto``."""
     if step is not None:
@@ -370,7 +415,6 @@ def run_cost(integrator: str, n_steps: int, metric_every: int) -> float:
     return n_steps * (INTEGRATORS[integrator].stages + CHECK_COST) + samples * SAMPLE_COST
 
 
-
 def steps_needed(omega: FloatArray, duration: float, rtol: float, integrator: str) -> FloatArray:
     """Steps each run would need alone (the fewest over the schemes for ``auto``), as floats."""
     names = list(AUTO_SCHEMES) if integrator == "auto" else [integrator]
@@ -380,8 +424,8 @@ def steps_needed(omega: FloatArray, duration: float, rtol: float, integrator: st
         for name in names:
             scheme = INTEGRATORS[name]
             omega_step = np.minimum(
-                (rtol / (scheme.error_constant * radians)) ** (1.0 / scheme.order),
-                MAX_OMEGA_STEP)
+                (rtol / (scheme.error_constant * radians)) ** (1.0 / scheme.order), MAX_OMEGA_STEP
+            )
             need = np.minimum(need, np.maximum(1.0, omega * duration / omega_step))
     return np.where(omega > 0, need, 1.0)
 
@@ -405,12 +449,31 @@ _MAY_BE_INFINITE = ("mu_", "mn_", "tth_")
 
 #: What the fields are, for messages.
 _FIELD_NAMES = {
-    "x0": "initial position", "cy": "centre height", "is": "1/R", "xa": "R^2/J (inverse inertia)",
-    "m": "mass", "ku": "J/(2 R^2) (inertia)", "wt": "weight", "mu": "mu_s", "u0": "initial velocity",
-    "cq": "centre-of-mass weight", "xq": "X-hat weight", "vhat": "X-hat velocity",
-    "L": "rest length", "k": "stiffness", "dx": "spring x-offset", "dy": "spring height offset",
-    "r": "attachment radius", "al": "attachment angle", "efx": "applied force", "efy": "applied force",
-    "nn": "normal force", "mn": "mu_s N", "tth": "slip tension", "Fx": "force", "Fy": "force",
+    "x0": "initial position",
+    "cy": "centre height",
+    "is": "1/R",
+    "xa": "R^2/J (inverse inertia)",
+    "m": "mass",
+    "ku": "J/(2 R^2) (inertia)",
+    "wt": "weight",
+    "mu": "mu_s",
+    "u0": "initial velocity",
+    "cq": "centre-of-mass weight",
+    "xq": "X-hat weight",
+    "vhat": "X-hat velocity",
+    "L": "rest length",
+    "k": "stiffness",
+    "dx": "spring x-offset",
+    "dy": "spring height offset",
+    "r": "attachment radius",
+    "al": "attachment angle",
+    "efx": "applied force",
+    "efy": "applied force",
+    "nn": "normal force",
+    "mn": "mu_s N",
+    "tth": "slip tension",
+    "Fx": "force",
+    "Fy": "force",
 }
 
 
@@ -425,11 +488,9 @@ def check_runs(plan: Plan, omega: FloatArray) -> tuple[np.ndarray, list[str]]:
     for name in sorted(plan.fields):
         values = plan.fields[name]
         with np.errstate(invalid="ignore"):
-            wrong = np.isnan(values) if name.startswith(_MAY_BE_INFINITE) \
-                else ~np.isfinite(values)
+            wrong = np.isnan(values) if name.startswith(_MAY_BE_INFINITE) else ~np.isfinite(values)
         for r in np.flatnonzero(wrong & ~bad):
             stem = name.split("_")[0]
-            reasons[r] = (f"its {_FIELD_NAMES.get(stem, stem)} ('{name}') is "
-                          f"{float(values[r])!r}")
+            reasons[r] = f"its {_FIELD_NAMES.get(stem, stem)} ('{name}') is {float(values[r])!r}"
         bad |= wrong
     return bad, reasons

@@ -42,10 +42,10 @@ from sympy.core.cache import clear_cache
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from common import machine_note  # noqa: E402
+from common import machine_note
 
-from rollspring.analysis.derivation import symbolic_system  # noqa: E402
-from rollspring.model import System, system_from_dict  # noqa: E402
+from rollspring.analysis.derivation import symbolic_system
+from rollspring.model import System, system_from_dict
 
 SIZES = (2, 4, 8, 16, 32, 64, 128)
 LIMIT = 30.0  # seconds: SymPy mechanics stops doubling N after a run longer than this
@@ -122,7 +122,7 @@ def kane_route(n: int):
     kane = KanesMethod(frame, q_ind=q, u_ind=u, kd_eqs=kd)
     fr, frstar = kane.kanes_equations(bodies, loads)
     mass = kane.mass_matrix
-    at_rest = {**{qi: 0 for qi in q}, **{ui: 0 for ui in u}}
+    at_rest = {**dict.fromkeys(q, 0), **dict.fromkeys(u, 0)}
     stiffness = -kane.forcing.jacobian(q).subs(at_rest)
     return fr + frstar, mass, stiffness
 
@@ -136,7 +136,7 @@ def lagrange_route(n: int):
     equations = method.form_lagranges_equations()
     mass = method.mass_matrix
     stiffness = (
-        -method.forcing.jacobian(q).subs({qi: 0 for qi in q}).subs({qi.diff(): 0 for qi in q})
+        -method.forcing.jacobian(q).subs(dict.fromkeys(q, 0)).subs({qi.diff(): 0 for qi in q})
     )
     return equations, mass, stiffness
 

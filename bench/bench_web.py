@@ -44,6 +44,8 @@ request is not answered correctly, or the page has ``rollspringPage`` but cannot
 from __future__ import annotations
 
 import argparse
+import contextlib
+import itertools
 import json
 import math
 import os
@@ -92,7 +94,7 @@ class Server:
     """``rollspring serve`` in a subprocess (its own session), stopped with SIGINT."""
 
     def __init__(self, *extra: str) -> None:
-        self.log = tempfile.NamedTemporaryFile(
+        self.log = tempfile.NamedTemporaryFile(  # noqa: SIM115 - the server's stderr, for its life
             prefix="bench-web-server-", suffix=".log", delete=False
         )
         self.command = [
@@ -210,10 +212,8 @@ class Server:
         if left:
             self.stop_note += f"; {len(left)} of its processes were left running (killed)"
             for pid in left:
-                try:
+                with contextlib.suppress(OSError):
                     os.kill(pid, signal.SIGKILL)
-                except OSError:
-                    pass
 
 
 def get_json(url: str) -> Any:
@@ -348,7 +348,7 @@ def run_wrk(
             f"{done.stdout.strip()[-1000:]}"
         )
     figures = json.loads(line[len("WRK_JSON ") :])
-    figures["command"] = " ".join(command[:-3] + ["<script.lua>", url])
+    figures["command"] = " ".join([*command[:-3], "<script.lua>", url])
     figures["wrk_output"] = [
         ln for ln in done.stdout.splitlines() if not ln.startswith("WRK_JSON ")
     ]
@@ -552,7 +552,7 @@ def _frame_rate(page: Any, seconds: float) -> dict[str, Any]:
         raise Broken(
             f"frameTimes() gave {len(times)} frames over {seconds:g} s after Play ({clicked})"
         )
-    gaps = [b - a for a, b in zip(times, times[1:], strict=False) if b > a]
+    gaps = [b - a for a, b in itertools.pairwise(times) if b > a]
     rates = [1e3 / gap for gap in gaps]
     return {
         "play_button": clicked,

@@ -4,8 +4,8 @@ Why Sphinx: it is what the scientific-Python packages rollspring's users already
 with (NumPy, SciPy, SymPy and MuJoCo's documentation are Sphinx sites), and it gives, from one
 tool: MyST Markdown pages (``docs/*.md``, which GitHub renders too), the API reference from the
 docstrings (``sphinx.ext.autodoc`` with ``napoleon``), the command-line reference generated from
-the commands themselves (``docs/_ext/rollspring_docs.py``) and a gallery of examples executed at build time with
-their figures (``sphinx-gallery``). ``make docs`` builds it with warnings as errors.
+the commands themselves (``docs/_ext/rollspring_docs.py``) and a gallery of examples executed at
+build time with their figures (``sphinx-gallery``). ``make docs`` builds it with warnings as errors.
 
 Math is rendered in the reader's browser by MathJax 3, served from the site itself: the Makefile
 installs the pinned npm package (``docs/package.json``, ``docs/package-lock.json``) and this file

@@ -2,22 +2,21 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from typing import Any
-
-import os
 
 import numpy as np
 import pytest
 from hypothesis import settings
+
+from rollspring.model import System, system_from_dict
 
 # Hypothesis: CI runs a fixed, derandomised profile (the same examples every run, no example
 # database); developers get random examples (HYPOTHESIS_PROFILE=dev, or any run outside CI).
 settings.register_profile("ci", derandomize=True, database=None, print_blob=True)
 settings.register_profile("dev", print_blob=True)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") else "dev"))
-
-from rollspring.model import System, system_from_dict
 
 
 @pytest.fixture(autouse=True)
@@ -28,7 +27,7 @@ def strict_numerics() -> Iterator[None]:
 
 
 def body(
-    id: str,
+    id: str,  # noqa: A002 - the schema's field name
     shape: str = "hoop",
     *,
     mass: float = 1.0,

@@ -72,7 +72,8 @@ def test_no_equilibrium_gives_no_response_and_says_why() -> None:
 
 
 def test_modal_damping_ratio_of_a_damped_wall_spring() -> None:
-    """One body on a wall spring at centre height: K = k R^2, C = c R^2, zeta = c R/(2 sqrt(k J))."""
+    """One body on a wall spring at centre height: K = k R^2, C = c R^2,
+    zeta = c R/(2 sqrt(k J))."""
     k, c, m, radius = 80.0, 1.5, 0.9, 0.2
     system = make_system(
         [body("c", "cylinder", mass=m, radius=radius, x=0.0)],

@@ -106,7 +106,7 @@ def test_gif_frames_show_the_cylinder_turning_by_its_angle(rolling, tmp_path) ->
         for k in (2, 14):
             gif.seek(k)
             frame = np.asarray(gif.convert("RGB"))
-            x, phi = rolling.x[k, 1], rolling.phi[k, 1]
+            x = rolling.x[k, 1]
             centre = layout.pixel(x, 0.1)
             rim = layout.pixel(x + 0.1, 0.1)
             radius = rim[0] - centre[0]

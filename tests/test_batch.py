@@ -304,7 +304,7 @@ def test_step_from_rtol_and_auto():
     omega = pair_omega(m1, m2, k).max()
     duration = 7.3
     for integrator in ("verlet", "yoshida4", "yoshida6"):
-        order, weights, constant = SCHEMES[integrator]
+        order, _weights, constant = SCHEMES[integrator]
         result = simulate_batch(centre_pair(), params, duration, rtol=1e-7, integrator=integrator)
         assert result.step * result.n_steps == pytest.approx(duration, rel=1e-14)
         assert result.omega_max == pytest.approx(omega, rel=1e-12)
@@ -547,7 +547,7 @@ def test_parameters_that_break_the_model_are_refused():
     )
     with pytest.raises(ModelError, match=r"springs\[0\]\.at\[1\]: 's' is a slider"):
         simulate_batch(slider, {"bodies.s.radius": [0.05, 0.06]}, 1.0)
-    with pytest.raises(ModelError, match="names the same parameter as 'springs.0.stiffness'"):
+    with pytest.raises(ModelError, match=r"names the same parameter as 'springs\.0\.stiffness'"):
         simulate_batch(
             centre_pair(), {"springs.0.stiffness": 1.0, "springs.00.stiffness": 2.0}, 1.0
         )

@@ -298,7 +298,7 @@ def test_one_argument_validator(call):
     assert run(integrator="kahanli8", step=np.float64(0.01)).integrator == "kahanli8"
     if call == "simulate_batch":
         for bad in (True, 0, 1.5):
-            with pytest.raises(SimulationError, match="^metric_every: "):
+            with pytest.raises(SimulationError, match=r"^metric_every: "):
                 run(metric_every=bad)
         assert run(metric_every=np.int64(4)).metric_every == 4
 

@@ -22,7 +22,7 @@ from rollspring.simulate.batch.plan import make_plan, probe
 from tests.conftest import make_system
 
 SHAPES = ("hoop", "cylinder", "sphere", "shell", "slider")
-finite = dict(allow_nan=False, allow_infinity=False)
+finite = {"allow_nan": False, "allow_infinity": False}
 
 
 @st.composite

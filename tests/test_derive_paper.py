@@ -17,7 +17,6 @@ from rollspring.analysis.derivation import (
     derive,
     symbolic_system,
 )
-from rollspring.model import load_system
 from tests.conftest import body, make_system, spring
 
 
@@ -152,7 +151,7 @@ def test_fig2_subsystem_frequencies_and_hamiltonian_coefficients(fig2) -> None:
     assert zero(clamped[1] - 2 * k / (3 * m2))
     hamilton = fig2.methods["hamilton"]
     # Sec. 4.5: q1 = sqrt(2) R phi1, q2 = sqrt(3/2) R phi2
-    scales = [step for step in hamilton.steps if "Canonical" in step.words][0].equation
+    scales = next(step for step in hamilton.steps if "Canonical" in step.words).equation
     assert zero(scales[0].rhs - sp.sqrt(2) * R * s["phi_1"])
     assert zero(scales[1].rhs - sp.sqrt(sp.Rational(3, 2)) * R * s["phi_2"])
     # (k), (k0): coefficients 1/sqrt2 and sqrt(2/3) as magnitudes; in a common orientation of

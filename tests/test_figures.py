@@ -253,7 +253,7 @@ def test_bodies_are_drawn_where_the_trajectory_puts_them(paper) -> None:
 
 
 def test_cm_and_stationary_point_markers_sit_at_their_values(paper) -> None:
-    system, analysis, _ = paper
+    _system, analysis, _ = paper
     ax = plot_system(analysis)
     cm = next(
         line for line in ax.lines if line.get_marker() == "^" and line.get_color() == COLORS["cm"]

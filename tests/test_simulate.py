@@ -86,7 +86,7 @@ def test_outputs_between_steps_are_interpolated_within_rtol(rtol):
         n_output=20_001,
     )
     assert trajectory.step > 3 * duration / 20_000  # every step holds several outputs
-    x1, x2, _ = exact_pair(m1, m2, k, compression, trajectory.t)
+    _x1, x2, _ = exact_pair(m1, m2, k, compression, trajectory.t)
     amplitude = np.ptp(x2)
     assert np.max(np.abs(trajectory.x[:, 1] - x2)) <= rtol * amplitude
     speed = omega * compression * 1.5 * m2 / (2 * m1 + 1.5 * m2)  # the hoop's peak speed
@@ -435,7 +435,7 @@ def test_a_slipping_hoop_matches_an_independent_solve_ivp_of_the_slipping_equati
     assert trajectory.events[1]["kind"] in ("stick", "reverse")
 
     def rhs(_t, y):
-        x1, phi1, x2, u1, w1, u2 = y
+        x1, _phi1, x2, u1, w1, u2 = y
         force_on_hoop = k * (x2 - x1 - 0.5)
         friction = mu_k * m1 * G  # the slip velocity is negative: friction along +x
         return [
@@ -500,5 +500,5 @@ def test_a_view_without_the_outputs_layer_is_a_clear_error(monkeypatch):
 
     monkeypatch.setattr(run, "PRESENTERS", {})
     trajectory = simulate(centre_pair(1.0, 1.3, 100.0), 0.1, n_output=3)
-    with pytest.raises(SimulationError, match="to_pandas is provided by rollspring.outputs"):
+    with pytest.raises(SimulationError, match=r"to_pandas is provided by rollspring\.outputs"):
         trajectory.to_pandas()

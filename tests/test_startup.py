@@ -146,14 +146,14 @@ def test_a_library_name_without_its_extra_says_which_to_install(monkeypatch) -> 
 
 
 def test_a_missing_module_met_inside_a_guarded_block_names_its_extra() -> None:
-    with pytest.raises(errors.MissingExtraError, match=r"needs the 'plot' extra"):
-        with errors.require_extra("plot", "this"):
-            raise ModuleNotFoundError(
-                "No module named 'matplotlib.pyplot'", name="matplotlib.pyplot"
-            )
-    with pytest.raises(ModuleNotFoundError):  # a module of no extra is a bug, left as it is
-        with errors.require_extra("plot", "this"):
-            raise ModuleNotFoundError("No module named 'nothing'", name="nothing")
+    with (
+        pytest.raises(errors.MissingExtraError, match=r"needs the 'plot' extra"),
+        errors.require_extra("plot", "this"),
+    ):
+        raise ModuleNotFoundError("No module named 'matplotlib.pyplot'", name="matplotlib.pyplot")
+    # a module of no extra is a bug, left as it is
+    with pytest.raises(ModuleNotFoundError), errors.require_extra("plot", "this"):
+        raise ModuleNotFoundError("No module named 'nothing'", name="nothing")
 
 
 def test_the_console_script_starts_and_exits_cleanly() -> None:

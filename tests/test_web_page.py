@@ -54,9 +54,7 @@ class Opened:
     def check_origin(self) -> None:
         assert self.requests
         outside = [
-            u
-            for u in self.requests
-            if not (u.startswith(self.base + "/") or u.startswith(("data:", "blob:")))
+            u for u in self.requests if not u.startswith((self.base + "/", "data:", "blob:"))
         ]
         assert outside == []
 
@@ -339,26 +337,20 @@ ACCESSIBLE_NAME = """el => {
     return text(el.textContent || el.title);
 }"""
 
-DESCRIBE_FOCUS = (
-    """() => {
+DESCRIBE_FOCUS = """() => {
     const el = document.activeElement;
     if (!el || el === document.body) return null;
     if (!el.dataset.tabWalk) el.dataset.tabWalk = String(Math.random());
     return {key: el.dataset.tabWalk, tag: el.tagName, name: (%s)(el)};
-}"""
-    % ACCESSIBLE_NAME
-)
+}""".replace("%s", ACCESSIBLE_NAME)
 
-INTERACTIVE = (
-    """() => [...document.querySelectorAll(
+INTERACTIVE = """() => [...document.querySelectorAll(
         'button, select, input, textarea, summary, [tabindex="0"], a[href]')]
     .filter(el => !el.disabled && el.checkVisibility({visibilityProperty: true}))
     .map(el => {
         if (!el.dataset.tabWalk) el.dataset.tabWalk = String(Math.random());
         return {key: el.dataset.tabWalk, tag: el.tagName, name: (%s)(el)};
-    })"""
-    % ACCESSIBLE_NAME
-)
+    })""".replace("%s", ACCESSIBLE_NAME)
 
 
 def test_every_control_is_reachable_with_tab_labelled_and_operable(opened: Opened) -> None:

@@ -36,8 +36,8 @@ SECTIONS: list[tuple[str, str, tuple[str, ...]]] = [
     ),
     (
         "Exact physics",
-        "Pure vectorised functions of the system arrays and a state `q (..., n_bodies)`: positions, "
-        "energies, generalised forces, contact forces, the exact stiffness matrix.",
+        "Pure vectorised functions of the system arrays and a state `q (..., n_bodies)`: "
+        "positions, energies, generalised forces, contact forces, the exact stiffness matrix.",
         ("rollspring.physics",),
     ),
     (

@@ -24,16 +24,14 @@ from rollspring.errors import AnalysisError, ModelError, RollspringError, Simula
 
 TYPE_CHECKING = False  # as typing.TYPE_CHECKING, without importing typing (10 ms)
 if TYPE_CHECKING:  # what the names below load on first use, for type checkers and editors
-    from rollspring import (
-        analysis,
-        cli,
-        model,
-        outputs,
-        physics,
-        service,
-        simulate,
-        web,
-    )
+    from rollspring import analysis as analysis
+    from rollspring import cli as cli
+    from rollspring import model as model
+    from rollspring import outputs as outputs
+    from rollspring import physics as physics
+    from rollspring import service as service
+    from rollspring import simulate as simulate
+    from rollspring import web as web
     from rollspring.analysis import LinearAnalysis, Mode, analyze, find_equilibrium, normal_modes
     from rollspring.analysis.derivation import Derivation, derive, symbolic_system
     from rollspring.analysis.paper_check import check_paper, paper_claims
@@ -219,18 +217,11 @@ def __dir__() -> list[str]:
 
 __all__ = [
     "AnalysisError",
-    "Derivation",
-    "build_report",
-    "check_paper",
-    "derive",
-    "paper_claims",
-    "symbolic_system",
-    "worksheet",
-    "write_report",
-    "BatchResult",
     "Anchor",
     "Attachment",
+    "BatchResult",
     "Body",
+    "Derivation",
     "ExternalForce",
     "LinearAnalysis",
     "Mode",
@@ -238,29 +229,36 @@ __all__ = [
     "RollspringError",
     "SimulationError",
     "Spring",
-    "Trajectory",
     "System",
     "SystemArrays",
+    "Trajectory",
     "accelerations",
     "analyze",
+    "build_report",
     "centre_of_mass",
     "centre_positions",
+    "check_paper",
     "contact_forces",
+    "derive",
     "find_equilibrium",
     "generalized_forces",
     "kinetic_energy",
     "load_system",
     "mass_matrix",
     "normal_modes",
+    "paper_claims",
     "potential_energy",
     "preset_names",
     "simulate",
     "simulate_batch",
     "spring_state",
-    "sweep",
     "stiffness_matrix",
+    "sweep",
+    "symbolic_system",
     "system_arrays",
     "system_from_dict",
     "system_json_schema",
     "total_energy",
+    "worksheet",
+    "write_report",
 ]

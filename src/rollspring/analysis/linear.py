@@ -419,7 +419,6 @@ def analyze(system: System) -> LinearAnalysis:
     tension.
     """
     arrays = system_arrays(system)
-    n = arrays.n_bodies
     warnings: list[str] = []
     equilibrium = find_equilibrium(arrays)
     if not equilibrium.found:
@@ -614,7 +613,7 @@ def _response(
         amps = (
             np.array([osc[..., g].sum(axis=-1) for g in groups])
             if groups
-            else np.zeros((0,) + per_mode.shape[:-1], dtype=complex)
+            else np.zeros((0, *per_mode.shape[:-1]), dtype=complex)
         )
         return _Component(np.asarray(centre, dtype=float), amps, np.asarray(drift, dtype=float))
 
@@ -727,8 +726,9 @@ def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component)
 
         def ratio(theta: FloatArray) -> FloatArray:
             phase = np.exp(1j * np.atleast_2d(theta))
-            f = f_c + np.real(phase @ a_f)
-            normal_force = n_c + np.real(phase @ a_n)
+            # called only within this iteration: the loop's current values are the ones meant
+            f = f_c + np.real(phase @ a_f)  # noqa: B023
+            normal_force = n_c + np.real(phase @ a_n)  # noqa: B023
             return np.abs(f) / normal_force
 
         if n_groups == 0:

@@ -601,10 +601,7 @@ def _momentum(b: _Bench) -> Derived:
     c = b.conserved("fig2")
     J = [body.J for body in sym.bodies]
     scaled = [_tidy(ci * J[0] / c[0]) for ci in c]
-    if _same(scaled, J):
-        value = P0
-    else:
-        value = J[0] * phid1 + J[1] * phid2
+    value = P0 if _same(scaled, J) else J[0] * phid1 + J[1] * phid2
     return Derived(
         value,
         "the zero mode v0 of K gives the conserved v0^T M phidot (M14)",

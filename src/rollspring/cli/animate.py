@@ -57,8 +57,8 @@ def animate(
     """Animate the exact motion: the bodies roll, the springs stretch, force arrows to scale,
     the CM and X-hat on the floor, and a clock."""
     target = _check(out, duration, speed, fps, dpi, on_slip)
-    from rollspring.outputs.animation import AnimationError, frame_times, write_animation
     from rollspring.model import load_system
+    from rollspring.outputs.animation import AnimationError, frame_times, write_animation
     from rollspring.simulate import simulate
 
     model = load_system(system)

@@ -42,9 +42,9 @@ def derive_command(
             show_default=False,
         ),
     ] = None,
-    format: Annotated[
+    format: Annotated[  # noqa: A002 - the option is called --format
         str,
-        typer.Option(  # noqa: A002 - the option is called --format
+        typer.Option(
             "--format",
             "-f",
             help=f"Output format: {', '.join(FORMAT_NAMES)} (latex: a full document).",

@@ -28,11 +28,9 @@ def export(
             show_default=False,
         ),
     ],
-    format: Annotated[
+    format: Annotated[  # noqa: A002 - the option is called --format
         str,
-        typer.Option(  # noqa: A002 - the option is called --format
-            "--format", "-f", help=f"Output format: {', '.join(FORMATS)} (MuJoCo XML)."
-        ),
+        typer.Option("--format", "-f", help=f"Output format: {', '.join(FORMATS)} (MuJoCo XML)."),
     ] = "mjcf",
     out: Annotated[
         str | None,

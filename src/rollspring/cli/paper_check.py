@@ -50,11 +50,9 @@ class PaperCheckError(RollspringError, ValueError):
 
 def paper_check(
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON list on stdout.")] = False,
-    format: Annotated[
+    format: Annotated[  # noqa: A002 - the option is called --format
         str,
-        typer.Option(  # noqa: A002 - the option is called --format
-            "--format", "-f", help=f"Output format: {', '.join(FORMATS)}."
-        ),
+        typer.Option("--format", "-f", help=f"Output format: {', '.join(FORMATS)}."),
     ] = "text",
 ) -> None:
     """Check every quantitative claim of the paper against the symbolic derivation: ✔ verified,

@@ -40,9 +40,9 @@ def report(
             show_default=False,
         ),
     ] = None,
-    format: Annotated[
+    format: Annotated[  # noqa: A002 - the option is called --format
         str | None,
-        typer.Option(  # noqa: A002 - the option is called --format
+        typer.Option(
             "--format",
             "-f",
             help="html (default; pdf when --out ends in .pdf) or pdf (printed by "
@@ -82,7 +82,7 @@ def report(
     from rollspring.service.documents import build_report
 
     if format is None:
-        format = "pdf" if out is not None and out.lower().endswith(".pdf") else "html"
+        format = "pdf" if out is not None and out.lower().endswith(".pdf") else "html"  # noqa: A001
     if format not in FORMATS:
         raise ReportError(f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})")
     if duration is not None and not duration > 0:

@@ -83,9 +83,9 @@ def worksheet_command(
             show_default=False,
         ),
     ] = None,
-    format: Annotated[
+    format: Annotated[  # noqa: A002 - the option is called --format
         str,
-        typer.Option(  # noqa: A002 - the option is called --format
+        typer.Option(
             "--format",
             "-f",
             help=f"Output format: {', '.join(FORMATS)} (latex: documents for pdflatex).",

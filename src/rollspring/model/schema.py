@@ -258,7 +258,8 @@ class System(_Strict):
             for i, item in enumerate(items):
                 if item.id in seen:
                     raise ValueError(
-                        f"{kind}[{i}].id: duplicate id '{item.id}' (already used in {seen[item.id]})"
+                        f"{kind}[{i}].id: duplicate id '{item.id}' "
+                        f"(already used in {seen[item.id]})"
                     )
                 seen[item.id] = f"{kind}[{i}]"
         bodies = self.body_map

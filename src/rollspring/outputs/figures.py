@@ -313,7 +313,7 @@ def _extent(
             walls.append((ax_ - 0.75 * size, ay, 1.5 * size, thickness))
             xmin, xmax = min(xmin, ax_ - 0.75 * size), max(xmax, ax_ + 0.75 * size)
             top = max(top, ay + thickness)
-    for height, left, right in spans:
+    for _height, left, right in spans:
         xmin, xmax = min(xmin, left), max(xmax, right)
     pad = 0.3 * size + side_extra
     return _Extent(
@@ -466,10 +466,10 @@ class SystemScene:
                 zorder=7,
             )
         # CM and X-hat on the floor
-        marker = dict(ms=7, zorder=8, clip_on=False, mew=0.0)
+        marker = {"ms": 7, "zorder": 8, "clip_on": False, "mew": 0.0}
         (self.cm,) = ax.plot([], [], "^", color=COLORS["cm"], **marker)
         (self.xhat,) = ax.plot([], [], "^", color=COLORS["xhat"], **marker)
-        text = dict(ha="center", va="top", fontsize=7.5, zorder=8)
+        text = {"ha": "center", "va": "top", "fontsize": 7.5, "zorder": 8}
         self.cm_label = ax.text(0, extent.floor - 0.42 * size, "CM", color=COLORS["cm"], **text)
         self.xhat_label = ax.text(
             0, extent.floor - 0.70 * size, r"$\hat{X}$", color=COLORS["xhat"], **text
@@ -641,7 +641,7 @@ class SystemScene:
             for j in range(2):
                 if a.end_body[s, j] >= 0:
                     self.arrows["spring"].append(self._arrow(COLORS["spring_force"]))
-        for i in range(a.n_bodies):
+        for _ in range(a.n_bodies):
             self.arrows["normal"].append(self._arrow(COLORS["normal"], alpha=0.85))
             self.arrows["friction"].append(self._arrow(COLORS["friction"]))
         for _ in range(a.force.shape[0]):
@@ -682,7 +682,7 @@ class SystemScene:
             )
             children.append(
                 HPacker(
-                    children=[box, TextArea(text, textprops=dict(fontsize=7.5))],
+                    children=[box, TextArea(text, textprops={"fontsize": 7.5})],
                     align="center",
                     pad=0,
                     sep=3,
@@ -839,7 +839,7 @@ class _Sampler:
     def _hermite(self, values: FloatArray, rates: FloatArray, times: FloatArray) -> FloatArray:
         t = self.t
         if t.size == 1:
-            return np.broadcast_to(values[0], (times.size,) + values.shape[1:]).copy()
+            return np.broadcast_to(values[0], (times.size, *values.shape[1:])).copy()
         k = np.clip(np.searchsorted(t, times, side="right") - 1, 0, t.size - 2)
         h = (t[k + 1] - t[k])[:, None]
         s = np.clip((times - t[k])[:, None] / h, 0.0, 1.0)
@@ -1052,11 +1052,11 @@ def plot_system(
                     _finite_max(result.equilibrium_normal),
                     0.15 * (extent.xmax - extent.xmin),
                 )
-                state_forces = dict(
-                    friction=result.equilibrium_friction,
-                    normal=result.equilibrium_normal,
-                    tension=result.spring_tension,
-                )
+                state_forces = {
+                    "friction": result.equilibrium_friction,
+                    "normal": result.equilibrium_normal,
+                    "tension": result.spring_tension,
+                }
         if ax is None:
             _, ax = _scene_figure(
                 extent, width=6.4, header=_header_points(scale is not None, False), title=title

@@ -515,10 +515,8 @@ def _linear_overlay(
             data.notes.append("no linear period: the store has no omega")
             return
         omega = plane["omega"]
-        if mode is not None:
-            omega = omega.sel(mode=mode)
-        else:  # the lowest oscillating mode (zero modes are exactly 0)
-            omega = omega.where(omega > 0).min("mode")
+        # without a mode: the lowest oscillating mode (zero modes are exactly 0)
+        omega = omega.sel(mode=mode) if mode is not None else omega.where(omega > 0).min("mode")
         with np.errstate(divide="ignore", invalid="ignore"):
             period = 2 * math.pi / omega
         data.linear = np.asarray(period.transpose(y, x).values, float)

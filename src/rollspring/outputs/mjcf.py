@@ -252,7 +252,8 @@ def system_to_mjcf(system: System, *, timestep: float | None = None) -> str:
         equality.append(
             ET.Comment(
                 _comment(
-                    "mu_static = inf: rolling enforced by x = R phi; solref time constant = 2 timesteps "
+                    "mu_static = inf: rolling enforced by x = R phi; "
+                    "solref time constant = 2 timesteps "
                     "(MuJoCo's default 0.02 s would let x - R phi drift by millimetres)"
                 )
             )
@@ -290,8 +291,9 @@ def system_to_mjcf(system: System, *, timestep: float | None = None) -> str:
         actuator.append(
             ET.Comment(
                 _comment(
-                    "constant forces: gear = (fx, 0, fy) N in the world frame (refsite), applied at a "
-                    "body-fixed site; force = gain*ctrl + bias = 0*ctrl + 1, independent of ctrl"
+                    "constant forces: gear = (fx, 0, fy) N in the world frame (refsite), "
+                    "applied at a body-fixed site; "
+                    "force = gain*ctrl + bias = 0*ctrl + 1, independent of ctrl"
                 )
             )
         )

@@ -250,7 +250,7 @@ def stiffness_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
     q = _as_state(system, q)
     if q.ndim != 1:
         raise ValueError("stiffness_matrix takes one state q of shape (n,)")
-    position, first, second = end_kinematics(system, q)
+    _position, first, second = end_kinematics(system, q)
     springs = spring_state(system, q)
     delta = _relative_derivatives(system, first)  # (S, n, 2)
     sign = np.array([-1.0, 1.0])

@@ -19,8 +19,8 @@ from rollspring.errors import SimulationError
 
 __all__ = [
     "ON_SLIP",
-    "check_count",
     "check_choice",
+    "check_count",
     "check_duration",
     "check_positive",
     "check_rtol",

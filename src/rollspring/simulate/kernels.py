@@ -15,7 +15,9 @@ The general state (any body may slip) is per body the centre position :math:`x_i
 velocity :math:`\omega_i` (clockwise positive). An attachment at distance :math:`r` and angle
 :math:`\alpha` (clockwise from up) is at (M1)
 
-.. math:: P = (x_i + r\sin\theta,\; h_i + R_i + r\cos\theta), \qquad \theta = \alpha + \rho_i\varphi_i
+.. math::
+
+   P = (x_i + r\sin\theta,\; h_i + R_i + r\cos\theta), \qquad \theta = \alpha + \rho_i\varphi_i
 
 and the loads :func:`body_loads` are the resultant force :math:`(F_{ix}, F_{iy})` and the
 clockwise torque :math:`\tau_i` about the centre of the springs (tension

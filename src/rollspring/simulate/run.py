@@ -1086,7 +1086,7 @@ def _refine(
     the segment holding ``t``)."""
     if segment is None:
         segment = next((s for s in run.segments if s.t0 <= t <= s.t1), None)
-    if segment is None or segment.slipping[i] and kind == "ratio":
+    if segment is None or (segment.slipping[i] and kind == "ratio"):
         return value
     lo, hi = max(segment.t0, t - width), min(segment.t1, t + width)
     if not hi > lo:

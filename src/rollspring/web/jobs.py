@@ -108,7 +108,7 @@ def execute(job: str, request: dict[str, Any]) -> tuple[str, Any]:
             f"{' '.join(str(exc).split())[:300]})"
         )
         return "error", ("invalid", message, ["body", "system"])
-    except Exception as exc:  # a bug: reported as HTTP 500 with its type
+    except Exception as exc:  # noqa: BLE001 - a bug: reported as HTTP 500 with its type
         return "error", ("crash", f"internal error: {type(exc).__name__}: {exc}"[:500], [])
 
 

@@ -2,7 +2,7 @@
 the scientific stack and rollspring, and runs one small simulation so that the compiled kernels
 are in memory. Every worker forked from the forkserver starts with all of it, warm."""
 
-import scipy.integrate  # noqa: F401 - the libraries the rest of rollspring loads on demand
+import scipy.integrate  # the libraries the rest of rollspring loads on demand
 import scipy.optimize  # noqa: F401
 
 import rollspring.outputs  # noqa: F401

@@ -88,7 +88,7 @@ def equations_matrix(equations: list[sp.Eq], sym: SymbolicSystem) -> tuple[sp.Ma
         rest = sp.expand(expr - lead * sym.qdd[i])
         for j in range(n):
             A[i, j] = sp.cancel(-rest.coeff(sym.q[j]) / lead)
-        c[i] = sp.cancel(-rest.subs({q: 0 for q in sym.q}) / lead)
+        c[i] = sp.cancel(-rest.subs(dict.fromkeys(sym.q, 0)) / lead)
     return A, c
 
 

@@ -17,11 +17,12 @@ import threading
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+
 import sympy as sp
 
 from rollspring.analysis.derivation.symbolic import SymbolicSystem, _is_tridiagonal
 
-__all__ = ["OMEGA2", "Frequencies", "BudgetExceeded", "normal_frequencies", "time_budget"]
+__all__ = ["OMEGA2", "BudgetExceeded", "Frequencies", "normal_frequencies", "time_budget"]
 
 #: The symbol of a squared normal frequency.
 OMEGA2 = sp.Symbol("Omega^2")
@@ -47,7 +48,7 @@ def time_budget(seconds: float | None) -> Iterator[None]:
         yield
         return
 
-    def expire(signum, frame):  # noqa: ARG001
+    def expire(signum, frame):  # the signal handler's signature
         raise BudgetExceeded
 
     previous = signal.signal(signal.SIGALRM, expire)

@@ -40,7 +40,7 @@ def _pretty(step: Step) -> str:
     equation = step.equation
     items = equation if isinstance(equation, list | tuple) else [equation]
     if len(items) > 12:
-        items = list(items[:10]) + [sp.Symbol("...")] + [items[-1]]
+        items = [*items[:10], sp.Symbol("..."), items[-1]]
     out = []
     for item in items:
         try:

@@ -34,7 +34,7 @@ class Named(sp.Symbol):
 
     _forms: dict[str, str] = {}  # noqa: RUF012 - a registry shared by all instances
 
-    def _latex(self, printer) -> str:  # noqa: ARG002 - SymPy's printer hook
+    def _latex(self, printer) -> str:  # SymPy's printer hook (printer unused)
         return self._forms.get(self.name, self.name)
 
 
@@ -90,11 +90,11 @@ def latex_of(obj: Any) -> str:
         return _matrix_latex(obj)
     if isinstance(obj, Sequence) and not isinstance(obj, str):
         items = list(obj)
-        shown = items if len(items) <= _MAX_LIST else items[: _MAX_LIST - 2] + [items[-1]]
+        shown = items if len(items) <= _MAX_LIST else [*items[: _MAX_LIST - 2], items[-1]]
         lines = [_aligned(latex_of(item)) for item in shown]
         if len(items) > _MAX_LIST:
             lines.insert(
-                _MAX_LIST - 2, r"&\;\;\vdots \quad\text{(%d equations in all)}" % len(items)
+                _MAX_LIST - 2, rf"&\;\;\vdots \quad\text{{({len(items)} equations in all)}}"
             )
         return r"\begin{aligned}" + r" \\ ".join(lines) + r"\end{aligned}"
     if isinstance(obj, str):

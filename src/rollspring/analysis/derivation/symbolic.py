@@ -163,12 +163,12 @@ class SymbolicBody:
         return 1 if self.rolls else 0
 
     @property
-    def I(self) -> sp.Expr:  # noqa: E743, N802 - the physicist's name
+    def I(self) -> sp.Expr:  # noqa: E743 - the physicist's name
         r"""Central moment of inertia :math:`I = \gamma m R^2` (0 for a slider)."""
         return self.gamma * self.m * self.R**2 if self.rolls else sp.Integer(0)
 
     @property
-    def J(self) -> sp.Expr:  # noqa: N802
+    def J(self) -> sp.Expr:
         r"""Inertia about the contact line :math:`J = I + mR^2` (M4); m for a slider."""
         return (1 + self.gamma) * self.m * self.R**2 if self.rolls else self.m
 
@@ -927,10 +927,7 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
             ell = sp.sqrt(d0x**2 + d0y**2)
             beta = sp.atan2(d0y, d0x)
             d0 = (d0x, d0y)
-        if relaxed:
-            L = ell
-        else:
-            L = name("L" if only else f"L_{label}", rest, nonnegative=True)
+        L = ell if relaxed else name("L" if only else f"L_{label}", rest, nonnegative=True)
         ats: list[Attachment | None] = []
         for end, at in zip(spring.ends, spring.attachments, strict=True):
             ats.append(attachment(index[end], at, label) if end in index else None)

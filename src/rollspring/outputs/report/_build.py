@@ -611,7 +611,8 @@ class _Page:
             parts.append(
                 Markup(
                     "<p>The zero mode v₀ conserves Σ wᵢ ẋᵢ with wᵢ = Jᵢ v₀ᵢ / sᵢ "
-                    "(docs/physics.md (M14)); for centre springs wᵢ ∝ (1+γᵢ) mᵢ, the paper's eq. (c):</p>"
+                    "(docs/physics.md (M14)); for centre springs wᵢ ∝ (1+γᵢ) mᵢ, "
+                    "the paper's eq. (c):</p>"
                     + '<div class="formula">'
                     + self.math(r"\hat{X} = \frac{\sum_i w_i x_i}{\sum_i w_i} = " + terms)
                     + "</div>"
@@ -774,7 +775,8 @@ class _Page:
                 [
                     "period (s): measured, linear",
                     Markup(
-                        f"{fmt(summary.get('period_measured'))}, {fmt(summary.get('period_linear'))}"
+                        f"{fmt(summary.get('period_measured'))}, "
+                        f"{fmt(summary.get('period_linear'))}"
                     ),
                 ],
             ],

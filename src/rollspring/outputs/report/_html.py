@@ -19,10 +19,10 @@ from rollspring.errors import RollspringError
 from rollspring.outputs.numbers import html_number as fmt
 
 __all__ = [
-    "MathConversionError",
-    "ReportError",
     "Markup",
+    "MathConversionError",
     "Num",
+    "ReportError",
     "esc",
     "fmt",
     "latex_to_mathml",
@@ -127,7 +127,7 @@ def latex_to_mathml(latex: str, *, display: bool = True) -> Markup:
         mathml = latex2mathml.converter.convert(
             _ALIGNED.sub(r"\\\1{split}", latex), display="block" if display else "inline"
         )
-    except Exception as exc:  # latex2mathml raises its own exception types, and IndexError
+    except Exception as exc:  # noqa: BLE001 - latex2mathml raises its own types, and IndexError
         raise MathConversionError(
             f"cannot convert LaTeX to MathML ({type(exc).__name__}): {latex[:80]}"
         ) from None

@@ -2,10 +2,10 @@ r"""``simulate_batch``: one topology, arrays of parameter values, many runs at o
 
 Every run is the exact rolling motion :math:`J_i\ddot\varphi_i = Q_i(\varphi)`
 (docs/physics.md (M7)) of the same system with some scalar parameters changed (masses, radii,
-friction coefficients, initial positions and velocities, stiffnesses, rest lengths, gravity). The runs are integrated
-by an explicit symplectic kick-drift-kick composition (valid because the mass matrix
-:math:`\mathrm{diag}(J_i)` is constant, (M6)) with one fixed step for all runs, compiled with
-Numba and spread over all cores. Each run keeps a handful of summary metrics, not its
+friction coefficients, initial positions and velocities, stiffnesses, rest lengths, gravity).
+The runs are integrated by an explicit symplectic kick-drift-kick composition (valid because the
+mass matrix :math:`\mathrm{diag}(J_i)` is constant, (M6)) with one fixed step for all runs,
+compiled with Numba and spread over all cores. Each run keeps a handful of summary metrics, not its
 trajectory (unless asked): the measured period, the amplitudes of the centre of mass and of the
 stationary point :math:`\hat X`, the largest :math:`|f|/N` each body needed, the smallest normal
 force, the energy error, and the first slip or lift-off with its instant.
@@ -99,7 +99,8 @@ STATUS_NAMES = {int(s): s.label for s in Status}
 
 #: The schemes ``integrator="auto"`` chooses from (:data:`.plan.AUTO_SCHEMES`; ``"kahanli8"`` is
 #: accepted by name too), name -> (order p, stage weights w_k, C_p): the relative frequency
-#: error of the composition is C_p (omega h)^p (:data:`rollspring.simulate.integrators.INTEGRATORS`).
+#: error of the composition is C_p (omega h)^p
+#: (:data:`rollspring.simulate.integrators.INTEGRATORS`).
 SCHEMES: dict[str, tuple[int, tuple[float, ...], float]] = {
     name: (_REGISTRY[name].order, _REGISTRY[name].coefficients, _REGISTRY[name].error_constant)
     for name in AUTO_SCHEMES

@@ -50,9 +50,9 @@ class BatchResult:
       event), ``NONFINITE`` (1: the state overflowed, which overrides an earlier event),
       ``INVALID`` (5: its values overflow double precision; not integrated) or ``UNRESOLVED``
       (6: the run alone would need more than :data:`~rollspring.simulate.batch.plan.MAX_STEPS`
-      steps at ``rtol``; left out of the step choice and not integrated); ``status_names`` gives the names and ``messages`` says, per run, why a
-      run was not integrated ("" for the others). The metrics of a run that was not integrated
-      are NaN (``first_slip_body`` -1).
+      steps at ``rtol``; left out of the step choice and not integrated); ``status_names``
+      gives the names and ``messages`` says, per run, why a run was not integrated ("" for the
+      others). The metrics of a run that was not integrated are NaN (``first_slip_body`` -1).
     * ``first_slip_time``, ``first_slip_body``: instant (s) and body index of the first slip
       or lift-off (whichever ``status`` says; the margin :math:`|f| - \mu_s N` or :math:`-N`
       interpolated linearly between steps); NaN and -1 if none. With ``stop_on_slip`` the run

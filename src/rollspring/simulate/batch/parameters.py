@@ -156,7 +156,6 @@ def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Run
 def system_runs(system: System, n_runs: int) -> Runs:
     """``n_runs`` runs of the system's own values (no parameters)."""
     arrays = system_arrays(system)
-    n = arrays.n_bodies
     n_springs = len(system.springs)
 
     def per_body(base) -> FloatArray:

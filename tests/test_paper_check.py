@@ -354,3 +354,9 @@ def test_cli_verdict_names_are_the_librarys() -> None:
         WRONG,
         HOLDS_ONLY_IF,
     )
+
+
+def test_plain_text_keeps_a_backslash_that_starts_no_command() -> None:
+    # a trailing backslash (or one before a newline) matches no command: kept, not a crash
+    assert cli_paper_check.plain("x\\") == "x\\"
+    assert cli_paper_check.plain(r"\frac{1}{2}") == "(1/2)"

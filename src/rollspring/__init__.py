@@ -191,8 +191,8 @@ def __getattr__(name: str):
     if name == "__version__":  # read on first use (importlib.metadata is not free either)
         from rollspring._version import version
 
-        globals()[name] = value = version()
-        return value
+        globals()[name] = text = version()
+        return text
     if name in _SUBPACKAGES:
         module_name, attribute = f"rollspring.{name}", None
     elif name in _LAZY:

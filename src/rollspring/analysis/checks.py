@@ -44,12 +44,12 @@ def _contact_warnings(analysis: LinearAnalysis) -> list[str]:
                 f"gravity holds it (N = {n_eq:.6g} N at equilibrium)"
             )
         elif rolls and f_eq != 0 and not math.isinf(mu) and abs(f_eq) > mu * n_eq:
-            needed = (
+            requirement = (
                 "unbounded friction (N = 0)" if n_eq == 0 else f"mu_s >= {abs(f_eq) / n_eq:.6g}"
             )
             out.append(
                 f"'{body}' cannot rest at the equilibrium without slipping: it needs "
-                f"{needed}, it has {mu:g}"
+                f"{requirement}, it has {mu:g}"
             )
         if analysis.required_mu is None or analysis.normal_force_range is None:
             continue

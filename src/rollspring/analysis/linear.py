@@ -196,15 +196,24 @@ def _valley_directions(
     q: FloatArray,
     n_zero: int,
     stiffness: FloatArray | None = None,
-):
+) -> FloatArray:
     """The ``n_zero`` softest M-normalised modes at ``q``: the directions along the valley."""
     if stiffness is None:
         stiffness = stiffness_matrix(system, q)
     eigenvalues, vectors = scipy.linalg.eigh(stiffness, mass)
-    return vectors[:, np.argsort(np.abs(eigenvalues))[:n_zero]]
+    directions: FloatArray = vectors[:, np.argsort(np.abs(eigenvalues))[:n_zero]]
+    return directions
 
 
-def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness=None):
+def _hold_zero_modes(
+    q: FloatArray,
+    n_zero: int,
+    mass: FloatArray,
+    system: SystemArrays,
+    descend: Callable[[FloatArray], tuple[FloatArray, float]],
+    max_iterations: int,
+    stiffness: FloatArray | None = None,
+) -> FloatArray:
     r"""Phase 2: the point of the valley of equilibria M-nearest to the initial placement.
 
     On the valley the tangent directions are the zero modes :math:`V_0(q)`; the M-nearest point
@@ -218,7 +227,8 @@ def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness
 
     def held(state: FloatArray) -> FloatArray:
         tangent = _valley_directions(system, mass, state, n_zero)
-        return basis.T @ mass @ tangent @ (tangent.T @ (mass @ state))
+        result: FloatArray = basis.T @ mass @ tangent @ (tangent.T @ (mass @ state))
+        return result
 
     size = max(1.0, float(np.max(np.abs(q))))
     known = stiffness  # K at the starting point, if the caller has it
@@ -243,7 +253,13 @@ def _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness
     return q
 
 
-def _damped_step(q, step, residual, residual_of, target):
+def _damped_step(
+    q: FloatArray,
+    step: FloatArray,
+    residual: float,
+    residual_of: Callable[[FloatArray], float],
+    target: float,
+) -> tuple[FloatArray, float, bool]:
     """One Newton step, at most 0.5 per coordinate, halved until the residual decreases."""
     biggest = float(np.max(np.abs(step)))
     if biggest > 0.5:  # at most half a radian (or 0.5 m) per step
@@ -358,7 +374,8 @@ class _Component:
     def amplitude(self) -> FloatArray:
         """Supremum over time of |g - centre| (exact for one frequency; for several, the
         supremum over all phases, approached arbitrarily closely by incommensurate motion)."""
-        return np.sum(np.abs(self.amplitudes), axis=0)
+        result: FloatArray = np.sum(np.abs(self.amplitudes), axis=0)
+        return result
 
 
 @dataclass(frozen=True)
@@ -604,7 +621,7 @@ def _response(
     complex_amp = eta0[oscillating] - 1j * etadot0[oscillating] / omegas
     groups = _frequency_groups(omegas)
 
-    def component(per_mode: FloatArray, centre_eq: FloatArray) -> _Component:
+    def component(per_mode: FloatArray, centre_eq: FloatArray | float) -> _Component:
         """per_mode: (..., n_modes) coefficient of each M-normalised mode in the quantity."""
         per_mode = np.asarray(per_mode)
         centre = centre_eq + per_mode[..., zero] @ eta0[zero]
@@ -729,7 +746,8 @@ def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component)
             # called only within this iteration: the loop's current values are the ones meant
             f = f_c + np.real(phase @ a_f)  # noqa: B023
             normal_force = n_c + np.real(phase @ a_n)  # noqa: B023
-            return np.abs(f) / normal_force
+            result: FloatArray = np.abs(f) / normal_force
+            return result
 
         if n_groups == 0:
             out[i] = abs(f_c) / n_c

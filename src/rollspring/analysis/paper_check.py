@@ -94,7 +94,9 @@ half = sp.Rational(1, 2)
 # -- the systems -------------------------------------------------------------------------------
 
 
-def _body(id_: str, shape: str, mass: float, radius: float, x: float, **extra: Any) -> dict:
+def _body(
+    id_: str, shape: str, mass: float, radius: float, x: float, **extra: Any
+) -> dict[str, Any]:
     return {"id": id_, "shape": shape, "mass": mass, "radius": radius, "x": x, **extra}
 
 
@@ -105,8 +107,8 @@ def _pair(
     r1: float = 0.1,
     r2: float = 0.1,
     track1: float = 0.0,
-    at: list[dict] | None = None,
-) -> dict:
+    at: list[dict[str, Any]] | None = None,
+) -> dict[str, Any]:
     """Two bodies joined by one spring (k = 100 N/m); distinct masses 1.3 kg and 0.7 kg so that
     no equality of masses is assumed by accident."""
     spring: dict[str, Any] = {"ends": ["b1", "b2"], "stiffness": 100.0, "rest_length": 0.5}
@@ -129,7 +131,7 @@ def _pair(
     }
 
 
-def _pulled(shape: str, **extra: Any) -> dict:
+def _pulled(shape: str, **extra: Any) -> dict[str, Any]:
     """One body pulled horizontally by a constant force at height 0.137 m (paper App. A, Fig. 5);
     0.137/R is no simple ratio, so the engine names the height y."""
     return {
@@ -139,7 +141,7 @@ def _pulled(shape: str, **extra: Any) -> dict:
 
 
 #: The systems the claims are checked on, as system files (dictionaries).
-SYSTEMS: dict[str, dict] = {
+SYSTEMS: dict[str, dict[str, Any]] = {
     # Fig. 1: two point masses, compressed and released
     "fig1": {
         "bodies": [_body("b1", "slider", 1.3, 0.05, 0.0), _body("b2", "slider", 0.7, 0.05, 0.49)],
@@ -195,7 +197,7 @@ class Derived:
     condition: str | None = None
     value_if: Any = None
     paper_if: Callable[[Any], Any] | None = None
-    paper_subs: dict = field(default_factory=dict)
+    paper_subs: dict[str, Any] = field(default_factory=dict)
     correction: str | None = None  # LaTeX, when the plain derived value is not the best display
 
 
@@ -240,15 +242,18 @@ class _Bench:
     """The symbolic systems and the derived objects they share, built once each."""
 
     def __init__(self) -> None:
-        self._cache: dict[tuple, Any] = {}
+        self._cache: dict[tuple[Any, ...], Any] = {}
 
-    def _cached(self, key: tuple, build: Callable[[], Any]) -> Any:
+    def _cached(self, key: tuple[Any, ...], build: Callable[[], Any]) -> Any:
         if key not in self._cache:
             self._cache[key] = build()
         return self._cache[key]
 
     def sym(self, key: str) -> SymbolicSystem:
-        return self._cached(("sym", key), lambda: symbolic_system(paper_system(key), symbols=True))
+        result: SymbolicSystem = self._cached(
+            ("sym", key), lambda: symbolic_system(paper_system(key), symbols=True)
+        )
+        return result
 
     def omega2(self, key: str) -> list[sp.Expr]:
         """Closed forms of the squared frequencies of the oscillating modes (the engine's
@@ -260,7 +265,8 @@ class _Bench:
                 raise RuntimeError(f"{key}: no closed-form frequencies")
             return list(found.omega2)
 
-        return self._cached(("omega2", key), build)
+        result: list[Any] = self._cached(("omega2", key), build)
+        return result
 
     def mode(self, key: str) -> sp.Matrix:
         """The one oscillating mode shape (in phi), the null vector of K - Omega^2 M."""
@@ -290,7 +296,8 @@ class _Bench:
             (length,) = sym.linearized([sym.springs[spring].length])
             return [_tidy(sp.diff(length, q)) for q in sym.q]
 
-        return self._cached(("lever", key, spring), build)
+        result: list[Any] = self._cached(("lever", key, spring), build)
+        return result
 
     def friction_linear(self, key: str) -> list[sp.Expr]:
         """The required friction (M8) to first order in q, positive along +x."""
@@ -299,7 +306,8 @@ class _Bench:
             sym = self.sym(key)
             return [sp.expand(f) for f in sym.linearized(sym.friction_configuration)]
 
-        return self._cached(("friction", key), build)
+        result: list[Any] = self._cached(("friction", key), build)
+        return result
 
     def weights(self, key: str) -> list[sp.Expr]:
         """Stationary-point weights w_i = J_i v0_i / s_i, normalised (docs/physics.md (M14))."""
@@ -311,7 +319,8 @@ class _Bench:
             total = sp.Add(*raw)
             return [_tidy(w / total) for w in raw]
 
-        return self._cached(("weights", key), build)
+        result: list[Any] = self._cached(("weights", key), build)
+        return result
 
     def conserved(self, key: str) -> list[sp.Expr]:
         """Coefficients c = v0^T M of the conserved combination c . qdot (M14)."""
@@ -375,7 +384,8 @@ def _same(left: Any, right: Any) -> bool:
         return False
     if sp.cancel(sp.expand(difference)) == 0:
         return True
-    return sp.simplify(difference) == 0 or sp.simplify(sp.expand(difference)) == 0
+    result: bool = sp.simplify(difference) == 0 or sp.simplify(sp.expand(difference)) == 0
+    return result
 
 
 def _tidy(expr: Any) -> Any:
@@ -409,10 +419,11 @@ def _nonzero_somewhere(expr: sp.Expr) -> bool:
 def _latex(value: Any) -> str:
     if isinstance(value, Sequence) and not isinstance(value, str):
         return r"\left(" + r",\ ".join(_latex(v) for v in value) + r"\right)"
-    return sp.latex(value)
+    result: str = sp.latex(value)
+    return result
 
 
-def _subs(value: Any, mapping: dict) -> Any:
+def _subs(value: Any, mapping: dict[Any, Any]) -> Any:
     if not mapping:
         return value
     if isinstance(value, Sequence) and not isinstance(value, str):
@@ -553,7 +564,7 @@ def _fig1_potential(b: _Bench) -> Derived:
     )
 
 
-def _cm_velocity(key: str, how: str) -> Derived:
+def _cm_velocity(key: str, how: str) -> Callable[[_Bench], Derived]:
     def derive(b: _Bench) -> Derived:
         sym = b.sym(key)
         w = b.weights(key)
@@ -1148,7 +1159,7 @@ def _hamilton_final(b: _Bench) -> Derived:
     )
 
 
-def _potential_q(key: str, qs: tuple, ps: tuple) -> Callable[[_Bench], Derived]:
+def _potential_q(key: str, qs: tuple[Any, ...], ps: tuple[Any, ...]) -> Callable[[_Bench], Derived]:
     def derive(b: _Bench) -> Derived:
         _, V = b.hamiltonian(key, qs, ps)
         return Derived(

@@ -10,11 +10,14 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from rollspring.model import preset_names
+
+if TYPE_CHECKING:
+    from rich.progress import TaskID
 
 # rollspring.outputs.animation (Matplotlib) is imported when the command runs, not when the CLI
 # starts: every other command would pay for it.
@@ -137,7 +140,7 @@ class _Bar:
             console=Console(stderr=True),
             transient=True,
         )
-        self.task = None
+        self.task: TaskID | None = None
 
     def __enter__(self) -> _Bar:
         self.progress.start()

@@ -20,6 +20,7 @@ from rollspring.model import DEFAULT_PRESET, preset_names, preset_path
 
 if TYPE_CHECKING:
     from rich.console import Console
+    from rich.progress import Progress, TaskID
 
 # Only what every command needs is imported here (Typer and the presets' names):
 # each command imports its own (pydantic's model, SciPy, the compiled kernels, SymPy,
@@ -149,7 +150,7 @@ def presets(as_json: JsonOpt = False) -> None:
     """List the built-in systems (each is also a file in examples/)."""
     from rollspring.model import load_system
 
-    rows = []
+    rows: list[dict[str, Any]] = []
     for name in preset_names():
         system = load_system(name)
         rows.append(
@@ -247,8 +248,8 @@ class _progress_after_a_second:  # noqa: N801 - used as a context manager
 
     def __init__(self, label: str) -> None:
         self.label = label
-        self.bar = None
-        self.task = None
+        self.bar: Progress | None = None
+        self.task: TaskID | None = None
         self.started = 0.0
 
     def __enter__(self):
@@ -269,7 +270,8 @@ class _progress_after_a_second:  # noqa: N801 - used as a context manager
             self.bar = Progress(console=Console(stderr=True), transient=True)
             self.bar.start()
             self.task = self.bar.add_task(self.label, total=1.0)
-        self.bar.update(self.task, completed=fraction)
+        if self.task is not None:  # set with the bar
+            self.bar.update(self.task, completed=fraction)
 
     def __exit__(self, *exc_info) -> None:
         if self.bar is not None:

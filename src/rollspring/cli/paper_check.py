@@ -220,6 +220,10 @@ def plain(latex: str) -> str:
         char = text[i]
         if char == "\\":
             match = re.match(r"\\([A-Za-z]+|.)", text[i:])
+            if match is None:  # a backslash at the very end: kept as it is
+                out.append(char)
+                i += 1
+                continue
             name = "\\" + match.group(1)
             i += match.end()
             if name in (r"\frac", r"\tfrac", r"\dfrac"):

@@ -9,11 +9,16 @@ command is added to an app by :func:`register` (called by ``rollspring.cli.app``
 from __future__ import annotations
 
 import time
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from rollspring.model import DEFAULT_PRESET, preset_names
+
+if TYPE_CHECKING:
+    from rich.progress import Progress, TaskID
+
+    from rollspring.service.sweeps import SweepProgress
 
 __all__ = ["register", "sweep"]
 
@@ -151,10 +156,10 @@ class _Bar:
     """A Rich progress bar on stderr: runs done, runs/s, time left (shown after a second)."""
 
     def __init__(self) -> None:
-        self.bar = None
-        self.task = None
-        self.first = None
-        self.last = None
+        self.bar: Progress | None = None
+        self.task: TaskID | None = None
+        self.first: SweepProgress | None = None
+        self.last: SweepProgress | None = None
         self.started = 0.0
 
     def __enter__(self) -> _Bar:
@@ -192,7 +197,8 @@ class _Bar:
             )
         elapsed = max(time.perf_counter() - self.started, 1e-9)
         rate = (progress.done_runs - self.first.done_runs) / elapsed
-        self.bar.update(self.task, completed=progress.done_runs, rate=f"{rate:,.0f} runs/s")
+        if self.task is not None:  # set with the bar
+            self.bar.update(self.task, completed=progress.done_runs, rate=f"{rate:,.0f} runs/s")
 
     def __exit__(self, *exc_info) -> None:
         if self.bar is not None:

@@ -71,11 +71,11 @@ def print_analysis(console: Console, result: LinearAnalysis) -> None:
     for label in labels:
         shapes.add_column(f"x{label}", justify="right")
         shapes.add_column(f"f{label}", justify="right")
-    for i, body in enumerate(ids):
-        cells = []
+    for i, body_id in enumerate(ids):
+        cells: list[str] = []
         for mode in result.modes:
             cells += [_g(float(mode.shape_x[i]), 4), _g(float(mode.friction[i]), 4)]
-        shapes.add_row(body, *cells)
+        shapes.add_row(body_id, *cells)
     console.print(shapes)
 
     if result.stationary_weights is not None:

@@ -6,7 +6,7 @@ command line's ``--help``, which lists the presets, starts without it).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from rollspring.model.catalog import DEFAULT_PRESET, preset_names, preset_path
 
@@ -53,7 +53,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> Any:
     if name not in _LAZY:
         raise AttributeError(f"module 'rollspring.model' has no attribute {name!r}")
     import importlib

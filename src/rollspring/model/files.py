@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from pydantic import ValidationError
+from pydantic_core import ErrorDetails
 
 from rollspring.errors import ModelError
 from rollspring.model.catalog import DEFAULT_PRESET, preset_names, preset_path
@@ -193,7 +194,7 @@ def _one_line(exc: ValidationError, data: Any) -> str:
     return message
 
 
-def _describe(error: dict[str, Any], data: Any) -> str:
+def _describe(error: ErrorDetails | dict[str, Any], data: Any) -> str:
     loc = [p for p in error["loc"] if not (isinstance(p, str) and p.startswith("function-"))]
     kind = error["type"]
     msg: str = error["msg"]

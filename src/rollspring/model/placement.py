@@ -14,15 +14,23 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from rollspring.errors import ModelError
+
+if TYPE_CHECKING:
+    import numpy as np
+    from numpy.typing import NDArray
 from rollspring.model.schema import Attachment, Body, System
 
 __all__ = ["rolled"]
 
 
 def rolled(
-    system: System, q: Sequence[float], *, velocities: Sequence[float] | None = None
+    system: System,
+    q: Sequence[float] | NDArray[np.float64],
+    *,
+    velocities: Sequence[float] | NDArray[np.float64] | None = None,
 ) -> System:
     r"""``system`` with body :math:`i` rolled by :math:`q_i` (rad, clockwise; metres for a
     slider) from its initial placement: centre :math:`x_i + R_i q_i`, attachment points and the

@@ -254,14 +254,15 @@ class System(_Strict):
     @model_validator(mode="after")
     def _references(self) -> System:
         seen: dict[str, str] = {}
-        for kind, items in (("bodies", self.bodies), ("anchors", self.anchors)):
-            for i, item in enumerate(items):
-                if item.id in seen:
+        ids = (("bodies", [b.id for b in self.bodies]), ("anchors", [a.id for a in self.anchors]))
+        for kind, item_ids in ids:
+            for i, item_id in enumerate(item_ids):
+                if item_id in seen:
                     raise ValueError(
-                        f"{kind}[{i}].id: duplicate id '{item.id}' "
-                        f"(already used in {seen[item.id]})"
+                        f"{kind}[{i}].id: duplicate id '{item_id}' "
+                        f"(already used in {seen[item_id]})"
                     )
-                seen[item.id] = f"{kind}[{i}]"
+                seen[item_id] = f"{kind}[{i}]"
         bodies = self.body_map
         anchors = {a.id for a in self.anchors}
         for s, spring in enumerate(self.springs):

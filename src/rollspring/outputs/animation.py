@@ -35,6 +35,7 @@ import re
 import tempfile
 from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -66,7 +67,7 @@ class AnimationError(RollspringError, ValueError):
 
 
 def _check_positive(
-    name: str, value: object, *, integer: bool = False, upper: float = math.inf
+    name: str, value: Any, *, integer: bool = False, upper: float = math.inf
 ) -> None:
     ok = isinstance(value, int | float) and not isinstance(value, bool)
     if ok and integer:
@@ -95,7 +96,7 @@ def frame_times(
             f"duration: {end - t0:g} s at speed {speed:g} and {int(fps)} fps is {count} frames "
             f"(at most {MAX_FRAMES}); shorten it, or raise the speed or lower the fps"
         )
-    return t0 + step * np.arange(count)
+    return np.asarray(t0 + step * np.arange(count), dtype=np.float64)
 
 
 class MotionAnimation:

@@ -50,6 +50,7 @@ from typing import Any
 
 import matplotlib
 import numpy as np
+from matplotlib.artist import Artist
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection
@@ -124,7 +125,7 @@ BODY_COLORS = (
     "#e377c2",
 )
 
-_RC = {
+_RC: dict[str, Any] = {
     "font.family": ["DejaVu Sans"],
     "font.size": 9.0,
     "mathtext.fontset": "dejavusans",
@@ -466,10 +467,10 @@ class SystemScene:
                 zorder=7,
             )
         # CM and X-hat on the floor
-        marker = {"ms": 7, "zorder": 8, "clip_on": False, "mew": 0.0}
+        marker: dict[str, Any] = {"ms": 7, "zorder": 8, "clip_on": False, "mew": 0.0}
         (self.cm,) = ax.plot([], [], "^", color=COLORS["cm"], **marker)
         (self.xhat,) = ax.plot([], [], "^", color=COLORS["xhat"], **marker)
-        text = {"ha": "center", "va": "top", "fontsize": 7.5, "zorder": 8}
+        text: dict[str, Any] = {"ha": "center", "va": "top", "fontsize": 7.5, "zorder": 8}
         self.cm_label = ax.text(0, extent.floor - 0.42 * size, "CM", color=COLORS["cm"], **text)
         self.xhat_label = ax.text(
             0, extent.floor - 0.70 * size, r"$\hat{X}$", color=COLORS["xhat"], **text
@@ -665,7 +666,7 @@ class SystemScene:
                     f"normal {forces.normal_reference:g} N",
                 )
             )
-        children = []
+        children: list[Artist] = []
         for length, color, text in entries:
             box = AuxTransformBox(self.ax.transData)
             box.add_artist(
@@ -762,7 +763,8 @@ class SystemScene:
             self._update_forces(state, x, phi)
         if self.clock is not None and state.time is not None:
             self.clock.set_text(f"t = {state.time:7.3f} s")
-            self.note.set_text(state.note)
+            if self.note is not None:
+                self.note.set_text(state.note)
 
     def _update_forces(self, state: SceneState, x: FloatArray, phi: FloatArray) -> None:
         g, a, scale = self.geometry, self.geometry.arrays, self.forces

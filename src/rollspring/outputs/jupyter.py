@@ -434,15 +434,15 @@ def trajectory_to_xarray(trajectory: Trajectory) -> Any:
         ("tension", "N", tr.spring_tension, "spring tension, positive when stretched"),
     ):
         variables[name] = (("time", "spring"), values, {"units": unit, "long_name": text})
-    for name, unit, values, text in (
+    for name, unit, series, text in (
         ("kinetic", "J", tr.kinetic, "kinetic energy"),
         ("potential", "J", tr.potential, "potential energy"),
         ("energy", "J", tr.energy, "total energy"),
         ("cm_x", "m", tr.cm_x, "centre of mass"),
         ("stationary_x", "m", tr.stationary_x, "stationary point X-hat"),
     ):
-        if values is not None:
-            variables[name] = (("time",), values, {"units": unit, "long_name": text})
+        if series is not None:
+            variables[name] = (("time",), series, {"units": unit, "long_name": text})
     bodies = tr.system.bodies
     coords = {
         "time": ("time", tr.t, {"units": "s"}),

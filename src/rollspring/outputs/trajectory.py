@@ -64,9 +64,9 @@ def write_trajectory(trajectory: Trajectory, directory: str | Path) -> list[Path
     json_path = directory / "summary.json"
     atomic_write_text(csv_path, trajectory_csv(trajectory))
     with atomic_write(npz_path, "wb") as handle:
-        np.savez_compressed(
-            handle, **{name: values for name, (_, values) in trajectory.columns().items()}
-        )
+        columns = {name: values for name, (_, values) in trajectory.columns().items()}
+        # NumPy's stubs type **kwds as the keyword options (allow_pickle): they are the arrays
+        np.savez_compressed(handle, **columns)  # type: ignore[arg-type]
     atomic_write_text(
         json_path,
         json.dumps(summary_json(trajectory), indent=2, ensure_ascii=False, allow_nan=False) + "\n",

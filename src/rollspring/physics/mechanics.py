@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from rollspring.physics.arrays import FloatArray, SystemArrays
 
@@ -51,16 +52,16 @@ def _as_state(system: SystemArrays, q: FloatArray | float) -> FloatArray:
 
 
 def _point_kinematics(
-    system: SystemArrays, body: FloatArray, r: FloatArray, alpha: FloatArray, q: FloatArray
+    system: SystemArrays, body: ArrayLike, r: FloatArray, alpha: FloatArray, q: FloatArray
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Position, first and second derivative (w.r.t. the body's coordinate) of body points."""
-    body = np.asarray(body, dtype=np.int64)
-    qb = q[..., body]
-    s, rho = system.scale[body], system.rolls[body]
+    index = np.asarray(body, dtype=np.int64)
+    qb = q[..., index]
+    s, rho = system.scale[index], system.rolls[index]
     theta = alpha + rho * qb
     sin, cos = np.sin(theta), np.cos(theta)
-    x = system.x0[body] + s * qb + r * sin
-    y = system.track[body] + system.radius[body] + r * cos
+    x = system.x0[index] + s * qb + r * sin
+    y = system.track[index] + system.radius[index] + r * cos
     position = np.stack([x, y], axis=-1)
     first = np.stack([s + rho * r * cos, -rho * r * sin], axis=-1)
     second = np.stack([-(rho**2) * r * sin, -(rho**2) * r * cos], axis=-1)
@@ -121,7 +122,8 @@ class SpringState:
 def _relative_derivatives(system: SystemArrays, first: FloatArray) -> FloatArray:
     r""":math:`\Delta_i = \partial(P_b - P_a)/\partial q_i`, shape (..., S, n, 2)."""
     sign = np.array([-1.0, 1.0])
-    return np.einsum("j,sji,...sjc->...sic", sign, system.incidence, first)
+    result: FloatArray = np.einsum("j,sji,...sjc->...sic", sign, system.incidence, first)
+    return result
 
 
 def spring_state(
@@ -170,7 +172,8 @@ def generalized_forces(
         torque = torque + np.einsum(
             "fc,...fc,fi->...i", system.force, first, system.force_incidence
         )
-    return torque
+    result: FloatArray = torque
+    return result
 
 
 def mass_matrix(system: SystemArrays) -> FloatArray:
@@ -209,7 +212,8 @@ def body_forces(system: SystemArrays, q: FloatArray, qdot: FloatArray | None = N
     total = np.einsum("...sjc,sji->...ic", end_force, system.incidence)
     if system.force.shape[0]:
         total = total + np.einsum("fc,fi->ic", system.force, system.force_incidence)
-    return total
+    result: FloatArray = total
+    return result
 
 
 def contact_forces(
@@ -267,7 +271,8 @@ def stiffness_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
         _, _, force_second = force_point_kinematics(system, q)
         diag = -np.einsum("fc,fc,fi->i", system.force, force_second, system.force_incidence)
         k_matrix += np.diag(diag)
-    return 0.5 * (k_matrix + k_matrix.T)
+    result: FloatArray = 0.5 * (k_matrix + k_matrix.T)
+    return result
 
 
 def damping_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
@@ -278,7 +283,8 @@ def damping_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
     Shape: ``q`` (n,) -> (n, n).
     """
     springs = spring_state(system, q)
-    return np.einsum("s,si,sj->ij", system.damping, springs.lever, springs.lever)
+    result: FloatArray = np.einsum("s,si,sj->ij", system.damping, springs.lever, springs.lever)
+    return result
 
 
 def body_forces_jacobian(system: SystemArrays, q: FloatArray) -> FloatArray:
@@ -300,7 +306,8 @@ def body_forces_jacobian(system: SystemArrays, q: FloatArray) -> FloatArray:
     across = (delta - b[:, :, None] * e[:, None, :]) * (tension / length)[:, None, None]
     d_pull = along + across  # (S, n_coord, 2): d(force on end a)/dq
     d_end = np.stack([d_pull, -d_pull], axis=1)  # (S, 2, n_coord, 2)
-    return np.einsum("sjkc,sji->ick", d_end, system.incidence)
+    result: FloatArray = np.einsum("sjkc,sji->ick", d_end, system.incidence)
+    return result
 
 
 def contact_forces_jacobian(system: SystemArrays, q: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -336,14 +343,16 @@ def potential_energy(system: SystemArrays, q: FloatArray) -> FloatArray:
         position, _, _ = force_point_kinematics(system, q)
         rest, _, _ = force_point_kinematics(system, np.zeros(system.n_bodies))
         energy = energy - np.einsum("fc,...fc->...", system.force, position - rest)
-    return energy
+    result: FloatArray = energy
+    return result
 
 
 def kinetic_energy(system: SystemArrays, qdot: FloatArray) -> FloatArray:
     r"""Kinetic energy :math:`T = \sum_i \tfrac12 J_i \dot q_i^2` (J), König's theorem with
     rolling, docs/physics.md (M4)-(M5); the paper's :math:`\tfrac12 I'_1\dot\varphi_1^2 + \dots`."""
     qdot = _as_state(system, qdot)
-    return 0.5 * np.sum(system.inertia * qdot**2, axis=-1)
+    result: FloatArray = 0.5 * np.sum(system.inertia * qdot**2, axis=-1)
+    return result
 
 
 def total_energy(system: SystemArrays, q: FloatArray, qdot: FloatArray) -> FloatArray:
@@ -361,4 +370,5 @@ def centre_positions(system: SystemArrays, q: FloatArray) -> FloatArray:
 def centre_of_mass(system: SystemArrays, q: FloatArray) -> FloatArray:
     r"""Horizontal position of the centre of mass :math:`X = \sum m_i x_i/\sum m_i` (m)."""
     x = centre_positions(system, q)
-    return np.sum(system.mass * x, axis=-1) / np.sum(system.mass)
+    result: FloatArray = np.sum(system.mass * x, axis=-1) / np.sum(system.mass)
+    return result

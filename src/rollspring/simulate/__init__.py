@@ -8,6 +8,7 @@ importable as usual.
 
 import sys
 import types
+from typing import Any
 
 from rollspring.simulate.batch import BatchResult, simulate_batch
 from rollspring.simulate.integrators import Integrator
@@ -31,7 +32,7 @@ __all__ = [
 class _CallableModule(types.ModuleType):
     """This package, callable as :func:`simulate`."""
 
-    def __call__(self, *args, **kwargs):
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
         return simulate(*args, **kwargs)
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, Literal, overload
 
 import numpy as np
 
@@ -68,6 +68,10 @@ def check_step(step: Any, duration: float) -> float | None:
     return value
 
 
+@overload
+def check_count(name: str, value: Any, minimum: int, *, optional: Literal[False] = ...) -> int: ...
+@overload
+def check_count(name: str, value: Any, minimum: int, *, optional: bool) -> int | None: ...
 def check_count(name: str, value: Any, minimum: int, *, optional: bool = False) -> int | None:
     """An integer (Python or NumPy, not a bool) of at least ``minimum``; None if ``optional``."""
     if value is None and optional:

@@ -47,7 +47,10 @@ class Integrator:
         r""":math:`\omega h` for a phase error of at most ``rtol`` after ``radians`` of the
         fastest mode: :math:`C_p(\omega h)^p\,\text{radians} \le \text{rtol}`, capped at
         :data:`MAX_OMEGA_STEP`."""
-        return min((rtol / (self.error_constant * radians)) ** (1.0 / self.order), MAX_OMEGA_STEP)
+        result: float = min(
+            (rtol / (self.error_constant * radians)) ** (1.0 / self.order), MAX_OMEGA_STEP
+        )
+        return result
 
 
 def _symmetric(outer: tuple[float, ...]) -> tuple[float, ...]:

@@ -30,6 +30,7 @@ give the friction it needs and its normal force. The model is a tuple of flat ar
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -76,7 +77,7 @@ RA, ALPHA_A, RB, ALPHA_B, AAX, AAY, ABX, ABY, STIFF, REST, DAMP = range(11)
 FR, FALPHA, FX, FY = range(4)
 
 
-def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple:
+def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple[Any, ...]:
     """The model the kernels take: ``(bodies (n, 11), springs (S, 11), spring_ends (S, 2) int,
     forces (F, 4), force_body (F,) int, gravity)`` (columns named by the module constants).
     ``x0`` overrides the reference centre positions (after a body re-sticks:

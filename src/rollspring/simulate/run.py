@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import numpy as np
+from numpy.typing import NDArray
 
 from rollspring.analysis import find_equilibrium, normal_modes, stationary_weights
 from rollspring.errors import SimulationError
@@ -35,6 +36,10 @@ from rollspring.simulate.arguments import ON_SLIP
 from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
 from rollspring.simulate.kernels import SCHEMES
 from rollspring.simulate.status import Status
+
+BoolArray = NDArray[np.bool_]
+#: what a segment hands on: (t, general state, slipping, sign)
+_Handover = tuple[float, FloatArray, BoolArray, FloatArray]
 
 __all__ = ["INTEGRATORS", "Trajectory", "simulate"]
 
@@ -174,7 +179,7 @@ class _Start:
     t: float
     q: FloatArray
     v: FloatArray
-    model: tuple
+    model: tuple[Any, ...]
     coeffs: FloatArray
     h: float
     x0: FloatArray
@@ -188,14 +193,20 @@ class _Segment:
     t1: float
     slipping: np.ndarray
     sign: np.ndarray
-    evaluate: Callable[[float], FloatArray]
+    evaluate: Callable[[float | FloatArray], FloatArray]
     samples: FloatArray  # times inside the segment at which to look for extremes
     #: for a two-step segment around a kernel extreme: the state it starts from
     start: _Start | None = None
 
 
 def _check_arguments(
-    duration, rtol, integrator, on_slip, n_output, energy_tolerance, step=None
+    duration: float,
+    rtol: float,
+    integrator: str,
+    on_slip: str,
+    n_output: int | None,
+    energy_tolerance: float | None,
+    step: float | None = None,
 ) -> tuple[float, float, float | None]:
     """The shared validator (:mod:`rollspring.simulate.arguments`): (duration, rtol, step)."""
     duration = arguments.check_duration(duration)
@@ -207,7 +218,9 @@ def _check_arguments(
     return duration, rtol, arguments.check_step(step, duration)
 
 
-def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = "auto"):
+def choose_scheme(
+    omega: float, duration: float, rtol: float, integrator: str = "auto"
+) -> tuple[str, float]:
     r"""The scheme and step for a run: :math:`\omega h = (\mathrm{rtol}/(C_p\,\omega T))^{1/p}`,
     the phase error over the run after :math:`\omega T` radians; at most 0.5, and at most
     :math:`(46080\,\mathrm{rtol})^{1/6}` and :math:`(13420\,\mathrm{rtol})^{1/5}` so that the
@@ -215,7 +228,7 @@ def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = 
     amplitude in position and :math:`(\omega h)^5/13420` in velocity, stay within ``rtol``.
     ``auto`` takes the scheme with the fewest force evaluations. Returns ``(name, h)``."""
     names = list(SCHEMES) if integrator == "auto" else [integrator]
-    best = None
+    best: tuple[str, float, float] | None = None
     for name in names:
         scheme = SCHEME_REGISTRY[name]
         if omega <= 0:
@@ -231,6 +244,7 @@ def choose_scheme(omega: float, duration: float, rtol: float, integrator: str = 
         cost = scheme.stages * duration / step
         if best is None or cost < best[2]:
             best = (name, step, cost)
+    assert best is not None  # names is never empty
     return best[0], best[1]
 
 
@@ -328,7 +342,16 @@ class _Run:
     """The state machine of one run: rolling (symplectic) and general (DOP853) segments."""
 
     def __init__(
-        self, arrays: SystemArrays, grid, scheme, step, rtol, on_slip, damped, tolerance, progress
+        self,
+        arrays: SystemArrays,
+        grid: FloatArray,
+        scheme: str,
+        step: float | None,
+        rtol: float,
+        on_slip: str,
+        damped: bool,
+        tolerance: float,
+        progress: Callable[[float], None] | None,
     ) -> None:
         self.arrays = arrays
         self.model = kernels.kernel_model(arrays)
@@ -351,7 +374,7 @@ class _Run:
         self.central = np.ascontiguousarray(arrays.gamma * arrays.mass * arrays.radius**2)
         self.row_slipping: list[np.ndarray] = []
         self.row_sign: list[np.ndarray] = []
-        self.times: list[float] = []
+        self.times: list[FloatArray] = []
         self.segments: list[_Segment] = []
         self.events: list[dict[str, Any]] = []
         self.status = Status.FINISHED.label
@@ -360,22 +383,23 @@ class _Run:
         self.integrate_time = 0.0
         self.started = time.perf_counter()
         self.rolls = arrays.rolls > 0
-        self.e0 = None
+        self.e0 = 0.0  # the energy at release (set by execute)
+        self.e_segment = 0.0  # the energy at the start of the current rolling segment
         #: (kind, body) -> (value, time, width, segment): the kernel's extremes over its steps,
         #: each with a two-step segment around it to refine it on
-        self.step_extremes: dict[tuple[str, int], tuple] = {}
+        self.step_extremes: dict[tuple[str, int], tuple[float, float, float, _Segment]] = {}
         #: per rolling segment: (upward crossings of the mode signal, [first, last] segments)
         self.crossings: list[tuple[int, list[_Segment]]] = []
         self.mode_weights = np.zeros(self.n)
         self.q_ref = np.zeros(self.n)
 
     # -- state conversions ---------------------------------------------------------------
-    def general_state(self, q, v, x0) -> FloatArray:
+    def general_state(self, q: FloatArray, v: FloatArray, x0: FloatArray) -> FloatArray:
         """[x, phi, u, omega] of an all-rolling state (q, qdot) with reference positions x0."""
         a = self.arrays
         return np.concatenate([x0 + a.scale * q, a.rolls * q, a.scale * v, a.rolls * v], axis=-1)
 
-    def rolling_state(self, state):
+    def rolling_state(self, state: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """(q, qdot, x0) of a general state in which every body rolls."""
         a, n = self.arrays, self.n
         x, phi, u = state[:n], state[n : 2 * n], state[2 * n : 3 * n]
@@ -406,10 +430,12 @@ class _Run:
             else:
                 t, state, slipping, sign = self._general_segment(t, state, slipping, sign)
 
-    def _record(self, t, state, slipping, sign) -> None:
+    def _record(self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray) -> None:
         self._record_block(np.array([t]), np.asarray(state, dtype=float)[None, :], slipping, sign)
 
-    def _record_block(self, times, states, slipping, sign) -> _Observed:
+    def _record_block(
+        self, times: FloatArray, states: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> _Observed:
         """Keep output rows with everything observed at them; returns what was observed."""
         self.times.append(np.asarray(times, dtype=float).copy())
         self.rows.append(np.ascontiguousarray(states, dtype=float).copy())
@@ -419,11 +445,11 @@ class _Run:
         self.observed.append(observed)
         return observed
 
-    def _energy(self, states, slipping, sign) -> FloatArray:
+    def _energy(self, states: FloatArray, slipping: BoolArray, sign: FloatArray) -> FloatArray:
         observed = self._observe(states, slipping, sign)
         return observed.potential + observed.kinetic
 
-    def _observe(self, states, slipping, sign) -> _Observed:
+    def _observe(self, states: FloatArray, slipping: BoolArray, sign: FloatArray) -> _Observed:
         rows = states.shape[0]
         ns = self.arrays.n_springs
         out = _Observed(
@@ -452,7 +478,7 @@ class _Run:
         )
         return out
 
-    def _contact_verdict(self, state, slipping):
+    def _contact_verdict(self, state: FloatArray, slipping: BoolArray) -> tuple[str, int] | None:
         """('liftoff' | 'slip', body) if a rolling body violates its contact now, else None."""
         friction, normal, *_ = self._observe(state[None, :], slipping[None], np.zeros((1, self.n)))
         mu = self.arrays.mu_static
@@ -469,7 +495,15 @@ class _Run:
                 return "slip", i
         return None
 
-    def _event(self, kind, body, t, state, slipping, sign) -> bool:
+    def _event(
+        self,
+        kind: str,
+        body: int | np.integer[Any],
+        t: float,
+        state: FloatArray,
+        slipping: BoolArray,
+        sign: FloatArray,
+    ) -> bool:
         """Record an event; returns True when the run ends here."""
         name = self.arrays.ids[body]
         self.events.append({"kind": kind, "time": t, "body": name})
@@ -495,16 +529,18 @@ class _Run:
             sign[body] = -np.sign(friction[0, body]) or 1.0
         return False
 
-    def _finish_rows_to(self, t_end, state, slipping, sign) -> None:
+    def _finish_rows_to(
+        self, t_end: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> None:
         if self.times[-1][-1] < t_end:
             self._record(t_end, state, slipping, sign)
 
-    def _report(self, t) -> None:
+    def _report(self, t: float) -> None:
         if self.progress is not None:
             self.progress(min(1.0, t / self.grid[-1]))
 
     # -- symplectic (all rolling, undamped) -------------------------------------------------
-    def _rolling_segment(self, t, state):
+    def _rolling_segment(self, t: float, state: FloatArray) -> _Handover:
         q, qdot, x0 = self.rolling_state(state)
         # energy is conserved from here on: the reference is its value now (slip lost some)
         self.e_segment = self._energy(
@@ -518,6 +554,7 @@ class _Run:
         if span <= 1e-12 * grid[-1]:
             return float(grid[-1]), self.general_state(q, qdot, x0), slipping, sign
         # equal steps that land on the end; outputs are interpolated inside the steps
+        assert self.step is not None  # rolling segments run with a fixed-step scheme only
         n_total = max(1, math.ceil(span / self.step * (1 - 1e-12)))
         h = self.h = span / n_total
         first = int(np.searchsorted(grid, t + 1e-12 * grid[-1], side="right"))
@@ -606,7 +643,15 @@ class _Run:
         self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
         return float(grid[-1]), self.general_state(q, qdot, x0), slipping, sign
 
-    def _local(self, model, x0, t_start, q, v, h) -> _Segment:
+    def _local(
+        self,
+        model: tuple[Any, ...],
+        x0: FloatArray,
+        t_start: float,
+        q: FloatArray,
+        v: FloatArray,
+        h: float,
+    ) -> _Segment:
         """A segment of two steps from the state (q, v) at ``t_start``."""
         segment = self._rolling_evaluator(
             model, [t_start], [q.copy()], [v.copy()], h, x0, t_end=t_start + 2 * h
@@ -615,7 +660,14 @@ class _Run:
         return segment
 
     def _offer_steps(
-        self, model, x0, extremes, extreme_states, crossing, crossing_states, h
+        self,
+        model: tuple[Any, ...],
+        x0: FloatArray,
+        extremes: FloatArray,
+        extreme_states: FloatArray,
+        crossing: FloatArray,
+        crossing_states: FloatArray,
+        h: float,
     ) -> None:
         """Hand the kernel's extremes and crossings over, each with the state it starts from."""
         for i in range(self.n):
@@ -648,7 +700,7 @@ class _Run:
             )
         )
 
-    def _violation(self, friction, normal):
+    def _violation(self, friction: FloatArray, normal: FloatArray) -> tuple[str, int] | None:
         mu = self.arrays.mu_static
         for i in range(self.n):
             if normal[i] < 0:
@@ -677,25 +729,34 @@ class _Run:
             return False
         return True
 
-    def _rolling_evaluator(self, model, times, qs, vs, h, x0, t_end=None) -> _Segment:
+    def _rolling_evaluator(
+        self,
+        model: tuple[Any, ...],
+        times: list[Any],
+        qs: list[Any],
+        vs: list[Any],
+        h: float,
+        x0: FloatArray,
+        t_end: float | None = None,
+    ) -> _Segment:
         """A segment whose state at any t is the integrator run on from the row before t.
         ``times``/``qs``/``vs`` are lists of rows or of blocks of rows."""
-        times = np.concatenate([np.atleast_1d(np.asarray(x, dtype=float)) for x in times])
-        qs = np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in qs])
-        vs = np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in vs])
+        row_t = np.concatenate([np.atleast_1d(np.asarray(x, dtype=float)) for x in times])
+        row_q = np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in qs])
+        row_v = np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in vs])
         coeffs = self.coeffs
 
-        def evaluate(t):
+        def evaluate(t: float | FloatArray) -> FloatArray:
             """The state at time(s) ``t``: (4n,) for a number, (m, 4n) for an array."""
             at = np.atleast_1d(np.asarray(t, dtype=float))
-            if len(times) == 1:
+            if len(row_t) == 1:
                 rows = np.zeros(at.size, dtype=np.int64)
             else:
-                rows = np.clip(np.searchsorted(times, at, side="right") - 1, 0, len(times) - 1)
-            spans = at - times[rows]
+                rows = np.clip(np.searchsorted(row_t, at, side="right") - 1, 0, len(row_t) - 1)
+            spans = at - row_t[rows]
             pieces = np.where(spans > 0, np.maximum(1, np.ceil(spans / h * (1 - 1e-12))), 0)
             q, v = kernels.advance_many(
-                model, coeffs, qs[rows], vs[rows], spans, pieces.astype(np.int64)
+                model, coeffs, row_q[rows], row_v[rows], spans, pieces.astype(np.int64)
             )
             states = self.general_state(q, v, x0)
             return states if np.ndim(t) else states[0]
@@ -703,15 +764,24 @@ class _Run:
         # extremes: every step boundary is a candidate; sample at output rows and midpoints
         samples = np.empty(0)  # the output rows and the kernel extremes cover it
         return _Segment(
-            float(times[0]),
-            float(times[-1] if t_end is None else t_end),
+            float(row_t[0]),
+            float(row_t[-1] if t_end is None else t_end),
             np.zeros(self.n, dtype=bool),
             np.zeros(self.n),
             evaluate,
             samples,
         )
 
-    def _locate(self, model, t_before, q, v, span, pieces, x0):
+    def _locate(
+        self,
+        model: tuple[Any, ...],
+        t_before: float,
+        q: FloatArray,
+        v: FloatArray,
+        span: float,
+        pieces: int,
+        x0: FloatArray,
+    ) -> _Handover:
         """An event happened within ``span`` after ``t_before``: find its instant."""
         slipping = np.zeros(self.n, dtype=bool)
         sign = np.zeros(self.n)
@@ -770,28 +840,32 @@ class _Run:
         return t_event, state, slipping, sign
 
     # -- general (DOP853): damping, slipping ------------------------------------------------
-    def _general_segment(self, t, state, slipping, sign):
+    def _general_segment(
+        self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> _Handover:
         n, a, model = self.n, self.arrays, self.model
         slipping = slipping.copy()
         sign = sign.copy()
         mu_s = a.mu_static
 
-        def rhs(_t, y):
+        def rhs(_t: float, y: FloatArray) -> FloatArray:
             out = np.empty(4 * n)
             kernels.slipping_derivatives(model, y, slipping, sign, self.damped, out)
             return out
 
-        def contacts(y):
+        def contacts(y: FloatArray) -> tuple[FloatArray, FloatArray]:
             friction, normal, *_ = self._observe(y[None, :], slipping[None], sign[None])
             return friction[0], normal[0]
 
-        events = []
+        def slip_margin(y: FloatArray, i: int) -> float:
+            friction, normal = contacts(y)
+            return float(mu_s[i] * normal[i] - abs(friction[i]))
+
+        events: list[Any] = []  # solve_ivp's events: functions with .terminal, .direction
         labels = []
         for i in range(n):
             if self.rolls[i] and not slipping[i] and np.isfinite(mu_s[i]):
-                events.append(
-                    lambda _t, y, i=i: (lambda f, nn: mu_s[i] * nn[i] - abs(f[i]))(*contacts(y))
-                )
+                events.append(lambda _t, y, i=i: slip_margin(y, i))
                 labels.append(("slip", i))
             if self.rolls[i] and slipping[i]:
                 events.append(lambda _t, y, i=i: y[2 * n + i] - a.radius[i] * y[3 * n + i])
@@ -833,13 +907,17 @@ class _Run:
             if solution.status == 1
             else self.grid[-1]
         )
+
+        def dense_state(tt: float | FloatArray, d: Any = dense) -> FloatArray:
+            return np.asarray(d(tt)).T
+
         self.segments.append(
             _Segment(
                 t,
                 t_end,
                 slipping.copy(),
                 sign.copy(),
-                lambda tt, d=dense: np.asarray(d(tt)).T,
+                dense_state,
                 np.asarray(dense.ts),
             )
         )
@@ -876,7 +954,7 @@ class _Run:
             keep = np.concatenate([[True], np.diff(times[order]) > 0])
             pick = order[keep]
 
-        def column(parts):
+        def column(parts: list[Any]) -> Any:
             joined = np.concatenate(parts)
             return joined if pick is None else joined[pick]
 
@@ -920,11 +998,11 @@ def _summary(
     trajectory: Trajectory,
     run: _Run,
     arrays: SystemArrays,
-    q_eq,
-    lowest,
-    mass,
-    period_linear,
-    modes,
+    q_eq: FloatArray,
+    lowest: FloatArray | None,
+    mass: FloatArray,
+    period_linear: float | None,
+    modes: tuple[FloatArray, Any],
 ) -> dict[str, Any]:
     """The JSON summary (see the README): status, energies, periods, extremes, events."""
     n = arrays.n_bodies
@@ -999,17 +1077,19 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
             trajectory.normal > 0, np.abs(trajectory.friction) / trajectory.normal, np.inf
         )
     ratio = np.where(trajectory.slipping, -np.inf, ratio)
-    best: dict[tuple[str, int], tuple[float, float, float]] = {}
+    best: dict[tuple[str, int], tuple[float, float, float, _Segment | None]] = {}
 
-    def offer(kind: str, i: int, value: float, t: float, width: float, local=None) -> None:
+    def offer(
+        kind: str, i: int, value: float, t: float, width: float, local: _Segment | None = None
+    ) -> None:
         old = best.get((kind, i))
         better = old is None or (value > old[0] if kind == "ratio" else value < old[0])
         if better:
             best[(kind, i)] = (value, t, width, local)
 
     # the kernel's extremes first: on a tie they win, as they carry their state
-    for (kind, i), (value, t, width, local) in run.step_extremes.items():
-        offer(kind, i, value, t, width, local)
+    for (kind, i), (value, t, width, kept) in run.step_extremes.items():
+        offer(kind, i, value, t, width, kept)
     for i in range(n):
         if run.rolls[i]:
             k = int(np.argmax(ratio[:, i]))
@@ -1041,9 +1121,11 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
         and getattr(entry[3], "start", None) is not None
         and np.isfinite(entry[0])
     }
-    groups: dict[int, dict] = {}  # one group per rolling segment (its model)
+    groups: dict[int, dict[tuple[str, int], Any]] = {}  # one per rolling segment (its model)
     for key, entry in batched.items():
-        groups.setdefault(id(entry[3].start.model), {})[key] = entry
+        start = entry[3].start if entry[3] is not None else None
+        assert start is not None  # batched: only segments with the state they start from
+        groups.setdefault(id(start.model), {})[key] = entry
     for group in groups.values():
         for (kind, i), value in _refine_together(run, group).items():
             result[kind][i] = value
@@ -1056,7 +1138,9 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     return result
 
 
-def _refine_together(run: _Run, entries: dict) -> dict[tuple[str, int], float]:
+def _refine_together(
+    run: _Run, entries: dict[tuple[str, int], Any]
+) -> dict[tuple[str, int], float]:
     """:func:`_refine` for many extremes at once, each on its own two-step segment from the
     state the kernel kept (one compiled call per zoom level for all of them)."""
     keys = list(entries)
@@ -1122,13 +1206,15 @@ def _refine(
     return max(value, refined) if kind == "ratio" else min(value, refined)
 
 
-def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> float | None:
+def _measured_period(
+    run: _Run, trajectory: Trajectory, mode: FloatArray, mass: FloatArray, q_eq: FloatArray
+) -> float | None:
     r"""Mean period of the lowest mode's coordinate :math:`s = v_1^T M (q - q^*)`, from its
     upward crossings of its mean, each located by root-finding on the integrator's interpolant."""
     arrays = run.arrays
     weights = mode @ mass
 
-    def signal_of(states):
+    def signal_of(states: FloatArray) -> FloatArray:
         n = run.n
         q = np.where(run.rolls, states[..., n : 2 * n], states[..., :n] - arrays.x0)
         return (q - q_eq) @ weights
@@ -1137,20 +1223,17 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
         # one rolling segment: the kernel counted the upward zero crossings of the signal at
         # every step and kept the states before the first and the last
         count, (first, last) = run.crossings[0]
+        starts = [seg.start for seg in (first, last) if seg.start is not None]
+        assert len(starts) == 2  # the kernel kept both states
         times = [
-            seg.start.t
+            start.t
             + kernels.signal_zero(
-                seg.start.model,
-                seg.start.coeffs,
-                seg.start.h,
-                seg.start.q,
-                seg.start.v,
-                run.mode_weights,
-                run.q_ref,
+                start.model, start.coeffs, start.h, start.q, start.v, run.mode_weights, run.q_ref
             )
-            for seg in (first, last)
+            for start in starts
         ]
-        return (times[1] - times[0]) / (count - 1)
+        result: float | None = (times[1] - times[0]) / (count - 1)
+        return result
     signal = signal_of(
         np.concatenate([trajectory.x, trajectory.phi, trajectory.v, trajectory.omega], axis=1)
     )
@@ -1176,4 +1259,5 @@ def _measured_period(run: _Run, trajectory: Trajectory, mode, mass, q_eq) -> flo
                 rtol=4 * np.finfo(float).eps,
             )
         )
-    return (crossings[-1] - crossings[0]) / (upward.size - 1)
+    period: float = (crossings[-1] - crossings[0]) / (upward.size - 1)
+    return period

@@ -239,7 +239,7 @@ def create_app(
         description="Coupled rolling oscillators: the interactive page's API. "
         "SI units throughout; see docs/web-api.md.",
     )
-    app.add_middleware(_BodyLimit, limit=MAX_REQUEST_BYTES)  # type: ignore[arg-type]
+    app.add_middleware(_BodyLimit, limit=MAX_REQUEST_BYTES)
 
     @app.exception_handler(RequestValidationError)
     async def invalid(request: Request, exc: RequestValidationError) -> JSONResponse:
@@ -426,7 +426,7 @@ def _problem(loc: list[Any], message: str, kind: str) -> JSONResponse:
 def _invalid_response(errors: Any, body: Any) -> JSONResponse:
     """422 for pydantic's errors of a request body: each location with the CLI's words."""
     errors = list(errors)
-    detail = []
+    detail: list[dict[str, Any]] = []
     for error in errors:
         loc = list(error.get("loc", ()))
         relative = loc[1:] if loc[:1] == ["body"] else loc

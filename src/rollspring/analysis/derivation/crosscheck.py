@@ -165,7 +165,11 @@ def cross_check(
 
 
 def _compare_omega2(
-    name: str, omega2: list, frequencies: Frequencies, sym: SymbolicSystem, budget: float | None
+    name: str,
+    omega2: list[Any],
+    frequencies: Frequencies,
+    sym: SymbolicSystem,
+    budget: float | None,
 ) -> Check:
     reference = frequencies.omega2
     if len(omega2) != len(reference):

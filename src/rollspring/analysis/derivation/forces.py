@@ -207,15 +207,16 @@ def _percussion_ratios(sym: SymbolicSystem) -> list[sp.Expr] | None:
     if sym.n != 2 or len(sym.springs) != 1 or sym.forces:
         return None
     spring = sym.springs[0]
-    if any(a is None or a.height is None for a in spring.attachments):
+    points = [a for a in spring.attachments if a is not None and a.height is not None]
+    if len(points) != len(spring.attachments):
         return None
     if not all(b.rolls for b in sym.bodies):
         return None
     out = []
-    for at in spring.attachments:
+    for at in points:
         body = sym.bodies[at.body]
         out.append(sp.factor(at.height / ((1 + body.gamma) * body.R)))
-    if spring.attachments[0].body != 0:
+    if points[0].body != 0:
         out.reverse()
     return out
 

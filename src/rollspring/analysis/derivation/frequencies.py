@@ -17,6 +17,8 @@ import threading
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from types import FrameType
+from typing import NoReturn
 
 import sympy as sp
 
@@ -44,11 +46,11 @@ def time_budget(seconds: float | None) -> Iterator[None]:
         and hasattr(signal, "setitimer")
         and threading.current_thread() is threading.main_thread()
     )
-    if not usable:
+    if seconds is None or not usable:
         yield
         return
 
-    def expire(signum, frame):  # the signal handler's signature
+    def expire(signum: int, frame: FrameType | None) -> NoReturn:  # a signal handler
         raise BudgetExceeded
 
     previous = signal.signal(signal.SIGALRM, expire)
@@ -139,9 +141,9 @@ def normal_frequencies(
         if n_zero == 1 and det == 0:
             return Frequencies(poly, [_tidy(trace)], numeric, n_zero)
         root = sp.sqrt(sp.factor(trace**2 - 4 * det))
-        roots = [_tidy((trace - root) / 2), _tidy((trace + root) / 2)]
-        roots.sort(key=lambda r: _value(sym, r))
-        return Frequencies(poly, roots, numeric, n_zero)
+        pair = [_tidy((trace - root) / 2), _tidy((trace + root) / 2)]
+        pair.sort(key=lambda r: _value(sym, r))
+        return Frequencies(poly, pair, numeric, n_zero)
     if any(entry.has(sp.sin, sp.cos, sp.atan2) for entry in A):
         notes.append(
             "the stiffness holds transcendental constants (sines and cosines of the "

@@ -33,7 +33,7 @@ from rollspring.analysis.derivation.frequencies import (
     normal_frequencies,
     time_budget,
 )
-from rollspring.analysis.derivation.steps import Section, named
+from rollspring.analysis.derivation.steps import Section, Step, named
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
 
 __all__ = ["METHODS", "MethodResult", "run_method"]
@@ -82,7 +82,7 @@ class MethodResult:
     extras: dict[str, Any] = field(default_factory=dict)
 
     @property
-    def steps(self):
+    def steps(self) -> list[Step]:
         """The steps of the derivation."""
         return self.section.steps
 
@@ -162,7 +162,8 @@ def _is_linear(sym: SymbolicSystem) -> bool:
         exact = sym.generalized_forces
         linear = sym.reference_forces - sym.stiffness_matrix * sp.Matrix(sym.q)
         sym._cache["linear"] = all(sp.expand(exact[i] - linear[i]) == 0 for i in range(sym.n))
-    return sym._cache["linear"]
+    result: bool = sym._cache["linear"]
+    return result
 
 
 def linear_equations(sym: SymbolicSystem) -> list[sp.Eq]:
@@ -174,7 +175,8 @@ def _frequencies(sym: SymbolicSystem, budget: float | None) -> Frequencies:
     key = "frequencies"
     if key not in sym._cache:
         sym._cache[key] = normal_frequencies(sym, budget=budget)
-    return sym._cache[key]
+    result: Frequencies = sym._cache[key]
+    return result
 
 
 def _whole_system(
@@ -582,8 +584,8 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     section.add(equations, "Together with dP/dt = 0 this gives each body's equation of motion.", "")
     result.equations = equations
     # the paper's route: maximal velocities, Omega = (v1 + v2)/A
-    b = _single_spring_lever(sym)
-    if b is not None:
+    lever = _single_spring_lever(sym)
+    if lever is not None:
         amplitude = sp.Symbol("A", positive=True)
         rates = [sp.Symbol("Phidot_" + sym.bodies[i].label, positive=True) for i in range(2)]
         k = sym.springs[0].k
@@ -612,7 +614,7 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
             "slider, its largest speed).",
             "paper (om), (pi)",
         )
-        deformation_rate = sp.cancel(sp.Abs(b[0] + b[1] * ratio) * rate1)
+        deformation_rate = sp.cancel(sp.Abs(lever[0] + lever[1] * ratio) * rate1)
         omega = _sqrt_form(sp.factor(deformation_rate / amplitude))
         section.add(
             sp.Eq(sp.Symbol("Omega"), omega),
@@ -1044,10 +1046,10 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     Kq = (Dinv * sym.stiffness_matrix * Dinv).applyfunc(_compact_entry)
     qvec = sp.Matrix(qs)
     quadratic = sp.expand((qvec.T * Kq * qvec)[0, 0] / 2)
-    b = _single_spring_lever(sym)
-    if b is not None:
+    lever = _single_spring_lever(sym)
+    if lever is not None:
         k = sym.springs[0].k
-        c = [sp.factor(sp.cancel(b[i] / scale[i])) for i in range(2)]
+        c = [sp.factor(sp.cancel(lever[i] / scale[i])) for i in range(2)]
         form = k / 2 * (c[0] * qs[0] + c[1] * qs[1]) ** 2
         section.add(
             sp.Eq(sp.Symbol("U"), form),

@@ -34,8 +34,9 @@ class Named(sp.Symbol):
 
     _forms: dict[str, str] = {}  # noqa: RUF012 - a registry shared by all instances
 
-    def _latex(self, printer) -> str:  # SymPy's printer hook (printer unused)
-        return self._forms.get(self.name, self.name)
+    def _latex(self, printer: Any) -> str:  # SymPy's printer hook (printer unused)
+        name: str = self.name
+        return self._forms.get(name, name)
 
 
 def named(text: str, latex: str) -> Named:
@@ -101,7 +102,8 @@ def latex_of(obj: Any) -> str:
         return obj
     if isinstance(obj, sp.Eq) and isinstance(obj.rhs, sp.MatrixBase):
         return f"{sp.latex(obj.lhs)} = {_matrix_latex(obj.rhs)}"
-    return sp.latex(obj)
+    result: str = sp.latex(obj)
+    return result
 
 
 def _aligned(line: str) -> str:
@@ -120,7 +122,8 @@ def _aligned(line: str) -> str:
 def _matrix_latex(matrix: sp.MatrixBase) -> str:
     rows, cols = matrix.shape
     if rows <= MAX_SHOWN and cols <= MAX_SHOWN:
-        return sp.latex(matrix, mat_delim="", mat_str="pmatrix")
+        result: str = sp.latex(matrix, mat_delim="", mat_str="pmatrix")
+        return result
     entries = [
         (i, j, matrix[i, j])
         for i in range(rows)

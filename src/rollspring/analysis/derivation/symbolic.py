@@ -73,6 +73,7 @@ import sympy as sp
 from sympy.physics.mechanics import dynamicsymbols
 
 from rollspring.analysis.linear import find_equilibrium
+from rollspring.model import Attachment as ModelAttachment
 from rollspring.model import System
 from rollspring.physics import end_kinematics, spring_state, system_arrays
 
@@ -721,7 +722,8 @@ class SymbolicSystem:
             _, _, kinds = normal_modes(mass, stiff)
             self._cache["n_zero"] = int(np.sum(kinds == "zero"))
             self._cache["n_unstable"] = int(np.sum(kinds == "unstable"))
-        return self._cache["n_zero"]
+        result: int = self._cache["n_zero"]
+        return result
 
 
 def _derivatives_at_reference(
@@ -734,7 +736,7 @@ def _derivatives_at_reference(
     return (body.R + at.r * cos, -at.r * sin), (-at.r * sin, -at.r * cos)
 
 
-def _xreplace(expr: Any, mapping: dict) -> Any:
+def _xreplace(expr: Any, mapping: dict[Any, Any]) -> Any:
     if isinstance(expr, sp.Basic | sp.MatrixBase):
         return expr.xreplace(mapping)
     if isinstance(expr, tuple):
@@ -742,7 +744,7 @@ def _xreplace(expr: Any, mapping: dict) -> Any:
     return [_xreplace(e, mapping) for e in expr]
 
 
-def _at_zero(expr: sp.Expr, zero: dict) -> sp.Expr:
+def _at_zero(expr: sp.Expr, zero: dict[Any, Any]) -> sp.Expr:
     """expr at q = 0 (subs, so that sin(0), sqrt(l^2) simplify)."""
     return _tidy(sp.sympify(expr).subs(zero))
 
@@ -862,7 +864,7 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
         if not force.at.is_centre_form:
             uses[index[force.body]] = uses.get(index[force.body], 0) + 1
 
-    def attachment(body_index: int, at, where: str) -> Attachment:
+    def attachment(body_index: int, at: ModelAttachment, where: str) -> Attachment:
         body = bodies_t[body_index]
         model = system.bodies[body_index]
         r_value, alpha = at.polar(model)
@@ -905,6 +907,7 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
     n_springs = len(system.springs)
     springs = []
     for s, spring in enumerate(system.springs):
+        assert position is not None and ref_state is not None  # there are springs
         label = str(s + 1)
         only = n_springs == 1
         k = name("k" if only else f"k_{label}", spring.stiffness, positive=True)
@@ -961,13 +964,13 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
     n_forces = len(system.forces)
     for f, force in enumerate(system.forces):
         label = "" if n_forces == 1 else f",{f + 1}"
-        at = attachment(index[force.body], force.at, f"F{f + 1}")
+        point = attachment(index[force.body], force.at, f"F{f + 1}")
         if force.fx != 0.0 and force.fy == 0.0 and n_forces == 1:
             Fx, Fy = name("F", force.fx, real=True), sp.Integer(0)
         else:
             Fx = name(f"F_x{label}", force.fx, real=True) if force.fx != 0.0 else sp.Integer(0)
             Fy = name(f"F_y{label}", force.fy, real=True) if force.fy != 0.0 else sp.Integer(0)
-        forces.append(SymbolicForce(f, index[force.body], at, Fx, Fy))
+        forces.append(SymbolicForce(f, index[force.body], point, Fx, Fy))
 
     g = name("g", system.gravity, positive=True)
     notes = []
@@ -992,6 +995,6 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
     )
 
 
-def matrix_to_float(matrix: sp.Matrix, values: dict) -> np.ndarray:
+def matrix_to_float(matrix: sp.Matrix, values: dict[Any, Any]) -> np.ndarray:
     """A SymPy matrix of parameters as a float array, for the values given."""
     return np.array(sp.matrix2numpy(matrix.xreplace(values).evalf(17)), dtype=float)

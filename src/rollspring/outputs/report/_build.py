@@ -665,7 +665,7 @@ class _Page:
             )
             + "</div>"
         )
-        rows = []
+        rows: list[list[object]] = []
         for i, b in enumerate(ids):
             if not arrays.rolls[i]:
                 rows.append([b, "slider (no friction)", "–", "–", "–", "–", "–", "–"])

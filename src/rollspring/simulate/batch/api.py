@@ -125,7 +125,8 @@ class BatchResult:
         """``status`` as names (:attr:`Status.label <rollspring.simulate.status.Status.label>`:
         ``finished``, ``slip``, ``liftoff``, ``nonfinite``, ``invalid``, ``unresolved``)."""
         names = np.array([s.label for s in Status], dtype=object)
-        return names[self.status]
+        labels: np.ndarray = names[self.status]
+        return labels
 
     def columns(self) -> dict[str, np.ndarray]:
         """Every per-run quantity as a flat column (per-body quantities as ``<id>.<name>``),
@@ -207,7 +208,8 @@ def kernel_fields(
     their values: ``P`` (n_varying, n_pad) for the runs ``included`` (padded with the last)
     and ``C`` (n_constant,)."""
     n_live = included.size
-    varying, constant = [], []
+    varying: list[str] = []
+    constant: list[str] = []
     for key in sorted(plan.fields):
         values = plan.fields[key][included]
         per_run = given is None or key in given or bool(values.size and np.any(values != values[0]))
@@ -317,7 +319,7 @@ def simulate_batch(
     messages = np.array(reasons, dtype=object)
     status[invalid] = Status.INVALID
 
-    def describe(run: int) -> str:
+    def describe(run: int | np.integer) -> str:
         values = ", ".join(f"{key} = {float(v[run]):g}" for key, v in runs.parameters.items())
         return f"run {run}" + (f" ({values})" if values else "")
 
@@ -388,7 +390,8 @@ def simulate_batch(
         if not kernel.signatures:
             import numba
 
-            kernel.compile(tuple(numba.typeof(a) for a in args))
+            # numba.typeof has no annotations (numba ships no types)
+            kernel.compile(tuple(numba.typeof(a) for a in args))  # type: ignore[no-untyped-call]
         compiled = time.perf_counter()
         kernel(*args)
     else:

@@ -71,7 +71,7 @@ def prune(root: Path, keep: str) -> list[Path]:
     kernels written directly in it (the layout before version subdirectories, with their
     ``__pycache__``). Returns what was removed; errors (another process, permissions) are
     ignored."""
-    removed = []
+    removed: list[Path] = []
     try:
         entries = list(root.iterdir())
     except OSError:

@@ -141,7 +141,7 @@ class Source:
         for k, sp in enumerate(p.springs):
             stiff, rest = F(f"k_{k}"), F(f"L_{k}")
             # per end: x, y, arm (x, y of P - C, for torques) and velocity factors (wx, wy)
-            ends = []
+            ends: list[tuple[str | None, str | None, str | None, str | None, str, str]] = []
             general = sp.geometry == "general"  # (positions needed; else offsets at rest)
             for e, (i, kind) in enumerate(zip(sp.ends, sp.kinds, strict=True)):
                 if kind == "anchor":
@@ -314,7 +314,11 @@ class Source:
 
     def metrics(self, lane: str, ve: list[str], y: list[str], crossing: bool) -> list[str]:
         """Update the sampled metrics of ``lane`` (needs forces, contact, E, t, dT)."""
-        F, S = self.fld, (lambda name: self.row(name, lane))
+        F = self.fld
+
+        def S(name: str) -> str:
+            return self.row(name, lane)
+
         lines = [
             f"dE = abs(E - {S('E0')})",
             f"o = {S('DE')}",
@@ -441,7 +445,10 @@ class Source:
         n, F = self.n, self.fld
         y = [f"y{i}" for i in range(n)]
         ve = [f"ve{i}" for i in range(n)]
-        S = lambda name: self.row(name, "j")  # noqa: E731
+
+        def S(name: str) -> str:
+            return self.row(name, "j")
+
         body = [f"y{i} = 0.0" for i in range(n)] + [f"ve{i} = {F(f'u0_{i}')}" for i in range(n)]
         body += self.forces(y, energy=True, lever=self.period)
         body += self.contact()
@@ -497,7 +504,10 @@ class Source:
         event condition: classify, locate the instant, record, stop. Returns the number of
         lanes stopped."""
         n, F = self.n, self.fld
-        S = lambda name: self.row(name, "jj")  # noqa: E731
+
+        def S(name: str) -> str:
+            return self.row(name, "jj")
+
         y = [f"y{i}" for i in range(n)]
         ve = [f"ve{i}" for i in range(n)]
         ys = ", ".join(y)
@@ -598,7 +608,10 @@ class Source:
 
     def write_out(self, lane: str) -> list[str]:
         """Copy the metrics of ``lane`` and its final state (needs y{i}, ve{i}) to OUT."""
-        S = lambda name: self.row(name, lane)  # noqa: E731
+
+        def S(name: str) -> str:
+            return self.row(name, lane)
+
         F = self.fld
         lines = [f"OUT[lo + {lane}, {col}] = {S(name)}" for name, col in _OUT_ROWS.items()]
         for i in range(self.n):
@@ -620,7 +633,10 @@ class Source:
     def epilogue(self) -> list[str]:
         """Undo the last opening half-kick and copy every live lane's results to OUT."""
         n = self.n
-        S = lambda name: self.row(name, "jj")  # noqa: E731
+
+        def S(name: str) -> str:
+            return self.row(name, "jj")
+
         inner = [f"y{i} = {S(f'y{i}')}" for i in range(n)]
         inner.append(
             f"{self._outputs()} = lane_state(Pl, C, jj, {', '.join(f'y{i}' for i in range(n))})"

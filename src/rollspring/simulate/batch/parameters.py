@@ -158,7 +158,7 @@ def system_runs(system: System, n_runs: int) -> Runs:
     arrays = system_arrays(system)
     n_springs = len(system.springs)
 
-    def per_body(base) -> FloatArray:
+    def per_body(base: ArrayLike) -> FloatArray:
         return np.repeat(np.asarray(base, dtype=np.float64)[None, :], n_runs, axis=0)
 
     return Runs(

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rollspring.errors import ModelError
-from rollspring.model import System
+from rollspring.model import Attachment, System
 from rollspring.physics import system_arrays
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate.batch.parameters import Runs, fill_defaults, system_runs
@@ -91,7 +91,7 @@ class Plan:
     simple: dict[int, list[int]]  # spring -> bodies whose slip test is on its tension
 
 
-def _attachment_polar(at, radius: FloatArray) -> tuple[FloatArray, FloatArray]:
+def _attachment_polar(at: Attachment, radius: FloatArray) -> tuple[FloatArray, FloatArray]:
     """(r, alpha) of an attachment per run (a ``height`` attachment depends on the radius)."""
     if at.height is not None:
         dy = at.height - radius

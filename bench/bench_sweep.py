@@ -14,8 +14,9 @@ The system is the ``hoop-cylinder`` preset. Parts:
     ``simulate_batch`` on exactly the same runs (the flattened grid) with the same integrator and
     step (read from the result's ``integrator`` and ``step`` attributes). Both whole calls are
     timed, interleaved (a round of the four calls, ``--repeat`` rounds after a warm-up round;
-    the best of each), so that load from other work hits them alike. Target: the sweep's runs/s >= 90 % of the batch's. The sweep with only the
-    batch's own metrics and the sweep written to a Zarr store are timed too (no target).
+    the best of each), so that load from other work hits them alike. Target: the sweep's runs/s
+    >= 90 % of the batch's. The sweep with only the batch's own metrics and the sweep written to
+    a Zarr store are timed too (no target).
 (b) A real loopback cluster started as a user starts one: ``dask scheduler --host 127.0.0.1``
     and ``dask worker ADDRESS --nthreads 1 --no-nanny`` (``NUMBA_NUM_THREADS=1``: one core per
     worker, the machine has two), the sweep given the scheduler's address. Runs/s with one
@@ -56,18 +57,27 @@ import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-import rollspring  # noqa: E402
-from common import machine_note, print_table  # noqa: E402
-from rollspring.service.sweeps import sweep  # noqa: E402
-from rollspring.simulate import simulate_batch  # noqa: E402
+from common import machine_note, print_table
+
+import rollspring
+from rollspring.service.sweeps import sweep
+from rollspring.simulate import simulate_batch
 
 ROOT = Path(__file__).resolve().parents[1]
 SYSTEM = "hoop-cylinder"
 GB = 1e9
 #: The metrics the batch kernel itself gives (no linear analysis per run).
-BATCH_METRICS = ["period_measured", "max_friction_ratio", "min_normal_force", "first_slip_time",
-                 "first_slip_body", "first_liftoff_time", "cm_amplitude",
-                 "stationary_amplitude", "energy_error"]
+BATCH_METRICS = [
+    "period_measured",
+    "max_friction_ratio",
+    "min_normal_force",
+    "first_slip_time",
+    "first_slip_body",
+    "first_liftoff_time",
+    "cm_amplitude",
+    "stationary_amplitude",
+    "energy_error",
+]
 
 
 def square_grid(runs: int) -> dict[str, np.ndarray]:
@@ -75,8 +85,10 @@ def square_grid(runs: int) -> dict[str, np.ndarray]:
     a product of the two)."""
     n1 = max(1, int(math.sqrt(runs)))
     n2 = max(1, runs // n1)
-    return {"springs.0.stiffness": np.linspace(50.0, 150.0, n1),
-            "bodies.hoop.mu_static": np.geomspace(0.1, 1.0, n2)}
+    return {
+        "springs.0.stiffness": np.linspace(50.0, 150.0, n1),
+        "bodies.hoop.mu_static": np.geomspace(0.1, 1.0, n2),
+    }
 
 
 def speed_grid(runs: int) -> dict[str, np.ndarray]:
@@ -85,8 +97,10 @@ def speed_grid(runs: int) -> dict[str, np.ndarray]:
     axis)."""
     n1 = max(1, int(math.sqrt(runs)))
     n2 = max(1, runs // n1)
-    return {"springs.0.stiffness": np.linspace(50.0, 150.0, n1),
-            "bodies.cylinder.v": np.linspace(0.0, 0.3, n2)}
+    return {
+        "springs.0.stiffness": np.linspace(50.0, 150.0, n1),
+        "bodies.cylinder.v": np.linspace(0.0, 0.3, n2),
+    }
 
 
 GRIDS = {"k x mu_s": square_grid, "k x v": speed_grid}
@@ -95,9 +109,11 @@ GRIDS = {"k x mu_s": square_grid, "k x v": speed_grid}
 def cube_grid(runs: int) -> dict[str, np.ndarray]:
     """Stiffness (100) x hoop mu_static (100) x hoop initial speed (runs / 10^4)."""
     n3 = max(1, runs // 10_000)
-    return {"springs.0.stiffness": np.linspace(50.0, 150.0, 100),
-            "bodies.hoop.mu_static": np.geomspace(0.02, 1.0, 100),
-            "bodies.hoop.v": np.linspace(0.0, 0.3, n3)}
+    return {
+        "springs.0.stiffness": np.linspace(50.0, 150.0, 100),
+        "bodies.hoop.mu_static": np.geomspace(0.02, 1.0, 100),
+        "bodies.hoop.v": np.linspace(0.0, 0.3, n3),
+    }
 
 
 def n_runs(vary: dict[str, np.ndarray]) -> int:
@@ -178,15 +194,31 @@ class Cluster:
     def __init__(self, directory: Path) -> None:
         self.directory = directory
         self.dask = str(Path(sys.executable).with_name("dask"))
-        self.env = dict(os.environ, NUMBA_NUM_THREADS="1", OMP_NUM_THREADS="1",
-                        OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1",
-                        PYTHONWARNINGS="ignore")
+        self.env = dict(
+            os.environ,
+            NUMBA_NUM_THREADS="1",
+            OMP_NUM_THREADS="1",
+            OPENBLAS_NUM_THREADS="1",
+            MKL_NUM_THREADS="1",
+            PYTHONWARNINGS="ignore",
+        )
         self.workers: list[subprocess.Popen] = []
         self.logs: list[Any] = []
         scheduler_file = directory / "scheduler.json"
         self.scheduler = self._start(
-            [self.dask, "scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
-             "--scheduler-file", str(scheduler_file)], "scheduler")
+            [
+                self.dask,
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                "0",
+                "--no-dashboard",
+                "--scheduler-file",
+                str(scheduler_file),
+            ],
+            "scheduler",
+        )
         deadline = time.monotonic() + 60
         while not scheduler_file.exists() or not scheduler_file.read_text().strip():
             if self.scheduler.poll() is not None or time.monotonic() > deadline:
@@ -201,15 +233,31 @@ class Cluster:
     def _start(self, command: list[str], name: str) -> subprocess.Popen:
         log = open(self.directory / f"{name}.log", "w")  # noqa: SIM115 - closed in stop()
         self.logs.append(log)
-        return subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=self.env,
-                                cwd=self.directory)
+        return subprocess.Popen(
+            command, stdout=log, stderr=subprocess.STDOUT, env=self.env, cwd=self.directory
+        )
 
     def add_worker(self) -> int:
         """Start one more worker and wait until the scheduler has it; returns its pid."""
         name = f"worker-{len(self.workers)}"
-        worker = self._start([self.dask, "worker", self.address, "--nthreads", "1",
-                              "--no-nanny", "--no-dashboard", "--memory-limit", "0",
-                              "--name", name, "--local-directory", str(self.directory)], name)
+        worker = self._start(
+            [
+                self.dask,
+                "worker",
+                self.address,
+                "--nthreads",
+                "1",
+                "--no-nanny",
+                "--no-dashboard",
+                "--memory-limit",
+                "0",
+                "--name",
+                name,
+                "--local-directory",
+                str(self.directory),
+            ],
+            name,
+        )
         self.workers.append(worker)
         self.client.wait_for_workers(len(self.workers), timeout=120)
         return worker.pid
@@ -234,12 +282,15 @@ class Cluster:
 
 
 def part_a(system, runs: int, duration: float, repeats: int, scratch: Path) -> dict[str, Any]:
-    return {label: part_a_grid(system, make(runs), duration, repeats, scratch)
-            for label, make in GRIDS.items()}
+    return {
+        label: part_a_grid(system, make(runs), duration, repeats, scratch)
+        for label, make in GRIDS.items()
+    }
 
 
-def part_a_grid(system, vary: dict[str, np.ndarray], duration: float, repeats: int,
-                scratch: Path) -> dict[str, Any]:
+def part_a_grid(
+    system, vary: dict[str, np.ndarray], duration: float, repeats: int, scratch: Path
+) -> dict[str, Any]:
     """The four calls interleaved, ``repeats`` rounds after a warm-up round, best of each: a
     load that comes and goes on a shared machine then hits them alike."""
     count = n_runs(vary)
@@ -250,8 +301,9 @@ def part_a_grid(system, vary: dict[str, np.ndarray], duration: float, repeats: i
     store = scratch / "a.zarr"
     calls = {
         "sweep": lambda: sweep(system, vary, duration),
-        "batch": lambda: simulate_batch(system, parameters, duration, integrator=integrator,
-                                        step=step),
+        "batch": lambda: simulate_batch(
+            system, parameters, duration, integrator=integrator, step=step
+        ),
         "light": lambda: sweep(system, vary, duration, metrics=BATCH_METRICS),
         "store": lambda: sweep(system, vary, duration, out=store, overwrite=True),
     }
@@ -266,29 +318,41 @@ def part_a_grid(system, vary: dict[str, np.ndarray], duration: float, repeats: i
     shutil.rmtree(store, ignore_errors=True)
     result = results["batch"]
     # the same runs, the same answers: the sweep's status is the batch's
-    same = bool(np.array_equal(np.asarray(results["sweep"]["status"].values).ravel(),
-                               np.asarray(result.status)))
+    same = bool(
+        np.array_equal(
+            np.asarray(results["sweep"]["status"].values).ravel(), np.asarray(result.status)
+        )
+    )
     t_sweep, t_batch = min(times["sweep"]), min(times["batch"])
     t_light, t_store = min(times["light"]), min(times["store"])
-    return {"runs": count, "duration": duration, "integrator": integrator, "step": step,
-            "n_steps": int(result.n_steps), "sweep_s": t_sweep, "batch_s": t_batch,
-            "sweep_store_s": t_store, "sweep_batch_metrics_s": t_light,
-            "sweep_runs_per_s": count / t_sweep,
-            "batch_runs_per_s": count / t_batch, "store_runs_per_s": count / t_store,
-            "ratio": t_batch / t_sweep, "ratio_store": t_batch / t_store,
-            "same_status": same, "batch_integrate_s": result.timings.get("integrate"),
-            "times": times}
+    return {
+        "runs": count,
+        "duration": duration,
+        "integrator": integrator,
+        "step": step,
+        "n_steps": int(result.n_steps),
+        "sweep_s": t_sweep,
+        "batch_s": t_batch,
+        "sweep_store_s": t_store,
+        "sweep_batch_metrics_s": t_light,
+        "sweep_runs_per_s": count / t_sweep,
+        "batch_runs_per_s": count / t_batch,
+        "store_runs_per_s": count / t_store,
+        "ratio": t_batch / t_sweep,
+        "ratio_store": t_batch / t_store,
+        "same_status": same,
+        "batch_integrate_s": result.timings.get("integrate"),
+        "times": times,
+    }
 
 
 def timed_cluster_sweep(system, vary, duration, cluster: Cluster, repeats: int) -> float:
     """Best wall time of the sweep on the cluster, after a warm-up run of the same grid."""
-    t, _ = best(lambda: sweep(system, vary, duration, scheduler=cluster.client),
-                repeats)
+    t, _ = best(lambda: sweep(system, vary, duration, scheduler=cluster.client), repeats)
     return t
 
 
-def part_b(system, cluster: Cluster, runs: int, duration: float, repeats: int
-           ) -> dict[str, Any]:
+def part_b(system, cluster: Cluster, runs: int, duration: float, repeats: int) -> dict[str, Any]:
     vary = square_grid(runs)
     count = n_runs(vary)
     cluster.add_worker()
@@ -296,9 +360,16 @@ def part_b(system, cluster: Cluster, runs: int, duration: float, repeats: int
     cluster.add_worker()
     t2 = timed_cluster_sweep(system, vary, duration, cluster, repeats)
     rate1, rate2 = count / t1, count / t2
-    return {"runs": count, "duration": duration, "one_worker_s": t1, "two_workers_s": t2,
-            "one_worker_runs_per_s": rate1, "two_workers_runs_per_s": rate2,
-            "speedup": rate2 / rate1, "efficiency": rate2 / (2 * rate1)}
+    return {
+        "runs": count,
+        "duration": duration,
+        "one_worker_s": t1,
+        "two_workers_s": t2,
+        "one_worker_runs_per_s": rate1,
+        "two_workers_runs_per_s": rate2,
+        "speedup": rate2 / rate1,
+        "efficiency": rate2 / (2 * rate1),
+    }
 
 
 def memory_counts(runs: int) -> list[int]:
@@ -306,8 +377,9 @@ def memory_counts(runs: int) -> list[int]:
     return sorted({max(10_000, runs // 100), max(10_000, runs // 10), max(10_000, runs)})
 
 
-def part_c(system, cluster: Cluster, runs: int, duration: float, scratch: Path
-           ) -> list[dict[str, Any]]:
+def part_c(
+    system, cluster: Cluster, runs: int, duration: float, scratch: Path
+) -> list[dict[str, Any]]:
     """Without slip refinement (``refine_slip=False``): the single-run refinement of every
     slipping run (a quarter of this grid) would take hours at 10^7 runs on two cores, and it
     holds nothing between runs; the memory question is the footprint against the run count."""
@@ -319,22 +391,41 @@ def part_c(system, cluster: Cluster, runs: int, duration: float, scratch: Path
         processes.update({f"worker {i}": w.pid for i, w in enumerate(cluster.workers)})
         began = time.perf_counter()
         with PeakRSS(processes) as sampler:
-            dataset = sweep(system, vary, duration, scheduler=cluster.client,
-                            out=store, overwrite=True, refine_slip=False)
+            dataset = sweep(
+                system,
+                vary,
+                duration,
+                scheduler=cluster.client,
+                out=store,
+                overwrite=True,
+                refine_slip=False,
+            )
         elapsed = time.perf_counter() - began
         size = sum(p.stat().st_size for p in store.rglob("*") if p.is_file())
         statuses = np.bincount(np.asarray(dataset["status"].values).ravel(), minlength=7)
-        entry = {"runs": n_runs(vary), "duration": duration, "wall_s": elapsed,
-                 "runs_per_s": n_runs(vary) / elapsed, "store_bytes": size,
-                 "chunk": dataset.attrs.get("chunk"), "samples": sampler.samples,
-                 "peak_rss": dict(sampler.peak), "halves": sampler.halves(),
-                 "status_counts": statuses.tolist()}
+        entry = {
+            "runs": n_runs(vary),
+            "duration": duration,
+            "wall_s": elapsed,
+            "runs_per_s": n_runs(vary) / elapsed,
+            "store_bytes": size,
+            "chunk": dataset.attrs.get("chunk"),
+            "samples": sampler.samples,
+            "peak_rss": dict(sampler.peak),
+            "halves": sampler.halves(),
+            "status_counts": statuses.tolist(),
+        }
         out.append(entry)
-        print(f"(c) {entry['runs']:,} runs in {elapsed:.0f} s: "
-              + ", ".join(f"{k} {v / 1e6:.0f} MB (halves {h[0] / 1e6:.0f} / {h[1] / 1e6:.0f})"
-                          for (k, v), h in zip(entry["peak_rss"].items(),
-                                               entry["halves"].values(), strict=True)),
-              flush=True)
+        print(
+            f"(c) {entry['runs']:,} runs in {elapsed:.0f} s: "
+            + ", ".join(
+                f"{k} {v / 1e6:.0f} MB (halves {h[0] / 1e6:.0f} / {h[1] / 1e6:.0f})"
+                for (k, v), h in zip(
+                    entry["peak_rss"].items(), entry["halves"].values(), strict=True
+                )
+            ),
+            flush=True,
+        )
         del dataset
         shutil.rmtree(store, ignore_errors=True)
     return out
@@ -355,15 +446,31 @@ def show_a_grid(label: str, a: dict[str, Any], repeats: int) -> None:
         f"{a['integrator']} "
         f"step {a['step']:.4g} s ({a['n_steps']} steps), best of {repeats}",
         ["call", "wall (s)", "runs/s", "vs batch", "target"],
-        [["simulate_batch (same runs, same step)", a["batch_s"], a["batch_runs_per_s"], 1.0,
-          ""],
-         ["sweep, in memory", a["sweep_s"], a["sweep_runs_per_s"], a["ratio"],
-          f">= 0.90 {mark(a['ratio'] >= 0.9)}"],
-         ["sweep, batch metrics only", a["sweep_batch_metrics_s"],
-          a["runs"] / a["sweep_batch_metrics_s"], a["batch_s"] / a["sweep_batch_metrics_s"],
-          ""],
-         ["sweep, to a Zarr store", a["sweep_store_s"], a["store_runs_per_s"],
-          a["ratio_store"], ""]])
+        [
+            ["simulate_batch (same runs, same step)", a["batch_s"], a["batch_runs_per_s"], 1.0, ""],
+            [
+                "sweep, in memory",
+                a["sweep_s"],
+                a["sweep_runs_per_s"],
+                a["ratio"],
+                f">= 0.90 {mark(a['ratio'] >= 0.9)}",
+            ],
+            [
+                "sweep, batch metrics only",
+                a["sweep_batch_metrics_s"],
+                a["runs"] / a["sweep_batch_metrics_s"],
+                a["batch_s"] / a["sweep_batch_metrics_s"],
+                "",
+            ],
+            [
+                "sweep, to a Zarr store",
+                a["sweep_store_s"],
+                a["store_runs_per_s"],
+                a["ratio_store"],
+                "",
+            ],
+        ],
+    )
     print(f"same status in every run: {mark(a['same_status'])}")
 
 
@@ -372,9 +479,18 @@ def show_b(b: dict[str, Any]) -> None:
         f"(b) Dask: {b['runs']:,} runs of {b['duration']:g} s on a loopback cluster "
         "(dask scheduler + dask worker --nthreads 1 --no-nanny, NUMBA_NUM_THREADS=1)",
         ["workers", "wall (s)", "runs/s", "speed-up", "per worker", "target"],
-        [[1, b["one_worker_s"], b["one_worker_runs_per_s"], 1.0, 1.0, ""],
-         [2, b["two_workers_s"], b["two_workers_runs_per_s"], b["speedup"], b["efficiency"],
-          f">= 0.80 {mark(b['efficiency'] >= 0.8)}"]])
+        [
+            [1, b["one_worker_s"], b["one_worker_runs_per_s"], 1.0, 1.0, ""],
+            [
+                2,
+                b["two_workers_s"],
+                b["two_workers_runs_per_s"],
+                b["speedup"],
+                b["efficiency"],
+                f">= 0.80 {mark(b['efficiency'] >= 0.8)}",
+            ],
+        ],
+    )
 
 
 def show_c(c: list[dict[str, Any]], duration: float) -> None:
@@ -382,12 +498,22 @@ def show_c(c: list[dict[str, Any]], duration: float) -> None:
     for entry in c:
         for label, peak in entry["peak_rss"].items():
             first, second = entry["halves"][label]
-            rows.append([f"{entry['runs']:,} runs: {label}", peak / 1e6, first / 1e6,
-                         second / 1e6, entry["wall_s"], f"< 1000 MB {mark(peak < GB)}"])
-    print_table(f"(c) peak RSS, two workers, runs of {duration:g} s written to a store, no "
-                "slip refinement (sampled every 50 ms)",
-                ["process", "peak RSS (MB)", "1st half", "2nd half", "sweep wall (s)",
-                 "target"], rows)
+            rows.append(
+                [
+                    f"{entry['runs']:,} runs: {label}",
+                    peak / 1e6,
+                    first / 1e6,
+                    second / 1e6,
+                    entry["wall_s"],
+                    f"< 1000 MB {mark(peak < GB)}",
+                ]
+            )
+    print_table(
+        f"(c) peak RSS, two workers, runs of {duration:g} s written to a store, no "
+        "slip refinement (sampled every 50 ms)",
+        ["process", "peak RSS (MB)", "1st half", "2nd half", "sweep wall (s)", "target"],
+        rows,
+    )
 
 
 def main() -> None:
@@ -408,21 +534,22 @@ def main() -> None:
     with tempfile.TemporaryDirectory(prefix="bench-sweep-") as tmp:
         scratch = Path(tmp)
         if "a" in args.parts:
-            report["in_process"] = part_a(system, args.runs, args.duration, args.repeat,
-                                          scratch)
+            report["in_process"] = part_a(system, args.runs, args.duration, args.repeat, scratch)
             show_a(report["in_process"], args.repeat)
         if "b" in args.parts or "c" in args.parts:
             cluster = Cluster(scratch)
             try:
                 if "b" in args.parts:
-                    report["dask_scaling"] = part_b(system, cluster, args.cluster_runs,
-                                                    args.duration, args.repeat)
+                    report["dask_scaling"] = part_b(
+                        system, cluster, args.cluster_runs, args.duration, args.repeat
+                    )
                     show_b(report["dask_scaling"])
                 if "c" in args.parts:
                     while len(cluster.workers) < 2:
                         cluster.add_worker()
-                    report["memory"] = part_c(system, cluster, args.memory_runs,
-                                              args.memory_duration, scratch)
+                    report["memory"] = part_c(
+                        system, cluster, args.memory_runs, args.memory_duration, scratch
+                    )
                     show_c(report["memory"], args.memory_duration)
             finally:
                 cluster.stop()

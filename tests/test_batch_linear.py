@@ -17,8 +17,14 @@ RTOL = 1e-12
 
 #: Presets of the flat centre class (walls, three bodies, sliders) and a system with an
 #: external force at a centre held by a wall spring.
-FLAT = ["hoop-cylinder", "three-bodies", "two-masses", "wall-hoop-cylinder", "two-hoops",
-        "two-cylinders"]
+FLAT = [
+    "hoop-cylinder",
+    "three-bodies",
+    "two-masses",
+    "wall-hoop-cylinder",
+    "two-hoops",
+    "two-cylinders",
+]
 
 
 def _forced() -> rollspring.System:
@@ -47,9 +53,12 @@ def _close(expected: np.ndarray, got: np.ndarray) -> bool:
     if not np.array_equal(np.isinf(expected), np.isinf(got)):
         return False
     fine = np.isfinite(expected)
-    return bool(np.all(np.abs(got[fine] - expected[fine])
-                       <= RTOL * np.maximum(np.abs(expected[fine]), 1e-300)
-                       + 1e-15 * (expected[fine] == 0)))
+    return bool(
+        np.all(
+            np.abs(got[fine] - expected[fine])
+            <= RTOL * np.maximum(np.abs(expected[fine]), 1e-300) + 1e-15 * (expected[fine] == 0)
+        )
+    )
 
 
 def _random_runs(system, rng: np.random.Generator, n_runs: int) -> dict[str, np.ndarray]:
@@ -71,13 +80,16 @@ def _random_runs(system, rng: np.random.Generator, n_runs: int) -> dict[str, np.
     # some runs share their masses, radii and stiffnesses (the distinct-configuration path)
     for key, column in values.items():
         if key.endswith((".mass", ".radius", ".stiffness")):
-            column[n_runs // 2:] = column[0]
+            column[n_runs // 2 :] = column[0]
     return values
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(name=st.sampled_from([*FLAT, "forced"]), seed=st.integers(0, 2**32 - 1),
-       n_runs=st.integers(1, 6))
+@given(
+    name=st.sampled_from([*FLAT, "forced"]),
+    seed=st.integers(0, 2**32 - 1),
+    n_runs=st.integers(1, 6),
+)
 def test_agrees_with_analyze(name: str, seed: int, n_runs: int) -> None:
     system = _system(name)
     values = _random_runs(system, np.random.default_rng(seed), n_runs)
@@ -87,8 +99,11 @@ def test_agrees_with_analyze(name: str, seed: int, n_runs: int) -> None:
     for r in range(n_runs):
         _, omega, weights, need = _reference(system, values, r)
         assert _close(omega, result.omega[r]), (r, omega, result.omega[r])
-        assert _close(weights, result.stationary_weight[r]), (r, weights,
-                                                              result.stationary_weight[r])
+        assert _close(weights, result.stationary_weight[r]), (
+            r,
+            weights,
+            result.stationary_weight[r],
+        )
         assert _close(need, result.required_mu[r]), (r, need, result.required_mu[r])
 
 
@@ -114,10 +129,9 @@ def test_results_do_not_depend_on_the_other_runs() -> None:
     values = _random_runs(system, np.random.default_rng(7), 9)
     whole = batch_linear(system, values)
     for r in range(9):
-        alone = batch_linear(system, {k: v[r:r + 1] for k, v in values.items()})
+        alone = batch_linear(system, {k: v[r : r + 1] for k, v in values.items()})
         for name in ("omega", "stationary_weight", "required_mu"):
-            assert np.array_equal(getattr(whole, name)[r], getattr(alone, name)[0],
-                                  equal_nan=True)
+            assert np.array_equal(getattr(whole, name)[r], getattr(alone, name)[0], equal_nan=True)
 
 
 # --------------------------------------------------------------------------------------------
@@ -166,8 +180,10 @@ def test_ends_crossing_at_the_equilibrium_are_not_handled() -> None:
         "gravity": 9.81,
         "anchors": [{"id": "left", "x": -1.0, "y": 0.1}, {"id": "right", "x": 1.0, "y": 0.1}],
         "bodies": [{"id": "hoop", "shape": "hoop", "mass": 1.0, "radius": 0.1, "x": 0.9}],
-        "springs": [{"ends": ["left", "hoop"], "stiffness": 100.0, "rest_length": 2.5},
-                    {"ends": ["hoop", "right"], "stiffness": 1.0, "rest_length": 0.05}],
+        "springs": [
+            {"ends": ["left", "hoop"], "stiffness": 100.0, "rest_length": 2.5},
+            {"ends": ["hoop", "right"], "stiffness": 1.0, "rest_length": 0.05},
+        ],
     }
     system = system_from_dict(data)
     result = batch_linear(system, {"springs.1.stiffness": [1.0, 10000.0]})

@@ -45,8 +45,11 @@ def system():
 
 
 def test_store_layout_and_chunking_independence(system, tmp_path):
-    vary = {"bodies.hoop.mass": [0.5, 1.0, 2.0], "springs.0.stiffness": [50.0, 100.0, 150.0, 200.0],
-            "bodies.cylinder.mu_static": [0.01, 1.0]}
+    vary = {
+        "bodies.hoop.mass": [0.5, 1.0, 2.0],
+        "springs.0.stiffness": [50.0, 100.0, 150.0, 200.0],
+        "bodies.cylinder.mu_static": [0.01, 1.0],
+    }
     one = sweep(system, vary, 3.0, chunk=5, out=tmp_path / "a.zarr")
     other = sweep(system, vary, 3.0, chunk=1000)  # in memory, one chunk
     same(one.load(), other)
@@ -59,8 +62,12 @@ def test_store_layout_and_chunking_independence(system, tmp_path):
     assert ds["bodies.cylinder.mu_static"].attrs["units"] == "1"
     for name in ds.data_vars:
         assert ds[name].attrs["units"] and ds[name].attrs["long_name"], name
-    assert ds["status"].attrs["flag_meanings"].split()[:4] == ["finished", "nonfinite", "slip",
-                                                               "liftoff"]
+    assert ds["status"].attrs["flag_meanings"].split()[:4] == [
+        "finished",
+        "nonfinite",
+        "slip",
+        "liftoff",
+    ]
     attrs = ds.attrs
     assert rollspring.model.system_from_text(attrs["system"]) == system
     assert len(attrs["grid_fingerprint"]) == 64
@@ -95,12 +102,12 @@ def test_fingerprint_mismatch_is_refused(system, tmp_path):
         sweep(system, {"springs.0.stiffness": [50.0, 101.0]}, 1.0, out=out)
     with pytest.raises(StoreMismatchError):
         sweep(system, {"springs.0.stiffness": [50.0, 100.0]}, 1.5, out=out)
-    replaced = sweep(system, {"springs.0.stiffness": [50.0, 101.0]}, 1.0, out=out,
-                     overwrite=True)
+    replaced = sweep(system, {"springs.0.stiffness": [50.0, 101.0]}, 1.0, out=out, overwrite=True)
     assert list(replaced["springs.0.stiffness"].values) == [50.0, 101.0]
-    result = CliRunner().invoke(cli_app(), ["sweep", SYSTEM, "--vary",
-                                            "springs.0.stiffness=1,2", "-T", "1", "--out",
-                                            str(out)])
+    result = CliRunner().invoke(
+        cli_app(),
+        ["sweep", SYSTEM, "--vary", "springs.0.stiffness=1,2", "-T", "1", "--out", str(out)],
+    )
     assert result.exit_code == 2
     assert result.output.count("\n") == 1 and "holds another sweep" in result.output
 
@@ -112,8 +119,7 @@ def test_not_a_store_is_refused(system, tmp_path):
 
 
 def test_metric_selection_keeps_status(system):
-    ds = sweep(system, {"springs.0.stiffness": [50.0, 100.0]}, 1.0,
-               metrics=["period_measured"])
+    ds = sweep(system, {"springs.0.stiffness": [50.0, 100.0]}, 1.0, metrics=["period_measured"])
     assert sorted(ds.data_vars) == ["period_measured", "status"]
     assert ds.attrs["metrics"] == ["period_measured", "status"]
 
@@ -127,11 +133,11 @@ def test_on_slip_continue_equals_single_runs(system):
         for v in vary["bodies.cylinder.v"]:
             data = system_to_json(system)
             data["bodies"][1].update(mu_static=mu, v=v)
-            run = rollspring.simulate(system_from_dict(data), 1.0, rtol=1e-8,
-                                      on_slip="continue")
+            run = rollspring.simulate(system_from_dict(data), 1.0, rtol=1e-8, on_slip="continue")
             point = ds.sel({"bodies.cylinder.mu_static": mu, "bodies.cylinder.v": v})
             assert float(point["energy_dissipated"]) == pytest.approx(
-                run.energy[0] - run.energy[-1], rel=0, abs=0)
+                run.energy[0] - run.energy[-1], rel=0, abs=0
+            )
             assert float(point["first_slip_time"]) == run.summary["first_slip"]["time"]
             slipping = [(e["kind"], e["time"]) for e in run.events]
             assert slipping[0][0] == "slip"
@@ -161,10 +167,12 @@ def test_mode_amplitude_and_attachment_paths(system):
     raised = sweep(system, {"springs.0.at.1.height": [0.1, 0.15]}, 1.0)
     assert np.all(raised["status"].values == 0)
     # the centre attachment (0.1 m = the radius) is the preset itself
-    assert float(raised["omega"].sel(mode=1).values[0]) == pytest.approx(10.801234497346432,
-                                                                          rel=1e-12)
-    assert float(raised["omega"].sel(mode=1).values[1]) != pytest.approx(10.801234497346432,
-                                                                          rel=1e-6)
+    assert float(raised["omega"].sel(mode=1).values[0]) == pytest.approx(
+        10.801234497346432, rel=1e-12
+    )
+    assert float(raised["omega"].sel(mode=1).values[1]) != pytest.approx(
+        10.801234497346432, rel=1e-6
+    )
 
 
 # ---------------------------------------------------------------------------------------------
@@ -194,8 +202,7 @@ BAD = [
     (["--vary", "modes.7.amplitude=0.001"], "no mode '7'"),
     (["--vary", "gravity.x=1"], "unknown PATH"),
     (["--vary", "foo=1"], "unknown PATH"),
-    (["--vary", "springs.0.stiffness=1,2", "--vary", "springs.0.stiffness=3"],
-     "already varied"),
+    (["--vary", "springs.0.stiffness=1,2", "--vary", "springs.0.stiffness=3"], "already varied"),
     (["--vary", "springs.0.stiffness=inf"], "finite"),
     (["--vary", "springs.0.stiffness=1,2", "--metric", "colour"], "unknown metric"),
     (["--vary", "springs.0.stiffness=1,2", "--metric", "time_slipping"], "only with"),
@@ -208,27 +215,32 @@ BAD = [
 
 @pytest.mark.parametrize(("args", "words"), BAD, ids=[" ".join(a) for a, _ in BAD])
 def test_bad_arguments_are_one_line_errors(args, words, tmp_path):
-    result = CliRunner().invoke(cli_app(), ["sweep", SYSTEM, *args, "-T", "1", "--out",
-                                            str(tmp_path / "s.zarr")])
+    result = CliRunner().invoke(
+        cli_app(), ["sweep", SYSTEM, *args, "-T", "1", "--out", str(tmp_path / "s.zarr")]
+    )
     assert result.exit_code == 2, result.output
     assert result.output.startswith("error: ") and result.output.count("\n") == 1, result.output
     assert words in result.output
     assert not (tmp_path / "s.zarr").exists()
 
 
-@pytest.mark.parametrize(("args", "words"), [
-    ([], "--vary"), (["--vary", "springs.0.stiffness=1"], "--duration"),
-])
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        ([], "--vary"),
+        (["--vary", "springs.0.stiffness=1"], "--duration"),
+    ],
+)
 def test_missing_options(args, words, tmp_path):
     extra = [] if words == "--duration" else ["-T", "1"]
-    result = CliRunner().invoke(cli_app(), ["sweep", SYSTEM, *args, *extra, "--out",
-                                            str(tmp_path / "s.zarr")])
+    result = CliRunner().invoke(
+        cli_app(), ["sweep", SYSTEM, *args, *extra, "--out", str(tmp_path / "s.zarr")]
+    )
     assert result.exit_code == 2 and words in result.output
 
 
 def test_parse_vary_spec():
-    assert parse_vary_spec("springs.0.stiffness=1:3:3") == ("springs.0.stiffness",
-                                                            [1.0, 2.0, 3.0])
+    assert parse_vary_spec("springs.0.stiffness=1:3:3") == ("springs.0.stiffness", [1.0, 2.0, 3.0])
     path, values = parse_vary_spec("gravity=1:100:3:log")
     assert path == "gravity" and values == pytest.approx([1.0, 10.0, 100.0], rel=1e-15)
     assert parse_vary_spec("bodies.hoop.mu_static=0.1,inf")[1] == [0.1, math.inf]
@@ -251,8 +263,11 @@ def qqq1(m1, m2, k):
 @pytest.fixture(scope="module")
 def mass_grid(system, tmp_path_factory):
     vary = {"bodies.hoop.mass": M1, "bodies.cylinder.mass": M2, "springs.0.stiffness": K}
-    omega_max = float(qqq1(np.array(M1)[:, None, None], np.array(M2)[None, :, None],
-                           np.array(K)[None, None, :]).max())
+    omega_max = float(
+        qqq1(
+            np.array(M1)[:, None, None], np.array(M2)[None, :, None], np.array(K)[None, None, :]
+        ).max()
+    )
     # one step for the grid with the fastest mode turning 0.016 rad a step: the batch then
     # samples its metrics every step (it samples every max(1, int(0.03 / (omega h))) steps),
     # so the period's crossings are interpolated over 0.016 rad at most (see test below)
@@ -295,14 +310,22 @@ def test_first_slip_map_agrees_with_single_runs(system, tmp_path):
     the initial velocity, which makes slips happen during the motion."""
     mu = np.linspace(0.04, 0.13, 12)
     v = np.linspace(0.05, 0.5, 10)
-    ds = sweep(system, {"bodies.cylinder.mu_static": mu, "bodies.cylinder.v": v}, 2.0,
-               rtol=1e-10, out=tmp_path / "slip.zarr", chunk=16)
+    ds = sweep(
+        system,
+        {"bodies.cylinder.mu_static": mu, "bodies.cylinder.v": v},
+        2.0,
+        rtol=1e-10,
+        out=tmp_path / "slip.zarr",
+        chunk=16,
+    )
     t_slip = ds["first_slip_time"].values
     assert (t_slip > 0).sum() > 40 and np.isnan(t_slip).sum() > 5
     assert np.all((t_slip > 0) | np.isnan(t_slip))
     rng = np.random.default_rng(2026)
-    points = [(int(i), int(j)) for i, j in zip(rng.integers(0, len(mu), 20),
-                                              rng.integers(0, len(v), 20), strict=True)]
+    points = [
+        (int(i), int(j))
+        for i, j in zip(rng.integers(0, len(mu), 20), rng.integers(0, len(v), 20), strict=True)
+    ]
     for i, j in points:
         data = system_to_json(system)
         data["bodies"][1].update(mu_static=float(mu[i]), v=float(v[j]))

@@ -26,20 +26,30 @@ pytestmark = pytest.mark.slow
 DASK = str(Path(sys.executable).with_name("dask"))
 SYSTEM = "hoop-cylinder"
 #: 10 x 10 x 20 = 2000 runs, some slipping (refined one by one), 10 s each
-VARY = {"bodies.hoop.mass": np.linspace(0.5, 2.0, 10).tolist(),
-        "bodies.hoop.mu_static": [0.02, 0.03, 0.04, 0.05, 0.06, 0.08, 0.1, 0.2, 0.5, 1.0],
-        "springs.0.stiffness": np.linspace(50.0, 200.0, 20).tolist()}
-SPECS = ["--vary", "bodies.hoop.mass=0.5:2.0:10",
-         "--vary", "bodies.hoop.mu_static=0.02,0.03,0.04,0.05,0.06,0.08,0.1,0.2,0.5,1.0",
-         "--vary", "springs.0.stiffness=50:200:20"]
+VARY = {
+    "bodies.hoop.mass": np.linspace(0.5, 2.0, 10).tolist(),
+    "bodies.hoop.mu_static": [0.02, 0.03, 0.04, 0.05, 0.06, 0.08, 0.1, 0.2, 0.5, 1.0],
+    "springs.0.stiffness": np.linspace(50.0, 200.0, 20).tolist(),
+}
+SPECS = [
+    "--vary",
+    "bodies.hoop.mass=0.5:2.0:10",
+    "--vary",
+    "bodies.hoop.mu_static=0.02,0.03,0.04,0.05,0.06,0.08,0.1,0.2,0.5,1.0",
+    "--vary",
+    "springs.0.stiffness=50:200:20",
+]
 DURATION = 10.0
 CHUNK = 40  # 50 chunks
 #: The rollspring command with the sweep command registered (until cli/app.py lists it).
-CLI = [sys.executable, "-c",
-       "import importlib, sys; m = importlib.import_module('rollspring.cli.app'); "
-       "s = importlib.import_module('rollspring.cli.sweep'); "
-       "any(c.name == 'sweep' for c in m.app.registered_commands) or s.register(m.app); "
-       "m.app(args=sys.argv[1:])"]
+CLI = [
+    sys.executable,
+    "-c",
+    "import importlib, sys; m = importlib.import_module('rollspring.cli.app'); "
+    "s = importlib.import_module('rollspring.cli.sweep'); "
+    "any(c.name == 'sweep' for c in m.app.registered_commands) or s.register(m.app); "
+    "m.app(args=sys.argv[1:])",
+]
 
 
 class Cluster:
@@ -49,9 +59,20 @@ class Cluster:
         self.folder = folder
         self.file = folder / "scheduler.json"
         self.env = {**os.environ, "PYTHONWARNINGS": "ignore"}
-        self.scheduler = self._start([DASK, "scheduler", "--host", "127.0.0.1", "--port", "0",
-                                      "--scheduler-file", str(self.file), "--no-dashboard"],
-                                     "scheduler")
+        self.scheduler = self._start(
+            [
+                DASK,
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                "0",
+                "--scheduler-file",
+                str(self.file),
+                "--no-dashboard",
+            ],
+            "scheduler",
+        )
         deadline = time.monotonic() + 60
         while not self.file.exists() or not self.file.read_text().strip():
             assert time.monotonic() < deadline, "the scheduler did not start"
@@ -64,12 +85,23 @@ class Cluster:
 
     def _start(self, args: list[str], name: str) -> subprocess.Popen:
         with open(self.folder / f"{name}-{time.monotonic_ns()}.log", "w") as log:
-            return subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, env=self.env,
-                                    cwd=self.folder)
+            return subprocess.Popen(
+                args, stdout=log, stderr=subprocess.STDOUT, env=self.env, cwd=self.folder
+            )
 
     def start_worker(self) -> subprocess.Popen:
-        return self._start([DASK, "worker", "--scheduler-file", str(self.file), "--nthreads",
-                            "1", "--no-dashboard"], "worker")
+        return self._start(
+            [
+                DASK,
+                "worker",
+                "--scheduler-file",
+                str(self.file),
+                "--nthreads",
+                "1",
+                "--no-dashboard",
+            ],
+            "worker",
+        )
 
     def wait_for_workers(self, n: int) -> None:
         from distributed import Client
@@ -114,14 +146,30 @@ def same(a: xr.Dataset, b: xr.Dataset) -> None:
 
 def markers(store: Path) -> set[int]:
     folder = store / ".rollspring-done"
-    return {int(p.name) for p in folder.iterdir() if p.name.isdigit()} if folder.is_dir() \
-        else set()
+    return {int(p.name) for p in folder.iterdir() if p.name.isdigit()} if folder.is_dir() else set()
 
 
 def run_cli(store: Path, address: str, *extra: str) -> subprocess.Popen:
-    return subprocess.Popen([*CLI, "sweep", SYSTEM, *SPECS, "-T", str(DURATION), "--chunk",
-                             str(CHUNK), "--out", str(store), "--scheduler", address, *extra],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen(
+        [
+            *CLI,
+            "sweep",
+            SYSTEM,
+            *SPECS,
+            "-T",
+            str(DURATION),
+            "--chunk",
+            str(CHUNK),
+            "--out",
+            str(store),
+            "--scheduler",
+            address,
+            *extra,
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 def wait_for_markers(store: Path, process: subprocess.Popen, at_least: int) -> None:
@@ -143,8 +191,14 @@ def test_cluster_equals_in_process(cluster, reference, tmp_path):
     from distributed import Client
 
     with Client(cluster.address, timeout=30, set_as_default=False) as client:
-        result = sweep(rollspring.load_system(SYSTEM), VARY, DURATION, chunk=CHUNK,
-                       scheduler=client, out=tmp_path / "c.zarr")
+        result = sweep(
+            rollspring.load_system(SYSTEM),
+            VARY,
+            DURATION,
+            chunk=CHUNK,
+            scheduler=client,
+            out=tmp_path / "c.zarr",
+        )
         # each worker has its own Numba cache directory
         caches = client.run(lambda: os.environ.get("NUMBA_CACHE_DIR"))
     assert len(set(caches.values())) == 2 and all(caches.values())
@@ -159,7 +213,7 @@ def test_worker_killed_mid_sweep(cluster, reference, tmp_path):
     victim = cluster.workers.pop(0)
     victim.send_signal(signal.SIGKILL)
     victim.wait()
-    out, err = process.communicate(timeout=600)
+    _out, err = process.communicate(timeout=600)
     assert process.returncode == 0, err
     cluster.workers.append(cluster.start_worker())
     same(xr.open_zarr(store).load(), reference)
@@ -176,7 +230,7 @@ def test_client_killed_mid_sweep_then_resumed(cluster, reference, tmp_path):
     finished = markers(store)
     assert 8 <= len(finished) < 50
     process = run_cli(store, cluster.address)
-    out, err = process.communicate(timeout=600)
+    _out, err = process.communicate(timeout=600)
     assert process.returncode == 0, err
     ran = re.search(r"ran (\d+) of (\d+) chunks \((\d+) already done", err)
     assert ran is not None, err
@@ -186,17 +240,17 @@ def test_client_killed_mid_sweep_then_resumed(cluster, reference, tmp_path):
     same(xr.open_zarr(store).load(), reference)
     # a third run has nothing left to do
     process = run_cli(store, cluster.address)
-    out, err = process.communicate(timeout=600)
+    _out, err = process.communicate(timeout=600)
     assert process.returncode == 0 and "ran 0 of 50 chunks (50 already done" in err
 
 
 def test_other_sweep_refused_on_the_cluster(cluster, tmp_path):
     store = tmp_path / "m.zarr"
     process = run_cli(store, cluster.address, "--metric", "period_measured")
-    out, err = process.communicate(timeout=600)
+    _out, err = process.communicate(timeout=600)
     assert process.returncode == 0, err
     process = run_cli(store, cluster.address)  # other metrics: another sweep
-    out, err = process.communicate(timeout=600)
+    _out, err = process.communicate(timeout=600)
     assert process.returncode == 2
     assert err.startswith("error: ") and err.count("\n") == 1 and "holds another sweep" in err
     assert "Traceback" not in err

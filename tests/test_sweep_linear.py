@@ -42,16 +42,29 @@ def _per_run_linear(system, ds, paths):
     return out
 
 
-@pytest.mark.parametrize(("name", "vary"), [
-    ("hoop-cylinder", {"springs.0.stiffness": [50.0, 100.0, 150.0],
-                       "bodies.cylinder.v": [0.0, 0.2], "bodies.hoop.mu_static": [0.3, 1.0]}),
-    # radii differ in some runs: the spring tilts there and those runs go to analyze
-    ("hoop-cylinder", {"bodies.hoop.radius": [0.08, 0.1, 0.12],
-                       "bodies.cylinder.v": [0.0, 0.1]}),
-    ("wall-hoop-cylinder", {"springs.1.stiffness": [50.0, 200.0],
-                            "bodies.cylinder.x": [0.45, 0.52]}),
-    ("three-bodies", {"bodies.sphere.mass": [0.5, 2.0], "bodies.hoop.v": [0.0, 0.1, 0.2]}),
-])
+@pytest.mark.parametrize(
+    ("name", "vary"),
+    [
+        (
+            "hoop-cylinder",
+            {
+                "springs.0.stiffness": [50.0, 100.0, 150.0],
+                "bodies.cylinder.v": [0.0, 0.2],
+                "bodies.hoop.mu_static": [0.3, 1.0],
+            },
+        ),
+        # radii differ in some runs: the spring tilts there and those runs go to analyze
+        (
+            "hoop-cylinder",
+            {"bodies.hoop.radius": [0.08, 0.1, 0.12], "bodies.cylinder.v": [0.0, 0.1]},
+        ),
+        (
+            "wall-hoop-cylinder",
+            {"springs.1.stiffness": [50.0, 200.0], "bodies.cylinder.x": [0.45, 0.52]},
+        ),
+        ("three-bodies", {"bodies.sphere.mass": [0.5, 2.0], "bodies.hoop.v": [0.0, 0.1, 0.2]}),
+    ],
+)
 def test_linear_metrics_equal_analyze_per_run(name, vary) -> None:
     system = rollspring.load_system(name)
     ds = sweep(system, vary, 0.2, metrics=[*LINEAR], chunk=5)
@@ -79,24 +92,52 @@ def _plan(name: str, vary: dict, chunk: int, **kwargs) -> SweepPlan:
     paths = tuple(vary)
     values = tuple(tuple(float(x) for x in v) for v in vary.values())
     grid = Grid(paths, values, chunk_shape(tuple(len(v) for v in values), chunk))
-    plan = SweepPlan(system=system_to_json(system), grid=grid, duration=0.5, rtol=1e-8,
-                     on_slip="stop", metrics=tuple(kwargs.pop("metrics", ("omega", "status",
-                                                                          "period_measured",
-                                                                          "first_slip_time"))),
-                     refine_slip=True)
+    plan = SweepPlan(
+        system=system_to_json(system),
+        grid=grid,
+        duration=0.5,
+        rtol=1e-8,
+        on_slip="stop",
+        metrics=tuple(
+            kwargs.pop("metrics", ("omega", "status", "period_measured", "first_slip_time"))
+        ),
+        refine_slip=True,
+    )
     return _choose_step(plan, None)
 
 
 GRIDS = [
-    ("hoop-cylinder", {"springs.0.stiffness": np.linspace(50, 150, 13),
-                       "bodies.cylinder.v": np.linspace(0, 0.3, 11)}, 7),
-    ("hoop-cylinder", {"bodies.hoop.mu_static": [0.01, 0.5, np.inf],
-                       "bodies.hoop.mass": np.geomspace(0.1, 10, 9),
-                       "bodies.cylinder.v": [0.0, 1.0]}, 5),
-    ("three-bodies", {"bodies.sphere.v": [0.0, 0.1], "springs.1.stiffness": np.linspace(1, 500, 17),
-                      "bodies.sphere.radius": [0.05, 0.1, 0.2]}, 4),
-    ("frictionless", {"bodies.hoop.radius": [0.05, 0.07, 0.08],
-                      "springs.0.stiffness": [10.0, 100.0, 1000.0]}, 2),
+    (
+        "hoop-cylinder",
+        {
+            "springs.0.stiffness": np.linspace(50, 150, 13),
+            "bodies.cylinder.v": np.linspace(0, 0.3, 11),
+        },
+        7,
+    ),
+    (
+        "hoop-cylinder",
+        {
+            "bodies.hoop.mu_static": [0.01, 0.5, np.inf],
+            "bodies.hoop.mass": np.geomspace(0.1, 10, 9),
+            "bodies.cylinder.v": [0.0, 1.0],
+        },
+        5,
+    ),
+    (
+        "three-bodies",
+        {
+            "bodies.sphere.v": [0.0, 0.1],
+            "springs.1.stiffness": np.linspace(1, 500, 17),
+            "bodies.sphere.radius": [0.05, 0.1, 0.2],
+        },
+        4,
+    ),
+    (
+        "frictionless",
+        {"bodies.hoop.radius": [0.05, 0.07, 0.08], "springs.0.stiffness": [10.0, 100.0, 1000.0]},
+        2,
+    ),
 ]
 
 

@@ -67,32 +67,69 @@ def synthetic_sweep(system_toml: str | None = None) -> xr.Dataset:
 
     return xr.Dataset(
         {
-            "omega": var(np.stack([np.zeros_like(omega), omega], -1), (*grid, "mode"), "rad/s",
-                         "linear angular frequencies"),
-            "stationary_weight": var(np.broadcast_to([4 / 7, 3 / 7], need.shape).copy(),
-                                     (*grid, "body"), "1", "weights of the stationary point"),
-            "required_mu_linear": var(need, (*grid, "body"), "1",
-                                      "max |f|/N of the linear response"),
+            "omega": var(
+                np.stack([np.zeros_like(omega), omega], -1),
+                (*grid, "mode"),
+                "rad/s",
+                "linear angular frequencies",
+            ),
+            "stationary_weight": var(
+                np.broadcast_to([4 / 7, 3 / 7], need.shape).copy(),
+                (*grid, "body"),
+                "1",
+                "weights of the stationary point",
+            ),
+            "required_mu_linear": var(
+                need, (*grid, "body"), "1", "max |f|/N of the linear response"
+            ),
             "period_measured": var(period, grid, "s", "measured period"),
-            "max_friction_ratio": var(np.where(slip[..., None], np.minimum(need, mus), need),
-                                      (*grid, "body"), "1", "max |f|/N over the run"),
-            "min_normal_force": var(np.full(need.shape, G), (*grid, "body"), "N",
-                                    "min N over the run"),
+            "max_friction_ratio": var(
+                np.where(slip[..., None], np.minimum(need, mus), need),
+                (*grid, "body"),
+                "1",
+                "max |f|/N over the run",
+            ),
+            "min_normal_force": var(
+                np.full(need.shape, G), (*grid, "body"), "N", "min N over the run"
+            ),
             "first_slip_time": var(t_slip, grid, "s", "first slip"),
-            "first_slip_body": var(np.where(slip, 0, -1).astype(np.int8), grid, "1",
-                                   "index into body of the first slip"),
-            "energy_error": var(1e-12 * (1 + v3 / 0.4) ** 8, grid, "1",
-                                "max relative energy error"),
-            "status": var(np.where(slip, 2, 0).astype(np.int8), grid, "", "how the run ended",
-                          flag_values=np.array([0, 1, 2, 3, 4], dtype=np.int8),
-                          flag_meanings="finished nonfinite slip liftoff invalid"),
+            "first_slip_body": var(
+                np.where(slip, 0, -1).astype(np.int8),
+                grid,
+                "1",
+                "index into body of the first slip",
+            ),
+            "energy_error": var(
+                1e-12 * (1 + v3 / 0.4) ** 8, grid, "1", "max relative energy error"
+            ),
+            "status": var(
+                np.where(slip, 2, 0).astype(np.int8),
+                grid,
+                "",
+                "how the run ended",
+                flag_values=np.array([0, 1, 2, 3, 4], dtype=np.int8),
+                flag_meanings="finished nonfinite slip liftoff invalid",
+            ),
         },
-        coords={KS: (KS, k, {"units": "N/m"}), MU: (MU, mu, {"units": "1"}),
-                V: (V, v, {"units": "m/s"}), "mode": ("mode", np.arange(2)),
-                "body": ("body", np.array(["hoop", "cylinder"]))},
-        attrs={"system": system_toml or system_to_toml(system), "rollspring_version": "test",
-               "grid_fingerprint": "0" * 64, "duration": 2.0, "rtol": 1e-8, "on_slip": "stop",
-               "integrator": "yoshida4", "step": 1e-3, "metrics": ["all"], "chunk": 960},
+        coords={
+            KS: (KS, k, {"units": "N/m"}),
+            MU: (MU, mu, {"units": "1"}),
+            V: (V, v, {"units": "m/s"}),
+            "mode": ("mode", np.arange(2)),
+            "body": ("body", np.array(["hoop", "cylinder"])),
+        },
+        attrs={
+            "system": system_toml or system_to_toml(system),
+            "rollspring_version": "test",
+            "grid_fingerprint": "0" * 64,
+            "duration": 2.0,
+            "rtol": 1e-8,
+            "on_slip": "stop",
+            "integrator": "yoshida4",
+            "step": 1e-3,
+            "metrics": ["all"],
+            "chunk": 960,
+        },
     )
 
 
@@ -162,8 +199,9 @@ def test_period_map_matches_baseline(sweep, tmp_path) -> None:
 # -- what a map shows ---------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("metric", ["status", "first_slip_time", "first_slip_body",
-                                    "max_friction_ratio"])
+@pytest.mark.parametrize(
+    "metric", ["status", "first_slip_time", "first_slip_body", "max_friction_ratio"]
+)
 def test_slip_maps_carry_the_linear_boundary_where_theory_puts_it(sweep, metric) -> None:
     """One dashed contour at μ needed/μs = 1, labelled, along μs = k v/(2Ω g) (the hoop's)."""
     ax = slip_map(sweep, metric)
@@ -194,8 +232,9 @@ def test_mu_static_from_the_system_when_not_swept() -> None:
     np.testing.assert_allclose(vertices[:, 0], 0.05 * 2 * np.sqrt(7 * k / 6) * G / k, rtol=2e-3)
     on_grid = np.isin(k, [80.0, 100.0, 120.0])
     assert on_grid.sum() == 3
-    np.testing.assert_allclose(vertices[on_grid, 0],
-                               0.05 * 2 * np.sqrt(7 * k[on_grid] / 6) * G / k[on_grid], rtol=1e-9)
+    np.testing.assert_allclose(
+        vertices[on_grid, 0], 0.05 * 2 * np.sqrt(7 * k[on_grid] / 6) * G / k[on_grid], rtol=1e-9
+    )
 
 
 def test_body_selects_the_boundary_of_that_body(sweep) -> None:
@@ -237,8 +276,10 @@ def test_axes_labels_units_log_scale_colour_bar_and_title(sweep) -> None:
     assert ax.get_xscale() == "linear" and ax.get_yscale() == "log"
     (bar,) = [a for a in ax.figure.axes if a is not ax]
     assert bar.get_ylabel() == "first_slip_time (s)"
-    assert ax.get_title().splitlines() == ["Hoop and cylinder joined at their centres",
-                                           "springs.0.stiffness = 100 N/m"]
+    assert ax.get_title().splitlines() == [
+        "Hoop and cylinder joined at their centres",
+        "springs.0.stiffness = 100 N/m",
+    ]
     assert "no slip" in legend_texts(ax)
 
 
@@ -249,8 +290,9 @@ def test_cells_hold_the_stored_values(sweep) -> None:
     over = prepare_map(sweep, V, MU, "max_friction_ratio", sel={KS: 120})
     assert over.metric_label == "max_friction_ratio [max over bodies]"
     np.testing.assert_array_equal(
-        over.values, sweep["max_friction_ratio"].sel({KS: 120.0}).max("body")
-        .transpose(MU, V).values)
+        over.values,
+        sweep["max_friction_ratio"].sel({KS: 120.0}).max("body").transpose(MU, V).values,
+    )
 
 
 def test_a_value_between_grid_values_takes_the_nearest_with_a_note(sweep) -> None:
@@ -265,29 +307,70 @@ def test_mode_of_omega(sweep) -> None:
     np.testing.assert_allclose(data.values[:, 0], np.sqrt(7 * data.y / 6))
 
 
-@pytest.mark.parametrize(("x", "y", "metric", "kwargs", "message"), [
-    ("bodies.hoop.mass", MU, "status", {}, "--x bodies.hoop.mass: not a varied PATH of this "
-     "sweep (varied: springs.0.stiffness, bodies.hoop.mu_static, bodies.hoop.v)"),
-    (V, V, "status", {}, "--y bodies.hoop.v: the same PATH as --x"),
-    (V, MU, "speed", {"sel": {KS: 100}}, "--metric speed: not in this store (metrics: "),
-    (V, MU, "status", {}, "springs.0.stiffness: also varied in this sweep; fix it with "
-     "--sel springs.0.stiffness=VALUE (values: 80, 100, 120)"),
-    (V, MU, "status", {"sel": {KS: 200}}, "--sel springs.0.stiffness=200: outside the grid "
-     "(values: 80, 100, 120)"),
-    (V, MU, "status", {"sel": {KS: "stiff"}}, "--sel springs.0.stiffness=stiff: not a number"),
-    (V, MU, "status", {"sel": {KS: 100, V: 0.1}}, "--sel bodies.hoop.v: is the map's x axis"),
-    (V, MU, "status", {"sel": {KS: 100, "gravity": 9.81}}, "--sel gravity: not a varied PATH"),
-    (V, MU, "status", {"sel": {KS: 100}, "body": "sphere"}, "--body sphere: no such body "
-     "(bodies: hoop, cylinder)"),
-    (V, MU, "omega", {"sel": {KS: 100}}, "--mode: omega is given per mode; choose one with "
-     "--mode N (modes: 0 … 1, sorted by ω)"),
-    (V, MU, "omega", {"sel": {KS: 100}, "mode": 2}, "--mode 2: no such mode (modes: 0 … 1)"),
-    (V, MU, "stationary_weight", {"sel": {KS: 100}}, "--body: stationary_weight is given per "
-     "body; choose one with --body ID (bodies: hoop, cylinder)"),
-    (V, MU, "energy_error", {"sel": {KS: 100}, "body": "hoop"}, "--body hoop: energy_error is "
-     "not given per body"),
-    (V, MU, "status", {"sel": {KS: 100}, "mode": 1}, "--mode 1: status is not given per mode"),
-])
+@pytest.mark.parametrize(
+    ("x", "y", "metric", "kwargs", "message"),
+    [
+        (
+            "bodies.hoop.mass",
+            MU,
+            "status",
+            {},
+            "--x bodies.hoop.mass: not a varied PATH of this "
+            "sweep (varied: springs.0.stiffness, bodies.hoop.mu_static, bodies.hoop.v)",
+        ),
+        (V, V, "status", {}, "--y bodies.hoop.v: the same PATH as --x"),
+        (V, MU, "speed", {"sel": {KS: 100}}, "--metric speed: not in this store (metrics: "),
+        (
+            V,
+            MU,
+            "status",
+            {},
+            "springs.0.stiffness: also varied in this sweep; fix it with "
+            "--sel springs.0.stiffness=VALUE (values: 80, 100, 120)",
+        ),
+        (
+            V,
+            MU,
+            "status",
+            {"sel": {KS: 200}},
+            "--sel springs.0.stiffness=200: outside the grid (values: 80, 100, 120)",
+        ),
+        (V, MU, "status", {"sel": {KS: "stiff"}}, "--sel springs.0.stiffness=stiff: not a number"),
+        (V, MU, "status", {"sel": {KS: 100, V: 0.1}}, "--sel bodies.hoop.v: is the map's x axis"),
+        (V, MU, "status", {"sel": {KS: 100, "gravity": 9.81}}, "--sel gravity: not a varied PATH"),
+        (
+            V,
+            MU,
+            "status",
+            {"sel": {KS: 100}, "body": "sphere"},
+            "--body sphere: no such body (bodies: hoop, cylinder)",
+        ),
+        (
+            V,
+            MU,
+            "omega",
+            {"sel": {KS: 100}},
+            "--mode: omega is given per mode; choose one with --mode N (modes: 0 … 1, sorted by ω)",
+        ),
+        (V, MU, "omega", {"sel": {KS: 100}, "mode": 2}, "--mode 2: no such mode (modes: 0 … 1)"),
+        (
+            V,
+            MU,
+            "stationary_weight",
+            {"sel": {KS: 100}},
+            "--body: stationary_weight is given per "
+            "body; choose one with --body ID (bodies: hoop, cylinder)",
+        ),
+        (
+            V,
+            MU,
+            "energy_error",
+            {"sel": {KS: 100}, "body": "hoop"},
+            "--body hoop: energy_error is not given per body",
+        ),
+        (V, MU, "status", {"sel": {KS: 100}, "mode": 1}, "--mode 1: status is not given per mode"),
+    ],
+)
 def test_bad_arguments_are_one_line_errors(sweep, x, y, metric, kwargs, message) -> None:
     with pytest.raises(MapError) as caught:
         prepare_map(sweep, x, y, metric, **kwargs)
@@ -318,21 +401,52 @@ def test_open_sweep_reads_the_store_lazily(store, sweep) -> None:
 
 def test_cli_writes_the_map(app, store, tmp_path) -> None:
     target = tmp_path / "maps" / "map.png"
-    result = runner.invoke(app, ["sweep-plot", str(store), "--x", V, "--y", MU, "--metric",
-                                 "first_slip_time", "--sel", f"{KS}=99", "-o", str(target)])
+    result = runner.invoke(
+        app,
+        [
+            "sweep-plot",
+            str(store),
+            "--x",
+            V,
+            "--y",
+            MU,
+            "--metric",
+            "first_slip_time",
+            "--sel",
+            f"{KS}=99",
+            "-o",
+            str(target),
+        ],
+    )
     assert result.exit_code == 0, result.output
     assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert result.stdout == ""
     assert result.stderr.splitlines() == [
         f"note: --sel {KS}=99: not on the grid; the nearest grid value 100 is shown",
-        f"wrote {target}"]
+        f"wrote {target}",
+    ]
 
 
 @pytest.mark.parametrize("suffix", [".svg", ".pdf"])
 def test_cli_writes_svg_and_pdf(app, store, tmp_path, suffix) -> None:
     target = tmp_path / f"map{suffix}"
-    result = runner.invoke(app, ["sweep-plot", str(store), "--x", V, "--y", KS, "--metric",
-                                 "status", "--sel", f"{MU}=0.05", "-o", str(target)])
+    result = runner.invoke(
+        app,
+        [
+            "sweep-plot",
+            str(store),
+            "--x",
+            V,
+            "--y",
+            KS,
+            "--metric",
+            "status",
+            "--sel",
+            f"{MU}=0.05",
+            "-o",
+            str(target),
+        ],
+    )
     assert result.exit_code == 0, result.output
     assert target.stat().st_size > 1000
 
@@ -350,22 +464,37 @@ def _bad_cli_cases(store: Path, tmp: Path) -> list[tuple[list[str], str]]:
         xr.Dataset({"a": ("x", np.arange(3.0))}).to_zarr(other, mode="w")
     base = ["--x", V, "--y", MU, "--metric", "status", "--sel", f"{KS}=100"]
     return [
-        (["sweep-plot", str(tmp / "missing.zarr"), *base], f"error: {tmp / 'missing.zarr'}: "
-         "no such sweep store"),
+        (
+            ["sweep-plot", str(tmp / "missing.zarr"), *base],
+            f"error: {tmp / 'missing.zarr'}: no such sweep store",
+        ),
         (["sweep-plot", str(file), *base], f"error: {file}: not a sweep store"),
         (["sweep-plot", str(plain), *base], f"error: {plain}: not a sweep store"),
-        (["sweep-plot", str(other), *base], f"error: {other}: not a rollspring sweep store (no "
-         "the 'system' attribute and no a 'status' variable)"),
-        (["sweep-plot", str(store), "--x", "gravity", "--y", MU, "--metric", "status"],
-         "error: --x gravity: not a varied PATH of this sweep"),
-        (["sweep-plot", str(store), *base[:5], "speed"], "error: --metric speed: not in this "
-         "store"),
-        (["sweep-plot", str(store), *base, "--body", "wheel"], "error: --body wheel: no such "
-         "body (bodies: hoop, cylinder)"),
-        (["sweep-plot", str(store), *base[:6], "--sel", f"{KS}=1000"], f"error: --sel {KS}=1000:"
-         " outside the grid (values: 80, 100, 120)"),
-        (["sweep-plot", str(store), *base[:6], "--sel", KS], f"error: --sel {KS}: expected "
-         "PATH=VALUE"),
+        (
+            ["sweep-plot", str(other), *base],
+            f"error: {other}: not a rollspring sweep store (no "
+            "the 'system' attribute and no a 'status' variable)",
+        ),
+        (
+            ["sweep-plot", str(store), "--x", "gravity", "--y", MU, "--metric", "status"],
+            "error: --x gravity: not a varied PATH of this sweep",
+        ),
+        (
+            ["sweep-plot", str(store), *base[:5], "speed"],
+            "error: --metric speed: not in this store",
+        ),
+        (
+            ["sweep-plot", str(store), *base, "--body", "wheel"],
+            "error: --body wheel: no such body (bodies: hoop, cylinder)",
+        ),
+        (
+            ["sweep-plot", str(store), *base[:6], "--sel", f"{KS}=1000"],
+            f"error: --sel {KS}=1000: outside the grid (values: 80, 100, 120)",
+        ),
+        (
+            ["sweep-plot", str(store), *base[:6], "--sel", KS],
+            f"error: --sel {KS}: expected PATH=VALUE",
+        ),
         (["sweep-plot", str(store), *base, "-o", str(tmp / "map.gif")], "error: -o "),
         (["sweep-plot", str(store), *base, "--dpi", "0"], "error: --dpi: must be a positive"),
     ]
@@ -382,8 +511,7 @@ def test_cli_bad_input_exit_2_with_one_line(app, store, tmp_path) -> None:
 
 def test_write_map_refuses_an_unknown_format(sweep, tmp_path) -> None:
     with pytest.raises(MapError, match="unknown image format"):
-        write_map(plot_map(prepare_map(sweep, V, MU, "status", sel={KS: K})),
-                  tmp_path / "map.jpg")
+        write_map(plot_map(prepare_map(sweep, V, MU, "status", sel={KS: K})), tmp_path / "map.jpg")
 
 
 def test_the_rollspring_app_has_the_sweep_plot_command(store, tmp_path) -> None:
@@ -391,9 +519,23 @@ def test_the_rollspring_app_has_the_sweep_plot_command(store, tmp_path) -> None:
 
     assert any(c.name == "sweep-plot" for c in rollspring_app.registered_commands)
     target = tmp_path / "map.png"
-    result = runner.invoke(rollspring_app, ["sweep-plot", str(store), "--x", V, "--y", MU,
-                                            "--metric", "status", "--sel", f"{KS}=100", "-o",
-                                            str(target)])
+    result = runner.invoke(
+        rollspring_app,
+        [
+            "sweep-plot",
+            str(store),
+            "--x",
+            V,
+            "--y",
+            MU,
+            "--metric",
+            "status",
+            "--sel",
+            f"{KS}=100",
+            "-o",
+            str(target),
+        ],
+    )
     assert result.exit_code == 0, result.output
     assert target.exists()
 
@@ -406,10 +548,10 @@ def test_a_map_without_its_overlay_fails_its_baseline(sweep, tmp_path) -> None:
     from tests.test_figures import BASELINE_DPI, BASELINES, TOLERANCE
 
     actual = tmp_path / "bare.png"
-    actual.write_bytes(figure_png(slip_map(sweep, "first_slip_time", linear=False).figure,
-                                  dpi=BASELINE_DPI))
-    result = compare_images(str(BASELINES / "sweep-first-slip.png"), str(actual),
-                            tol=TOLERANCE)
+    actual.write_bytes(
+        figure_png(slip_map(sweep, "first_slip_time", linear=False).figure, dpi=BASELINE_DPI)
+    )
+    result = compare_images(str(BASELINES / "sweep-first-slip.png"), str(actual), tol=TOLERANCE)
     assert result is not None and "RMS" in result
 
 
@@ -437,8 +579,13 @@ def test_a_map_of_a_real_sweep(tmp_path) -> None:
     store = tmp_path / "real.zarr"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        sweep("hoop-cylinder", {V: np.linspace(0.02, 0.3, 8), MU: np.geomspace(0.01, 0.5, 7)},
-              1.0, out=store, refine_slip=False)
+        sweep(
+            "hoop-cylinder",
+            {V: np.linspace(0.02, 0.3, 8), MU: np.geomspace(0.01, 0.5, 7)},
+            1.0,
+            out=store,
+            refine_slip=False,
+        )
     dataset = open_sweep(store)
     ax = sweep_map(dataset, V, MU, "status")
     assert len(contour_sets(ax)) == 1

@@ -92,11 +92,11 @@ def flat_centre_class(system: System) -> str:
     return ""
 
 
-def _per_run(system: System, parameters: Mapping[str, ArrayLike], n_runs: int | None
-             ) -> tuple[int, dict[str, FloatArray]]:
+def _per_run(
+    system: System, parameters: Mapping[str, ArrayLike], n_runs: int | None
+) -> tuple[int, dict[str, FloatArray]]:
     """Every per-run number of the class, (runs, n) or (runs, S) or (runs,)."""
-    values = {key: np.atleast_1d(np.asarray(v, dtype=np.float64))
-              for key, v in parameters.items()}
+    values = {key: np.atleast_1d(np.asarray(v, dtype=np.float64)) for key, v in parameters.items()}
     sizes = {v.size for v in values.values() if v.size != 1}
     if len(sizes) > 1:
         raise ValueError(f"parameters: arrays of different lengths {sorted(sizes)}")
@@ -108,8 +108,9 @@ def _per_run(system: System, parameters: Mapping[str, ArrayLike], n_runs: int | 
         "x": np.array([b.x for b in system.bodies]),
         "v": np.array([b.v for b in system.bodies]),
         "stiffness": np.array([s.stiffness for s in system.springs]),
-        "rest_length": np.array([np.nan if s.rest_length is None else s.rest_length
-                                 for s in system.springs]),
+        "rest_length": np.array(
+            [np.nan if s.rest_length is None else s.rest_length for s in system.springs]
+        ),
         "gravity": np.array(float(system.gravity)),
     }
     out = {k: np.broadcast_to(v, (count, *v.shape)).copy() for k, v in out.items()}
@@ -118,13 +119,16 @@ def _per_run(system: System, parameters: Mapping[str, ArrayLike], n_runs: int | 
         value = np.broadcast_to(value, (count,)) if value.size == 1 else value
         if parts == ["gravity"]:
             out["gravity"][:] = value
-        elif len(parts) == 3 and parts[0] == "bodies" and parts[1] in index \
-                and parts[2] in _BODY:
+        elif len(parts) == 3 and parts[0] == "bodies" and parts[1] in index and parts[2] in _BODY:
             if parts[2] in out:
                 out[parts[2]][:, index[parts[1]]] = value
-        elif len(parts) == 3 and parts[0] == "springs" and parts[1].isdigit() \
-                and int(parts[1]) < len(system.springs) \
-                and parts[2] in ("stiffness", "rest_length"):
+        elif (
+            len(parts) == 3
+            and parts[0] == "springs"
+            and parts[1].isdigit()
+            and int(parts[1]) < len(system.springs)
+            and parts[2] in ("stiffness", "rest_length")
+        ):
             out[parts[2]][:, int(parts[1])] = value
         else:
             raise ValueError(f"parameters[{key!r}]: not a batch path of this system")
@@ -140,11 +144,13 @@ def _unique_rows(columns: FloatArray) -> tuple[np.ndarray, np.ndarray]:
     if varying.size == 0:
         return np.zeros(1, dtype=np.int64), np.zeros(columns.shape[0], dtype=np.int64)
     if varying.size == 1:
-        _, first, inverse = np.unique(columns[:, varying[0]], return_index=True,
-                                      return_inverse=True)
+        _, first, inverse = np.unique(
+            columns[:, varying[0]], return_index=True, return_inverse=True
+        )
     else:
-        _, first, inverse = np.unique(columns[:, varying], axis=0, return_index=True,
-                                      return_inverse=True)
+        _, first, inverse = np.unique(
+            columns[:, varying], axis=0, return_index=True, return_inverse=True
+        )
     return first, inverse.reshape(-1)
 
 
@@ -153,8 +159,9 @@ def _clean(values: FloatArray, scale: FloatArray, relative: float = 1e-12) -> Fl
     return np.where(np.abs(values) <= relative * scale, 0.0, values)
 
 
-def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
-                 n_runs: int | None = None) -> BatchLinear:
+def batch_linear(
+    system: System, parameters: Mapping[str, ArrayLike], *, n_runs: int | None = None
+) -> BatchLinear:
     """The linear metrics of each run of ``system`` with ``parameters`` (batch paths -> arrays,
     broadcast to one run count; friction coefficients are accepted and do not enter), for the
     runs of the flat centre class (see the module); ``handled`` marks them."""
@@ -176,8 +183,9 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
         # --- per distinct (masses, radii, stiffnesses): everything that does not depend on
         # the placement, the velocities or gravity (the sign e_s of a spring enters K, the
         # friction change and |b.v| squared or in absolute value only)
-        first, which = _unique_rows(np.concatenate([p["mass"], p["radius"], p["stiffness"]],
-                                                   axis=1))
+        first, which = _unique_rows(
+            np.concatenate([p["mass"], p["radius"], p["stiffness"]], axis=1)
+        )
         m, radius, k = p["mass"][first], p["radius"][first], p["stiffness"][first]
         s = np.where(rolls, radius, 1.0)
         inertia = np.where(rolls, (1.0 + arrays.gamma) * m * radius**2, m)
@@ -191,8 +199,11 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
         lam, vec = np.linalg.eigh(scaled)
         largest = np.max(np.abs(lam), axis=1, keepdims=True)
         zero = np.abs(lam) < ZERO_MODE_TOLERANCE * largest
-        clear = finite & (largest[:, 0] > 0) & np.all(
-            (np.abs(lam) < _ZERO * largest) | (lam >= _CONDITION * largest), axis=1)
+        clear = (
+            finite
+            & (largest[:, 0] > 0)
+            & np.all((np.abs(lam) < _ZERO * largest) | (lam >= _CONDITION * largest), axis=1)
+        )
         lam = np.where(zero, 0.0, lam)
         order = np.argsort(lam, axis=1, kind="stable")
         lam = np.take_along_axis(lam, order, axis=1)
@@ -201,8 +212,9 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
         osc = ~zero
         omega_osc = np.sqrt(np.where(osc, lam, 1.0))
         # the equilibrium step q* = sum_{lambda != 0} v v^T Q0 / lambda, as a matrix
-        newton = np.einsum("uin,un,ujn->uij", vec, np.where(osc, 1.0 / np.where(osc, lam, 1.0),
-                                                           0.0), vec)
+        newton = np.einsum(
+            "uin,un,ujn->uij", vec, np.where(osc, 1.0 / np.where(osc, lam, 1.0), 0.0), vec
+        )
         # friction change per unit of each mode (contact_forces_jacobian): -(m s/J) K - dF_x
         # with dF_x = -sum_s k e sigma b^T = -K / s for centre springs (e^2 = 1)
         d_force_x = -np.einsum("us,si,usj->uij", k, sigma, unsigned)
@@ -215,8 +227,9 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
         current = np.full(first.size, -1)
         start = np.zeros(first.size)
         for j in range(n):
-            same = (current >= 0) & (np.abs(omega_osc[:, j] - start)
-                                     <= _SAME_FREQUENCY * omega_osc[:, j])
+            same = (current >= 0) & (
+                np.abs(omega_osc[:, j] - start) <= _SAME_FREQUENCY * omega_osc[:, j]
+            )
             new = osc[:, j] & ~same
             current = np.where(new, current + 1, current)
             start = np.where(new, omega_osc[:, j], start)
@@ -235,14 +248,17 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
         # --- per run: the placement, the equilibrium, the response to the initial state
         m, s, inertia, k = m[which], s[which], inertia[which], k[which]
         end_x = np.where(anchor, arrays.end_anchor[..., 0], p["x"][:, body])  # (R, S, 2)
-        end_y = np.where(anchor, arrays.end_anchor[..., 1],
-                         (arrays.track + p["radius"])[:, body] + 0.0)
+        end_y = np.where(
+            anchor, arrays.end_anchor[..., 1], (arrays.track + p["radius"])[:, body] + 0.0
+        )
         d0 = end_x[..., 1] - end_x[..., 0]
         length0 = np.abs(d0)
         rest = np.where(np.isnan(p["rest_length"]), length0, p["rest_length"])
         e0 = np.sign(d0)
-        ok = clear[which] & np.all((end_y[..., 0] == end_y[..., 1]) & (length0 > 0)
-                                   & np.isfinite(d0) & np.isfinite(rest), axis=1)
+        ok = clear[which] & np.all(
+            (end_y[..., 0] == end_y[..., 1]) & (length0 > 0) & np.isfinite(d0) & np.isfinite(rest),
+            axis=1,
+        )
         ok &= np.all(np.isfinite(p["v"]), axis=1) & np.isfinite(p["gravity"])
 
         def forces_at(d: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -261,8 +277,9 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
         ok &= residual <= _RESIDUAL**2 * np.sum(q0_force**2 / inertia, axis=1)
 
         # the forces at the equilibrium (M8), (M9)
-        contact_scale = (np.sum(m, axis=1) * np.maximum(p["gravity"], 1.0)
-                         + np.sum(k, axis=1) * 1.0)[:, None]
+        contact_scale = (
+            np.sum(m, axis=1) * np.maximum(p["gravity"], 1.0) + np.sum(k, axis=1) * 1.0
+        )[:, None]
         friction_eq = np.where(rolls, m * s * (q_force / inertia) - force_x, 0.0)
         friction_eq = np.where(np.abs(friction_eq) < 1e-12 * contact_scale, 0.0, friction_eq)
         normal_eq = m * p["gravity"][:, None] - external[1]
@@ -286,11 +303,17 @@ def batch_linear(system: System, parameters: Mapping[str, ArrayLike], *,
         force_scale = np.max(k * extension, axis=1, initial=0.0)[:, None]
         friction_amplitude = _clean(friction_sum, force_scale)
         centre = _clean(centre, force_scale)
-        required = np.where(normal_eq > 0, (np.abs(centre) + friction_sum)
-                            / np.where(normal_eq > 0, normal_eq, 1.0), np.inf)
+        required = np.where(
+            normal_eq > 0,
+            (np.abs(centre) + friction_sum) / np.where(normal_eq > 0, normal_eq, 1.0),
+            np.inf,
+        )
         required = np.where((friction_amplitude == 0.0) & (centre == 0.0), 0.0, required)
         required = np.where(rolls, required, 0.0)
     keep = ok[:, None]
-    return BatchLinear(np.where(keep, omega[which], np.nan),
-                       np.where(keep, weights[which], np.nan),
-                       np.where(keep, required, np.nan), ok)
+    return BatchLinear(
+        np.where(keep, omega[which], np.nan),
+        np.where(keep, weights[which], np.nan),
+        np.where(keep, required, np.nan),
+        ok,
+    )

@@ -10,5 +10,12 @@ from rollspring.service.sweeps.engine import DEFAULT_CHUNK, METRICS, SweepProgre
 from rollspring.service.sweeps.grid import SweepError, parse_vary_spec
 from rollspring.service.sweeps.store import StoreMismatchError
 
-__all__ = ["DEFAULT_CHUNK", "METRICS", "StoreMismatchError", "SweepError", "SweepProgress",
-           "parse_vary_spec", "sweep"]
+__all__ = [
+    "DEFAULT_CHUNK",
+    "METRICS",
+    "StoreMismatchError",
+    "SweepError",
+    "SweepProgress",
+    "parse_vary_spec",
+    "sweep",
+]

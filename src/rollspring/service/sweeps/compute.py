@@ -36,19 +36,20 @@ next to which other chunks it runs.
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import functools
 import inspect
 import json
 import math
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from rollspring.analysis import analyze, batch_linear
+from rollspring.analysis import LinearAnalysis, analyze, batch_linear
 from rollspring.errors import RollspringError
 from rollspring.model import System, rolled, system_from_dict
 from rollspring.service.sweeps.grid import Grid, apply_values, path_kind
@@ -126,16 +127,18 @@ class _Runs:
         if len(parts) == 1:
             self.values = parts[0][1]
         else:  # several chunks in one call: their runs one after the other
-            self.values = {p: np.concatenate([values[p] for _, values in parts])
-                           for p in plan.grid.paths}
+            self.values = {
+                p: np.concatenate([values[p] for _, values in parts]) for p in plan.grid.paths
+            }
         self.n = sum(int(np.prod(local)) for local in self.locals)
         self.kinds = {p: path_kind(self.system, p) for p in plan.grid.paths}
         self.structural = any(k != "batch" for k, _ in self.kinds.values())
         self._starts: dict[tuple[float, ...], tuple[System | None, Any, str]] = {}
 
     def linear_key(self, r: int) -> tuple[float, ...]:
-        return tuple(float(self.values[p][r]) for p in self.plan.grid.paths
-                     if p.split(".")[-1] not in _MU)
+        return tuple(
+            float(self.values[p][r]) for p in self.plan.grid.paths if p.split(".")[-1] not in _MU
+        )
 
     def start(self, r: int, *, linear: bool) -> tuple[System | None, Any, str]:
         """(starting system without the varied friction coefficients, its analysis or None,
@@ -144,10 +147,16 @@ class _Runs:
         cached = self._starts.get(key)
         if cached is not None and (cached[1] is not None or not linear or cached[0] is None):
             return cached
-        scalars = {p: self.values[p][r] for p in self.plan.grid.paths
-                   if self.kinds[p][0] != "mode" and p.split(".")[-1] not in _MU}
-        modes = {self.kinds[p][1][0]: float(self.values[p][r]) for p in self.plan.grid.paths
-                 if self.kinds[p][0] == "mode"}
+        scalars = {
+            p: self.values[p][r]
+            for p in self.plan.grid.paths
+            if self.kinds[p][0] != "mode" and p.split(".")[-1] not in _MU
+        }
+        modes = {
+            self.kinds[p][1][0]: float(self.values[p][r])
+            for p in self.plan.grid.paths
+            if self.kinds[p][0] == "mode"
+        }
         try:
             system = apply_values(self.plan.system, self.system, scalars)
             if modes:
@@ -161,7 +170,11 @@ class _Runs:
                         raise RollspringError(f"mode {n} is a {mode.kind} mode")
                     q = q + amplitude * mode.shape_q
                 system = rolled(system, q, velocities=np.zeros(len(system.bodies)))
-            result = (system, analyze(system) if linear else None, "")
+            result: tuple[System | None, LinearAnalysis | None, str] = (
+                system,
+                analyze(system) if linear else None,
+                "",
+            )
         except RollspringError as exc:
             result = (None, None, str(exc))
         except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
@@ -197,10 +210,12 @@ def _full_parameters(system: System, varied: set[str]) -> list[str]:
     is one of several): all bodies' and springs' numbers and gravity (``mu_kinetic`` only
     when varied: its default follows ``mu_static``)."""
     keys = [f"bodies.{b.id}.{q}" for b in system.bodies for q in _BODY_FIELDS]
-    keys += [f"bodies.{b.id}.mu_kinetic" for b in system.bodies
-             if f"bodies.{b.id}.mu_kinetic" in varied]
-    keys += [f"springs.{k}.{q}" for k in range(len(system.springs))
-             for q in ("stiffness", "rest_length")]
+    keys += [
+        f"bodies.{b.id}.mu_kinetic" for b in system.bodies if f"bodies.{b.id}.mu_kinetic" in varied
+    ]
+    keys += [
+        f"springs.{k}.{q}" for k in range(len(system.springs)) for q in ("stiffness", "rest_length")
+    ]
     return [*keys, "gravity"]
 
 
@@ -239,19 +254,32 @@ def _structure_key(system: System, keys: list[str]) -> str:
     return json.dumps(data, sort_keys=True, default=str)
 
 
-def _batch(plan: SweepPlan, system: System, params: dict[str, np.ndarray], *,
-           duration: float, step: float, scheme: str, metric_every: int | None,
-           sentinel: bool) -> Any:
+def _batch(
+    plan: SweepPlan,
+    system: System,
+    params: dict[str, np.ndarray],
+    *,
+    duration: float,
+    step: float,
+    scheme: str,
+    metric_every: int | None,
+    sentinel: bool,
+) -> Any:
     """One :func:`simulate_batch` call (with the sentinel run appended when asked)."""
-    kwargs: dict[str, Any] = {"rtol": plan.rtol, "integrator": scheme, "step": step,
-                              "stop_on_slip": True}
+    kwargs: dict[str, Any] = {
+        "rtol": plan.rtol,
+        "integrator": scheme,
+        "step": step,
+        "stop_on_slip": True,
+    }
     if metric_every is not None and _batch_accepts_metric_every():
         kwargs["metric_every"] = metric_every
         sentinel = False
     if sentinel and plan.omega_max > 0:
         first = {k: v[:1] for k, v in params.items()}
-        omega = simulate_batch(system, first, _TINY, step=_TINY, integrator=scheme,
-                               stop_on_slip=True).omega_max
+        omega = simulate_batch(
+            system, first, _TINY, step=_TINY, integrator=scheme, stop_on_slip=True
+        ).omega_max
         if omega > 0:
             scale = (omega / plan.omega_max) ** 2
             extra = {}
@@ -262,14 +290,14 @@ def _batch(plan: SweepPlan, system: System, params: dict[str, np.ndarray], *,
     return simulate_batch(system, params, duration, **kwargs)
 
 
-def _groups(runs: _Runs, alive: np.ndarray) -> list[tuple[System, np.ndarray, dict[str,
-                                                                                    np.ndarray]]]:
+def _groups(
+    runs: _Runs, alive: np.ndarray
+) -> list[tuple[System, np.ndarray, dict[str, np.ndarray]]]:
     """The batch calls of a chunk: (system, run indices, parameters)."""
     plan, system = runs.plan, runs.system
     if not runs.structural:
         keys = list(plan.grid.paths)  # and every mass: a sentinel run scales them
-        keys += [f"bodies.{b.id}.mass" for b in system.bodies
-                 if f"bodies.{b.id}.mass" not in keys]
+        keys += [f"bodies.{b.id}.mass" for b in system.bodies if f"bodies.{b.id}.mass" not in keys]
         idx = np.flatnonzero(alive)
         params = {}
         for key in keys:
@@ -288,7 +316,11 @@ def _groups(runs: _Runs, alive: np.ndarray) -> list[tuple[System, np.ndarray, di
         by_key.setdefault(key, (run_system, []))[1].append(int(r))
     out = []
     for group_system, members in by_key.values():
-        systems = [runs.run_system(r) for r in members]
+        systems: list[System] = []
+        for member in members:
+            member_system = runs.run_system(member)
+            assert member_system is not None  # grouped above: every member has its system
+            systems.append(member_system)
         params = {key: np.array([_value_of(s, key) for s in systems]) for key in keys}
         out.append((group_system, np.array(members, dtype=np.int64), params))
     return out
@@ -303,15 +335,17 @@ def plan_omega(plan: SweepPlan, index: int) -> tuple[float, Any]:
     alive = np.ones(runs.n, dtype=bool)
     for system, _, params in _groups(runs, alive):
         try:
-            omega = simulate_batch(system, params, _TINY, step=_TINY, integrator="yoshida4",
-                                   stop_on_slip=True).omega_max
+            omega = simulate_batch(
+                system, params, _TINY, step=_TINY, integrator="yoshida4", stop_on_slip=True
+            ).omega_max
         except RollspringError:
             omega = 0.0
             for r in range(next(iter(params.values())).size):
-                one = {k: v[r:r + 1] for k, v in params.items()}
+                one = {k: v[r : r + 1] for k, v in params.items()}
                 try:
-                    value = simulate_batch(system, one, _TINY, step=_TINY,
-                                           integrator="yoshida4", stop_on_slip=True).omega_max
+                    value = simulate_batch(
+                        system, one, _TINY, step=_TINY, integrator="yoshida4", stop_on_slip=True
+                    ).omega_max
                 except RollspringError:
                     continue
                 if value > omega:
@@ -393,8 +427,7 @@ def grid_omega(plan: SweepPlan) -> tuple[float, Any] | None:
     best: tuple[float, Any] = (-1.0, None)
     for index in range(grid.n_chunks):
         region = grid.region(index)
-        part = omegas[tuple(slice(0, 1) if c else s
-                            for c, s in zip(collapse, region, strict=True))]
+        part = omegas[tuple(slice(0, 1) if c else s for c, s in zip(collapse, region, strict=True))]
         top = float(np.max(part))
         omega = top if top > -np.inf else 0.0
         if omega > best[0] or best[1] is None:
@@ -402,8 +435,7 @@ def grid_omega(plan: SweepPlan) -> tuple[float, Any] | None:
             for key in keys:
                 if key in grid.paths:
                     d = grid.paths.index(key)
-                    sample[key] = np.asarray([grid.values[d][region[d].start]],
-                                             dtype=np.float64)
+                    sample[key] = np.asarray([grid.values[d][region[d].start]], dtype=np.float64)
                 else:
                     sample[key] = np.full(1, _value_of(system, key))
             best = (omega, (system, sample))
@@ -419,12 +451,19 @@ def _empty(plan: SweepPlan, n: int, n_bodies: int) -> dict[str, np.ndarray]:
         return np.full((n, *shape), np.nan)
 
     out = {
-        "omega": f(n_bodies), "stationary_weight": f(n_bodies),
-        "required_mu_linear": f(n_bodies), "period_measured": f(),
-        "max_friction_ratio": f(n_bodies), "min_normal_force": f(n_bodies),
-        "first_slip_time": f(), "first_slip_body": np.full(n, -1, dtype=np.int16),
-        "first_liftoff_time": f(), "cm_amplitude": f(), "stationary_amplitude": f(),
-        "energy_error": f(), "status": np.full(n, STATUS_CODES["invalid"], dtype=np.int8),
+        "omega": f(n_bodies),
+        "stationary_weight": f(n_bodies),
+        "required_mu_linear": f(n_bodies),
+        "period_measured": f(),
+        "max_friction_ratio": f(n_bodies),
+        "min_normal_force": f(n_bodies),
+        "first_slip_time": f(),
+        "first_slip_body": np.full(n, -1, dtype=np.int16),
+        "first_liftoff_time": f(),
+        "cm_amplitude": f(),
+        "stationary_amplitude": f(),
+        "energy_error": f(),
+        "status": np.full(n, STATUS_CODES["invalid"], dtype=np.int8),
     }
     if plan.on_slip == "continue":
         out["energy_dissipated"] = f()
@@ -451,8 +490,9 @@ def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.nda
     single = np.ones(runs.n, dtype=bool)  # runs whose start goes through analyze alone
     overlap = None
     if linear and not runs.structural:
-        if plan.on_slip == "stop" and not any(p.split(".")[-1] in _PLACEMENT
-                                              for p in plan.grid.paths):
+        if plan.on_slip == "stop" and not any(
+            p.split(".")[-1] in _PLACEMENT for p in plan.grid.paths
+        ):
             # every run's start is a valid system (no varied value moves a spring end), so
             # the batch call need not wait for the linear metrics: they are computed in a
             # thread meanwhile (its NumPy work overlaps the batch's preparation)
@@ -475,8 +515,9 @@ def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.nda
         for system, members, params in _groups(runs, alive):
             _batch_group(plan, runs, out, system, members, params)
         if plan.refine_slip:
-            events = (out["status"] == STATUS_CODES["slip"]) \
-                | (out["status"] == STATUS_CODES["liftoff"])
+            events = (out["status"] == STATUS_CODES["slip"]) | (
+                out["status"] == STATUS_CODES["liftoff"]
+            )
             for r in np.flatnonzero(events):
                 _refine_event(plan, runs, out, int(r))
     if overlap is not None:
@@ -492,7 +533,7 @@ def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.nda
         for name, values in out.items():
             if name not in plan.metrics and name != "status":
                 continue
-            shaped[name] = values[offset:offset + size].reshape(*local, *values.shape[1:])
+            shaped[name] = values[offset : offset + size].reshape(*local, *values.shape[1:])
         results.append(shaped)
         offset += size
     return results
@@ -537,8 +578,9 @@ def _batch_linear_metrics(runs: _Runs, out: dict[str, np.ndarray]) -> np.ndarray
     else:
         first, inverse = np.zeros(1, dtype=np.int64), np.zeros(runs.n, dtype=np.int64)
     try:
-        result = batch_linear(runs.system, {p: runs.values[p][first] for p in paths},
-                              n_runs=first.size)
+        result = batch_linear(
+            runs.system, {p: runs.values[p][first] for p in paths}, n_runs=first.size
+        )
     except (ValueError, ArithmeticError, np.linalg.LinAlgError):
         return np.zeros(runs.n, dtype=bool)
     handled = result.handled[inverse]
@@ -551,41 +593,65 @@ def _batch_linear_metrics(runs: _Runs, out: dict[str, np.ndarray]) -> np.ndarray
 
 def _linear_metrics(out: dict[str, np.ndarray], r: int, analysis: Any) -> None:
     omegas = [m.omega for m in analysis.modes]
-    out["omega"][r, :len(omegas)] = omegas
+    out["omega"][r, : len(omegas)] = omegas
     if analysis.stationary_weights is not None:
         out["stationary_weight"][r] = analysis.stationary_weights
     if analysis.required_mu is not None:
         out["required_mu_linear"][r] = analysis.required_mu
 
 
-def _batch_group(plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], system: System,
-                 members: np.ndarray, params: dict[str, np.ndarray]) -> None:
+def _batch_group(
+    plan: SweepPlan,
+    runs: _Runs,
+    out: dict[str, np.ndarray],
+    system: System,
+    members: np.ndarray,
+    params: dict[str, np.ndarray],
+) -> None:
     try:
-        result = _batch(plan, system, params, duration=plan.duration, step=plan.step,
-                        scheme=plan.scheme, metric_every=plan.metric_every, sentinel=True)
+        result = _batch(
+            plan,
+            system,
+            params,
+            duration=plan.duration,
+            step=plan.step,
+            scheme=plan.scheme,
+            metric_every=plan.metric_every,
+            sentinel=True,
+        )
     except RollspringError:
         if members.size == 1:
             out["status"][members[0]] = STATUS_CODES["invalid"]
             return
-        for j, r in enumerate(members):  # one bad combination: find it, run the others
-            _batch_group(plan, runs, out, system, members[j:j + 1],
-                         {k: v[j:j + 1] for k, v in params.items()})
+        for j in range(len(members)):  # one bad combination: find it, run the others
+            _batch_group(
+                plan,
+                runs,
+                out,
+                system,
+                members[j : j + 1],
+                {k: v[j : j + 1] for k, v in params.items()},
+            )
         return
-    if not math.isclose(result.step, plan.step, rel_tol=1e-12) \
-            or result.integrator != plan.scheme or result.metric_every != plan.metric_every:
+    if (
+        not math.isclose(result.step, plan.step, rel_tol=1e-12)
+        or result.integrator != plan.scheme
+        or result.metric_every != plan.metric_every
+    ):
         raise RollspringError(
             f"internal: the batch ran with {result.integrator}, step {result.step!r}, "
             f"metric_every {result.metric_every}, not the sweep's {plan.scheme}, "
-            f"{plan.step!r}, {plan.metric_every}")
+            f"{plan.step!r}, {plan.metric_every}"
+        )
     k = members.size
     status = result.status[:k]
     out["status"][members] = status
     event = result.first_slip_time[:k]
     out["first_slip_time"][members] = np.where(status == STATUS_CODES["slip"], event, np.nan)
-    out["first_slip_body"][members] = np.where(status == STATUS_CODES["slip"],
-                                               result.first_slip_body[:k], -1)
-    out["first_liftoff_time"][members] = np.where(status == STATUS_CODES["liftoff"], event,
-                                                  np.nan)
+    out["first_slip_body"][members] = np.where(
+        status == STATUS_CODES["slip"], result.first_slip_body[:k], -1
+    )
+    out["first_liftoff_time"][members] = np.where(status == STATUS_CODES["liftoff"], event, np.nan)
     out["period_measured"][members] = result.period_measured[:k]
     out["cm_amplitude"][members] = result.cm_amplitude[:k]
     out["stationary_amplitude"][members] = result.stationary_amplitude[:k]
@@ -601,8 +667,7 @@ def _refine_event(plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], r: i
     if system is None:
         return
     try:
-        trajectory = simulate(system, plan.duration, rtol=plan.rtol, on_slip="stop",
-                              n_output=2)
+        trajectory = simulate(system, plan.duration, rtol=plan.rtol, on_slip="stop", n_output=2)
     except RollspringError:
         return
     ids = [b.id for b in system.bodies]
@@ -614,8 +679,9 @@ def _refine_event(plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], r: i
         out["first_liftoff_time"][r] = lift["time"]
 
 
-def _single_run(plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], r: int, *,
-                on_slip: str) -> None:
+def _single_run(
+    plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], r: int, *, on_slip: str
+) -> None:
     """Run ``r`` alone through :func:`rollspring.simulate` (stick-slip with kinetic
     friction)."""
     system = runs.run_system(r)
@@ -644,15 +710,19 @@ def _single_run(plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], r: int
     if trajectory.stationary_x is not None:
         v0 = np.array([b.v for b in system.bodies])
         analysis = runs.start(r, linear=True)[1]
-        drift = float(analysis.stationary_weights @ v0) \
-            if analysis is not None and analysis.stationary_weights is not None else 0.0
+        drift = (
+            float(analysis.stationary_weights @ v0)
+            if analysis is not None and analysis.stationary_weights is not None
+            else 0.0
+        )
         out["stationary_amplitude"][r] = 0.5 * float(
-            np.ptp(trajectory.stationary_x - drift * trajectory.t))
+            np.ptp(trajectory.stationary_x - drift * trajectory.t)
+        )
     out["energy_dissipated"][r] = float(trajectory.energy[0] - trajectory.energy[-1])
     out["time_slipping"][r] = _time_slipping(trajectory.events, ids, float(trajectory.t[-1]))
 
 
-def _time_slipping(events: list[Mapping[str, Any]], ids: list[str], end: float) -> float:
+def _time_slipping(events: Sequence[Mapping[str, Any]], ids: list[str], end: float) -> float:
     """Total time during which at least one body slips (from the exact event instants)."""
     intervals = []
     since: dict[str, float] = {}
@@ -687,7 +757,9 @@ def prepare_worker(numba_threads: int = 0, *, on_worker: bool | None = None) -> 
     if numba_threads > 0:
         import numba
 
-        numba.set_num_threads(min(numba_threads, numba.config.NUMBA_NUM_THREADS))
+        # numba.config sets NUMBA_NUM_THREADS at import: mypy cannot see it
+        limit = numba.config.NUMBA_NUM_THREADS  # type: ignore[attr-defined]
+        numba.set_num_threads(min(numba_threads, limit))
     if "cache" in _PREPARED:
         return
     if on_worker is None:
@@ -703,8 +775,10 @@ def prepare_worker(numba_threads: int = 0, *, on_worker: bool | None = None) -> 
     import tempfile
     from pathlib import Path
 
-    base = Path(os.environ.get("ROLLSPRING_WORKER_CACHE")
-                or Path(tempfile.gettempdir()) / f"rollspring-numba-{os.getuid()}")
+    base = Path(
+        os.environ.get("ROLLSPRING_WORKER_CACHE")
+        or Path(tempfile.gettempdir()) / f"rollspring-numba-{os.getuid()}"
+    )
     for slot in range(256):
         folder = base / f"worker-{slot}"
         folder.mkdir(parents=True, exist_ok=True)
@@ -732,11 +806,10 @@ def warm_up(plan: SweepPlan, dask_worker: Any = None) -> str:
         alive = np.zeros(runs.n, dtype=bool)
         alive[0] = True
         for system, _, params in _groups(runs, alive):
-            try:
-                simulate_batch(system, params, _TINY, step=_TINY, integrator="yoshida4",
-                               stop_on_slip=True)
-            except RollspringError:
-                pass
+            with contextlib.suppress(RollspringError):
+                simulate_batch(
+                    system, params, _TINY, step=_TINY, integrator="yoshida4", stop_on_slip=True
+                )
     return os.environ.get("NUMBA_CACHE_DIR", "")
 
 

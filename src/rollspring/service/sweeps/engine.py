@@ -23,9 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.errors import RollspringError
 from rollspring.model import System, load_system, system_to_json, system_to_toml
-from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 from rollspring.service.sweeps.compute import (
     STATUS_CODES,
     SweepPlan,
@@ -49,6 +47,7 @@ from rollspring.service.sweeps.store import (
     write_regions,
     write_template,
 )
+from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 
 __all__ = ["DEFAULT_CHUNK", "METRICS", "SweepProgress", "sweep"]
 
@@ -85,20 +84,28 @@ def _version() -> str:
 
 
 def _check_arguments(duration: Any, rtol: Any, on_slip: Any, chunk: Any, step: Any) -> None:
-    if isinstance(duration, bool) or not isinstance(duration, int | float) \
-            or not math.isfinite(duration) or duration <= 0:
+    if (
+        isinstance(duration, bool)
+        or not isinstance(duration, int | float)
+        or not math.isfinite(duration)
+        or duration <= 0
+    ):
         raise SweepError(f"--duration: must be a positive number of seconds, got {duration!r}")
     if isinstance(rtol, bool) or not isinstance(rtol, int | float) or not 0 < rtol < 1:
         raise SweepError(f"--rtol: must be a number in (0, 1), got {rtol!r}")
     if on_slip not in ("stop", "continue"):
         raise SweepError(f"--on-slip: must be stop or continue, got {on_slip!r}")
-    if chunk is not None and (isinstance(chunk, bool) or not isinstance(chunk, int)
-                              or chunk < 1):
+    if chunk is not None and (isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1):
         raise SweepError(f"--chunk: must be a whole number of runs >= 1, got {chunk!r}")
-    if step is not None and (isinstance(step, bool) or not isinstance(step, int | float)
-                             or not math.isfinite(step) or not 0 < step <= duration):
-        raise SweepError(f"--step: must be a positive number of seconds up to the duration, "
-                         f"got {step!r}")
+    if step is not None and (
+        isinstance(step, bool)
+        or not isinstance(step, int | float)
+        or not math.isfinite(step)
+        or not 0 < step <= duration
+    ):
+        raise SweepError(
+            f"--step: must be a positive number of seconds up to the duration, got {step!r}"
+        )
 
 
 def _metrics(metrics: Sequence[str] | None, on_slip: str) -> tuple[str, ...]:
@@ -156,23 +163,35 @@ def sweep(
         raise SweepError(f"system: must be a rollspring System, got {type(system).__name__}")
     _check_arguments(duration, rtol, on_slip, chunk, step)
     if integrator not in ("auto", "verlet", "yoshida4", "yoshida6"):
-        raise SweepError(f"--integrator: unknown integrator {integrator!r} (auto, verlet, "
-                         "yoshida4, yoshida6)")
+        raise SweepError(
+            f"--integrator: unknown integrator {integrator!r} (auto, verlet, yoshida4, yoshida6)"
+        )
     if any(s.damping > 0 for s in system.springs) and on_slip == "stop":
-        raise SweepError("system: a damped spring needs --on-slip continue (single runs); the "
-                         "batch integrators are symplectic")
+        raise SweepError(
+            "system: a damped spring needs --on-slip continue (single runs); the "
+            "batch integrators are symplectic"
+        )
     chosen = _metrics(metrics, on_slip)
     paths, values = check_grid(system, vary)
     _check_modes(system, paths)
-    grid = Grid(paths, values, chunk_shape(tuple(len(v) for v in values),
-                                           chunk or DEFAULT_CHUNK))
+    grid = Grid(paths, values, chunk_shape(tuple(len(v) for v in values), chunk or DEFAULT_CHUNK))
     toml = system_to_toml(system)
-    extra = {"refine_slip": bool(refine_slip), "integrator": integrator,
-             "step": None if step is None else float(step).hex()}
+    extra = {
+        "refine_slip": bool(refine_slip),
+        "integrator": integrator,
+        "step": None if step is None else float(step).hex(),
+    }
     print_ = fingerprint(toml, grid, duration, rtol, on_slip, chosen, extra)
-    plan = SweepPlan(system=system_to_json(system), grid=grid, duration=float(duration),
-                     rtol=float(rtol), on_slip=on_slip, metrics=chosen,
-                     refine_slip=bool(refine_slip), integrator=integrator)
+    plan = SweepPlan(
+        system=system_to_json(system),
+        grid=grid,
+        duration=float(duration),
+        rtol=float(rtol),
+        on_slip=on_slip,
+        metrics=chosen,
+        refine_slip=bool(refine_slip),
+        integrator=integrator,
+    )
 
     path = None if out is None else Path(out)
     done: set[int] = set()
@@ -184,7 +203,8 @@ def sweep(
                 raise StoreMismatchError(
                     f"--out {path}: holds another sweep (grid fingerprint "
                     f"{str(attrs.get('grid_fingerprint'))[:12]}…, this one {print_[:12]}…); "
-                    "use --overwrite to replace it")
+                    "use --overwrite to replace it"
+                )
             if overwrite and attrs.get("grid_fingerprint") != print_:
                 remove(path)
             else:
@@ -192,19 +212,30 @@ def sweep(
                 done = done_chunks(path)
         elif path.exists():
             if not overwrite:
-                raise StoreMismatchError(f"--out {path}: exists and is not a rollspring sweep "
-                                         "store; use --overwrite to replace it")
+                raise StoreMismatchError(
+                    f"--out {path}: exists and is not a rollspring sweep "
+                    "store; use --overwrite to replace it"
+                )
             remove(path)
-    if stored is not None and overwrite and stored.get("grid_fingerprint") == print_:
+    if (
+        path is not None
+        and stored is not None
+        and overwrite
+        and stored.get("grid_fingerprint") == print_
+    ):
         remove(path)
         stored, done = None, set()
 
     client, own_client = _client(scheduler)
     try:
         if stored is not None:
-            plan = copy_plan(plan, scheme=stored["integrator"], step=float(stored["step"]),
-                             metric_every=int(stored["metric_every"]),
-                             omega_max=float(stored["omega_max"]))
+            plan = copy_plan(
+                plan,
+                scheme=stored["integrator"],
+                step=float(stored["step"]),
+                metric_every=int(stored["metric_every"]),
+                omega_max=float(stored["omega_max"]),
+            )
         else:
             plan = _choose_step(plan, step)
         if client is not None:
@@ -238,6 +269,7 @@ def sweep(
                 for index, _ in items:
                     mark_done(path, index)
             else:
+                assert memory is not None  # kept in memory when there is no store
                 for index, arrays in items:
                     region = grid.region(index)
                     for name, values in arrays.items():
@@ -261,6 +293,7 @@ def sweep(
         import xarray as xr
 
         return xr.open_zarr(str(path))
+    assert memory is not None  # kept in memory when there is no store
     return _dataset(grid, chosen, ids, memory, attrs)
 
 
@@ -271,11 +304,14 @@ def _check_modes(system: System, paths: tuple[str, ...]) -> None:
     from rollspring.analysis import analyze
 
     analysis = analyze(system)
+    oscillating = [str(i) for i, m in enumerate(analysis.modes) if m.kind == "oscillating"]
     for n in modes:
         if analysis.modes[n].kind != "oscillating":
-            raise SweepError(f"--vary modes.{n}.amplitude: mode {n} is a "
-                             f"{analysis.modes[n].kind} mode (the oscillating ones: "
-                             f"{', '.join(str(i) for i, m in enumerate(analysis.modes) if m.kind == 'oscillating') or 'none'})")
+            raise SweepError(
+                f"--vary modes.{n}.amplitude: mode {n} is a "
+                f"{analysis.modes[n].kind} mode (the oscillating ones: "
+                f"{', '.join(oscillating) or 'none'})"
+            )
 
 
 def _runs_in(grid: Grid, index: int) -> int:
@@ -307,10 +343,22 @@ def _choose_step(plan: SweepPlan, step: float | None) -> SweepPlan:
         if own > 0:
             scale = (own / omega) ** 2
             scaled = {k: (v * scale if k.endswith(".mass") else v) for k, v in params.items()}
-    result = simulate_batch(system, scaled, plan.duration, rtol=plan.rtol,
-                            integrator=plan.integrator, step=step, stop_on_slip=True)
-    return copy_plan(plan, scheme=result.integrator, step=float(result.step),
-                     metric_every=int(result.metric_every), omega_max=max(omega, 0.0))
+    result = simulate_batch(
+        system,
+        scaled,
+        plan.duration,
+        rtol=plan.rtol,
+        integrator=plan.integrator,
+        step=step,
+        stop_on_slip=True,
+    )
+    return copy_plan(
+        plan,
+        scheme=result.integrator,
+        step=float(result.step),
+        metric_every=int(result.metric_every),
+        omega_max=max(omega, 0.0),
+    )
 
 
 def _client(scheduler: Any) -> tuple[Any, bool]:
@@ -323,8 +371,9 @@ def _client(scheduler: Any) -> tuple[Any, bool]:
     if isinstance(scheduler, Client):
         return scheduler, False
     if not isinstance(scheduler, str) or "://" not in scheduler:
-        raise SweepError(f"--scheduler: expected tcp://HOST:PORT or a distributed.Client, got "
-                         f"{scheduler!r}")
+        raise SweepError(
+            f"--scheduler: expected tcp://HOST:PORT or a distributed.Client, got {scheduler!r}"
+        )
     try:
         return Client(scheduler, timeout=30, set_as_default=False), True
     except (OSError, TimeoutError) as exc:
@@ -343,8 +392,9 @@ def _threads_per_worker(client: Any) -> int:
     return min(shares) if shares else 1
 
 
-def _results(plan: SweepPlan, todo: list[int], client: Any
-             ) -> Iterator[list[tuple[int, dict[str, np.ndarray]]]]:
+def _results(
+    plan: SweepPlan, todo: list[int], client: Any
+) -> Iterator[list[tuple[int, dict[str, np.ndarray]]]]:
     """Finished chunks, (index, arrays), a list at a time: in-process the chunks computed
     together, on Dask one as each task completes."""
     if client is None:  # consecutive chunks together, up to IN_PROCESS_RUNS runs a call
@@ -373,8 +423,13 @@ def _results(plan: SweepPlan, todo: list[int], client: Any
         index = next(pending, None)
         if index is None:
             return None
-        future = client.submit(compute_chunk, shared, index, pure=False,
-                               key=f"rollspring-sweep-{time.time_ns()}-{index}")
+        future = client.submit(
+            compute_chunk,
+            shared,
+            index,
+            pure=False,
+            key=f"rollspring-sweep-{time.time_ns()}-{index}",
+        )
         futures[future.key] = index
         return future
 
@@ -404,22 +459,31 @@ def _memory(grid: Grid, metrics: tuple[str, ...], n_bodies: int) -> dict[str, np
     return out
 
 
-def _dataset(grid: Grid, metrics: tuple[str, ...], ids: list[str],
-             memory: dict[str, np.ndarray], attrs: dict[str, Any]) -> Any:
+def _dataset(
+    grid: Grid,
+    metrics: tuple[str, ...],
+    ids: list[str],
+    memory: dict[str, np.ndarray],
+    attrs: dict[str, Any],
+) -> Any:
     import xarray as xr
 
     from rollspring.service.sweeps.grid import unit_of
 
-    coords: dict[str, Any] = {p: (p, np.asarray(v, dtype=np.float64),
-                                  {"units": unit_of(p), "long_name": p})
-                              for p, v in zip(grid.paths, grid.values, strict=True)}
-    coords["mode"] = ("mode", np.arange(len(ids), dtype=np.int64),
-                      {"units": "1", "long_name": "mode, sorted by omega"})
+    coords: dict[str, Any] = {
+        p: (p, np.asarray(v, dtype=np.float64), {"units": unit_of(p), "long_name": p})
+        for p, v in zip(grid.paths, grid.values, strict=True)
+    }
+    coords["mode"] = (
+        "mode",
+        np.arange(len(ids), dtype=np.int64),
+        {"units": "1", "long_name": "mode, sorted by omega"},
+    )
     coords["body"] = ("body", np.array(ids, dtype=str), {"units": "1", "long_name": "body id"})
     data = {}
     for name in metrics:
         extra, units, long_name = VARIABLES[name]
-        var_attrs = {"units": units, "long_name": long_name}
+        var_attrs: dict[str, Any] = {"units": units, "long_name": long_name}
         if name == "status":
             var_attrs["flag_values"] = list(FLAG_VALUES)
             var_attrs["flag_meanings"] = FLAG_MEANINGS

@@ -47,9 +47,20 @@ _SPRING_QUANTITIES = ("stiffness", "rest_length")
 _AT_QUANTITIES = ("height", "radius", "angle")
 
 #: Unit of each kind of PATH (SI; the last part of the PATH names the quantity).
-UNITS = {"mass": "kg", "radius": "m", "mu_static": "1", "mu_kinetic": "1", "x": "m",
-         "v": "m/s", "stiffness": "N/m", "rest_length": "m", "gravity": "m/s^2",
-         "amplitude": "m", "height": "m", "angle": "deg"}
+UNITS = {
+    "mass": "kg",
+    "radius": "m",
+    "mu_static": "1",
+    "mu_kinetic": "1",
+    "x": "m",
+    "v": "m/s",
+    "stiffness": "N/m",
+    "rest_length": "m",
+    "gravity": "m/s^2",
+    "amplitude": "m",
+    "height": "m",
+    "angle": "deg",
+}
 
 
 def path_kind(system: System, path: str) -> tuple[str, tuple[Any, ...]]:
@@ -67,8 +78,11 @@ def path_kind(system: System, path: str) -> tuple[str, tuple[Any, ...]]:
 
     def spring_index(text: str) -> int:
         if not text.isdigit() or int(text) >= n_springs:
-            raise bad(f"no spring '{text}' (springs are numbered 0 to {n_springs - 1} in file "
-                      "order)" if n_springs else f"no spring '{text}' (the system has none)")
+            raise bad(
+                f"no spring '{text}' (springs are numbered 0 to {n_springs - 1} in file order)"
+                if n_springs
+                else f"no spring '{text}' (the system has none)"
+            )
         return int(text)
 
     if parts == ["gravity"]:
@@ -77,14 +91,17 @@ def path_kind(system: System, path: str) -> tuple[str, tuple[Any, ...]]:
         if parts[1] not in ids:
             raise bad(f"no body '{parts[1]}' (bodies: {', '.join(ids)})")
         if parts[2] not in BATCH_BODY_QUANTITIES:
-            raise bad(f"unknown body quantity '{parts[2]}' (one of "
-                      f"{', '.join(BATCH_BODY_QUANTITIES)})")
+            raise bad(
+                f"unknown body quantity '{parts[2]}' (one of {', '.join(BATCH_BODY_QUANTITIES)})"
+            )
         return "batch", ()
     if parts[0] == "springs" and len(parts) == 3:
         spring_index(parts[1])
         if parts[2] not in _SPRING_QUANTITIES:
-            raise bad(f"unknown spring quantity '{parts[2]}' (one of "
-                      f"{', '.join(_SPRING_QUANTITIES)}, or at.<end>.height|radius|angle)")
+            raise bad(
+                f"unknown spring quantity '{parts[2]}' (one of "
+                f"{', '.join(_SPRING_QUANTITIES)}, or at.<end>.height|radius|angle)"
+            )
         return "batch", ()
     if parts[0] == "springs" and len(parts) == 5 and parts[2] == "at":
         k = spring_index(parts[1])
@@ -92,21 +109,28 @@ def path_kind(system: System, path: str) -> tuple[str, tuple[Any, ...]]:
             raise bad(f"no end '{parts[3]}' (a spring's ends are 0 and 1)")
         end = int(parts[3])
         if parts[4] not in _AT_QUANTITIES:
-            raise bad(f"unknown attachment quantity '{parts[4]}' (one of "
-                      f"{', '.join(_AT_QUANTITIES)})")
+            raise bad(
+                f"unknown attachment quantity '{parts[4]}' (one of {', '.join(_AT_QUANTITIES)})"
+            )
         if system.springs[k].ends[end] not in ids:
-            raise bad(f"end {end} of spring {k} is the anchor "
-                      f"'{system.springs[k].ends[end]}', which has no attachment")
+            raise bad(
+                f"end {end} of spring {k} is the anchor "
+                f"'{system.springs[k].ends[end]}', which has no attachment"
+            )
         return "at", (k, end, parts[4])
     if parts[0] == "modes" and len(parts) == 3:
         if not parts[1].isdigit() or int(parts[1]) >= len(system.bodies):
-            raise bad(f"no mode '{parts[1]}' (modes are numbered 0 to {len(system.bodies) - 1}, "
-                      "sorted by omega as analyze sorts them)")
+            raise bad(
+                f"no mode '{parts[1]}' (modes are numbered 0 to {len(system.bodies) - 1}, "
+                "sorted by omega as analyze sorts them)"
+            )
         if parts[2] != "amplitude":
             raise bad(f"unknown mode quantity '{parts[2]}' (only amplitude)")
         return "mode", (int(parts[1]),)
-    raise bad("unknown PATH (use bodies.<id>.<quantity>, springs.<index>.<quantity>, "
-              "springs.<index>.at.<end>.<quantity>, modes.<n>.amplitude or gravity)")
+    raise bad(
+        "unknown PATH (use bodies.<id>.<quantity>, springs.<index>.<quantity>, "
+        "springs.<index>.at.<end>.<quantity>, modes.<n>.amplitude or gravity)"
+    )
 
 
 def unit_of(path: str) -> str:
@@ -140,12 +164,14 @@ def parse_vary_spec(spec: str) -> tuple[str, list[float]]:
         if len(parts) not in (3, 4):
             raise SweepError(f"--vary {spec}: a range is START:STOP:NUM or START:STOP:NUM:log")
         if len(parts) == 4 and parts[3].strip() != "log":
-            raise SweepError(f"--vary {spec}: the fourth part of a range can only be 'log', "
-                             f"got '{parts[3]}'")
+            raise SweepError(
+                f"--vary {spec}: the fourth part of a range can only be 'log', got '{parts[3]}'"
+            )
         start, stop = _number(parts[0], spec), _number(parts[1], spec)
         if not parts[2].strip().isdigit() or int(parts[2]) < 1:
-            raise SweepError(f"--vary {spec}: NUM must be a whole number >= 1, got "
-                             f"'{parts[2].strip()}'")
+            raise SweepError(
+                f"--vary {spec}: NUM must be a whole number >= 1, got '{parts[2].strip()}'"
+            )
         num = int(parts[2])
         if not (math.isfinite(start) and math.isfinite(stop)):
             raise SweepError(f"--vary {spec}: a range needs finite ends")
@@ -202,21 +228,26 @@ class Grid:
     def region(self, index: int) -> tuple[slice, ...]:
         """The slices of the grid chunk ``index`` (C order over the chunk grid) covers."""
         position = np.unravel_index(index, self.chunk_grid)
-        return tuple(slice(int(p) * c, min((int(p) + 1) * c, n))
-                     for p, c, n in zip(position, self.chunks, self.shape, strict=True))
+        return tuple(
+            slice(int(p) * c, min((int(p) + 1) * c, n))
+            for p, c, n in zip(position, self.chunks, self.shape, strict=True)
+        )
 
     def chunk_values(self, index: int) -> tuple[tuple[int, ...], dict[str, np.ndarray]]:
         """The region shape of chunk ``index`` and every PATH's value for each of its runs
         (flat, C order of the region)."""
         region = self.region(index)
         local = tuple(s.stop - s.start for s in region)
-        grids = np.meshgrid(*(np.asarray(self.values[d][s], dtype=np.float64)
-                              for d, s in enumerate(region)), indexing="ij")
+        grids = np.meshgrid(
+            *(np.asarray(self.values[d][s], dtype=np.float64) for d, s in enumerate(region)),
+            indexing="ij",
+        )
         return local, {p: g.ravel() for p, g in zip(self.paths, grids, strict=True)}
 
 
-def apply_values(base: dict[str, Any], system: System, values: Mapping[str, float],
-                 *, source: str = "sweep") -> System:
+def apply_values(
+    base: dict[str, Any], system: System, values: Mapping[str, float], *, source: str = "sweep"
+) -> System:
     """The system ``base`` (its :func:`system_to_json` form) with the batch and attachment
     PATHs in ``values`` set (mode amplitudes are not placements: see the compute module)."""
     index = {b.id: i for i, b in enumerate(system.bodies)}
@@ -255,9 +286,11 @@ def apply_values(base: dict[str, Any], system: System, values: Mapping[str, floa
                 at["radius"] = value
             else:
                 if "radius" not in at:
-                    raise SweepError(f"--vary {path}: an angle needs a radius attachment "
-                                     "(give the end {radius = r} in the system, or vary "
-                                     f"springs.{k}.at.{end}.radius too)")
+                    raise SweepError(
+                        f"--vary {path}: an angle needs a radius attachment "
+                        "(give the end {radius = r} in the system, or vary "
+                        f"springs.{k}.at.{end}.radius too)"
+                    )
                 at["angle"] = value
             ats = [dict(a) for a in ats]
             ats[end] = at
@@ -267,8 +300,13 @@ def apply_values(base: dict[str, Any], system: System, values: Mapping[str, floa
 
 #: Quantities whose value only its own body or spring validates (no check of the whole system
 #: looks at them: not the placement, lengths or attachments), with that model.
-_OWN_CHECK = {("bodies", "mass"), ("bodies", "mu_static"), ("bodies", "mu_kinetic"),
-              ("bodies", "v"), ("springs", "stiffness")}
+_OWN_CHECK = {
+    ("bodies", "mass"),
+    ("bodies", "mu_static"),
+    ("bodies", "mu_kinetic"),
+    ("bodies", "v"),
+    ("springs", "stiffness"),
+}
 
 
 def _part_of(base: dict[str, Any], system: System, path: str) -> dict[str, Any] | None:
@@ -298,8 +336,9 @@ def _part_valid(part: dict[str, Any], path: str, value: float) -> bool:
     return True
 
 
-def check_grid(system: System, vary: Mapping[str, Sequence[float]]) -> tuple[
-        tuple[str, ...], tuple[tuple[float, ...], ...]]:
+def check_grid(
+    system: System, vary: Mapping[str, Sequence[float]]
+) -> tuple[tuple[str, ...], tuple[tuple[float, ...], ...]]:
     """Validate the PATHs and each value (each alone applied to ``system``): one-line
     :class:`SweepError` naming the PATH."""
     if not isinstance(vary, Mapping) or not vary:
@@ -308,7 +347,7 @@ def check_grid(system: System, vary: Mapping[str, Sequence[float]]) -> tuple[
     base = system_to_json(system)
     kinds = {}
     for path, raw in vary.items():
-        kind, target = path_kind(system, path)
+        kind, _target = path_kind(system, path)
         kinds[path] = kind
         try:
             array = np.asarray(raw, dtype=np.float64)
@@ -323,8 +362,9 @@ def check_grid(system: System, vary: Mapping[str, Sequence[float]]) -> tuple[
         if len(np.unique(array)) != array.size:
             raise SweepError(f"--vary {path}: a value is given twice")
         quantity = path.split(".")[-1]
-        if not (quantity == "mu_static" and path.startswith("bodies.")) \
-                and not np.all(np.isfinite(array)):
+        if not (quantity == "mu_static" and path.startswith("bodies.")) and not np.all(
+            np.isfinite(array)
+        ):
             raise SweepError(f"--vary {path}: the values must be finite")
         if kind == "mode":
             if np.any(array < 0):

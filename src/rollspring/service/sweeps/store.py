@@ -63,8 +63,15 @@ class StoreMismatchError(SweepError):
     """The store at ``--out`` holds another sweep (its grid fingerprint differs)."""
 
 
-def fingerprint(system_toml: str, grid: Grid, duration: float, rtol: float, on_slip: str,
-                metrics: tuple[str, ...], extra: dict[str, Any]) -> str:
+def fingerprint(
+    system_toml: str,
+    grid: Grid,
+    duration: float,
+    rtol: float,
+    on_slip: str,
+    metrics: tuple[str, ...],
+    extra: dict[str, Any],
+) -> str:
     """sha256 of everything that decides the store's content."""
     data = {
         "system": system_toml,
@@ -89,9 +96,10 @@ def read_attrs(path: Path) -> dict[str, Any] | None:
     try:
         group = zarr.open_group(str(path), mode="r")
     except Exception as exc:  # noqa: BLE001 - any unreadable store
-        raise StoreMismatchError(f"--out {path}: exists and is not a rollspring sweep store "
-                                 f"({type(exc).__name__}); use --overwrite to replace it"
-                                 ) from None
+        raise StoreMismatchError(
+            f"--out {path}: exists and is not a rollspring sweep store "
+            f"({type(exc).__name__}); use --overwrite to replace it"
+        ) from None
     return dict(group.attrs)
 
 
@@ -102,21 +110,29 @@ def remove(path: Path) -> None:
         path.unlink()
 
 
-def write_template(path: Path, grid: Grid, ids: list[str], n_modes: int,
-                   metrics: tuple[str, ...], attrs: dict[str, Any]) -> None:
+def write_template(
+    path: Path,
+    grid: Grid,
+    ids: list[str],
+    n_modes: int,
+    metrics: tuple[str, ...],
+    attrs: dict[str, Any],
+) -> None:
     """Every variable's metadata, the coordinates and the attrs (no data)."""
     import dask.array as da
     import xarray as xr
 
     coords: dict[str, Any] = {}
     for p, values in zip(grid.paths, grid.values, strict=True):
-        coords[p] = (p, np.asarray(values, dtype=np.float64),
-                     {"units": unit_of(p), "long_name": p})
-    coords["mode"] = ("mode", np.arange(n_modes, dtype=np.int64),
-                      {"units": "1", "long_name": "mode, sorted by omega"})
+        coords[p] = (p, np.asarray(values, dtype=np.float64), {"units": unit_of(p), "long_name": p})
+    coords["mode"] = (
+        "mode",
+        np.arange(n_modes, dtype=np.int64),
+        {"units": "1", "long_name": "mode, sorted by omega"},
+    )
     coords["body"] = ("body", np.array(ids, dtype=str), {"units": "1", "long_name": "body id"})
     data = {}
-    encoding = {}
+    encoding: dict[str, dict[str, Any]] = {}
     for name in metrics:
         extra, units, long_name = VARIABLES[name]
         dims = (*grid.paths, *([extra] if extra else []))
@@ -124,7 +140,7 @@ def write_template(path: Path, grid: Grid, ids: list[str], n_modes: int,
         chunks = (*grid.chunks, *([shape[-1]] if extra else []))
         dtype = _INTEGER.get(name, "float64")
         fill = -1 if name == "first_slip_body" else (5 if name == "status" else np.nan)
-        var_attrs = {"units": units, "long_name": long_name}
+        var_attrs: dict[str, Any] = {"units": units, "long_name": long_name}
         if name == "status":
             from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 
@@ -151,19 +167,22 @@ def write_region(path: Path, grid: Grid, index: int, arrays: dict[str, np.ndarra
     group = zarr.open_group(str(path), mode="r+")
     region = grid.region(index)
     for name, values in arrays.items():
-        group[name][region] = values
+        array = group[name]
+        assert isinstance(array, zarr.Array)  # the store's variables are arrays
+        array[region] = values
 
 
-def write_regions(path: Path, grid: Grid, items: list[tuple[int, dict[str, np.ndarray]]]
-                  ) -> None:
+def write_regions(path: Path, grid: Grid, items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
     """Several chunks' arrays into their regions: one write per variable when the regions
     tile a box (consecutive chunks), else chunk by chunk."""
     if len(items) == 1:
         write_region(path, grid, items[0][0], items[0][1])
         return
     regions = [grid.region(index) for index, _ in items]
-    box = tuple(slice(min(r[d].start for r in regions), max(r[d].stop for r in regions))
-                for d in range(len(grid.shape)))
+    box = tuple(
+        slice(min(r[d].start for r in regions), max(r[d].stop for r in regions))
+        for d in range(len(grid.shape))
+    )
     size = int(np.prod([s.stop - s.start for s in box]))
     if size != sum(int(np.prod([s.stop - s.start for s in r])) for r in regions):
         for index, arrays in items:
@@ -173,12 +192,19 @@ def write_regions(path: Path, grid: Grid, items: list[tuple[int, dict[str, np.nd
 
     group = zarr.open_group(str(path), mode="r+")
     for name, first in items[0][1].items():
-        whole = np.empty((*(s.stop - s.start for s in box), *first.shape[len(box):]),
-                         dtype=first.dtype)
+        whole = np.empty(
+            (*(s.stop - s.start for s in box), *first.shape[len(box) :]), dtype=first.dtype
+        )
         for region, (_, arrays) in zip(regions, items, strict=True):
-            whole[tuple(slice(r.start - b.start, r.stop - b.start)
-                        for r, b in zip(region, box, strict=True))] = arrays[name]
-        group[name][box] = whole
+            whole[
+                tuple(
+                    slice(r.start - b.start, r.stop - b.start)
+                    for r, b in zip(region, box, strict=True)
+                )
+            ] = arrays[name]
+        array = group[name]
+        assert isinstance(array, zarr.Array)  # the store's variables are arrays
+        array[box] = whole
 
 
 def mark_done(path: Path, index: int) -> None:

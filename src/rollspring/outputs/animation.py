@@ -38,6 +38,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
 
 from rollspring.errors import RollspringError
 from rollspring.outputs.figures import SystemScene, scene_for_trajectory, states_at, theme
@@ -127,7 +129,9 @@ class MotionAnimation:
         self.scene: SystemScene = scene_for_trajectory(
             trajectory, forces=forces, clock=True, width=width, dpi=dpi
         )
-        self.figure = self.scene.ax.figure
+        figure = self.scene.ax.figure
+        assert isinstance(figure, Figure)  # the scene's own figure (new_figure)
+        self.figure = figure
         self._forces = forces
 
     def __len__(self) -> int:
@@ -148,6 +152,7 @@ class MotionAnimation:
         """Frame ``i`` as a (height, width, 4) uint8 array."""
         self.update(i)
         canvas = self.figure.canvas
+        assert isinstance(canvas, FigureCanvasAgg)  # new_figure gives every figure an Agg canvas
         with theme():
             canvas.draw()
         return np.array(canvas.buffer_rgba())

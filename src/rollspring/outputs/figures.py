@@ -160,7 +160,8 @@ def theme() -> Iterator[None]:
     user's matplotlibrc or style does not change the pixels."""
     with matplotlib.rc_context():
         matplotlib.rcdefaults()
-        matplotlib.rcParams.update(_RC)
+        # matplotlib's stubs type the keys as a Literal of every rc name: _RC's are str
+        matplotlib.rcParams.update(_RC)  # type: ignore[arg-type]
         yield
 
 

@@ -240,7 +240,11 @@ def analysis_html(analysis: LinearAnalysis) -> str:
         )
     else:
         parts.append("<p>No stationary point (no single zero mode).</p>")
-    if analysis.required_mu is not None:
+    if (
+        analysis.required_mu is not None
+        and analysis.amplitude is not None
+        and analysis.friction_amplitude is not None
+    ):
         parts.append(
             _table(
                 ["body", "amplitude (m)", "|f| max (N)", "μ needed", "μs"],

@@ -90,7 +90,7 @@ _STATUS_COLORS = {
 _SPARE = ("#984ea3", "#ffff99", "#a65628", "#f781bf", "#66c2a5", "#8da0cb")
 _NONE_COLOR = "#d9d9d9"
 _LINEAR_LABEL = "linear theory: μ needed = μs"
-_LINEAR_STYLE = {"colors": "black", "linestyles": "dashed", "linewidths": 1.6}
+_LINEAR_STYLE: dict[str, Any] = {"colors": "black", "linestyles": "dashed", "linewidths": 1.6}
 _MAX_LISTED = 12
 #: A white halo under the contour lines of the linear period and their labels (seen on dark
 #: cells too).
@@ -186,14 +186,14 @@ def grid_dims(dataset: xr.Dataset) -> list[str]:
     return list(dict.fromkeys(str(d) for d in order if d not in _EXTRA_DIMS))
 
 
-def _listing(values: Sequence[Any]) -> str:
+def _listing(values: Sequence[Any] | np.ndarray) -> str:
     shown = [_number(v) if isinstance(v, (float, np.floating)) else str(v) for v in values]
     if len(shown) > _MAX_LISTED:
         shown = [*shown[: _MAX_LISTED // 2], "…", *shown[-_MAX_LISTED // 2 :]]
     return ", ".join(shown)
 
 
-def _number(value: float) -> str:
+def _number(value: float | np.floating[Any]) -> str:
     return f"{float(value):.6g}"
 
 
@@ -534,9 +534,9 @@ def plot_map(data: MapData, ax: Axes | None = None) -> Axes:
     ``PATH (units)``; the system and the fixed values as title."""
     with theme():
         if ax is None:
-            fig = new_figure(6.4, 4.8)
-            fig.set_layout_engine("constrained")
-            ax = fig.add_subplot()
+            new = new_figure(6.4, 4.8)
+            new.set_layout_engine("constrained")
+            ax = new.add_subplot()
         fig = ax.figure
         xe, ye = _edges(data.x, data.x_log), _edges(data.y, data.y_log)
         handles: list[Any] = []
@@ -587,6 +587,7 @@ def plot_map(data: MapData, ax: Axes | None = None) -> Axes:
 def _draw_categories(
     ax: Axes, data: MapData, xe: np.ndarray, ye: np.ndarray
 ) -> tuple[Any, list[Any]]:
+    assert data.categories is not None  # drawn only for a categorical metric
     codes = [code for code, _, _ in data.categories]
     index = np.full(data.values.shape, -1, dtype=int)
     for i, code in enumerate(codes):
@@ -637,6 +638,7 @@ def _draw_linear(ax: Axes, data: MapData, mesh: Any) -> list[Any]:
     """The linear theory's contour(s) and their legend entry (nothing without a prediction)."""
     if data.linear is None:
         return []
+    assert data.linear_label is not None  # set with the prediction
     field_ = np.ma.masked_invalid(data.linear)
     X, Y = np.meshgrid(data.x, data.y)
     if data.linear_kind == "slip":
@@ -703,6 +705,7 @@ def sweep_map(
 def write_map(target: Axes | Figure, path: str | Path, *, dpi: float = 150.0) -> Path:
     """Write the map's figure to ``path`` (by its suffix: .png, .svg or .pdf), atomically."""
     fig = target.figure if isinstance(target, Axes) else target
+    assert isinstance(fig, Figure)  # a map is drawn on a figure's own axes
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix == ".png":

@@ -225,7 +225,11 @@ def _tables(sheet: Worksheet) -> list[tuple[str, list[str], list[list[str]]]]:
         heights = []
         for end, at in zip(spring.ends, spring.attachments, strict=True):
             if end in sheet.system.body_map:
-                heights.append("centre" if at.is_centre_form else f"{format_number(at.height)} m")
+                if at.is_centre_form:
+                    heights.append("centre")
+                else:
+                    assert at.height is not None  # the exercises attach springs by height
+                    heights.append(f"{format_number(at.height)} m")
         springs.append(
             [
                 str(s + 1),

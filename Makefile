@@ -49,8 +49,17 @@ demo: $(DEMO_STAMP)
 	$(BIN)/rollspring simulate hoop-cylinder --duration 10 --rtol 1e-10
 	$(BIN)/rollspring report hoop-cylinder -o build/demo/report.html
 
-# every test, and the documentation site built with warnings as errors (its examples run)
-test: $(STAMP) $(WEB_STAMP) system-packages docs
+# the hygiene checks (pyproject.toml: [tool.ruff], [tool.mypy]): ruff's lint and format check,
+# and mypy on the files it configures (strict on model, physics, analysis, simulate)
+.PHONY: lint
+lint: $(STAMP)
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+	$(BIN)/mypy
+
+# the hygiene checks, every test, and the documentation site built with warnings as errors
+# (its examples run)
+test: $(STAMP) lint $(WEB_STAMP) system-packages docs
 	$(BIN)/python -m pytest
 
 # the web benchmark's load generator (Debian's wrk), installed only when missing
@@ -81,5 +90,6 @@ docs: $(DOCS_STAMP) $(DOCS_NPM_STAMP)
 	$(BIN)/sphinx-build -W --keep-going -q -b html docs build/docs/html
 
 clean:
-	rm -rf $(VENV) .pytest_cache .hypothesis build src/*.egg-info $(WEB_STATIC)/node_modules \
+	rm -rf $(VENV) .pytest_cache .hypothesis .ruff_cache .mypy_cache build src/*.egg-info \
+		$(WEB_STATIC)/node_modules \
 		docs/node_modules docs/_generated docs/gallery docs/tutorial

@@ -390,7 +390,7 @@ def simulate_batch(
         if not kernel.signatures:
             import numba
 
-            # numba.typeof has no annotations (numba ships no types)
+            # numba.typeof has no annotations in numba's own typing
             kernel.compile(tuple(numba.typeof(a) for a in args))  # type: ignore[no-untyped-call]
         compiled = time.perf_counter()
         kernel(*args)

@@ -57,7 +57,7 @@ import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from common import machine_note, print_table
+from common import best_of, machine_note, print_table
 
 import rollspring
 from rollspring.service.sweeps import sweep
@@ -124,17 +124,6 @@ def flat(vary: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """The grid's runs as flat arrays, C order (last PATH fastest), as the sweep orders them."""
     grids = np.meshgrid(*vary.values(), indexing="ij")
     return {path: g.ravel() for path, g in zip(vary, grids, strict=True)}
-
-
-def best(run, repeats: int) -> tuple[float, Any]:
-    """(best wall time, its result) of ``repeats`` calls after one untimed call."""
-    run()
-    timed = []
-    for _ in range(repeats):
-        began = time.perf_counter()
-        result = run()
-        timed.append((time.perf_counter() - began, result))
-    return min(timed, key=lambda pair: pair[0])
 
 
 # -- peak memory ------------------------------------------------------------------------------
@@ -348,7 +337,7 @@ def part_a_grid(
 
 def timed_cluster_sweep(system, vary, duration, cluster: Cluster, repeats: int) -> float:
     """Best wall time of the sweep on the cluster, after a warm-up run of the same grid."""
-    t, _ = best(lambda: sweep(system, vary, duration, scheduler=cluster.client), repeats)
+    t, _ = best_of(lambda: sweep(system, vary, duration, scheduler=cluster.client), repeats)
     return t
 
 

@@ -5,12 +5,10 @@ but its arguments and writes nothing, so the result of a chunk does not depend o
 next to which other chunks it runs.
 
 * **The simulated metrics** come from :func:`rollspring.simulate_batch` with the plan's one
-  integrator and step for the whole grid (``step=``, and ``metric_every=`` when the batch
-  accepts it). Without ``metric_every=`` the batch picks its metric sampling from the highest
-  linear frequency among the runs *of the call*; a *sentinel* run is then appended to every
-  call — a run of the call with all masses scaled so that its frequency is the grid's highest
-  (:math:`\omega\propto 1/\sqrt{m}`) — so the sampling is the grid's in every chunk, and
-  dropped from the result (runs are independent in a batch).
+  integrator, step and metric sampling for the whole grid (``integrator=``, ``step=``,
+  ``metric_every=``): with those given, every run's numbers are those it has alone (runs are
+  independent in a batch), so a chunk's arrays do not depend on which runs share its call.
+  Only the varied numbers travel per run.
 * **The first slip / lift-off instant**: the batch interpolates the contact margin linearly
   between steps (error about :math:`c\,h^2`); with ``refine_slip`` every run that slipped or
   lifted off is run again alone by :func:`rollspring.simulate` (``on_slip="stop"``, which
@@ -39,7 +37,6 @@ from __future__ import annotations
 import contextlib
 import copy
 import functools
-import inspect
 import json
 import math
 import os
@@ -73,10 +70,6 @@ STATUS_CODES = {status.label: int(status) for status in Status}
 
 #: Duration and step of the one-step calls that only read the batch's highest frequency.
 _TINY = 1e-9
-
-
-def _batch_accepts_metric_every() -> bool:
-    return "metric_every" in inspect.signature(simulate_batch).parameters
 
 
 @dataclass(frozen=True)
@@ -262,32 +255,20 @@ def _batch(
     duration: float,
     step: float,
     scheme: str,
-    metric_every: int | None,
-    sentinel: bool,
+    metric_every: int,
 ) -> Any:
-    """One :func:`simulate_batch` call (with the sentinel run appended when asked)."""
-    kwargs: dict[str, Any] = {
-        "rtol": plan.rtol,
-        "integrator": scheme,
-        "step": step,
-        "stop_on_slip": True,
-    }
-    if metric_every is not None and _batch_accepts_metric_every():
-        kwargs["metric_every"] = metric_every
-        sentinel = False
-    if sentinel and plan.omega_max > 0:
-        first = {k: v[:1] for k, v in params.items()}
-        omega = simulate_batch(
-            system, first, _TINY, step=_TINY, integrator=scheme, stop_on_slip=True
-        ).omega_max
-        if omega > 0:
-            scale = (omega / plan.omega_max) ** 2
-            extra = {}
-            for key, values in params.items():
-                value = values[0] * scale if key.endswith(".mass") else values[0]
-                extra[key] = np.append(values, value)
-            params = extra
-    return simulate_batch(system, params, duration, **kwargs)
+    """One :func:`simulate_batch` call with the grid's integrator, step and metric sampling
+    (all fixed by the plan, so no run's numbers depend on the other runs of the call)."""
+    return simulate_batch(
+        system,
+        params,
+        duration,
+        rtol=plan.rtol,
+        integrator=scheme,
+        step=step,
+        metric_every=metric_every,
+        stop_on_slip=True,
+    )
 
 
 def _groups(
@@ -296,8 +277,8 @@ def _groups(
     """The batch calls of a chunk: (system, run indices, parameters)."""
     plan, system = runs.plan, runs.system
     if not runs.structural:
-        keys = list(plan.grid.paths)  # and every mass: a sentinel run scales them
-        keys += [f"bodies.{b.id}.mass" for b in system.bodies if f"bodies.{b.id}.mass" not in keys]
+        # only the varied numbers per run (at least one: a batch's run count is its arrays')
+        keys = list(plan.grid.paths) or [f"bodies.{system.bodies[0].id}.mass"]
         idx = np.flatnonzero(alive)
         params = {}
         for key in keys:
@@ -404,8 +385,7 @@ def grid_omega(plan: SweepPlan) -> tuple[float, Any] | None:
                 return None
     if max(masses) > _MODERATE:
         return None
-    keys = list(grid.paths)
-    keys += [f"bodies.{b.id}.mass" for b in system.bodies if f"bodies.{b.id}.mass" not in keys]
+    keys = list(grid.paths) or [f"bodies.{system.bodies[0].id}.mass"]  # as _groups has them
     sub_shape = tuple(1 if c else n for c, n in zip(collapse, grid.shape, strict=True))
     n_sub = math.prod(sub_shape)
     omegas = np.empty(n_sub)
@@ -617,7 +597,6 @@ def _batch_group(
             step=plan.step,
             scheme=plan.scheme,
             metric_every=plan.metric_every,
-            sentinel=True,
         )
     except RollspringError:
         if members.size == 1:

@@ -337,6 +337,11 @@ def _choose_step(plan: SweepPlan, step: float | None) -> SweepPlan:
     if sample is None:
         raise SweepError("--vary: no run of the grid is a valid system")
     system, params = sample
+    # every mass of the sample run given, so that scaling them all scales its frequency
+    # (omega ~ 1/sqrt(m)) whatever the grid varies
+    params = dict(params)
+    for body in system.bodies:
+        params.setdefault(f"bodies.{body.id}.mass", np.full(1, float(body.mass)))
     scaled = dict(params)
     if omega > 0:  # one run of the fastest group, its masses scaled to the highest frequency
         own = max(float(np.max(batch_omegas(system, params))), 0.0)  # its omega_max

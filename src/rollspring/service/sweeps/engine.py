@@ -74,6 +74,13 @@ class SweepProgress:
     chunks_skipped: int
 
 
+#: The revision of how a chunk's numbers are computed, part of the grid fingerprint: a store
+#: written by another revision is refused (its numbers could differ in the last bits from this
+#: one's, so resuming it would mix the two). 2: only the varied numbers are given per run
+#: (revision 1 also gave every body's mass).
+ENGINE_REVISION = 2
+
+
 def _version() -> str:
     try:
         from importlib.metadata import version
@@ -177,6 +184,7 @@ def sweep(
     grid = Grid(paths, values, chunk_shape(tuple(len(v) for v in values), chunk or DEFAULT_CHUNK))
     toml = system_to_toml(system)
     extra = {
+        "engine": ENGINE_REVISION,
         "refine_slip": bool(refine_slip),
         "integrator": integrator,
         "step": None if step is None else float(step).hex(),

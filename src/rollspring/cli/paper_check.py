@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.errors import RollspringError
+from rollspring.errors import PaperCheckError
 
 if TYPE_CHECKING:
     from rollspring.analysis.paper_check import ClaimCheck
@@ -42,10 +42,6 @@ FORMATS = ("text", "markdown")
 _MARK = {VERIFIED: "✔", WRONG: "✘", HOLDS_ONLY_IF: "⚠"}
 _WORDS = {VERIFIED: "verified", WRONG: "wrong", HOLDS_ONLY_IF: "holds only if"}
 _STYLE = {VERIFIED: "green", WRONG: "red", HOLDS_ONLY_IF: "yellow"}
-
-
-class PaperCheckError(RollspringError, ValueError):
-    """Invalid options of ``rollspring paper-check``."""
 
 
 def paper_check(

@@ -13,14 +13,10 @@ from typing import Annotated
 
 import typer
 
-from rollspring.errors import RollspringError
+from rollspring.errors import ServeError
 from rollspring.model import DEFAULT_PRESET, preset_names
 
 __all__ = ["ServeError", "register", "serve"]
-
-
-class ServeError(RollspringError, ValueError):
-    """The server cannot start as asked (a bad address or port, the port in use)."""
 
 
 def serve(

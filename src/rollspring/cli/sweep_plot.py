@@ -12,13 +12,9 @@ from typing import Annotated
 
 import typer
 
-from rollspring.errors import RollspringError
+from rollspring.errors import SweepPlotError
 
 __all__ = ["SweepPlotError", "register", "sweep_plot"]
-
-
-class SweepPlotError(RollspringError, ValueError):
-    """A bad option of ``sweep-plot`` (the message names it)."""
 
 
 def _parse_sel(items: list[str]) -> dict[str, str]:

@@ -16,7 +16,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.errors import RollspringError
+from rollspring.errors import WorksheetOptionError
 
 __all__ = [
     "FORMATS",
@@ -36,10 +36,6 @@ LEVELS = {
     3: "Walls and chains",
     4: "Off-centre attachments",
 }
-
-
-class WorksheetOptionError(RollspringError, ValueError):
-    """Invalid options of ``rollspring worksheet``."""
 
 
 #: The line printed between the sheet and its solutions on stdout, per format.

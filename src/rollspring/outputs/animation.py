@@ -41,7 +41,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from rollspring.errors import RollspringError
+from rollspring.errors import AnimationError
 from rollspring.outputs.figures import SystemScene, scene_for_trajectory, states_at, theme
 from rollspring.outputs.files import atomic_path, atomic_write, atomic_write_text
 from rollspring.physics.arrays import FloatArray
@@ -62,10 +62,6 @@ FORMATS = {".gif": "gif", ".mp4": "mp4", ".html": "html", ".htm": "html"}
 MAX_FRAMES = 10_000
 
 Progress = Callable[[float], None]
-
-
-class AnimationError(RollspringError, ValueError):
-    """An animation was requested with invalid arguments (format, duration, speed, fps, dpi)."""
 
 
 def _check_positive(

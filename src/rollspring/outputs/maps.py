@@ -53,7 +53,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import FuncFormatter, NullFormatter
 
-from rollspring.errors import ModelError, RollspringError
+from rollspring.errors import MapError, ModelError
 from rollspring.model import system_from_text
 from rollspring.outputs.figures import BODY_COLORS, figure_png, figure_svg, new_figure, theme
 from rollspring.outputs.files import atomic_path, atomic_write_bytes, atomic_write_text
@@ -95,11 +95,6 @@ _MAX_LISTED = 12
 #: A white halo under the contour lines of the linear period and their labels (seen on dark
 #: cells too).
 _HALO = [patheffects.Stroke(linewidth=2.4, foreground="white"), patheffects.Normal()]
-
-
-class MapError(RollspringError, ValueError):
-    """A map cannot be drawn from these arguments (an unknown PATH, metric, body or value, a
-    store that is not a sweep store); the message is one line naming the argument."""
 
 
 @dataclass

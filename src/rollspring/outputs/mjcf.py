@@ -72,7 +72,7 @@ import os
 import xml.etree.ElementTree as ET
 from importlib import metadata
 
-from rollspring.errors import RollspringError
+from rollspring.errors import ExportError
 from rollspring.model import Body, System
 from rollspring.outputs.files import atomic_write_text
 from rollspring.physics import system_arrays
@@ -105,10 +105,6 @@ _TUNING_NOTE = (
     "tangential creep), and geom solref (contact stiffness/damping time constant, default "
     '0.02 1) and solimp (impedance), e.g. solref="0.002 1" with a smaller timestep.'
 )
-
-
-class ExportError(RollspringError, ValueError):
-    """The system cannot be exported in the requested form (a one-line reason)."""
 
 
 def body_joint_names(body: Body) -> tuple[str, ...]:

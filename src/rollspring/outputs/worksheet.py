@@ -26,7 +26,7 @@ from typing import Any
 from rollspring.analysis import LinearAnalysis
 from rollspring.analysis.derivation import Derivation, Section
 from rollspring.analysis.derivation.render import LATEX_PREAMBLE, latex_text
-from rollspring.errors import RollspringError
+from rollspring.errors import WorksheetError
 from rollspring.model import System
 
 __all__ = [
@@ -61,10 +61,6 @@ SHAPE_WORDS = {
     "shell": ("thin spherical shell", r"I = \tfrac23 mR^2"),
     "slider": ("block", r"\text{no rotation}"),
 }
-
-
-class WorksheetError(RollspringError, ValueError):
-    """Invalid worksheet options (level, seed, format)."""
 
 
 @dataclass(frozen=True)

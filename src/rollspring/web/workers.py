@@ -20,9 +20,10 @@ import multiprocessing
 import os
 import queue
 import threading
-from dataclasses import dataclass
 from multiprocessing.connection import Connection
 from typing import Any
+
+from rollspring.errors import JobFailed, OverBudget, Overloaded
 
 __all__ = ["PRELOAD", "ComputePool", "JobFailed", "OverBudget", "Overloaded"]
 
@@ -31,27 +32,6 @@ __all__ = ["PRELOAD", "ComputePool", "JobFailed", "OverBudget", "Overloaded"]
 PRELOAD = ["rollspring.web.warm"]
 #: How long a new worker may take to become ready (a cold Numba cache compiles the kernels).
 READY_TIMEOUT = 300.0
-
-
-class Overloaded(Exception):
-    """No worker became free within the budget: the server is at capacity (HTTP 503)."""
-
-
-class OverBudget(Exception):
-    """The job ran past its time budget; its worker was killed and replaced (HTTP 503)."""
-
-
-@dataclass
-class JobFailed(Exception):
-    """The job raised: ``kind`` ``"invalid"`` (a RollspringError: a bad request, HTTP 422,
-    ``loc`` the field it names) or ``"crash"`` (a bug or a dead worker, HTTP 500)."""
-
-    kind: str
-    message: str
-    loc: tuple[Any, ...] = ()
-
-    def __str__(self) -> str:
-        return self.message
 
 
 class _Worker:

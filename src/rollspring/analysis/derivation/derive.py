@@ -16,17 +16,13 @@ from rollspring.analysis.derivation.methods import METHODS, MethodResult, run_me
 from rollspring.analysis.derivation.render import latex_document, markdown, text
 from rollspring.analysis.derivation.steps import Section, matrix_equation, named
 from rollspring.analysis.derivation.symbolic import SymbolicSystem, symbolic_system
-from rollspring.errors import AnalysisError
+from rollspring.errors import DerivationError
 from rollspring.model import System
 
 __all__ = ["ALL", "Derivation", "DerivationError", "derive", "parse_methods"]
 
 #: ``method="all"`` runs every method in :data:`METHODS`.
 ALL = "all"
-
-
-class DerivationError(AnalysisError, ValueError):
-    """Invalid arguments to :func:`derive` (an unknown method)."""
 
 
 @dataclass

@@ -23,6 +23,7 @@ from typing import NoReturn
 import sympy as sp
 
 from rollspring.analysis.derivation.symbolic import SymbolicSystem, _is_tridiagonal
+from rollspring.errors import BudgetExceeded
 
 __all__ = ["OMEGA2", "BudgetExceeded", "Frequencies", "normal_frequencies", "time_budget"]
 
@@ -30,10 +31,6 @@ __all__ = ["OMEGA2", "BudgetExceeded", "Frequencies", "normal_frequencies", "tim
 OMEGA2 = sp.Symbol("Omega^2")
 #: Largest number of bodies whose characteristic polynomial is expanded.
 MAX_POLYNOMIAL = 12
-
-
-class BudgetExceeded(Exception):
-    """A symbolic computation ran out of its time budget."""
 
 
 @contextlib.contextmanager

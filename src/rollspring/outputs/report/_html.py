@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import latex2mathml.converter
 
-from rollspring.errors import RollspringError
+from rollspring.errors import MathConversionError, ReportError
 from rollspring.outputs.numbers import html_number as fmt
 
 __all__ = [
@@ -29,14 +29,6 @@ __all__ = [
     "math_or_source",
     "table",
 ]
-
-
-class ReportError(RollspringError, ValueError):
-    """The report cannot be made or written as asked (a one-line reason)."""
-
-
-class MathConversionError(ReportError):
-    """A LaTeX formula that latex2mathml cannot turn into MathML (a one-line reason)."""
 
 
 class Markup(str):

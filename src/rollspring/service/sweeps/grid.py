@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.errors import RollspringError
+from rollspring.errors import RollspringError, SweepError
 from rollspring.model import System, system_from_dict, system_to_json
 
 __all__ = [
@@ -36,10 +36,6 @@ __all__ = [
     "parse_vary_spec",
     "path_kind",
 ]
-
-
-class SweepError(RollspringError, ValueError):
-    """A sweep cannot be run as asked (a bad PATH or value, a metric, a store); one line."""
 
 
 BATCH_BODY_QUANTITIES = ("mass", "radius", "mu_static", "mu_kinetic", "x", "v")

@@ -21,7 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.service.sweeps.grid import Grid, SweepError, unit_of
+from rollspring.errors import StoreMismatchError
+from rollspring.service.sweeps.grid import Grid, unit_of
 
 __all__ = [
     "MARKERS",
@@ -57,10 +58,6 @@ VARIABLES: dict[str, tuple[str | None, str, str]] = {
     "time_slipping": (None, "s", "time during which a body slips"),
 }
 _INTEGER = {"first_slip_body": "int16", "status": "int8"}
-
-
-class StoreMismatchError(SweepError):
-    """The store at ``--out`` holds another sweep (its grid fingerprint differs)."""
 
 
 def fingerprint(

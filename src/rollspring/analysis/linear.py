@@ -18,14 +18,12 @@ from typing import Any
 import numpy as np
 import scipy.linalg
 
-from rollspring.errors import AnalysisError
 from rollspring.model import System
 from rollspring.physics import (
     SystemArrays,
     contact_forces,
     contact_forces_jacobian,
     damping_matrix,
-    end_kinematics,
     generalized_forces,
     mass_matrix,
     spring_state,
@@ -251,26 +249,6 @@ def _hold_zero_modes(
         if biggest < 1e-15 * size:
             break
     return q
-
-
-def _damped_step(
-    q: FloatArray,
-    step: FloatArray,
-    residual: float,
-    residual_of: Callable[[FloatArray], float],
-    target: float,
-) -> tuple[FloatArray, float, bool]:
-    """One Newton step, at most 0.5 per coordinate, halved until the residual decreases."""
-    biggest = float(np.max(np.abs(step)))
-    if biggest > 0.5:  # at most half a radian (or 0.5 m) per step
-        step = step * (0.5 / biggest)
-    for _halving in range(40):
-        trial = q + step
-        trial_residual = residual_of(trial)
-        if trial_residual < residual or trial_residual <= target:
-            return trial, trial_residual, float(np.max(np.abs(step))) >= 1e-15
-        step = step * 0.5
-    return q, residual, False
 
 
 def _force_scale(system: SystemArrays) -> float:
@@ -500,7 +478,7 @@ def analyze(system: System) -> LinearAnalysis:
         )
 
     tilt = _tilt_deg(springs.vector)
-    split = _spring_split(arrays, springs.lever, eigenvalues, kinds) if equilibrium.found else None
+    split = _spring_split(arrays, springs.lever) if equilibrium.found else None
     damping = damping_matrix(arrays, q_eq)
     if np.any(arrays.damping > 0):
         ratios = []
@@ -779,9 +757,7 @@ def _tilt_deg(vector: FloatArray) -> FloatArray:
     return np.where(np.abs(angle) < 1e-10, 0.0, angle)
 
 
-def _spring_split(
-    arrays: SystemArrays, lever: FloatArray, eigenvalues: FloatArray, kinds: np.ndarray
-) -> dict[str, Any] | None:
+def _spring_split(arrays: SystemArrays, lever: FloatArray) -> dict[str, Any] | None:
     r"""For two bodies joined by one spring: the paper's k1, k2 about the stationary point.
 
     :math:`\Omega_i^2 = k b_i^2/J_i` (body i alone, the other clamped, paper's Appendix B),
@@ -803,15 +779,3 @@ def _spring_split(
         "k": k / share,
         "omega": math.sqrt(total),
     }
-
-
-def raise_if_no_equilibrium(analysis: LinearAnalysis) -> None:
-    """Raise :class:`AnalysisError` when the analysis had no equilibrium to linearise about."""
-    if not analysis.equilibrium.found:
-        raise AnalysisError(analysis.equilibrium.reason)
-
-
-def end_positions_at_equilibrium(analysis: LinearAnalysis) -> FloatArray:
-    """Spring end positions at the equilibrium, (S, 2, 2) in m (for reports and checks)."""
-    position, _, _ = end_kinematics(analysis.arrays, analysis.equilibrium.q)
-    return position

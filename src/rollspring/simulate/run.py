@@ -529,12 +529,6 @@ class _Run:
             sign[body] = -np.sign(friction[0, body]) or 1.0
         return False
 
-    def _finish_rows_to(
-        self, t_end: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
-    ) -> None:
-        if self.times[-1][-1] < t_end:
-            self._record(t_end, state, slipping, sign)
-
     def _report(self, t: float) -> None:
         if self.progress is not None:
             self.progress(min(1.0, t / self.grid[-1]))
@@ -1127,7 +1121,7 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
         assert start is not None  # batched: only segments with the state they start from
         groups.setdefault(id(start.model), {})[key] = entry
     for group in groups.values():
-        for (kind, i), value in _refine_together(run, group).items():
+        for (kind, i), value in _refine_together(group).items():
             result[kind][i] = value
     for (kind, i), (value, t, width, local) in best.items():
         if (kind, i) in batched:
@@ -1138,9 +1132,7 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     return result
 
 
-def _refine_together(
-    run: _Run, entries: dict[tuple[str, int], Any]
-) -> dict[tuple[str, int], float]:
+def _refine_together(entries: dict[tuple[str, int], Any]) -> dict[tuple[str, int], float]:
     """:func:`_refine` for many extremes at once, each on its own two-step segment from the
     state the kernel kept (one compiled call per zoom level for all of them)."""
     keys = list(entries)

@@ -49,14 +49,6 @@ TITLES = {
     "hamilton": "Hamilton's equations",
 }
 
-PAPER_SECTIONS = {
-    "newton": "paper Sec. 2 and 4.1",
-    "conservation": "paper Sec. 4.2",
-    "lagrange": "paper Sec. 4.3",
-    "natural-frequencies": "paper Sec. 4.4, App. B and C",
-    "hamilton": "paper Sec. 4.5",
-}
-
 
 @dataclass
 class MethodResult:

@@ -179,12 +179,6 @@ class SymbolicBody:
         (M10); the paper's :math:`y = R + I/(mR)`."""
         return (1 + self.gamma) * self.R
 
-    @property
-    def centre_displacement(self) -> sp.Expr:
-        r"""Centre displacement from the reference, :math:`x_i = s_i q_i` (the constraint
-        :math:`x_i = R_i\varphi_i` of the paper's eqs. (g1), (g2))."""
-        return self.s * self.q
-
 
 @dataclass(frozen=True)
 class Attachment:
@@ -329,24 +323,9 @@ class SymbolicSystem:
             mapping[b.qdd] = b.function.diff(self.t, 2)
         return mapping
 
-    @cached_property
-    def _from_time(self) -> dict[sp.Expr, sp.Symbol]:
-        mapping: dict[sp.Expr, sp.Symbol] = {}
-        for b in self.bodies:  # highest derivatives first
-            mapping[b.function.diff(self.t, 2)] = b.qdd
-            mapping[b.function.diff(self.t)] = b.qd
-            mapping[b.function] = b.q
-        return mapping
-
     def in_time(self, expr: Any) -> Any:
         """Replace q, qd, qdd by phi(t), phi'(t), phi''(t) (for display and mechanics)."""
         return _xreplace(expr, self._to_time)
-
-    def from_time(self, expr: Any) -> Any:
-        """The inverse of :meth:`in_time`."""
-        if isinstance(expr, sp.Basic | sp.MatrixBase):
-            return expr.subs(self._from_time)
-        return [self.from_time(e) for e in expr]
 
     @property
     def parameters(self) -> list[sp.Symbol]:
@@ -387,11 +366,6 @@ class SymbolicSystem:
     def lagrangian(self) -> sp.Expr:
         """:math:`L = T - V` (M5)."""
         return self.kinetic - self.potential
-
-    @cached_property
-    def hamiltonian_momenta(self) -> list[sp.Expr]:
-        r""":math:`p_i = \partial L/\partial\dot q_i = J_i\dot q_i` (M6)."""
-        return [b.J * b.qd for b in self.bodies]
 
     @cached_property
     def mass_matrix(self) -> sp.Matrix:

@@ -350,7 +350,7 @@ class _Bench:
         deformation = sp.Abs(_tidy(sum(b * v[i] for i, b in enumerate(self.lever(key)))))
         return [_tidy(A * sp.Abs(body.s * v[i]) / deformation) for i, body in enumerate(sym.bodies)]
 
-    def canonical(self, key: str, names: Sequence[sp.Symbol]) -> list[sp.Expr]:
+    def canonical(self, key: str) -> list[sp.Expr]:
         r""":math:`q_i = \sqrt{J_i/m_i}\,\varphi_i`: the point transformation that turns
         :math:`T = \sum J_i\dot\varphi_i^2/2` into :math:`\sum m_i\dot q_i^2/2`."""
         sym = self.sym(key)
@@ -1109,7 +1109,7 @@ def _lagrangian45(b: _Bench) -> Derived:
 
 def _canonical(b: _Bench) -> Derived:
     return Derived(
-        tuple(b.canonical("fig2", (q1, q2))),
+        tuple(b.canonical("fig2")),
         "q_i = sqrt(J_i/m_i) phi_i makes the engine's T = sum J_i phidot_i^2/2 equal "
         "to sum m_i qdot_i^2/2 (p_i = m_i qdot_i)",
     )
@@ -1138,7 +1138,7 @@ def _hamilton_equations(b: _Bench) -> Derived:
 
 def _q_ratio(b: _Bench) -> Derived:
     v = b.mode("fig2")
-    canon = b.canonical("fig2", (q1, q2))
+    canon = b.canonical("fig2")
     sym = b.sym("fig2")
     sub = {qq: v[i] for i, qq in enumerate(sym.q)}
     ratio = _tidy(canon[1].xreplace(sub) / canon[0].xreplace(sub))

@@ -123,7 +123,7 @@ def system_from_dict(data: dict[str, Any], *, source: str = "system") -> System:
     try:
         return System.model_validate(data)
     except ValidationError as exc:
-        raise ModelError(f"{source}: {_oneline(_one_line(exc, data))}") from None
+        raise ModelError(f"{source}: {_oneline(_one_line(exc))}") from None
 
 
 def system_from_text(
@@ -156,7 +156,7 @@ def validation_errors(
         loc = tuple(
             p for p in error["loc"] if not (isinstance(p, str) and p.startswith("function-"))
         )
-        out.append((loc, _oneline(_describe(error, data)), str(error["type"])))
+        out.append((loc, _oneline(_describe(error)), str(error["type"])))
     return out
 
 
@@ -185,16 +185,16 @@ def system_to_toml(system: System) -> str:
     return tomli_w.dumps(data)
 
 
-def _one_line(exc: ValidationError, data: Any) -> str:
+def _one_line(exc: ValidationError) -> str:
     errors = exc.errors(include_url=False)
     first = errors[0]
-    message = _describe(first, data)
+    message = _describe(first)
     if len(errors) > 1:
         message += f" (and {len(errors) - 1} more problem{'s' if len(errors) > 2 else ''})"
     return message
 
 
-def _describe(error: ErrorDetails | dict[str, Any], data: Any) -> str:
+def _describe(error: ErrorDetails | dict[str, Any]) -> str:
     loc = [p for p in error["loc"] if not (isinstance(p, str) and p.startswith("function-"))]
     kind = error["type"]
     msg: str = error["msg"]

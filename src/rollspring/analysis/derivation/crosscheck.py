@@ -150,7 +150,7 @@ def cross_check(
             simplified, zero = _zero((A - reference_A).row_join(c - reference_c), budget)
             report.checks.append(Check(name, "linearised equations vs -M^-1 K", simplified, zero))
         if result.omega2 or frequencies.omega2:
-            report.checks.append(_compare_omega2(name, result.omega2, frequencies, sym, budget))
+            report.checks.append(_compare_omega2(name, result.omega2, frequencies, budget))
         mechanics = result.extras.get("mechanics")
         if mechanics is not None:
             report.checks.append(
@@ -168,7 +168,6 @@ def _compare_omega2(
     name: str,
     omega2: list[Any],
     frequencies: Frequencies,
-    sym: SymbolicSystem,
     budget: float | None,
 ) -> Check:
     reference = frequencies.omega2

@@ -6,12 +6,12 @@ from rollspring.analysis.linear import (
     Equilibrium,
     LinearAnalysis,
     Mode,
-    analyze,
     find_equilibrium,
     linear_motion,
     normal_modes,
     stationary_weights,
 )
+from rollspring.analysis.modal import analyze
 
 __all__ = [
     "ZERO_MODE_TOLERANCE",

@@ -7,14 +7,11 @@ Each check returns plain sentences for ``LinearAnalysis.warnings``; they are rep
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rollspring.analysis.linear import LinearAnalysis
 from rollspring.physics import end_kinematics
-
-if TYPE_CHECKING:
-    from rollspring.analysis.linear import LinearAnalysis
 
 __all__ = ["is_exactly_linear", "percussion_attachments", "physics_warnings"]
 

@@ -72,7 +72,7 @@ import numpy as np
 import sympy as sp
 from sympy.physics.mechanics import dynamicsymbols
 
-from rollspring.analysis.linear import find_equilibrium
+from rollspring.analysis.linear import find_equilibrium, normal_modes
 from rollspring.model import Attachment as ModelAttachment
 from rollspring.model import System
 from rollspring.physics import end_kinematics, spring_state, system_arrays
@@ -687,8 +687,6 @@ class SymbolicSystem:
     def zero_mode_count(self) -> int:
         """Number of zero modes of (M, K), from the numbers (as rollspring.analyze counts them)."""
         if "n_zero" not in self._cache:
-            from rollspring.analysis.linear import normal_modes
-
             mass = np.array(sp.matrix2numpy(self.mass_matrix.xreplace(self.values)), dtype=float)
             stiff = np.array(
                 sp.matrix2numpy(self.stiffness_matrix.xreplace(self.values)), dtype=float

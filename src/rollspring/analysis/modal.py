@@ -1,0 +1,398 @@
+r"""Modal analysis of a system (:func:`analyze`): the modes about its equilibrium with the
+forces they change, the stationary point, the exact linear response to the initial conditions,
+and the physics checks on the result.
+
+The motion about the equilibrium is a sum of normal modes (:mod:`rollspring.analysis.linear`);
+every quantity that depends linearly on the state (centre positions, the CM, friction, normal
+forces, spring lengths) is then a constant plus a sum of sinusoids, whose amplitudes are
+reported here.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from rollspring.analysis.checks import physics_warnings
+from rollspring.analysis.linear import (
+    _SAME_FREQUENCY,
+    LinearAnalysis,
+    Mode,
+    find_equilibrium,
+    normal_modes,
+    stationary_weights,
+)
+from rollspring.model import System
+from rollspring.physics import (
+    SystemArrays,
+    contact_forces,
+    contact_forces_jacobian,
+    damping_matrix,
+    mass_matrix,
+    spring_state,
+    stiffness_matrix,
+    system_arrays,
+)
+from rollspring.physics.arrays import FloatArray
+
+__all__ = ["analyze"]
+
+
+def analyze(system: System) -> LinearAnalysis:
+    r"""Linear analysis of a system about the equilibrium nearest its initial placement.
+
+    Finds the equilibrium (:func:`find_equilibrium`), builds :math:`M` and :math:`K`
+    (docs/physics.md (M12)), the normal modes, the zero modes and the stationary point they imply
+    (M14), the exact linear response to the initial conditions (modal superposition): the
+    amplitude of every body, of the CM and of :math:`\hat X`, the friction and normal-force
+    amplitudes, the static friction coefficient the motion needs (:math:`\max |f|/N`), for two
+    bodies the paper's split of the spring into :math:`k_1, k_2`, and each spring's tilt and
+    tension.
+    """
+    arrays = system_arrays(system)
+    warnings: list[str] = []
+    equilibrium = find_equilibrium(arrays)
+    if not equilibrium.found:
+        warnings.append(
+            equilibrium.reason + "; modes are those at the initial placement, and no "
+            "response is computed"
+        )
+    q_eq = equilibrium.q
+    mass = mass_matrix(arrays)
+    stiffness = stiffness_matrix(arrays, q_eq)
+    eigenvalues, vectors, kinds = normal_modes(mass, stiffness)
+    d_friction, d_normal = contact_forces_jacobian(arrays, q_eq)
+    friction_eq, normal_eq = contact_forces(arrays, q_eq)
+    friction_eq = np.where(np.abs(friction_eq) < 1e-12 * _contact_scale(arrays), 0.0, friction_eq)
+    springs = spring_state(arrays, q_eq)
+
+    modes = []
+    for lam, vec, kind in zip(eigenvalues, vectors.T, kinds, strict=True):
+        modes.append(_mode(arrays, springs.lever, d_friction, d_normal, lam, vec, kind))
+
+    # zero modes and the stationary point (M14)
+    zero = [k for k, kind in enumerate(kinds) if kind == "zero"]
+    weights = stationary_weights(arrays, vectors, kinds)
+    position = velocity = None
+    if weights is not None:
+        position = float(weights @ arrays.x0)
+        velocity = float(_clean(weights @ arrays.v0, float(np.max(np.abs(arrays.v0)))))
+        if velocity != 0.0:
+            warnings.append(
+                f"the initial velocities move the stationary point X̂ uniformly at "
+                f"{velocity:.6g} m/s"
+            )
+    elif len(zero) == 1:
+        warnings.append("the conserved combination has zero total weight: no stationary point")
+    elif len(zero) > 1:
+        warnings.append(
+            f"{len(zero)} zero modes (parts of the system move freely): no single stationary point"
+        )
+
+    unstable = [m for m in modes if m.kind == "unstable"]
+    response: dict[str, Any] = {}
+    if not equilibrium.found:
+        pass
+    elif unstable:
+        warnings.append(
+            f"the equilibrium is unstable ({len(unstable)} mode(s) with negative stiffness, "
+            f"growth rate {unstable[0].omega:.6g} 1/s): no bounded linear response"
+        )
+    else:
+        response = _response(
+            arrays,
+            q_eq,
+            eigenvalues,
+            vectors,
+            kinds,
+            d_friction,
+            d_normal,
+            friction_eq,
+            normal_eq,
+            springs.lever,
+            weights,
+        )
+
+    tilt = _tilt_deg(springs.vector)
+    split = _spring_split(arrays, springs.lever) if equilibrium.found else None
+    damping = damping_matrix(arrays, q_eq)
+    if np.any(arrays.damping > 0):
+        ratios = []
+        for k, mode in enumerate(modes):
+            if mode.kind == "oscillating":
+                ratio = float(vectors[:, k] @ damping @ vectors[:, k]) / (2 * mode.omega)
+                modes[k] = replace(mode, damping_ratio=ratio)
+                ratios.append(f"{ratio:.4g}")
+        warnings.append(
+            "springs have damping: the modes are the undamped ones, with modal damping ratios "
+            f"({', '.join(ratios)}) from the modal projection of C; the response amplitudes are "
+            "those of the undamped motion (the first swing)"
+        )
+    analysis = LinearAnalysis(
+        system=system,
+        arrays=arrays,
+        equilibrium=equilibrium,
+        mass=mass,
+        stiffness=stiffness,
+        modes=modes,
+        equilibrium_friction=friction_eq,
+        equilibrium_normal=normal_eq,
+        spring_tilt_deg=tilt,
+        spring_tension=np.where(
+            np.abs(springs.tension) < 1e-12 * arrays.stiffness.sum(), 0.0, springs.tension
+        ),
+        spring_length=springs.length,
+        stationary_weights=weights,
+        stationary_position=position,
+        stationary_velocity=velocity,
+        amplitude=response.get("amplitude"),
+        velocity_amplitude=response.get("velocity_amplitude"),
+        drift_velocity=response.get("drift_velocity"),
+        cm_amplitude=response.get("cm_amplitude"),
+        stationary_amplitude=response.get("stationary_amplitude"),
+        friction_amplitude=response.get("friction_amplitude"),
+        normal_force_range=response.get("normal_force_range"),
+        required_mu=response.get("required_mu"),
+        spring_split=split,
+        warnings=warnings,
+    )
+    warnings.extend(physics_warnings(analysis))
+    return analysis
+
+
+def _contact_scale(arrays: SystemArrays) -> float:
+    return float(np.sum(arrays.mass) * max(arrays.gravity, 1.0) + np.sum(arrays.stiffness) * 1.0)
+
+
+def _mode(
+    arrays: SystemArrays,
+    lever: FloatArray,
+    d_friction: FloatArray,
+    d_normal: FloatArray,
+    eigenvalue: float,
+    vector: FloatArray,
+    kind: str,
+) -> Mode:
+    shape_x = arrays.scale * vector
+    biggest = int(np.argmax(np.abs(shape_x)))
+    norm = shape_x[biggest]
+    shape_q = vector / norm
+    shape_x = shape_x / norm
+    length_scale = float(np.max(np.abs(lever), initial=0.0)) * float(np.max(np.abs(shape_q)))
+    # rounding noise of an exact zero, relative to the largest force change along the mode: a
+    # contact force's, or the springs' (k times the extension; frictionless geometries have
+    # contact forces that vanish to first order, and then only the springs set the scale)
+    force_scale = float(np.max(np.abs(np.concatenate([d_friction, d_normal])), initial=0.0))
+    force_scale *= float(np.max(np.abs(shape_q)))
+    force_scale = max(force_scale, float(np.max(arrays.stiffness, initial=0.0)) * length_scale)
+    return Mode(
+        eigenvalue=float(eigenvalue),
+        omega=float(math.sqrt(abs(eigenvalue))),
+        kind=str(kind),
+        shape_q=_clean(shape_q, float(np.max(np.abs(shape_q)))),
+        shape_x=_clean(shape_x, 1.0),
+        spring_extension=_clean(lever @ shape_q, length_scale),
+        friction=_clean(d_friction @ shape_q, force_scale),
+        normal_force=_clean(d_normal @ shape_q, force_scale),
+    )
+
+
+def _clean(values: FloatArray, scale: float, relative: float = 1e-12) -> FloatArray:
+    """Set entries below ``relative * scale`` (rounding noise of an exact zero) to 0."""
+    values = np.asarray(values, dtype=float)
+    return np.where(np.abs(values) <= relative * scale, 0.0, values)
+
+
+@dataclass(frozen=True)
+class _Component:
+    """A quantity g(t) = centre + sum_groups Re(amplitude_g exp(i omega_g t)) (+ drift t)."""
+
+    centre: FloatArray
+    amplitudes: np.ndarray  # (groups, ...) complex
+    drift: FloatArray
+
+    @property
+    def amplitude(self) -> FloatArray:
+        """Supremum over time of |g - centre| (exact for one frequency; for several, the
+        supremum over all phases, approached arbitrarily closely by incommensurate motion)."""
+        result: FloatArray = np.sum(np.abs(self.amplitudes), axis=0)
+        return result
+
+
+def _response(
+    arrays: SystemArrays,
+    q_eq: FloatArray,
+    eigenvalues: FloatArray,
+    vectors: FloatArray,
+    kinds: np.ndarray,
+    d_friction: FloatArray,
+    d_normal: FloatArray,
+    friction_eq: FloatArray,
+    normal_eq: FloatArray,
+    lever: FloatArray,
+    weights: FloatArray | None,
+) -> dict[str, Any]:
+    r"""Modal superposition of the free response from q(0) = 0, qdot(0) = v0/s.
+
+    With :math:`u = q - q^*`, :math:`\eta_n = v_n^T M u`: an oscillating mode gives
+    :math:`\eta_n(t) = \mathrm{Re}[(\eta_{n0} - i\dot\eta_{n0}/\omega_n) e^{i\omega_n t}]`, a
+    zero mode :math:`\eta_{n0} + \dot\eta_{n0} t`.
+    """
+    mass = arrays.inertia
+    u0 = -q_eq
+    udot0 = arrays.v0 / arrays.scale
+    eta0 = vectors.T @ (mass * u0)
+    etadot0 = vectors.T @ (mass * udot0)
+    oscillating = [k for k, kind in enumerate(kinds) if kind == "oscillating"]
+    zero = [k for k, kind in enumerate(kinds) if kind == "zero"]
+    omegas = np.sqrt(eigenvalues[oscillating])
+    complex_amp = eta0[oscillating] - 1j * etadot0[oscillating] / omegas
+    groups = _frequency_groups(omegas)
+
+    def component(per_mode: FloatArray, centre_eq: FloatArray | float) -> _Component:
+        """per_mode: (..., n_modes) coefficient of each M-normalised mode in the quantity."""
+        per_mode = np.asarray(per_mode)
+        centre = centre_eq + per_mode[..., zero] @ eta0[zero]
+        drift = per_mode[..., zero] @ etadot0[zero]
+        osc = per_mode[..., oscillating] * complex_amp
+        amps = (
+            np.array([osc[..., g].sum(axis=-1) for g in groups])
+            if groups
+            else np.zeros((0, *per_mode.shape[:-1]), dtype=complex)
+        )
+        return _Component(np.asarray(centre, dtype=float), amps, np.asarray(drift, dtype=float))
+
+    x_modes = arrays.scale[:, None] * vectors
+    x_eq = arrays.x0 + arrays.scale * q_eq
+    position = component(x_modes, x_eq)
+    cm = component(
+        arrays.mass @ x_modes / arrays.mass.sum(), float(arrays.mass @ x_eq / arrays.mass.sum())
+    )
+    friction = component(d_friction @ vectors, friction_eq)
+    normal = component(d_normal @ vectors, normal_eq)
+    length_scale = float(np.max(position.amplitude, initial=0.0))
+    # rounding noise of an exact zero: relative to the largest force change the motion brings
+    extension = np.abs(lever @ vectors[:, oscillating]) @ np.abs(complex_amp)  # per spring
+    force_scale = float(np.max(arrays.stiffness * extension, initial=0.0))
+    friction_amplitude = _clean(friction.amplitude, force_scale)
+    friction = _Component(_clean(friction.centre, force_scale), friction.amplitudes, friction.drift)
+    required = _required_mu(arrays, friction, normal)
+    required[(friction_amplitude == 0.0) & (friction.centre == 0.0)] = 0.0
+    result: dict[str, Any] = {
+        "amplitude": position.amplitude,
+        # d/dt multiplies each frequency group's complex amplitude by i omega
+        "velocity_amplitude": np.sum(
+            np.abs(position.amplitudes) * omegas[[g[0] for g in groups]][:, None], axis=0
+        )
+        if groups
+        else np.zeros(arrays.n_bodies),
+        "drift_velocity": _clean(position.drift, float(np.max(np.abs(arrays.v0), initial=0.0))),
+        "cm_amplitude": float(_clean(cm.amplitude, length_scale)),
+        "friction_amplitude": friction_amplitude,
+        "normal_force_range": np.stack(
+            [normal.centre - normal.amplitude, normal.centre + normal.amplitude], axis=-1
+        ),
+        "required_mu": required,
+        "stationary_amplitude": None,
+    }
+    if weights is not None:
+        xhat = component(weights @ x_modes, float(weights @ x_eq))
+        result["stationary_amplitude"] = float(_clean(xhat.amplitude, length_scale))
+    return result
+
+
+def _frequency_groups(omegas: FloatArray) -> list[list[int]]:
+    groups: list[list[int]] = []
+    for k, omega in enumerate(omegas):
+        if groups and abs(omega - omegas[groups[-1][0]]) <= _SAME_FREQUENCY * omega:
+            groups[-1].append(k)
+        else:
+            groups.append([k])
+    return groups
+
+
+def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component) -> FloatArray:
+    r"""max over the motion of :math:`|f_i|/N_i` per body (inf if :math:`N_i` can reach 0).
+
+    With one frequency the extreme is found over the phase :math:`\theta\in[0, 2\pi)` (dense
+    sampling, then a bounded refinement); with several, over the torus of independent phases
+    (the supremum approached by incommensurate motion).
+    """
+    n = arrays.n_bodies
+    out = np.zeros(n)
+    n_groups = friction.amplitudes.shape[0]
+    rng = np.random.default_rng(12345)
+    for i in range(n):
+        if arrays.rolls[i] == 0:
+            out[i] = 0.0
+            continue
+        f_c, n_c = float(friction.centre[i]), float(normal.centre[i])
+        a_f = friction.amplitudes[:, i] if n_groups else np.zeros(0, complex)
+        a_n = normal.amplitudes[:, i] if n_groups else np.zeros(0, complex)
+        if n_c - np.sum(np.abs(a_n)) <= 0:
+            out[i] = math.inf
+            continue
+
+        def ratio(theta: FloatArray) -> FloatArray:
+            phase = np.exp(1j * np.atleast_2d(theta))
+            # called only within this iteration: the loop's current values are the ones meant
+            f = f_c + np.real(phase @ a_f)  # noqa: B023
+            normal_force = n_c + np.real(phase @ a_n)  # noqa: B023
+            result: FloatArray = np.abs(f) / normal_force
+            return result
+
+        if n_groups == 0:
+            out[i] = abs(f_c) / n_c
+            continue
+        if n_groups == 1:
+            grid = np.linspace(0.0, 2 * math.pi, 4097)[:, None]
+        else:
+            grid = rng.uniform(0.0, 2 * math.pi, size=(20000, n_groups))
+        values = ratio(grid)
+        best = int(np.argmax(values))
+        import scipy.optimize  # loaded on demand (~0.1 s), not by every analysis
+
+        res = scipy.optimize.minimize(
+            lambda th: -float(ratio(th[None, :])[0]),
+            grid[best],
+            method="Nelder-Mead",
+            options={"xatol": 1e-12, "fatol": 1e-15, "maxiter": 2000},
+        )
+        out[i] = max(float(values[best]), -float(res.fun))
+    return out
+
+
+def _tilt_deg(vector: FloatArray) -> FloatArray:
+    """Angle of each spring line above the horizontal, from its first end to its second, in
+    (-90, 90] degrees."""
+    angle = np.degrees(np.arctan2(vector[..., 1], vector[..., 0]))
+    angle = np.where(angle > 90.0, angle - 180.0, angle)
+    angle = np.where(angle <= -90.0, angle + 180.0, angle)
+    return np.where(np.abs(angle) < 1e-10, 0.0, angle)
+
+
+def _spring_split(arrays: SystemArrays, lever: FloatArray) -> dict[str, Any] | None:
+    r"""For two bodies joined by one spring: the paper's k1, k2 about the stationary point.
+
+    :math:`\Omega_i^2 = k b_i^2/J_i` (body i alone, the other clamped, paper's Appendix B),
+    :math:`\Omega^2 = \Omega_1^2 + \Omega_2^2`; body i's share of the deformation is
+    :math:`\sigma_i = \Omega_i^2/\Omega^2` and :math:`k_i = k/\sigma_i`
+    (paper eqs. (k1), (k2); :math:`1/k = 1/k_1 + 1/k_2`, eq. (part)). docs/physics.md section 7.1.
+    """
+    if arrays.n_bodies != 2 or arrays.n_springs != 1 or np.any(arrays.end_body < 0):
+        return None
+    k = float(arrays.stiffness[0])
+    clamped = k * lever[0] ** 2 / arrays.inertia
+    total = float(np.sum(clamped))
+    if total <= 0 or np.any(clamped <= 0):
+        return None
+    share = clamped / total
+    return {
+        "clamped_omega": np.sqrt(clamped),
+        "share": share,
+        "k": k / share,
+        "omega": math.sqrt(total),
+    }

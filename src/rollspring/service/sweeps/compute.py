@@ -698,10 +698,10 @@ def _single_run(
             np.ptp(trajectory.stationary_x - drift * trajectory.t)
         )
     out["energy_dissipated"][r] = float(trajectory.energy[0] - trajectory.energy[-1])
-    out["time_slipping"][r] = _time_slipping(trajectory.events, ids, float(trajectory.t[-1]))
+    out["time_slipping"][r] = _time_slipping(trajectory.events, float(trajectory.t[-1]))
 
 
-def _time_slipping(events: Sequence[Mapping[str, Any]], ids: list[str], end: float) -> float:
+def _time_slipping(events: Sequence[Mapping[str, Any]], end: float) -> float:
     """Total time during which at least one body slips (from the exact event instants)."""
     intervals = []
     since: dict[str, float] = {}

@@ -49,13 +49,16 @@ demo: $(DEMO_STAMP)
 	$(BIN)/rollspring simulate hoop-cylinder --duration 10 --rtol 1e-10
 	$(BIN)/rollspring report hoop-cylinder -o build/demo/report.html
 
-# the hygiene checks (pyproject.toml: [tool.ruff], [tool.mypy]): ruff's lint and format check,
-# and mypy on the files it configures (strict on model, physics, analysis, simulate)
+# the hygiene checks (pyproject.toml: [tool.ruff], [tool.mypy], [tool.importlinter]): ruff's
+# lint and format check, mypy on the files it configures (strict on model, physics, analysis,
+# simulate) and the import-linter contracts (the layers; no SymPy/Matplotlib/pandas/IPython in
+# physics and simulate)
 .PHONY: lint
 lint: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
 	$(BIN)/mypy
+	$(BIN)/lint-imports
 
 # the hygiene checks, every test, and the documentation site built with warnings as errors
 # (its examples run)

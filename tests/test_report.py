@@ -304,19 +304,23 @@ def test_the_papers_claims_about_fig_2_with_their_verdicts(report: Report, page:
     rows = page.tables["paper-claims"][1:]
     shown = [(row[0][0], row[2][0]) for row in rows]
     claims = [
-        c
-        for c in paper_check.paper_claims()
-        if {"fig2", "fig2-radii"} & {k.strip() for k in c.system.split(",")}
+        c for c in paper_check.paper_claims() if "fig2" in {k.strip() for k in c.system.split(",")}
     ]
     assert [location for location, _ in shown] == [c.location for c in claims]
     assert len(shown) >= 20
-    words = {"verified": "✔ verified", "holds-only-if": "⚠ holds only if", "wrong": "✘ wrong"}
-    for claim in claims[:3]:  # the verdicts are paper_check's
-        assert dict(shown)[claim.location] == words[paper_check.check_claim(claim).verdict]
+    words = {
+        "verified": "✔ verified",
+        "holds-under-stated-assumption": "☑ holds under the paper's stated assumption",
+        "holds-only-if": "⚠ holds only if",
+        "wrong": "✘ wrong",
+    }
+    for claim, (_, verdict) in list(zip(claims, shown, strict=True))[:3]:  # paper_check's verdicts
+        assert verdict == words[paper_check.check_claim(claim).verdict]
     # the frequency of eq. (QQQ1) is right (tests above recompute it from the closed form)
-    assert ("Sec. 4.1, eq. (QQQ1)", "✔ verified") in shown
-    # App. A's "f1/f2 = 3/2" is a ratio of magnitudes: the signed ratio is -3/2
-    assert dict(shown)["Sec. 2; App. A"] != "✔ verified"
+    assert ("Sec. 5.1, eq. (QQQ1)", "✔ verified") in shown
+    # Sec. 3's "f1/f2 = 3/2" is a ratio of the amounts the paper names: the signed ratio is -3/2
+    ratio = [c.key for c in claims].index("friction-ratio")
+    assert shown[ratio][1] == words["holds-under-stated-assumption"]
 
 
 # -- self-contained --------------------------------------------------------------------------
@@ -409,7 +413,7 @@ def test_which_of_the_papers_systems_a_system_is() -> None:
     keys = {name: None if f is None else f[1] for name, f in figures.items()}
     assert keys == {
         "frictionless": {"fig3"},
-        "hoop-cylinder": {"fig2", "fig2-radii"},
+        "hoop-cylinder": {"fig2"},
         "three-bodies": None,
         "two-cylinders": {"two-cylinders"},
         "two-hoops": {"two-hoops"},

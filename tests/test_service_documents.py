@@ -12,7 +12,7 @@ from rollspring.analysis.paper_check import VERDICTS, check_paper, paper_figure
 from rollspring.service.documents import derivation_payload
 
 STEP_KEYS = {"words", "latex", "mathml", "ref"}
-CLAIM_KEYS = {"location", "claim", "verdict", "correction", "reason"}
+CLAIM_KEYS = {"location", "claim", "quote", "verdict", "assumption", "correction", "reason"}
 
 
 @pytest.fixture(scope="module")
@@ -63,8 +63,8 @@ def test_the_papers_claims_as_paper_check_json_gives_them(hoop_cylinder: dict) -
     for claim in claims:
         assert set(claim) == CLAIM_KEYS
         assert claim["verdict"] in VERDICTS
-    assert {"location": "Sec. 4.1, eq. (QQQ1)", "verdict": "verified"}.items() <= next(
-        c for c in claims if c["location"] == "Sec. 4.1, eq. (QQQ1)"
+    assert {"location": "Sec. 5.1, eq. (QQQ1)", "verdict": "verified"}.items() <= next(
+        c for c in claims if c["location"] == "Sec. 5.1, eq. (QQQ1)"
     ).items()
     _, keys = paper_figure(load_system("hoop-cylinder"))
     expected = [

@@ -1,11 +1,13 @@
-"""``rollspring paper-check``: every quantitative claim of the paper, with its computed verdict.
+"""``rollspring paper-check``: every quantitative statement of the paper, with its verdict.
 
-``--json`` prints a list of {``location``, ``claim`` (LaTeX), ``verdict`` (``verified`` |
-``wrong`` | ``holds-only-if``), ``correction`` (LaTeX or null), ``reason``}; ``--format text``
-(default) a Rich table with ✔/⚠/✘ marks, ``--format markdown`` a Markdown table with the LaTeX in
-``$...$``. The verdicts come from :mod:`rollspring.analysis.paper_check` (the derivation engine),
-through :func:`rollspring.service.documents.paper_checks`. The command is added to an app by
-:func:`register`.
+``--json`` prints a list of {``location``, ``claim`` (LaTeX), ``quote`` (the paper's words,
+verbatim from its LaTeX source), ``verdict`` (``verified`` | ``holds-under-stated-assumption`` |
+``holds-only-if`` | ``wrong``), ``assumption`` (the paper's stated assumptions the verdict relies
+on, with the paper's words, or null), ``correction`` (LaTeX or null), ``reason``}; ``--format
+text`` (default) a Rich table with ✔/☑/⚠/✘ marks, ``--format markdown`` a Markdown table with the
+LaTeX in ``$...$``. The verdicts come from :mod:`rollspring.analysis.paper_check` (the
+derivation engine), through :func:`rollspring.service.documents.paper_checks`. The command is
+added to an app by :func:`register`.
 """
 
 from __future__ import annotations
@@ -25,23 +27,31 @@ if TYPE_CHECKING:
 
 __all__ = [
     "FORMATS",
+    "HOLDS_STATED",
     "PaperCheckError",
     "markdown_table",
     "paper_check",
     "plain",
+    "quote_text",
     "register",
     "summary",
 ]
 
 # the verdicts of rollspring.analysis.paper_check (imported when the command runs: SymPy)
 VERIFIED, WRONG, HOLDS_ONLY_IF = "verified", "wrong", "holds-only-if"
+HOLDS_STATED = "holds-under-stated-assumption"
 
 #: Formats ``--format`` accepts.
 FORMATS = ("text", "markdown")
 
-_MARK = {VERIFIED: "✔", WRONG: "✘", HOLDS_ONLY_IF: "⚠"}
-_WORDS = {VERIFIED: "verified", WRONG: "wrong", HOLDS_ONLY_IF: "holds only if"}
-_STYLE = {VERIFIED: "green", WRONG: "red", HOLDS_ONLY_IF: "yellow"}
+_MARK = {VERIFIED: "✔", HOLDS_STATED: "☑", HOLDS_ONLY_IF: "⚠", WRONG: "✘"}
+_WORDS = {
+    VERIFIED: "verified",
+    HOLDS_STATED: "holds under the paper's stated assumption",
+    HOLDS_ONLY_IF: "holds only if",
+    WRONG: "wrong",
+}
+_STYLE = {VERIFIED: "green", HOLDS_STATED: "cyan", HOLDS_ONLY_IF: "yellow", WRONG: "red"}
 
 
 def paper_check(
@@ -51,8 +61,9 @@ def paper_check(
         typer.Option("--format", "-f", help=f"Output format: {', '.join(FORMATS)}."),
     ] = "text",
 ) -> None:
-    """Check every quantitative claim of the paper against the symbolic derivation: ✔ verified,
-    ✘ wrong (with the correction) or ⚠ holds only under a condition (stated)."""
+    """Check every quantitative statement of the paper against the symbolic derivation: ✔
+    verified, ☑ holds under an assumption the paper states, ⚠ holds only under a condition the
+    paper does not state (named), ✘ wrong (with the correction); each with the paper's words."""
     if format not in FORMATS:
         raise PaperCheckError(
             f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})"
@@ -72,12 +83,24 @@ def paper_check(
 
 
 def summary(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
-    """'N claims: a verified, b hold only under a condition, c wrong'."""
+    """'N claims: a verified, b hold under an assumption the paper states, c hold only under a
+    condition the paper does not state, d wrong'."""
     counts = Counter(c.verdict for c in checks)
     return (
-        f"{len(checks)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_ONLY_IF]} hold "
-        f"only under a condition, {counts[WRONG]} wrong"
+        f"{len(checks)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_STATED]} hold under "
+        f"an assumption the paper states, {counts[HOLDS_ONLY_IF]} hold only under a condition "
+        f"the paper does not state, {counts[WRONG]} wrong"
     )
+
+
+def quote_text(quote: str) -> str:
+    """The paper's words (LaTeX source) as readable text: references and environments dropped,
+    the mathematics through :func:`plain`."""
+    text = re.sub(r"\\ref\{fig(\d+)\}", r"\1", quote)
+    text = re.sub(r"\\ref\{([^}]*)\}", r"\1", text)
+    text = re.sub(r"\\(begin|end)\{[a-z*]+\}", " ", text)
+    text = text.replace("~", " ").replace("$", "")
+    return plain(text)
 
 
 def markdown_table(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
@@ -87,15 +110,15 @@ def markdown_table(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
         "",
         summary(checks) + ".",
         "",
-        "| | where | claim | verdict | correction | reason |",
-        "|---|---|---|---|---|---|",
+        "| | where | the paper says | claim | verdict | correction | reason |",
+        "|---|---|---|---|---|---|---|",
     ]
     for check in checks:
         correction = f"${_cell_math(check.correction)}$" if check.correction else ""
         lines.append(
             f"| {_MARK[check.verdict]} | {_cell(check.claim.location)} | "
-            f"${_cell_math(check.claim.latex)}$ | {_WORDS[check.verdict]} | {correction} | "
-            f"{_cell(check.reason)} |"
+            f"“{_cell(quote_text(check.claim.quote))}” | ${_cell_math(check.claim.latex)}$ | "
+            f"{_WORDS[check.verdict]} | {correction} | {_cell(check.reason)} |"
         )
     return "\n".join(lines) + "\n"
 
@@ -115,7 +138,7 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
     from rollspring.cli.app import _stdout
 
     table = Table(
-        title="The paper's claims, checked by the derivation engine",
+        title="The paper's statements, checked by the derivation engine",
         title_justify="left",
         show_lines=True,
     )
@@ -125,17 +148,20 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
     table.add_column("verdict", ratio=4, overflow="fold")
     for check in checks:
         verdict = _WORDS[check.verdict]
-        if check.verdict == HOLDS_ONLY_IF:
+        if check.verdict in (HOLDS_STATED, HOLDS_ONLY_IF):
             verdict = check.reason
         elif check.verdict == WRONG:
             verdict = f"wrong: {check.reason}"
+        if check.verdict != VERIFIED:
+            for assumption in check.claim.assumptions:
+                verdict += f"\nstated ({assumption.location}): “{quote_text(assumption.quote)}”"
         if check.correction:
             verdict += f"\ncorrect: {plain(check.correction)}"
         mark = f"[{_STYLE[check.verdict]}]{_MARK[check.verdict]}[/]"
         table.add_row(
             mark,
             Text(check.claim.location),
-            Text(plain(check.claim.latex)),
+            Text(f"{plain(check.claim.latex)}\n“{quote_text(check.claim.quote)}”"),
             Text(verdict, style=_STYLE[check.verdict] if check.verdict != VERIFIED else ""),
         )
     console = _stdout()

@@ -20,7 +20,14 @@ import numpy as np
 
 from rollspring.analysis import LinearAnalysis
 from rollspring.analysis.derivation import Derivation, Section
-from rollspring.analysis.paper_check import HOLDS_ONLY_IF, VERDICTS, VERIFIED, WRONG, ClaimCheck
+from rollspring.analysis.paper_check import (
+    HOLDS_ONLY_IF,
+    HOLDS_STATED,
+    VERDICTS,
+    VERIFIED,
+    WRONG,
+    ClaimCheck,
+)
 from rollspring.analysis.report import CONVENTIONS
 from rollspring.model import System
 from rollspring.outputs import figures
@@ -927,6 +934,7 @@ class _Page:
     def section_paper_check(self, label: str, checks: Sequence[ClaimCheck]) -> Markup:
         words = {
             VERIFIED: ("✔ verified", "ok"),
+            HOLDS_STATED: ("☑ holds under the paper's stated assumption", "ok"),
             HOLDS_ONLY_IF: ("⚠ holds only if", "other"),
             WRONG: ("✘ wrong", "bad"),
         }
@@ -939,7 +947,7 @@ class _Page:
                     Markup(
                         f"{esc(check.claim.statement)}<br>"
                         f'<span class="cellmath">{self.math(check.claim.latex, display=False)}'
-                        "</span>"
+                        f"</span><br><q>{esc(check.claim.quote)}</q>"
                     ),
                     Markup(
                         f'<span class="verdict-{css}" data-verdict="{esc(check.verdict)}">'
@@ -956,13 +964,14 @@ class _Page:
             )
         counts = {v: sum(1 for c in checks if c.verdict == v) for v in VERDICTS}
         intro = Markup(
-            f"<p>This system is the paper's {esc(label)}. Each quantitative claim the paper makes "
-            "about it is derived again by rollspring's derivation engine, on the paper's system "
-            "with its parameters as symbols (m₁, m₂, R, k …), and compared with "
-            "<code>simplify(paper − derived) == 0</code>: "
-            f"{counts[VERIFIED]} verified, {counts[HOLDS_ONLY_IF]} hold only under a condition, "
-            f"{counts[WRONG]} wrong. "
-            "(<code>rollspring paper-check</code> lists every claim of the paper.)</p>"
+            f"<p>This system is the paper's {esc(label)}. Each quantitative statement the paper "
+            "makes about it (quoted from its source) is derived again by rollspring's derivation "
+            "engine, on the paper's system with its parameters as symbols (m₁, m₂, R, k …), and "
+            "compared with <code>simplify(paper − derived) == 0</code>: "
+            f"{counts[VERIFIED]} verified, {counts[HOLDS_STATED]} hold under an assumption the "
+            f"paper states, {counts[HOLDS_ONLY_IF]} hold only under a condition the paper does "
+            f"not state, {counts[WRONG]} wrong. "
+            "(<code>rollspring paper-check</code> lists every statement of the paper.)</p>"
         )
         return self.section(
             "paper-check",

@@ -142,28 +142,45 @@ def paper_check_page() -> str:
     lines = [
         "# The paper, claim by claim",
         "",
-        "Every quantitative claim of G. Nyitray, *On the edge of complexity: the simplest not "
-        "simple coupled mechanical system* (arXiv 2508.01379), compared by the derivation engine "
-        "with what it derives from the exact model. Generated at build time from "
-        "`rollspring.check_paper()` (the same records `rollspring paper-check` prints): "
+        "Every quantitative statement of G. Nyitray, *On the edge of complexity: the simplest "
+        "not simple coupled mechanical system* (arXiv 2508.01379) — abstract, sections, "
+        "appendices, displayed formulas, figure captions — quoted from its LaTeX source and "
+        "compared by the derivation engine with what it derives from the exact model. Generated "
+        "at build time from `rollspring.check_paper()` (the same records "
+        "`rollspring paper-check` prints): "
         f"**{len(checks)} claims: {counts.get('verified', 0)} verified, "
-        f"{counts.get('holds-only-if', 0)} hold only under a condition the paper does not state, "
-        f"{counts.get('wrong', 0)} wrong.**",
+        f"{counts.get('holds-under-stated-assumption', 0)} hold under an assumption the paper "
+        f"states, {counts.get('holds-only-if', 0)} hold only under a condition the paper does "
+        f"not state, {counts.get('wrong', 0)} wrong.**",
         "",
-        "Verdicts: *verified* — the paper's expression equals the derived one; *holds only if* — "
-        "it holds only under a condition the paper does not state (the reason names it; a "
-        "correction gives the general form); *wrong* — it does not hold, and the correction is "
-        "the right expression.",
+        "Verdicts: *verified* — the paper's expression equals the derived one; *holds under the "
+        "paper's stated assumption* — it holds under an assumption the paper itself states "
+        "(released from rest, magnitudes, small angles, the centres level; the paper's words "
+        "are quoted); *holds only if* — it holds only under a condition the paper does not state "
+        "(the reason names it; a correction gives the form that holds without it); *wrong* — it "
+        "does not hold, and the correction is the right expression in the paper's own terms.",
         "",
     ]
-    marks = {"verified": "✔ verified", "holds-only-if": "◐ holds only if", "wrong": "✘ wrong"}
+    marks = {
+        "verified": "✔ verified",
+        "holds-under-stated-assumption": "☑ holds under the paper's stated assumption",
+        "holds-only-if": "◐ holds only if",
+        "wrong": "✘ wrong",
+    }
     for check in checks:
         claim = check.claim
         lines += [
             f"* **{_words(claim.location)}** — *{marks.get(check.verdict, check.verdict)}*. "
             f"{_words(claim.statement)}: {{math}}`{_cell(claim.latex)}`",
             "",
+            f"  The paper: “{_words(claim.quote)}”",
+            "",
         ]
+        for assumption in claim.assumptions if check.assumption else ():
+            lines += [
+                f"  Stated ({_words(assumption.location)}): “{_words(assumption.quote)}”",
+                "",
+            ]
         if check.correction:
             lines += [f"  Corrected: {{math}}`{_cell(check.correction)}`", ""]
         lines += [f"  Why: {_words(check.reason)}", ""]

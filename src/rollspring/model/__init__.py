@@ -12,6 +12,8 @@ from rollspring.model.catalog import DEFAULT_PRESET, preset_names, preset_path
 
 if TYPE_CHECKING:
     from rollspring.model.files import (
+        MAX_FILE_BYTES,
+        as_system,
         load_system,
         system_from_dict,
         system_from_text,
@@ -23,6 +25,8 @@ if TYPE_CHECKING:
     from rollspring.model.placement import rolled
     from rollspring.model.schema import (
         INERTIA_FACTORS,
+        LIMITS,
+        RANGES,
         Anchor,
         Attachment,
         Body,
@@ -35,6 +39,8 @@ if TYPE_CHECKING:
 _LAZY = {
     **dict.fromkeys(
         (
+            "MAX_FILE_BYTES",
+            "as_system",
             "load_system",
             "system_from_dict",
             "system_from_text",
@@ -47,7 +53,17 @@ _LAZY = {
     ),
     "rolled": "rollspring.model.placement",
     **dict.fromkeys(
-        ("INERTIA_FACTORS", "Anchor", "Attachment", "Body", "ExternalForce", "Spring", "System"),
+        (
+            "INERTIA_FACTORS",
+            "LIMITS",
+            "RANGES",
+            "Anchor",
+            "Attachment",
+            "Body",
+            "ExternalForce",
+            "Spring",
+            "System",
+        ),
         "rollspring.model.schema",
     ),
 }
@@ -70,12 +86,16 @@ def __dir__() -> list[str]:
 __all__ = [
     "DEFAULT_PRESET",
     "INERTIA_FACTORS",
+    "LIMITS",
+    "MAX_FILE_BYTES",
+    "RANGES",
     "Anchor",
     "Attachment",
     "Body",
     "ExternalForce",
     "Spring",
     "System",
+    "as_system",
     "load_system",
     "preset_names",
     "preset_path",

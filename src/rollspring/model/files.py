@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import json
 import math
+import os
+import re
+import stat
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -17,6 +20,8 @@ from rollspring.model.schema import System
 
 __all__ = [
     "DEFAULT_PRESET",
+    "MAX_FILE_BYTES",
+    "as_system",
     "load_system",
     "preset_names",
     "preset_path",
@@ -29,14 +34,32 @@ __all__ = [
 ]
 
 
-def load_system(source: str | Path) -> System:
+#: The largest system file read (bytes): a system at the model's limits (docs/system-files.md)
+#: takes well under this; a bigger file is refused before it is read.
+MAX_FILE_BYTES = 4 * 1024 * 1024
+
+#: The most characters of a path or a value a message shows (then "…"): a message stays a line.
+_SHOWN_CHARACTERS = 120
+
+
+def load_system(source: str | os.PathLike[str]) -> System:
     """Load a system from a ``.toml`` or ``.json`` file, or by preset name.
 
     Raises :class:`~rollspring.errors.ModelError` with a one-line message naming the file, the
-    field and the reason for a missing file, a syntax error or an invalid value.
+    field and the reason for a missing file, a syntax error or an invalid value. Only a regular
+    file of at most :data:`MAX_FILE_BYTES` is read (not a folder, a device, a FIFO or a socket;
+    checked before it is opened, and opened without blocking).
     """
-    path = Path(source)
-    if not path.exists():
+    if not isinstance(source, str | os.PathLike):
+        raise ModelError(
+            f"system: must be a file path or a preset name (got {type(source).__name__})"
+        )
+    try:
+        path = Path(source)
+        exists = os.path.lexists(path)
+    except (TypeError, ValueError) as exc:  # a NUL character; a path that is not text
+        raise ModelError(f"{_shown(source)}: not a valid path ({_oneline(exc)})") from None
+    if not exists:
         if isinstance(source, str) and source in preset_names():
             path = preset_path(source)
         elif isinstance(source, str) and not path.suffix and "/" not in source:
@@ -46,16 +69,7 @@ def load_system(source: str | Path) -> System:
             )
         else:
             raise ModelError(f"{_shown(source)}: file not found")
-    if path.is_dir():
-        raise ModelError(f"{_shown(path)}: is a folder, not a system file")
-    try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise ModelError(f"{_shown(path)}: cannot read ({exc.strerror})") from None
-    try:
-        text = raw.decode("utf-8-sig")  # a leading byte-order mark is allowed
-    except UnicodeDecodeError:
-        raise ModelError(f"{_shown(path)}: not a text file (not valid UTF-8)") from None
+    text = _read_text(path)
     try:
         data = _parse(text, path)
     except RecursionError:
@@ -69,13 +83,123 @@ def load_system(source: str | Path) -> System:
     return system_from_dict(data, source=_shown(path))
 
 
+_KINDS = (
+    (stat.S_ISDIR, "a folder"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
+
+
+def _not_regular(mode: int) -> str | None:
+    """What a file of ``mode`` is when it is not a regular file (None for a regular file)."""
+    if stat.S_ISREG(mode):
+        return None
+    return next((kind for test, kind in _KINDS if test(mode)), "not a regular file")
+
+
+def _read_text(path: Path) -> str:
+    """The text of the regular file ``path``, at most :data:`MAX_FILE_BYTES`: checked with
+    ``stat`` before opening, opened non-blocking (a FIFO swapped in meanwhile never hangs), the
+    open file checked again, and no more than the cap read."""
+    shown = _shown(path)
+    try:
+        info = os.stat(path)
+    except OSError as exc:
+        raise ModelError(f"{shown}: cannot read ({exc.strerror or exc})") from None
+    kind = _not_regular(info.st_mode)
+    if kind == "a folder":
+        raise ModelError(f"{shown}: is a folder, not a system file")
+    if kind is not None:
+        raise ModelError(f"{shown}: is {kind}, not a system file (give a regular file)")
+    if info.st_size > MAX_FILE_BYTES:
+        raise ModelError(_too_large(shown, info.st_size))
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0)
+    try:
+        descriptor = os.open(path, flags)
+    except OSError as exc:
+        raise ModelError(f"{shown}: cannot read ({exc.strerror or exc})") from None
+    try:
+        kind = _not_regular(os.fstat(descriptor).st_mode)
+        if kind is not None:  # replaced between the two looks
+            raise ModelError(f"{shown}: is {kind}, not a system file (give a regular file)")
+        chunks, size = [], 0
+        while size <= MAX_FILE_BYTES:
+            chunk = os.read(descriptor, MAX_FILE_BYTES + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError as exc:
+        raise ModelError(f"{shown}: cannot read ({exc.strerror or exc})") from None
+    finally:
+        os.close(descriptor)
+    if size > MAX_FILE_BYTES:
+        raise ModelError(_too_large(shown, size, grew=True))
+    try:
+        return b"".join(chunks).decode("utf-8-sig")  # a leading byte-order mark is allowed
+    except UnicodeDecodeError:
+        raise ModelError(f"{shown}: not a text file (not valid UTF-8)") from None
+
+
+def _too_large(shown: str, size: int, *, grew: bool = False) -> str:
+    what = "more than" if grew else f"{size} bytes,"
+    return f"{shown}: too large to be a system file ({what} the limit of {MAX_FILE_BYTES} bytes)"
+
+
+def as_system(value: Any, name: str = "system") -> System:
+    """``value`` as a validated :class:`System`: a System itself, its JSON form (a dict), or a
+    file path or preset name (str or path); anything else is a one-line
+    :class:`~rollspring.errors.ModelError` naming ``name`` (what the CLI says for the same
+    mistake, never an ``AttributeError`` from deep inside)."""
+    if isinstance(value, System):
+        return value
+    if isinstance(value, dict):
+        return system_from_dict(value, source=name)
+    if isinstance(value, str | os.PathLike):
+        return load_system(value)
+    raise ModelError(
+        f"{name}: must be a System, its JSON form (a dict), a file path or a preset name "
+        f"(got {type(value).__name__})"
+    )
+
+
+#: Characters a terminal would obey rather than show: C0 and C1 controls (ESC starts ANSI
+#: escape sequences), DEL, and the bidirectional overrides that reorder a line.
+_UNPRINTABLE = re.compile(r"[\x00-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
+
+
+def _escape(match: re.Match[str]) -> str:
+    char = match.group()
+    named = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
+    if char in named:
+        return named[char]
+    code = ord(char)
+    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"
+
+
 def _oneline(value: object) -> str:
-    """Text on one line: line breaks shown as \\n, runs of spaces kept."""
-    return str(value).replace("\r", "\\r").replace("\n", "\\n")
+    """Text on one line and safe for a terminal: line breaks shown as \\n, every other control
+    character escaped (\\x1b), runs of spaces kept."""
+    return _UNPRINTABLE.sub(_escape, str(value))
 
 
-def _shown(path: Path | str) -> str:
-    return _oneline(path)
+def _shortened(text: str, limit: int = _SHOWN_CHARACTERS) -> str:
+    """``text`` cut to ``limit`` characters, the cut marked with its length."""
+    if len(text) <= limit:
+        return text
+    return f"{text[: limit - 30]}… ({len(text)} characters)"
+
+
+def _shown(path: Path | str | os.PathLike[str]) -> str:
+    try:
+        text = os.fspath(path)
+    except TypeError:
+        text = str(path)
+    if isinstance(text, bytes):
+        text = text.decode("utf-8", "backslashreplace")
+    return _shortened(_oneline(text))
 
 
 def _parse(text: str, path: Path, *, shown: str | None = None) -> dict[str, Any]:
@@ -88,6 +212,8 @@ def _parse(text: str, path: Path, *, shown: str | None = None) -> dict[str, Any]
             )
         except ModelError as exc:  # a duplicate key
             raise ModelError(f"{name}: {exc}") from None
+        except RecursionError:
+            raise ModelError(f"{name}: nested too deeply to be a system file") from None
         except json.JSONDecodeError as exc:
             raise ModelError(
                 f"{name}: JSON syntax error: {exc.msg} (line {exc.lineno}, column {exc.colno})"
@@ -100,14 +226,16 @@ def _parse(text: str, path: Path, *, shown: str | None = None) -> dict[str, Any]
             return tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise ModelError(f"{name}: TOML syntax error: {_oneline(exc)}") from None
-    raise ModelError(f"{name}: unknown file type {suffix!r} (use .toml or .json)")
+    raise ModelError(
+        f"{name}: unknown file type {_shortened(_oneline(repr(suffix)))} (use .toml or .json)"
+    )
 
 
 def _no_duplicate_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for key, value in pairs:
         if key in out:
-            raise ModelError(f"duplicate key {_oneline(repr(key))} in a JSON object")
+            raise ModelError(f"duplicate key {_shortened(_oneline(repr(key)))} in a JSON object")
         out[key] = value
     return out
 
@@ -203,7 +331,7 @@ def _describe(error: ErrorDetails | dict[str, Any]) -> str:
     if kind == "extra_forbidden":
         key = loc[-1] if loc else "?"
         where = _path(loc[:-1])
-        return f"{where + ': ' if where else ''}unknown key {_oneline(repr(str(key)))}"
+        return f"{where + ': ' if where else ''}unknown key {_shortened(_oneline(repr(str(key))))}"
     if kind == "missing":
         return f"{_path(loc)}: missing (required)"
     if kind in ("finite_number",):
@@ -224,7 +352,7 @@ def _describe(error: ErrorDetails | dict[str, Any]) -> str:
         )
     elif kind == "literal_error":
         expected = error.get("ctx", {}).get("expected", "")
-        msg = f"unknown value {error.get('input')!r} (expected one of {expected})"
+        msg = f"unknown value {_show(error.get('input'))} (expected one of {expected})"
     elif kind in (
         "float_type",
         "int_type",
@@ -269,7 +397,7 @@ def _show(value: Any) -> str:
         return f"an integer of {len(str(abs(value)))} digits"
     if isinstance(value, float):
         return repr(value) if math.isfinite(value) else str(value)
-    return repr(value)
+    return _shortened(_oneline(repr(value)))
 
 
 def _path(loc: list[Any]) -> str:

@@ -9,12 +9,23 @@ the body; they are given in the initial placement.
 from __future__ import annotations
 
 import math
-from typing import Annotated, Literal
+import re
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, WithJsonSchema, field_validator, model_validator
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Field,
+    WithJsonSchema,
+    field_validator,
+    model_validator,
+)
 
 __all__ = [
     "INERTIA_FACTORS",
+    "LIMITS",
+    "RANGES",
     "Anchor",
     "Attachment",
     "Body",
@@ -43,9 +54,99 @@ Identifier = Annotated[
         description="A name: a letter or '_' first, then letters, digits, '_' or '-'.",
     ),
 ]
+
+#: The range of every quantity, ``name -> (low, high, unit)``, both ends included: the values
+#: the engine is verified over (docs/system-files.md says how they were chosen). A value outside
+#: is refused with a message naming the field and this range: beyond them the equilibrium
+#: search, the eigensolvers or double precision itself stop giving right answers (a mass of
+#: 1e-308 overflows 1/m, a position of 1e300 loses the bodies' size, an angle of 1e308 its
+#: degrees), so a number outside is far more likely a typo than a system.
+RANGES: dict[str, tuple[float, float, str]] = {
+    "mass": (1e-6, 1e6, "kg"),
+    "radius": (1e-3, 1e3, "m"),
+    "position": (-1e4, 1e4, "m"),  # x, track_height, anchors' x and y
+    "velocity": (-1e4, 1e4, "m/s"),
+    "stiffness": (1e-6, 1e9, "N/m"),
+    "rest_length": (0.0, 1e4, "m"),
+    "damping": (0.0, 1e6, "N s/m"),
+    "gravity": (0.0, 1e3, "m/s²"),
+    "force": (-1e9, 1e9, "N"),
+    "attachment": (0.0, 1e3, "m"),  # an attachment's height or radius
+    "angle": (-360.0, 360.0, "degrees"),
+    "friction": (0.0, 1e6, ""),  # mu_static (which may also be inf) and mu_kinetic
+}
+
+#: How many of each a system may hold, and how long its texts may be (characters): a system file
+#: is read whole and every command's cost grows with the number of bodies (the analysis' as n³).
+LIMITS: dict[str, int] = {
+    "bodies": 1000,
+    "anchors": 1000,
+    "springs": 5000,
+    "forces": 1000,
+    "name": 200,
+    "description": 5000,
+}
+
+
+def _range_message(quantity: str) -> str:
+    low, high, unit = RANGES[quantity]
+    return f"must be between {low:g} and {high:g}{' ' + unit if unit else ''}, the verified range"
+
+
+def _bounds(quantity: str) -> Any:
+    """The finite-number check and the range in the JSON Schema."""
+    low, high, _unit = RANGES[quantity]
+    return Field(allow_inf_nan=False, json_schema_extra={"minimum": low, "maximum": high})
+
+
+def _within(quantity: str) -> AfterValidator:
+    """The range check, with a message naming the range."""
+    low, high, _unit = RANGES[quantity]
+
+    def check(value: float) -> float:
+        if not low <= value <= high:
+            raise ValueError(_range_message(quantity))
+        return value
+
+    return AfterValidator(check)
+
+
 Finite = Annotated[float, Field(allow_inf_nan=False)]
-Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
-NonNegative = Annotated[float, Field(ge=0, allow_inf_nan=False)]
+Mass = Annotated[float, _bounds("mass"), _within("mass")]
+Radius = Annotated[float, _bounds("radius"), _within("radius")]
+Position = Annotated[float, _bounds("position"), _within("position")]
+Velocity = Annotated[float, _bounds("velocity"), _within("velocity")]
+Stiffness = Annotated[float, _bounds("stiffness"), _within("stiffness")]
+RestLength = Annotated[float, _bounds("rest_length"), _within("rest_length")]
+Damping = Annotated[float, _bounds("damping"), _within("damping")]
+Gravity = Annotated[float, _bounds("gravity"), _within("gravity")]
+ForceComponent = Annotated[float, _bounds("force"), _within("force")]
+Distance = Annotated[float, _bounds("attachment"), _within("attachment")]
+Angle = Annotated[float, _bounds("angle"), _within("angle")]
+Friction = Annotated[float, _bounds("friction"), _within("friction")]
+
+#: Control characters (a terminal obeys them: ESC starts its escape sequences) and the
+#: bidirectional overrides that reorder what is shown; a description may hold line breaks and
+#: tabs, a name not even those.
+_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
+_CONTROL_OR_BREAK = re.compile(r"[\x00-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
+
+
+def _plain_text(pattern: re.Pattern[str]) -> AfterValidator:
+    def check(value: str) -> str:
+        found = pattern.search(value)
+        if found is not None:
+            raise ValueError(
+                f"must not hold control characters (found {found.group()!r} at "
+                f"character {found.start()})"
+            )
+        return value
+
+    return AfterValidator(check)
+
+
+Name = Annotated[str, Field(max_length=LIMITS["name"]), _plain_text(_CONTROL_OR_BREAK)]
+Description = Annotated[str, Field(max_length=LIMITS["description"]), _plain_text(_CONTROL)]
 
 
 class _Strict(BaseModel):
@@ -62,11 +163,11 @@ class Attachment(_Strict):
     ``angle`` degrees clockwise from straight up: 0 top, 90 front/right, 180 bottom).
     """
 
-    height: NonNegative | None = Field(
+    height: Distance | None = Field(
         default=None, description="Height above the body's track (m), on the centre vertical."
     )
-    radius: NonNegative | None = Field(default=None, description="Distance from the centre (m).")
-    angle: Finite | None = Field(
+    radius: Distance | None = Field(default=None, description="Distance from the centre (m).")
+    angle: Angle | None = Field(
         default=None, description="Degrees clockwise from straight up (needs `radius`)."
     )
 
@@ -104,26 +205,35 @@ class Body(_Strict):
         description="hoop (I = mR^2), cylinder (mR^2/2), sphere (2mR^2/5), shell (2mR^2/3), "
         "custom (inertia_factor mR^2) or slider (a point mass sliding without friction)."
     )
-    mass: Positive = Field(description="kg")
-    radius: Positive = Field(
+    mass: Mass = Field(description="kg")
+    radius: Radius = Field(
         description="m; for a slider, the height of its centre above the track (drawing size)."
     )
     inertia_factor: Annotated[float, Field(gt=0, le=1, allow_inf_nan=False)] | None = Field(
         default=None, description="gamma in I = gamma m R^2; only for shape = 'custom', in (0, 1]."
     )
-    track_height: Finite = Field(default=0.0, description="Height of the floor under the body (m).")
-    x: Finite = Field(description="Initial horizontal position of the centre (m).")
-    v: Finite = Field(default=0.0, description="Initial velocity of the centre (m/s).")
+    track_height: Position = Field(
+        default=0.0, description="Height of the floor under the body (m)."
+    )
+    x: Position = Field(description="Initial horizontal position of the centre (m).")
+    v: Velocity = Field(default=0.0, description="Initial velocity of the centre (m/s).")
     mu_static: Annotated[
         float,
         Field(ge=0, allow_inf_nan=True),
-        WithJsonSchema({"anyOf": [{"type": "number", "minimum": 0}, {"const": "inf"}]}),
+        WithJsonSchema(
+            {
+                "anyOf": [
+                    {"type": "number", "minimum": 0, "maximum": RANGES["friction"][1]},
+                    {"const": "inf"},
+                ]
+            }
+        ),
     ] = Field(
         default=1.0,
         description="Static friction coefficient; inf enforces rolling (rack and pinion), "
         'written "inf" in JSON. Ignored for sliders.',
     )
-    mu_kinetic: NonNegative | None = Field(
+    mu_kinetic: Friction | None = Field(
         default=None,
         description="Kinetic friction coefficient, at most mu_static; default mu_static "
         "(0 when mu_static is inf).",
@@ -136,6 +246,13 @@ class Body(_Strict):
             raise ValueError("must be a finite number or inf, not NaN")
         if value == "inf":  # JSON has no infinity: the JSON form writes it as "inf"
             return math.inf
+        return value
+
+    @field_validator("mu_static", mode="after")
+    @classmethod
+    def _in_range(cls, value: float) -> float:
+        if math.isfinite(value) and value > RANGES["friction"][1]:
+            raise ValueError(_range_message("friction") + ", or inf")
         return value
 
     @model_validator(mode="after")
@@ -205,19 +322,19 @@ class Anchor(_Strict):
     """A fixed point (a wall hook)."""
 
     id: Identifier
-    x: Finite = Field(description="m")
-    y: Finite = Field(description="m")
+    x: Position = Field(description="m")
+    y: Position = Field(description="m")
 
 
 class Spring(_Strict):
     """An ideal massless spring between two ends, each a body (at an attachment) or an anchor."""
 
     ends: list[Identifier] = Field(min_length=2, max_length=2, description="Ids of the two ends.")
-    stiffness: Positive = Field(description="N/m")
-    rest_length: NonNegative | None = Field(
+    stiffness: Stiffness = Field(description="N/m")
+    rest_length: RestLength | None = Field(
         default=None, description="m; default: the length in the initial placement."
     )
-    damping: NonNegative = Field(default=0.0, description="N s/m, along the spring.")
+    damping: Damping = Field(default=0.0, description="N s/m, along the spring.")
     at: list[Attachment] | None = Field(
         default=None,
         min_length=2,
@@ -236,20 +353,34 @@ class ExternalForce(_Strict):
 
     body: Identifier
     at: Attachment = Field(default=CENTRE, description="Point of application.")
-    fx: Finite = Field(default=0.0, description="N")
-    fy: Finite = Field(default=0.0, description="N")
+    fx: ForceComponent = Field(default=0.0, description="N")
+    fy: ForceComponent = Field(default=0.0, description="N")
 
 
 class System(_Strict):
     """A complete system: bodies on tracks, fixed anchors, springs, constant forces, gravity."""
 
-    name: str = ""
-    description: str = ""
-    gravity: NonNegative = Field(default=9.81, description="m/s^2, downward.")
-    bodies: list[Body] = Field(min_length=1)
-    anchors: list[Anchor] = Field(default_factory=list)
-    springs: list[Spring] = Field(default_factory=list)
-    forces: list[ExternalForce] = Field(default_factory=list)
+    name: Name = ""
+    description: Description = ""
+    gravity: Gravity = Field(default=9.81, description="m/s^2, downward.")
+    bodies: list[Body] = Field(min_length=1, max_length=LIMITS["bodies"])
+    anchors: list[Anchor] = Field(default_factory=list, max_length=LIMITS["anchors"])
+    springs: list[Spring] = Field(default_factory=list, max_length=LIMITS["springs"])
+    forces: list[ExternalForce] = Field(default_factory=list, max_length=LIMITS["forces"])
+
+    @model_validator(mode="before")
+    @classmethod
+    def _not_too_many(cls, data: Any) -> Any:
+        """Counts first: 10 000 bodies are refused before any is validated."""
+        if isinstance(data, dict):
+            for key in ("bodies", "anchors", "springs", "forces"):
+                items = data.get(key)
+                if isinstance(items, list | tuple) and len(items) > LIMITS[key]:
+                    raise ValueError(
+                        f"{key}: at most {LIMITS[key]} {key} (got {len(items)}): rollspring's "
+                        "cost grows with their number"
+                    )
+        return data
 
     @model_validator(mode="after")
     def _references(self) -> System:
@@ -264,7 +395,7 @@ class System(_Strict):
                     )
                 seen[item_id] = f"{kind}[{i}]"
         bodies = self.body_map
-        anchors = {a.id for a in self.anchors}
+        anchors = self.anchor_map
         for s, spring in enumerate(self.springs):
             where = f"springs[{s}]"
             a, b = spring.ends
@@ -282,7 +413,7 @@ class System(_Strict):
                     )
                 if end in bodies:
                     _check_attachment(bodies[end], at, f"{where}.at[{j}]")
-            length = self._initial_length(spring)
+            length = _initial_length(spring, bodies, anchors)
             if not math.isfinite(length):
                 raise ValueError(
                     f"{where}: its initial length is not finite (coordinates too large)"
@@ -309,26 +440,69 @@ class System(_Strict):
 
     def end_point_at_rest(self, end: str, at: Attachment) -> tuple[float, float]:
         """Position of a spring end (body attachment or anchor) in the initial placement."""
-        bodies = self.body_map
-        if end in bodies:
-            return bodies[end].point_at_rest(at)
-        anchor = self.anchor_map[end]
-        return anchor.x, anchor.y
+        return _end_point(end, at, self.body_map, self.anchor_map)
 
     def _initial_length(self, spring: Spring) -> float:
-        (xa, ya), (xb, yb) = (
-            self.end_point_at_rest(end, at)
-            for end, at in zip(spring.ends, spring.attachments, strict=True)
-        )
-        return math.hypot(xb - xa, yb - ya)
+        return _initial_length(spring, self.body_map, self.anchor_map)
 
     @property
     def rest_lengths(self) -> list[float]:
         """Rest length of every spring (m); the initial length where none is given."""
+        bodies, anchors = self.body_map, self.anchor_map
         return [
-            s.rest_length if s.rest_length is not None else self._initial_length(s)
+            s.rest_length if s.rest_length is not None else _initial_length(s, bodies, anchors)
             for s in self.springs
         ]
+
+    @property
+    def overlaps(self) -> list[str]:
+        """Warnings, one per pair of bodies that overlap in the initial placement (their discs
+        intersect: bodies never touch each other in the model, they pass through one another,
+        so an overlap is most often a wrong ``x`` or ``track_height``); at most
+        :data:`MAX_OVERLAP_WARNINGS`, the last one counting the rest."""
+        found: list[tuple[Body, Body, float]] = []
+        reach = max(b.radius for b in self.bodies)
+        ordered = sorted(self.bodies, key=lambda b: b.x)
+        for i, first in enumerate(ordered):
+            for second in ordered[i + 1 :]:
+                if second.x - first.x >= first.radius + reach:
+                    break
+                apart = math.hypot(
+                    second.x - first.x,
+                    (second.track_height + second.radius) - (first.track_height + first.radius),
+                )
+                if apart < first.radius + second.radius:
+                    found.append((first, second, apart))
+        out = [
+            f"bodies '{a.id}' and '{b.id}' overlap in the initial placement (centres "
+            f"{apart:.3g} m apart, radii {a.radius:g} m and {b.radius:g} m); they pass "
+            "through each other in the model"
+            for a, b, apart in found[:MAX_OVERLAP_WARNINGS]
+        ]
+        if len(found) > MAX_OVERLAP_WARNINGS:
+            out.append(f"{len(found) - MAX_OVERLAP_WARNINGS} more pairs of bodies overlap")
+        return out
+
+
+#: At most this many pairs of overlapping bodies are named (:attr:`System.overlaps`).
+MAX_OVERLAP_WARNINGS = 3
+
+
+def _end_point(
+    end: str, at: Attachment, bodies: dict[str, Body], anchors: dict[str, Anchor]
+) -> tuple[float, float]:
+    if end in bodies:
+        return bodies[end].point_at_rest(at)
+    anchor = anchors[end]
+    return anchor.x, anchor.y
+
+
+def _initial_length(spring: Spring, bodies: dict[str, Body], anchors: dict[str, Anchor]) -> float:
+    (xa, ya), (xb, yb) = (
+        _end_point(end, at, bodies, anchors)
+        for end, at in zip(spring.ends, spring.attachments, strict=True)
+    )
+    return math.hypot(xb - xa, yb - ya)
 
 
 def _check_attachment(body: Body, at: Attachment, where: str) -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -117,7 +118,13 @@ def load_system_text() -> str:
     return preset_path("hoop-cylinder").read_text()
 
 
-def test_a_write_that_fails_midway_leaves_no_partial_file(tmp_path, monkeypatch) -> None:
+@pytest.mark.parametrize("failing_call", range(1, 7))
+def test_a_write_that_fails_midway_leaves_the_earlier_set_whole(
+    tmp_path, monkeypatch, failing_call
+) -> None:
+    """The three files are one set: interrupted at any rename (the earlier set moving out, the
+    new one moving in), the folder holds the earlier run's three files, unchanged, and nothing
+    else (no temporary file, no staging folder)."""
     trajectory = simulate(load_system("hoop-cylinder"), 0.5, n_output=11)
     write_trajectory(trajectory, tmp_path)
     before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
@@ -127,7 +134,7 @@ def test_a_write_that_fails_midway_leaves_no_partial_file(tmp_path, monkeypatch)
 
     def failing_replace(source, target):
         calls.append(target)
-        if len(calls) == 2:  # the second file: killed between writing and renaming
+        if len(calls) == failing_call:  # killed between two renames
             raise KeyboardInterrupt
         real_replace(source, target)
 
@@ -136,11 +143,53 @@ def test_a_write_that_fails_midway_leaves_no_partial_file(tmp_path, monkeypatch)
     with pytest.raises(KeyboardInterrupt):
         write_trajectory(longer, tmp_path)
     after = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
-    assert set(after) == set(before)  # no temporary files left behind
-    # each file is either the old complete one or the new complete one
-    assert after["trajectory.npz"] == before["trajectory.npz"]
-    assert after["trajectory.csv"] != before["trajectory.csv"]
-    assert len(after["trajectory.csv"].decode().splitlines()) == 22
+    assert after == before
+
+
+def test_a_writer_that_fails_leaves_the_earlier_set_and_no_staging(tmp_path, monkeypatch) -> None:
+    trajectory = simulate(load_system("hoop-cylinder"), 0.5, n_output=11)
+    write_trajectory(trajectory, tmp_path)
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    import rollspring.outputs.trajectory as writer
+
+    def broken(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(writer.np, "savez_compressed", broken)
+    with pytest.raises(KeyboardInterrupt):
+        write_trajectory(simulate(load_system("hoop-cylinder"), 1.0, n_output=21), tmp_path)
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
+    # a folder that did not exist is not created at all
+    with pytest.raises(KeyboardInterrupt):
+        write_trajectory(trajectory, tmp_path / "new")
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(before)
+
+
+def test_leftovers_of_a_killed_run_are_removed_by_the_next(tmp_path) -> None:
+    """SIGKILL leaves what no handler can remove: a staging folder, a parked set, a temporary
+    file of an older rollspring; the next run into the folder removes them (never those of a
+    process that still runs)."""
+    import subprocess
+    import sys
+
+    dead = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    pid = int(dead.stdout)
+    (tmp_path / f".rollspring-part-{pid}-abc").mkdir()
+    (tmp_path / f".rollspring-part-{pid}-abc" / "trajectory.csv").write_text("half")
+    (tmp_path / f".rollspring-old-{pid}-def").mkdir()
+    (tmp_path / ".trajectory.csv.k2j3h4.part").write_text("half")  # no pid: an older version
+    (tmp_path / "trajectory.csv").write_text("t\n0\n")  # an earlier run's lone file
+    alive = tmp_path / f".rollspring-part-{os.getpid()}-ghi"
+    alive.mkdir()
+    write_trajectory(simulate(load_system("hoop-cylinder"), 0.5, n_output=11), tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        ["summary.json", "trajectory.csv", "trajectory.npz", alive.name]
+    )
 
 
 @pytest.mark.parametrize("where", ["under-a-file", "a-file", "proc"])

@@ -1,5 +1,6 @@
-"""Trajectory files: ``trajectory.csv``, ``trajectory.npz`` and ``summary.json``, each written
-atomically (a killed run never leaves a half-written file)."""
+"""Trajectory files: ``trajectory.csv``, ``trajectory.npz`` and ``summary.json``, written as a
+set (:func:`rollspring.outputs.files.write_file_set`): a killed run never leaves a half-written
+file, nor its files beside an earlier run's."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.outputs.files import atomic_write, atomic_write_text
+from rollspring.outputs.files import write_file_set
 from rollspring.simulate import Trajectory
 
 __all__ = ["json_ready", "summary_json", "trajectory_csv", "write_trajectory"]
@@ -56,19 +57,25 @@ def trajectory_csv(trajectory: Trajectory) -> str:
 
 
 def write_trajectory(trajectory: Trajectory, directory: str | Path) -> list[Path]:
-    """Write the three files into ``directory`` (created if needed); returns their paths."""
-    directory = Path(directory)
-    directory.mkdir(parents=True, exist_ok=True)
-    csv_path = directory / "trajectory.csv"
-    npz_path = directory / "trajectory.npz"
-    json_path = directory / "summary.json"
-    atomic_write_text(csv_path, trajectory_csv(trajectory))
-    with atomic_write(npz_path, "wb") as handle:
+    """Write the three files into ``directory`` (created if needed) as one set: either all three
+    of this run or, after a failure or an interruption, those that were there before; returns
+    their paths. A failure to write is an :class:`~rollspring.errors.OutputError`."""
+
+    def csv(path: Path) -> None:
+        with open(path, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write(trajectory_csv(trajectory))
+
+    def npz(path: Path) -> None:
         columns = {name: values for name, (_, values) in trajectory.columns().items()}
-        # NumPy's stubs type **kwds as the keyword options (allow_pickle): they are the arrays
-        np.savez_compressed(handle, **columns)  # type: ignore[arg-type]
-    atomic_write_text(
-        json_path,
-        json.dumps(summary_json(trajectory), indent=2, ensure_ascii=False, allow_nan=False) + "\n",
+        with open(path, "wb") as handle:
+            # NumPy's stubs type **kwds as the keyword options (allow_pickle): they are the arrays
+            np.savez_compressed(handle, **columns)  # type: ignore[arg-type]
+
+    def summary(path: Path) -> None:
+        text = json.dumps(summary_json(trajectory), indent=2, ensure_ascii=False, allow_nan=False)
+        with open(path, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write(text + "\n")
+
+    return write_file_set(
+        directory, {"trajectory.csv": csv, "trajectory.npz": npz, "summary.json": summary}
     )
-    return [csv_path, npz_path, json_path]

@@ -180,3 +180,105 @@ def test_modes_agree_with_a_direct_eigensolution_of_the_presets() -> None:
             np.clip(direct, 0, None),
             atol=1e-9 * direct.max(),
         )
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(st.floats(0.05, 20.0), min_size=1, max_size=5),
+    st.integers(0, 2**32 - 1),
+)
+def test_normal_modes_are_scipys_generalised_eigh_without_scipy(inertia, seed) -> None:
+    """K v = lambda M v with a diagonal M by NumPy's eigh of M^-1/2 K M^-1/2 (SciPy's sygvd
+    reduction operation for operation): SciPy's eigenvalues and M-orthonormal vectors."""
+    from rollspring.analysis.linear import generalized_eigh
+
+    rng = np.random.default_rng(seed)
+    n = len(inertia)
+    root = rng.normal(size=(n, n))
+    stiffness = root @ root.T - rng.uniform(0, 2) * np.eye(n)  # some negative eigenvalues too
+    mass = np.diag(inertia)
+    expected = scipy.linalg.eigh(stiffness, mass)
+    for given_mass in (mass, np.asarray(inertia)):
+        eigenvalues, vectors = generalized_eigh(given_mass, stiffness)
+        np.testing.assert_allclose(eigenvalues, expected[0], rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(vectors.T @ mass @ vectors, np.eye(n), atol=1e-12)
+        np.testing.assert_allclose(stiffness @ vectors, mass @ vectors * eigenvalues, atol=1e-10)
+    full = mass + 0.1 * np.ones((n, n))  # a full M: SciPy's generalised problem
+    np.testing.assert_allclose(
+        generalized_eigh(full, stiffness)[0], scipy.linalg.eigh(stiffness, full)[0]
+    )
+    with pytest.raises(ValueError, match="infs or NaNs"):
+        generalized_eigh(mass, np.full((n, n), np.nan))
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.floats(-5, 5),
+    st.floats(0, 5),
+    st.floats(-4, 4),
+    st.floats(0.1, 10),
+    st.floats(0.0, 0.999),
+    st.floats(-4, 4),
+)
+def test_the_friction_ratio_of_one_frequency_is_found_in_closed_form(
+    f_c, size_f, angle_f, n_c, reach, angle_n
+):
+    """max over the phase of |f_c + Re(a_f e^it)| / (N_c + Re(a_n e^it)) at the two stationary
+    phases: the maximum of a fine grid, never exceeded by it (up to rounding)."""
+    from rollspring.analysis.modal import _one_phase_extremes
+
+    a_f = size_f * complex(math.cos(angle_f), math.sin(angle_f))
+    a_n = reach * n_c * complex(math.cos(angle_n), math.sin(angle_n))  # N > 0 throughout
+
+    def ratio(theta):
+        return np.abs(f_c + np.real(a_f * np.exp(1j * theta))) / (
+            n_c + np.real(a_n * np.exp(1j * theta))
+        )
+
+    closed = float(np.max(ratio(_one_phase_extremes(f_c, a_f, n_c, a_n))))
+    grid = np.linspace(0, 2 * np.pi, 20_001)
+    for _ in range(4):  # zoom in on the best grid point: the maximum to rounding
+        best = float(grid[np.argmax(ratio(grid))])
+        spacing = grid[1] - grid[0]
+        grid = np.linspace(best - spacing, best + spacing, 2001)
+    searched = float(np.max(ratio(grid)))
+    assert closed == pytest.approx(searched, rel=1e-11, abs=1e-15)
+
+
+def test_level_centre_springs_take_the_one_step_equilibrium_with_one_set_of_modes() -> None:
+    """Horizontal centre springs: the equilibrium is one Newton step with the zero mode held,
+    K and the modes computed once (the placement's are the equilibrium's), no SciPy."""
+    import rollspring.analysis.linear as linear
+    from rollspring.model import load_system
+
+    for name in ("hoop-cylinder", "three-bodies", "wall-hoop-cylinder", "two-masses"):
+        arrays = system_arrays(load_system(name))
+        equilibrium = find_equilibrium(arrays)
+        assert equilibrium.found and equilibrium.placement_modes is equilibrium.modes
+        assert linear._level_centre_springs(arrays)
+        q = equilibrium.q
+        mass = mass_matrix(arrays)
+        assert np.max(np.abs(generalized_forces(arrays, q))) <= 1e-12
+        assert np.array_equal(equilibrium.stiffness, stiffness_matrix(arrays, q))
+        _, vectors, kinds = equilibrium.modes
+        assert np.max(np.abs(vectors[:, kinds == "zero"].T @ mass @ q), initial=0) < 1e-15
+    tilted = system_arrays(
+        make_system(
+            [body("h", track_height=0.05), body("c", "cylinder", x=0.49)],
+            [spring("h", "c", rest_length=0.5)],
+        )
+    )
+    assert not linear._level_centre_springs(tilted)
+    assert find_equilibrium(tilted).placement_modes is not None  # the search's first K
+
+
+def test_paper_system_equilibrium_is_the_exact_stationary_split() -> None:
+    """Fig. 2: q* puts the spring at rest with X-hat unmoved, to rounding."""
+    from rollspring.model import load_system
+
+    arrays = system_arrays(load_system("hoop-cylinder"))
+    q = find_equilibrium(arrays).q
+    # the spring at its rest length, X-hat = (2 m1 x1 + 1.5 m2 x2)/3.5 where it started
+    x = arrays.x0 + arrays.scale * q
+    assert x[1] - x[0] == pytest.approx(0.5, rel=1e-15)
+    assert 2 * x[0] + 1.5 * x[1] == pytest.approx(1.5 * 0.49, rel=1e-15)

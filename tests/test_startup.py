@@ -70,8 +70,30 @@ def test_help_loads_no_heavy_library() -> None:
     assert loaded(command("--help")) == []
 
 
-def test_analyze_needs_numpy_scipy_pydantic_but_not_the_compiled_kernels() -> None:
-    assert loaded(command("analyze", "hoop-cylinder", "--json")) == ["numpy", "pydantic", "scipy"]
+def test_analyze_needs_numpy_pydantic_but_not_scipy_or_the_compiled_kernels() -> None:
+    """The paper's system: NumPy's eigh (diagonal M), the one-step equilibrium of level centre
+    springs and the friction ratio's closed form need no SciPy."""
+    assert loaded(command("analyze", "hoop-cylinder", "--json")) == ["numpy", "pydantic"]
+
+
+def test_analyze_loads_scipy_only_for_what_needs_it() -> None:
+    """Three bodies, a tilted spring off the centres (one frequency group, a varying normal
+    force: closed form) need no SciPy; several frequencies with a varying normal force do (the
+    friction ratio's maximum over the torus of phases: SciPy's optimizer, loaded on demand)."""
+    assert "scipy" not in loaded(command("analyze", "three-bodies", "--json"))
+    assert "scipy" not in loaded(command("analyze", "frictionless", "--json"))
+    tilted_chain = (
+        "from rollspring import analyze\n"
+        "from rollspring.model import system_from_dict\n"
+        "at = [{'radius': 0.05, 'angle': 30}, {'radius': 0.08, 'angle': -100}]\n"
+        "bodies = [{'id': i, 'shape': 'hoop', 'mass': 1.0, 'radius': 0.1, 'x': 0.5 * k,\n"
+        "           'v': 0.05 * k} for k, i in enumerate('abc')]\n"
+        "springs = [{'ends': e, 'stiffness': 100.0, 'at': at} for e in (['a', 'b'], ['b', 'c'])]\n"
+        "result = analyze(system_from_dict({'bodies': bodies, 'springs': springs}))\n"
+        "assert len({round(m.omega, 6) for m in result.oscillating}) == 2\n"
+        "assert result.required_mu is not None and all(result.required_mu >= 0)\n"
+    )
+    assert "scipy" in loaded(tilted_chain)
 
 
 def test_simulate_loads_the_kernels_but_no_plotting_or_symbolic_library() -> None:

@@ -18,7 +18,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import scipy.linalg
 
 from rollspring.analysis.report import CONVENTIONS
 from rollspring.model import System
@@ -26,7 +25,6 @@ from rollspring.physics import (
     SystemArrays,
     generalized_forces,
     mass_matrix,
-    spring_state,
     stiffness_matrix,
 )
 from rollspring.physics.arrays import FloatArray
@@ -64,6 +62,9 @@ class Equilibrium:
     stiffness: FloatArray | None = None
     #: :func:`normal_modes` of (M, K(q*)): (eigenvalues, vectors, kinds), or None
     modes: tuple[FloatArray, FloatArray, np.ndarray] | None = None
+    #: :func:`normal_modes` of (M, K(0)) at the initial placement, when the search computed
+    #: them (None otherwise)
+    placement_modes: tuple[FloatArray, FloatArray, np.ndarray] | None = None
 
 
 def find_equilibrium(
@@ -86,10 +87,17 @@ def find_equilibrium(
        from the initial placement conserves :math:`V_0^T M \dot q` (docs/physics.md (M14)), so it
        oscillates about this point.
 
+    Springs attached at centres (or anchors) whose ends are level in the initial placement,
+    and forces at centres (:func:`_level_centre_springs`), stay horizontal as the bodies roll:
+    Q is affine in q and K does not depend on q, so the equilibrium is the first Newton step
+    from the placement, :math:`q^* = \sum_{\lambda_n \ne 0} v_n (v_n^T Q_0)/\lambda_n`, with
+    the zero modes held already (:math:`V_0^T M q^* = 0`). That step is taken directly, with one
+    K and one set of modes, and checked (residual at most ``tolerance`` of the force scale,
+    zero-mode coordinates at rounding); otherwise the general search above runs.
+
     ``forces`` may replace :func:`~rollspring.physics.generalized_forces` of ``system`` by an
     equal but faster function of q (the simulator passes its compiled kernel), ``stiffness``
-    likewise :func:`~rollspring.physics.stiffness_matrix` (the simulator passes one that keeps
-    K at the start).
+    likewise :func:`~rollspring.physics.stiffness_matrix`.
     """
     n = system.n_bodies
     if forces is None:
@@ -110,11 +118,29 @@ def find_equilibrium(
         force = forces(state)
         return float(np.sqrt(np.sum(force**2 * inv_mass)))
 
-    initial = residual_of(np.zeros(n))
+    zeros = np.zeros(n)
+    force_0 = forces(zeros)
+    initial = float(np.sqrt(np.sum(force_0**2 * inv_mass)))
     scale = max(initial, _force_scale(system))
     target = tolerance * scale
 
+    if _level_centre_springs(system):
+        level = _level_equilibrium(mass, stiffness_of(zeros), force_0, initial, target, residual_of)
+        if level is not None:
+            return level
+
     root_mass = np.sqrt(system.inertia)
+    #: K and the modes at the initial placement, once the search has computed them
+    placement: list[tuple[FloatArray, tuple[FloatArray, FloatArray, np.ndarray]]] = []
+
+    def modes_at(state: FloatArray) -> tuple[FloatArray, tuple[FloatArray, FloatArray, np.ndarray]]:
+        if placement and not np.any(state):
+            return placement[0]
+        k = stiffness_of(state)
+        result = (k, normal_modes(mass, k))
+        if not placement and not np.any(state):
+            placement.append(result)
+        return result
 
     def descend(start: FloatArray) -> tuple[FloatArray, float]:
         """Trust-region Newton on :math:`M^{-1/2} Q = 0` in the mass-weighted coordinates
@@ -125,7 +151,7 @@ def find_equilibrium(
         for _ in range(10):  # plain Newton while its steps are small and the residual falls
             if residual <= target:
                 return state, residual
-            eigenvalues, vectors, kinds = normal_modes(mass, stiffness_of(state))
+            _, (eigenvalues, vectors, kinds) = modes_at(state)
             nonzero = kinds != "zero"
             if not np.any(nonzero) or np.any(kinds == "unstable"):
                 break  # Newton heads for saddles: leave it to the trust region
@@ -156,7 +182,7 @@ def find_equilibrium(
         state = solution.x / root_mass
         return state, residual_of(state)
 
-    q, residual = descend(np.zeros(n))
+    q, residual = descend(zeros)
     if residual > 1e-9 * scale:
         return Equilibrium(
             np.zeros(n),
@@ -165,15 +191,15 @@ def find_equilibrium(
             "no equilibrium near the initial placement: a net force acts along a direction "
             "with no restoring stiffness (the system accelerates away), or the nearest "
             "equilibrium is too far away to be found",
+            placement_modes=placement[0][1] if placement else None,
         )
-    stiffness_eq = stiffness_of(q)
-    modes = normal_modes(mass, stiffness_eq)
+    stiffness_eq, modes = modes_at(q)
     n_zero = int(np.sum(modes[2] == "zero"))
     if n_zero:
         held = _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness_eq)
         if not np.array_equal(held, q):
-            q, stiffness_eq = held, stiffness_of(held)
-            modes = normal_modes(mass, stiffness_eq)
+            q = held
+            stiffness_eq, modes = modes_at(q)
             residual = residual_of(q)
     found = residual <= 1e-9 * scale
     return Equilibrium(
@@ -183,7 +209,62 @@ def find_equilibrium(
         "" if found else "the equilibrium search did not converge",
         stiffness_eq if found else None,
         modes if found else None,
+        placement[0][1] if placement else None,
     )
+
+
+def _level_centre_springs(system: SystemArrays) -> bool:
+    """True when every spring joins centres (or anchors) whose heights are equal in the
+    initial placement, no spring has zero length there, and every external force acts at a
+    centre: the springs then stay horizontal while the bodies roll (centre heights do not
+    change), so Q(q) is affine and K constant (as long as no spring's ends pass each other).
+    The class of :mod:`rollspring.analysis.batch_linear`."""
+    if not system.n_springs or np.any(system.end_r) or np.any(system.force_r):
+        return False
+    on_body = system.end_body >= 0
+    body = np.where(on_body, system.end_body, 0)
+    height = np.where(on_body, (system.track + system.radius)[body], system.end_anchor[..., 1])
+    x = np.where(on_body, system.x0[body], system.end_anchor[..., 0])
+    return bool(np.all(height[:, 0] == height[:, 1]) and np.all(x[:, 0] != x[:, 1]))
+
+
+def _level_equilibrium(
+    mass: FloatArray,
+    stiffness: FloatArray,
+    force_0: FloatArray,
+    initial: float,
+    target: float,
+    residual_of: Callable[[FloatArray], float],
+) -> Equilibrium | None:
+    r"""The equilibrium of a system of :func:`_level_centre_springs`: one Newton step from the
+    placement with the constant K (the step :func:`find_equilibrium`'s search takes first, so
+    the same numbers), or None when the step does not land on an equilibrium to ``target``
+    (the springs' ends would pass each other, a force along a zero mode, an unstable K) or the
+    zero modes are not held to rounding: then the general search decides."""
+    modes = normal_modes(mass, stiffness)
+    eigenvalues, vectors, kinds = modes
+    zero = kinds == "zero"
+    if np.any(kinds == "unstable"):
+        return None
+    q = np.zeros(eigenvalues.size)
+    residual = initial
+    if initial > target:
+        nonzero = ~zero
+        if not np.any(nonzero):
+            return None
+        along = vectors[:, nonzero].T @ force_0
+        q = vectors[:, nonzero] @ (along / eigenvalues[nonzero])
+        residual = residual_of(q)
+        if not residual <= target:
+            return None
+        if np.any(zero):  # held: V0^T M q at rounding, as _hold_zero_modes checks it
+            basis = vectors[:, zero]
+            held = basis.T @ (mass @ q)
+            size = max(1.0, float(np.max(np.abs(q))))
+            limit = 1e-13 * size * float(np.max(np.abs(basis.T @ mass)))
+            if float(np.max(np.abs(held))) > limit:
+                return None
+    return Equilibrium(q, True, residual, "", stiffness, modes, modes)
 
 
 def _valley_directions(
@@ -196,7 +277,7 @@ def _valley_directions(
     """The ``n_zero`` softest M-normalised modes at ``q``: the directions along the valley."""
     if stiffness is None:
         stiffness = stiffness_matrix(system, q)
-    eigenvalues, vectors = scipy.linalg.eigh(stiffness, mass)
+    eigenvalues, vectors = generalized_eigh(mass, stiffness)
     directions: FloatArray = vectors[:, np.argsort(np.abs(eigenvalues))[:n_zero]]
     return directions
 
@@ -251,12 +332,28 @@ def _hold_zero_modes(
 
 def _force_scale(system: SystemArrays) -> float:
     """A typical generalised force of the system, for relative tolerances."""
-    springs = spring_state(system, np.zeros(system.n_bodies))
-    spring_scale = np.sum(system.stiffness * springs.length * np.max(system.scale))
+    spring_scale = np.sum(system.stiffness * _placement_lengths(system) * np.max(system.scale))
     applied = np.sum(np.abs(system.force)) * (
         np.max(system.scale) + np.max(system.force_r, initial=0)
     )
     return float(max(spring_scale, applied, 1e-300) / np.sqrt(np.min(system.inertia)))
+
+
+def _placement_lengths(system: SystemArrays) -> FloatArray:
+    """The springs' lengths in the initial placement: :func:`~rollspring.physics.spring_state`
+    at q = 0 (the same arithmetic, so the same numbers), without its derivatives."""
+    on_body = system.end_body >= 0
+    body = np.where(on_body, system.end_body, 0)
+    r, alpha = system.end_r, system.end_alpha
+    x = np.where(on_body, system.x0[body] + r * np.sin(alpha), system.end_anchor[..., 0])
+    y = np.where(
+        on_body,
+        system.track[body] + system.radius[body] + r * np.cos(alpha),
+        system.end_anchor[..., 1],
+    )
+    dx, dy = x[:, 1] - x[:, 0], y[:, 1] - y[:, 0]
+    lengths: FloatArray = np.sqrt(dx**2 + dy**2)
+    return lengths
 
 
 @dataclass(frozen=True)
@@ -295,16 +392,53 @@ class Mode:
         )
 
 
+def generalized_eigh(mass: FloatArray, stiffness: FloatArray) -> tuple[FloatArray, FloatArray]:
+    r"""Eigenvalues (ascending) and M-orthonormal eigenvectors (columns) of the symmetric
+    problem :math:`K v = \lambda M v` (the lower triangle of K is read).
+
+    With the diagonal M of this model (``mass`` as the (n, n) matrix or its diagonal (n,)) it is
+    the standard problem of :math:`M^{-1/2} K M^{-1/2}` (NumPy's ``eigh``, LAPACK's ``syevd``),
+    its vectors scaled back by :math:`M^{-1/2}`: what SciPy's generalised ``eigh`` (LAPACK's
+    ``sygvd``) computes for a diagonal M, without SciPy's import (about 0.2 s) and call
+    overhead. A full M goes to SciPy's generalised ``eigh`` (loaded on demand).
+    Non-finite entries raise ValueError.
+    """
+    mass = np.asarray(mass, dtype=float)
+    stiffness = np.asarray(stiffness, dtype=float)
+    inertia = np.diagonal(mass) if mass.ndim == 2 else mass
+    if mass.ndim == 2 and np.count_nonzero(mass) > np.count_nonzero(inertia):
+        import scipy.linalg  # a full mass matrix (never this model's): SciPy, on demand
+
+        full: tuple[FloatArray, FloatArray] = scipy.linalg.eigh(stiffness, mass)
+        return full
+    if not (np.isfinite(stiffness).all() and np.isfinite(inertia).all()):
+        raise ValueError("array must not contain infs or NaNs")
+    if not np.all(inertia > 0):
+        raise ValueError("the mass matrix is not positive definite")
+    # sygvd's reduction with the Cholesky factor L = diag(b), b = sqrt(J), operation for
+    # operation (its ``sygs2`` and ``trsm``), so the modes are SciPy's to the last bit:
+    # C_ij = K_ij (1/b_j) / b_i below the diagonal (syevd reads the lower triangle),
+    # C_ii = K_ii / b_i^2, and v = (1/b) w
+    factor = np.sqrt(inertia)
+    inverse = 1.0 / factor
+    reduced = stiffness * inverse / factor[:, None]
+    reduced.flat[:: inertia.size + 1] = np.diagonal(stiffness) / (factor * factor)
+    eigenvalues, standard = np.linalg.eigh(reduced)
+    vectors: FloatArray = standard * inverse[:, None]
+    return eigenvalues, vectors
+
+
 def normal_modes(
     mass: FloatArray, stiffness: FloatArray
 ) -> tuple[FloatArray, FloatArray, np.ndarray]:
-    r"""Solve the symmetric generalised eigenproblem :math:`K v = \lambda M v` (SciPy ``eigh``).
+    r"""Solve the symmetric generalised eigenproblem :math:`K v = \lambda M v`
+    (:func:`generalized_eigh`).
 
     Returns eigenvalues (ascending), M-orthonormal eigenvectors (columns) and the kind of each
     mode: eigenvalues with :math:`|\lambda| < 10^{-10}\max|\lambda|` are zero modes and are
     returned as exactly 0.
     """
-    eigenvalues, vectors = scipy.linalg.eigh(stiffness, mass)
+    eigenvalues, vectors = generalized_eigh(mass, stiffness)
     largest = float(np.max(np.abs(eigenvalues))) if eigenvalues.size else 0.0
     kinds = np.empty(eigenvalues.size, dtype=object)
     for n, lam in enumerate(eigenvalues):

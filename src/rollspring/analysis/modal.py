@@ -317,9 +317,17 @@ def _frequency_groups(omegas: FloatArray) -> list[list[int]]:
 def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component) -> FloatArray:
     r"""max over the motion of :math:`|f_i|/N_i` per body (inf if :math:`N_i` can reach 0).
 
-    With one frequency the extreme is found over the phase :math:`\theta\in[0, 2\pi)` (dense
-    sampling, then a bounded refinement); with several, over the torus of independent phases
-    (the supremum approached by incommensurate motion).
+    With :math:`f = f_c + \mathrm{Re}\sum_g a_g e^{i\theta_g}` and
+    :math:`N = N_c + \mathrm{Re}\sum_g b_g e^{i\theta_g}` over the phases :math:`\theta_g` of
+    the frequency groups (independent: the supremum is approached by incommensurate motion):
+
+    * N constant (every :math:`b_g = 0`, e.g. horizontal springs at the centres): the terms
+      line up, :math:`(|f_c| + \sum_g |a_g|)/N_c`;
+    * one group: :math:`f/N` is stationary where
+      :math:`P\sin\theta + Q\cos\theta = R` (:func:`_one_phase_extremes`), two phases in closed
+      form, and its largest and smallest values are there;
+    * otherwise the maximum is searched over the torus of phases (random sampling, then
+      Nelder-Mead from the best sample; SciPy's optimizer, loaded on demand).
     """
     n = arrays.n_bodies
     out = np.zeros(n)
@@ -335,6 +343,12 @@ def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component)
         if n_c - np.sum(np.abs(a_n)) <= 0:
             out[i] = math.inf
             continue
+        if n_groups == 0:
+            out[i] = abs(f_c) / n_c
+            continue
+        if not np.any(a_n):
+            out[i] = (abs(f_c) + float(np.sum(np.abs(a_f)))) / n_c
+            continue
 
         def ratio(theta: FloatArray) -> FloatArray:
             phase = np.exp(1j * np.atleast_2d(theta))
@@ -344,16 +358,14 @@ def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component)
             result: FloatArray = np.abs(f) / normal_force
             return result
 
-        if n_groups == 0:
-            out[i] = abs(f_c) / n_c
-            continue
         if n_groups == 1:
-            grid = np.linspace(0.0, 2 * math.pi, 4097)[:, None]
-        else:
-            grid = rng.uniform(0.0, 2 * math.pi, size=(20000, n_groups))
+            phases = _one_phase_extremes(f_c, complex(a_f[0]), n_c, complex(a_n[0]))
+            out[i] = float(np.max(ratio(phases[:, None])))
+            continue
+        grid = rng.uniform(0.0, 2 * math.pi, size=(20000, n_groups))
         values = ratio(grid)
         best = int(np.argmax(values))
-        import scipy.optimize  # loaded on demand (~0.1 s), not by every analysis
+        import scipy.optimize  # loaded on demand (~0.1 s): several groups with a varying N only
 
         res = scipy.optimize.minimize(
             lambda th: -float(ratio(th[None, :])[0]),
@@ -363,6 +375,30 @@ def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component)
         )
         out[i] = max(float(values[best]), -float(res.fun))
     return out
+
+
+def _one_phase_extremes(f_c: float, a_f: complex, n_c: float, a_n: complex) -> FloatArray:
+    r"""The phases at which :math:`f/N` is stationary, for
+    :math:`f = f_c + A\cos\theta + B\sin\theta` and :math:`N = N_c + C\cos\theta + D\sin\theta`
+    (:math:`A + iB = \overline{a_f}`, :math:`C + iD = \overline{a_n}`; N > 0 throughout).
+
+    :math:`(f/N)' = 0 \iff f'N - fN' = 0`, which expands (the squares of sine and cosine add up
+    to 1) to :math:`P\sin\theta + Q\cos\theta = R` with :math:`P = f_cC - AN_c`,
+    :math:`Q = BN_c - f_cD`, :math:`R = AD - BC`: :math:`\theta = \mathrm{atan2}(P, Q) \pm
+    \arccos(R/\sqrt{P^2 + Q^2})`. The largest and the smallest :math:`f/N` are among these two
+    (both when :math:`f/N` is constant, :math:`P = Q = 0`: any phase).
+    """
+    a, b = a_f.real, -a_f.imag
+    c, d = a_n.real, -a_n.imag
+    p = f_c * c - a * n_c
+    q = b * n_c - f_c * d
+    r = a * d - b * c
+    size = math.hypot(p, q)
+    if size == 0.0:
+        return np.zeros(2)
+    centre = math.atan2(p, q)
+    half = math.acos(min(1.0, max(-1.0, r / size)))
+    return np.array([centre - half, centre + half])
 
 
 def _tilt_deg(vector: FloatArray) -> FloatArray:

@@ -5,7 +5,18 @@ While every body rolls the Hamiltonian is separable with a constant diagonal mas
 :math:`w_k` are explicit and symplectic (Yoshida 1990; Kahan and Li 1997). Each
 :class:`Integrator` carries its order :math:`p` and the constant :math:`C_p` of its relative
 frequency error :math:`C_p(\omega h)^p` (Verlet's 1/24 exact; the others measured on the
-harmonic oscillator), from which the step for a tolerance follows (:meth:`Integrator.omega_step`).
+harmonic oscillator), from which the step for a tolerance follows (:meth:`Integrator.omega_step`,
+the phase error over the run, what batches and sweeps use).
+
+A single run (:func:`rollspring.simulate`) keeps the accuracy contract (README, "Accuracy"):
+every output position and velocity within :math:`\mathrm{rtol}\,|\text{value}| +
+\mathrm{rtol}/10\cdot\text{scale}` (scale: that quantity's largest |value| over the run). Its
+step (:meth:`Integrator.contract_omega_step`) is chosen for rtol/10 -- the phase error over the
+run, and the error of the quintic Hermite interpolant that gives the outputs between step ends
+(:func:`output_omega_step`) -- then shrunk by safety factors measured on 40 random nonlinear
+systems (``bench/bench_accuracy.py``): per scheme for the phase (:attr:`Integrator.safety`),
+:data:`OUTPUT_SAFETY` for the interpolant, which takes the motion's harmonics above the fastest
+linear frequency into account.
 """
 
 from __future__ import annotations
@@ -15,23 +26,52 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["INTEGRATORS", "MAX_OMEGA_STEP", "Integrator"]
+__all__ = [
+    "HERMITE_POSITION",
+    "HERMITE_VELOCITY",
+    "INTEGRATORS",
+    "MAX_OMEGA_STEP",
+    "OUTPUT_SAFETY",
+    "Integrator",
+    "output_omega_step",
+]
 
 #: Largest omega*h any scheme may use (well inside every scheme's stability interval, and at
 #: least 12 steps per period of the fastest mode).
 MAX_OMEGA_STEP = 0.5
+#: The quintic Hermite interpolant of a step errs by at most (omega h)^6 / 46080 of the amplitude
+#: in position and (omega h)^5 / 13420 of the velocity amplitude in velocity (measured on sin t).
+HERMITE_POSITION, HERMITE_VELOCITY = 46080.0, 13420.0
+#: The contract's share of rtol the step is chosen for: its absolute term, rtol/10 of the scale.
+CONTRACT_SHARE = 0.1
+#: Factor on omega h of the interpolated outputs: the interpolant's error on the nonlinear test
+#: set (bench/bench_accuracy.py), at most 0.4 of the contract with this factor.
+OUTPUT_SAFETY = 0.56
+
+
+def output_omega_step(rtol: float) -> float:
+    r""":math:`\omega h` at which the interpolated outputs between step ends keep the contract:
+    :data:`OUTPUT_SAFETY` times the largest :math:`\omega h` with :math:`(\omega h)^6/46080` and
+    :math:`(\omega h)^5/13420` at most rtol/10."""
+    target = CONTRACT_SHARE * rtol
+    result: float = OUTPUT_SAFETY * min(
+        (HERMITE_POSITION * target) ** (1.0 / 6.0), (HERMITE_VELOCITY * target) ** (1.0 / 5.0)
+    )
+    return result
 
 
 @dataclass(frozen=True)
 class Integrator:
     """A symmetric composition of leapfrog stages: ``coefficients`` are the stage weights
     (summing to 1), ``order`` its order p, ``error_constant`` C_p of the relative frequency
-    error C_p (omega h)^p."""
+    error C_p (omega h)^p, ``safety`` the factor on omega h that keeps a single run's contract
+    (measured: see the module docstring)."""
 
     name: str
     order: int
     error_constant: float
     coefficients: tuple[float, ...]
+    safety: float = 1.0
 
     @property
     def stages(self) -> int:
@@ -52,6 +92,14 @@ class Integrator:
         )
         return result
 
+    def contract_omega_step(self, rtol: float, radians: float) -> float:
+        r""":math:`\omega h` of a single run (:func:`rollspring.simulate`): :attr:`safety` times
+        the step of a phase error of rtol/10 after ``radians`` of the fastest mode, at most
+        :func:`output_omega_step` (the interpolated outputs) and :data:`MAX_OMEGA_STEP`."""
+        phase = (CONTRACT_SHARE * rtol / (self.error_constant * radians)) ** (1.0 / self.order)
+        result: float = min(self.safety * phase, output_omega_step(rtol), MAX_OMEGA_STEP)
+        return result
+
 
 def _symmetric(outer: tuple[float, ...]) -> tuple[float, ...]:
     """Weights w_1..w_m, w_0 = 1 - 2 sum w, w_m..w_1 of a symmetric composition."""
@@ -70,14 +118,16 @@ _KL8 = (
     0.31529309239676659663,
 )  # Kahan and Li 1997
 
-#: name -> :class:`Integrator`, lowest order first.
+#: name -> :class:`Integrator`, lowest order first. The safety factors: the largest factor on
+#: omega h that brings the integration error (outputs on step ends) of every run of the test set
+#: to 0.4 of the contract at rtol 1e-4 ... 1e-10 (bench/bench_accuracy.py, part A).
 INTEGRATORS: dict[str, Integrator] = {
     integrator.name: integrator
     for integrator in (
-        Integrator("verlet", 2, 1.0 / 24.0, (1.0,)),
-        Integrator("yoshida4", 4, 0.0662, _symmetric((_Y4,))),
-        Integrator("yoshida6", 6, 0.00377, _symmetric(_Y6)),
-        Integrator("kahanli8", 8, 4.8e-6, _symmetric(_KL8)),
+        Integrator("verlet", 2, 1.0 / 24.0, (1.0,), safety=0.40),
+        Integrator("yoshida4", 4, 0.0662, _symmetric((_Y4,)), safety=0.65),
+        Integrator("yoshida6", 6, 0.00377, _symmetric(_Y6), safety=0.76),
+        Integrator("kahanli8", 8, 4.8e-6, _symmetric(_KL8), safety=0.82),
     )
 }
 

@@ -46,9 +46,6 @@ __all__ = ["INTEGRATORS", "Trajectory", "simulate"]
 #: Accepted values of ``integrator`` (the symplectic schemes are
 #: :data:`rollspring.simulate.integrators.INTEGRATORS`).
 INTEGRATORS = ("auto", *SCHEME_REGISTRY, "dop853")
-#: The quintic Hermite interpolant of a step errs by at most (omega h)^6 / 46080 of the amplitude
-#: in position and (omega h)^5 / 13420 of the velocity amplitude in velocity (measured on sin t).
-_HERMITE_POSITION, _HERMITE_VELOCITY = 46080.0, 13420.0
 _DEFAULT_OUTPUTS = 2001
 
 
@@ -221,12 +218,12 @@ def _check_arguments(
 def choose_scheme(
     omega: float, duration: float, rtol: float, integrator: str = "auto"
 ) -> tuple[str, float]:
-    r"""The scheme and step for a run: :math:`\omega h = (\mathrm{rtol}/(C_p\,\omega T))^{1/p}`,
-    the phase error over the run after :math:`\omega T` radians; at most 0.5, and at most
-    :math:`(46080\,\mathrm{rtol})^{1/6}` and :math:`(13420\,\mathrm{rtol})^{1/5}` so that the
-    outputs, interpolated inside the steps with errors :math:`(\omega h)^6/46080` of the
-    amplitude in position and :math:`(\omega h)^5/13420` in velocity, stay within ``rtol``.
-    ``auto`` takes the scheme with the fewest force evaluations. Returns ``(name, h)``."""
+    r"""The scheme and step for a run, within the accuracy contract (README, "Accuracy"):
+    :math:`\omega h` from
+    :meth:`~rollspring.simulate.integrators.Integrator.contract_omega_step` -- a phase error of
+    rtol/10 after :math:`\omega T` radians, and outputs interpolated inside the steps within
+    rtol/10, each shrunk by its measured safety factor; at most 0.5. ``auto`` takes the scheme
+    with the fewest force evaluations. Returns ``(name, h)``."""
     names = list(SCHEMES) if integrator == "auto" else [integrator]
     best: tuple[str, float, float] | None = None
     for name in names:
@@ -235,12 +232,7 @@ def choose_scheme(
             step = duration
         else:
             radians = max(omega * duration, 2 * math.pi)
-            omega_step = min(
-                scheme.omega_step(rtol, radians),
-                (_HERMITE_POSITION * rtol) ** (1.0 / 6.0),
-                (_HERMITE_VELOCITY * rtol) ** (1.0 / 5.0),
-            )
-            step = omega_step / omega
+            step = scheme.contract_omega_step(rtol, radians) / omega
         cost = scheme.stages * duration / step
         if best is None or cost < best[2]:
             best = (name, step, cost)

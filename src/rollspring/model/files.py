@@ -54,6 +54,10 @@ def load_system(source: str | os.PathLike[str]) -> System:
         raise ModelError(
             f"system: must be a file path or a preset name (got {type(source).__name__})"
         )
+    if not os.fspath(source):
+        raise ModelError(
+            f"system: must not be empty (a file or a preset name: {', '.join(preset_names())})"
+        )
     try:
         path = Path(source)
         exists = os.path.lexists(path)
@@ -192,6 +196,14 @@ def _shortened(text: str, limit: int = _SHOWN_CHARACTERS) -> str:
     return f"{text[: limit - 30]}… ({len(text)} characters)"
 
 
+def _quoted(text: str, limit: int = _SHOWN_CHARACTERS) -> str:
+    """``repr(text)``, safe for a terminal, of at most ``limit`` characters of ``text`` (a longer
+    one cut, with its length)."""
+    if len(text) <= limit:
+        return _oneline(repr(text))
+    return f"{_oneline(repr(text[: limit - 30]))}… ({len(text)} characters)"
+
+
 def _shown(path: Path | str | os.PathLike[str]) -> str:
     try:
         text = os.fspath(path)
@@ -227,7 +239,7 @@ def _parse(text: str, path: Path, *, shown: str | None = None) -> dict[str, Any]
         except tomllib.TOMLDecodeError as exc:
             raise ModelError(f"{name}: TOML syntax error: {_oneline(exc)}") from None
     raise ModelError(
-        f"{name}: unknown file type {_shortened(_oneline(repr(suffix)))} (use .toml or .json)"
+        f"{name}: unknown file type {_quoted(suffix)} (use .toml or .json)"
     )
 
 
@@ -235,7 +247,7 @@ def _no_duplicate_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for key, value in pairs:
         if key in out:
-            raise ModelError(f"duplicate key {_shortened(_oneline(repr(key)))} in a JSON object")
+            raise ModelError(f"duplicate key {_quoted(key)} in a JSON object")
         out[key] = value
     return out
 
@@ -331,7 +343,7 @@ def _describe(error: ErrorDetails | dict[str, Any]) -> str:
     if kind == "extra_forbidden":
         key = loc[-1] if loc else "?"
         where = _path(loc[:-1])
-        return f"{where + ': ' if where else ''}unknown key {_shortened(_oneline(repr(str(key))))}"
+        return f"{where + ': ' if where else ''}unknown key {_quoted(str(key))}"
     if kind == "missing":
         return f"{_path(loc)}: missing (required)"
     if kind in ("finite_number",):
@@ -397,6 +409,8 @@ def _show(value: Any) -> str:
         return f"an integer of {len(str(abs(value)))} digits"
     if isinstance(value, float):
         return repr(value) if math.isfinite(value) else str(value)
+    if isinstance(value, str):
+        return _quoted(value)
     return _shortened(_oneline(repr(value)))
 
 

@@ -239,6 +239,8 @@ def writable_directory(
     shown = _shown(path if named is None else named)
     if os.fspath(path) == "":
         raise OutputError(f"{option}: must not be empty (give a folder, or . for this one)")
+    if "\x00" in str(os.fspath(path)):
+        raise OutputError(f"{option} {shown}: not a valid path (a NUL character)")
     try:
         directory = Path(path)
         probe = directory.absolute()
@@ -279,6 +281,8 @@ def writable_file(path: str | os.PathLike[str], option: str = "--out") -> Path:
     shown = _shown(path)
     if os.fspath(path) == "":
         raise OutputError(f"{option}: must not be empty (give a file name)")
+    if "\x00" in str(os.fspath(path)):
+        raise OutputError(f"{option} {shown}: not a valid path (a NUL character)")
     try:
         target = Path(path)
         info = os.stat(target) if os.path.lexists(target) else None

@@ -77,7 +77,7 @@ def test_error_example_is_real(tmp_path: Path) -> None:
     )
     result = CliRunner().invoke(app, ["analyze", str(bad)])
     assert result.exit_code == 2
-    expected = "bodies[1].mass: must be > 0 (got -1.0)"
+    expected = "bodies[1].mass: must be between 1e-06 and 1e+06 kg, the verified range (got -1.0)"
     assert expected in result.stderr and expected in README
 
 

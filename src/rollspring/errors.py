@@ -29,6 +29,7 @@ The tree, grouped by the layer that raises each class (bottom layer first)::
     │ service
     ├── SweepError              a sweep cannot be run as asked (a PATH, value, metric, store)
     │   └── StoreMismatchError  the store at --out holds another sweep (another fingerprint)
+    ├── CostTooHigh             a run's estimated time or memory is above the bound (--yes)
     │ web
     ├── WebError                the web server could not compute a request
     │   ├── Overloaded          no worker was free within the time budget (HTTP 503)
@@ -55,6 +56,7 @@ __all__ = [
     "AnalysisError",
     "AnimationError",
     "BudgetExceeded",
+    "CostTooHigh",
     "DerivationError",
     "ExportError",
     "JobFailed",
@@ -156,6 +158,12 @@ class SweepError(RollspringError, ValueError):
 
 class StoreMismatchError(SweepError):
     """The store at ``--out`` holds another sweep (its grid fingerprint differs)."""
+
+
+class CostTooHigh(RollspringError, ValueError):
+    """A run's estimated cost (steps × bodies, hence time, or the memory of its outputs) is above
+    the bound an interface sets; the message gives the estimate, and how to confirm the run
+    (``--yes``) or make it smaller."""
 
 
 # ------------------------------------------------------------------------------------ web

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
+from rollspring.cli.text import say
 from rollspring.model import preset_names
 
 if TYPE_CHECKING:
@@ -56,16 +57,29 @@ def animate(
     on_slip: Annotated[
         str, typer.Option("--on-slip", help="stop: end at the first slip; continue: stick-slip.")
     ] = "stop",
+    yes: Annotated[
+        bool,
+        typer.Option(
+            "--yes",
+            "-y",
+            help="Start even when the estimated time or memory is above the bound.",
+        ),
+    ] = False,
 ) -> None:
     """Animate the exact motion: the bodies roll, the springs stretch, force arrows to scale,
     the CM and X-hat on the floor, and a clock."""
     target = _check(out, duration, speed, fps, dpi, on_slip)
-    from rollspring.model import load_system
+    from rollspring.cli.app import load
     from rollspring.outputs.animation import AnimationError, frame_times, write_animation
+    from rollspring.service.costs import check_cost, simulation_cost
     from rollspring.simulate import simulate
 
-    model = load_system(system)
+    model = load(system)
     frames = math.floor(duration / speed * fps) + 1
+    cost = simulation_cost(model, duration, outputs=max(2001, 2 * frames), what="the simulation")
+    check_cost(cost, confirmed=yes)
+    if cost.long:
+        _say(f"note: the simulation will take {cost.describe()}; Ctrl-C stops it")
     with _Bar() as bar:
         bar.start("simulating")
         trajectory = simulate(
@@ -167,5 +181,5 @@ def register(app: typer.Typer) -> None:
 
 
 def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout."""
-    typer.echo(" ".join(line.split()), err=True)
+    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
+    say(line)

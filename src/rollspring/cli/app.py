@@ -14,7 +14,9 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Annotated, Any, TypeVar
 
 import typer
+import typer.core
 
+from rollspring.cli.text import say
 from rollspring.errors import RollspringError, require_extra
 from rollspring.model import DEFAULT_PRESET, preset_names, preset_path
 
@@ -22,14 +24,51 @@ if TYPE_CHECKING:
     from rich.console import Console
     from rich.progress import Progress, TaskID
 
+    from rollspring.model import System
+
 # Only what every command needs is imported here (Typer and the presets' names):
 # each command imports its own (pydantic's model, SciPy, the compiled kernels, SymPy,
 # Matplotlib, ...), so --help and the light commands start fast.
 
 __all__ = ["app", "main"]
 
+
+class _OneLineErrors(typer.core.TyperGroup):
+    """The command group, whose usage errors (an unknown option, ``-T abc``, a missing value)
+    are one line on stderr and exit code 2, like rollspring's own errors, instead of a usage
+    panel; ``rollspring`` alone still prints the help."""
+
+    def main(  # type: ignore[override]
+        self,
+        args: Any = None,
+        prog_name: str | None = None,
+        complete_var: str | None = None,
+        standalone_mode: bool = True,
+        **extra: Any,
+    ) -> Any:
+        # Typer vendors Click as typer._click: its exceptions are Typer's, not click's
+        from typer._click import exceptions as click
+
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode, **extra)
+        try:
+            code = super().main(args, prog_name, complete_var, False, **extra)
+        except click.NoArgsIsHelpError as exc:  # the help is printed already
+            sys.exit(exc.exit_code)
+        except click.ClickException as exc:
+            context = getattr(exc, "ctx", None)
+            where = context.command_path if context is not None else "rollspring"
+            say(f"error: {where}: {exc.format_message()} (see {where} --help)")
+            sys.exit(exc.exit_code)
+        except typer.Abort:
+            say("aborted")
+            sys.exit(1)
+        sys.exit(code if isinstance(code, int) else 0)
+
+
 app = typer.Typer(
     name="rollspring",
+    cls=_OneLineErrors,
     help="Coupled rolling oscillators: exact rolling physics, normal modes, friction and "
     "normal forces.",
     no_args_is_help=True,
@@ -45,6 +84,15 @@ SystemArg = Annotated[
     ),
 ]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object on stdout.")]
+YesOpt = Annotated[
+    bool,
+    typer.Option(
+        "--yes",
+        "-y",
+        help="Start even when the estimated time or memory is above the bound (a larger run "
+        "is refused with its estimate).",
+    ),
+]
 
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -54,7 +102,9 @@ def friendly_errors(command: F) -> F:
     """Turn rollspring's errors into one line on stderr and exit code 2 (never a traceback).
 
     An unexpected exception (a bug) is reported in one line with exit code 1; set
-    ``ROLLSPRING_DEBUG=1`` to see its traceback.
+    ``ROLLSPRING_DEBUG=1`` to see its traceback. Running out of memory is one line and exit
+    code 2 too (the request was too large); Ctrl-C ends the command with exit code 130, every
+    temporary file removed (the writers clean up on any exception).
     """
 
     @functools.wraps(command)
@@ -64,8 +114,17 @@ def friendly_errors(command: F) -> F:
         except RollspringError as exc:
             _say(f"error: {exc}")
             raise typer.Exit(2) from None
-        except (typer.Exit, typer.Abort, KeyboardInterrupt):
+        except (typer.Exit, typer.Abort):
             raise
+        except KeyboardInterrupt:
+            _say("interrupted: nothing more was written")
+            raise typer.Exit(130) from None
+        except MemoryError:
+            _say(
+                "error: out of memory: ask for less (fewer --outputs, a shorter --duration, "
+                "fewer bodies)"
+            )
+            raise typer.Exit(2) from None
         except Exception as exc:
             if os.environ.get("ROLLSPRING_DEBUG"):
                 raise
@@ -103,8 +162,20 @@ def _stdout() -> Console:
 
 
 def _say(line: str) -> None:
-    """One unwrapped line on stderr (errors, warnings): never mixed into stdout."""
-    typer.echo(" ".join(line.split()), err=True)
+    """One unwrapped line on stderr (errors, warnings): never mixed into stdout; control
+    characters written out, at most :data:`rollspring.cli.text.MAX_LINE` characters."""
+    say(line)
+
+
+def load(system: str) -> System:
+    """The system a command was given (a file or a preset), with a warning on stderr for each
+    pair of bodies that overlap in its initial placement."""
+    from rollspring.model import load_system
+
+    model = load_system(system)
+    for warning in model.overlaps:
+        _say(f"warning: {warning}")
+    return model
 
 
 def _print_json(data: Any) -> None:
@@ -117,12 +188,17 @@ def _print_json(data: Any) -> None:
 def analyze(
     system: SystemArg = DEFAULT_PRESET,
     as_json: JsonOpt = False,
+    yes: YesOpt = False,
 ) -> None:
     """Linear analysis: equilibrium, M and K, normal modes, stationary point, friction needed."""
-    from rollspring.model import load_system
+    from rollspring.service.costs import analysis_cost, check_cost
     from rollspring.service.runs import analysis_payload
 
-    model = load_system(system)
+    model = load(system)
+    cost = analysis_cost(model)
+    check_cost(cost, confirmed=yes)
+    if cost.long:
+        _say(f"note: the analysis will take {cost.describe()}")
     if as_json:
         payload, warnings = analysis_payload(model)
         for warning in warnings:
@@ -204,16 +280,25 @@ def simulate(
         ),
     ] = None,
     as_json: JsonOpt = False,
+    yes: YesOpt = False,
 ) -> None:
     """Integrate the exact nonlinear motion; report energy, period, friction, slip, lift-off."""
     if out is not None:  # an unwritable --out fails now, not after the run
         from rollspring.outputs.files import writable_directory
 
         writable_directory(out)
-    from rollspring.model import load_system
+    from rollspring.service.costs import check_cost, simulation_cost
     from rollspring.service.runs import run_simulation
+    from rollspring.simulate.arguments import ON_SLIP, check_choice
 
-    model = load_system(system)
+    model = load(system)
+    check_choice("on_slip", on_slip, ON_SLIP, "on_slip")
+    cost = simulation_cost(
+        model, duration, rtol=rtol, integrator=integrator, outputs=outputs, written=out is not None
+    )
+    check_cost(cost, confirmed=yes)
+    if cost.long:
+        _say(f"note: this run will take {cost.describe()}; Ctrl-C stops it")
     with _progress_after_a_second("simulating") as progress:
         trajectory = run_simulation(
             model,
@@ -279,7 +364,18 @@ class _progress_after_a_second:  # noqa: N801 - used as a context manager
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Entry point of the ``rollspring`` console command."""
+    """Entry point of the ``rollspring`` console command. A termination signal (SIGTERM,
+    SIGHUP: ``kill``, a closed terminal) ends the command as Ctrl-C does, so that its writers
+    remove their temporary files (SIGKILL cannot be caught: the next run into the same place
+    removes what it left)."""
+    import signal
+
+    def stop(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt
+
+    for name in ("SIGTERM", "SIGHUP"):
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), stop)
     app(args=argv)
 
 

@@ -14,6 +14,7 @@ from typing import Annotated
 
 import typer
 
+from rollspring.cli.text import say
 from rollspring.model import preset_names
 
 # The derivation engine (SymPy) is imported when the command runs, not when the CLI starts.
@@ -67,6 +68,14 @@ def derive_command(
             show_default=False,
         ),
     ] = None,
+    yes: Annotated[
+        bool,
+        typer.Option(
+            "--yes",
+            "-y",
+            help="Start even when the estimated time is above the bound (many bodies).",
+        ),
+    ] = False,
 ) -> None:
     """Derive the equations of motion step by step by Newton, conservation laws, Lagrange,
     subsystem frequencies and Hamilton; check that they agree (symbolically)."""
@@ -83,11 +92,19 @@ def derive_command(
             raise DerivationError(
                 f"--method: unknown method '{name}' (methods: {', '.join(METHODS)}, {ALL})"
             )
-    from rollspring.model import load_system  # pydantic: not for --help
+    if out is not None:
+        from rollspring.outputs.files import writable_file
 
-    rendered, check = derivation_document(
-        load_system(system), methods, format=format, symbols=symbols
-    )
+        writable_file(out)  # an unwritable --out fails now, not after the derivation
+    from rollspring.cli.app import load  # pydantic: not for --help
+    from rollspring.service.costs import check_cost, derivation_cost
+
+    model = load(system)
+    cost = derivation_cost(model)
+    check_cost(cost, confirmed=yes)
+    if cost.long:
+        _say(f"note: the derivation will take {cost.describe()}; Ctrl-C stops it")
+    rendered, check = derivation_document(model, methods, format=format, symbols=symbols)
     if out is None:
         sys.stdout.write(rendered)
         sys.stdout.flush()
@@ -114,5 +131,5 @@ def register(app: typer.Typer) -> None:
 
 
 def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout."""
-    typer.echo(" ".join(line.split()), err=True)
+    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
+    say(line)

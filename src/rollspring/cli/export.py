@@ -7,17 +7,21 @@ Only MuJoCo's MJCF for now (:mod:`rollspring.outputs.mjcf`). The command is adde
 
 from __future__ import annotations
 
+import math
 import sys
 from typing import Annotated
 
 import typer
 
+from rollspring.cli.text import say
 from rollspring.model import preset_names
 
 __all__ = ["FORMATS", "export", "register"]
 
 #: Formats ``--format`` accepts.
 FORMATS = ("mjcf",)
+#: The longest time step ``--timestep`` accepts, s.
+MAX_TIMESTEP = 0.1
 
 
 def export(
@@ -55,9 +59,18 @@ def export(
         raise ExportError(f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})")
     if out is None:
         raise ExportError("--out/-o is required: a file path, or '-' for stdout")
-    from rollspring.model import load_system  # pydantic: not for --help
+    if timestep is not None and not (math.isfinite(timestep) and 0 < timestep <= MAX_TIMESTEP):
+        raise ExportError(
+            f"timestep: must be a positive number of seconds up to {MAX_TIMESTEP:g} "
+            f"(MuJoCo steps a model in far less), not {timestep!r}"
+        )
+    if out != "-":
+        from rollspring.outputs.files import writable_file
 
-    model = load_system(system)
+        writable_file(out)  # an unwritable --out fails now, before the system is read
+    from rollspring.cli.app import load  # pydantic: not for --help
+
+    model = load(system)
     if out == "-":
         text = system_to_mjcf(model, timestep=timestep)
         sys.stdout.write(text)
@@ -81,5 +94,5 @@ def register(app: typer.Typer) -> None:
 
 
 def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout."""
-    typer.echo(" ".join(line.split()), err=True)
+    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
+    say(line)

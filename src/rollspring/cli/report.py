@@ -9,11 +9,13 @@ headless Chromium prints the same page. The command is added to an app by
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
+from rollspring.cli.text import say
 from rollspring.model import DEFAULT_PRESET, preset_names
 
 __all__ = ["FORMATS", "register", "report"]
@@ -75,6 +77,14 @@ def report(
             show_default=False,
         ),
     ] = None,
+    yes: Annotated[
+        bool,
+        typer.Option(
+            "--yes",
+            "-y",
+            help="Start even when the estimated time or memory is above the bound.",
+        ),
+    ] = False,
 ) -> None:
     """Write a self-contained report (HTML, or PDF through headless Chromium): diagram,
     parameters, modes, X̂, friction needed vs μs, derivations, paper checks, plots, animation."""
@@ -85,7 +95,7 @@ def report(
         format = "pdf" if out is not None and out.lower().endswith(".pdf") else "html"  # noqa: A001
     if format not in FORMATS:
         raise ReportError(f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})")
-    if duration is not None and not duration > 0:
+    if duration is not None and not (math.isfinite(duration) and duration > 0):
         raise ReportError(f"--duration: must be a positive number of seconds, got {duration:g}")
     target = Path(out if out is not None else f"report.{format}")
     from rollspring.outputs.files import writable_file
@@ -93,10 +103,14 @@ def report(
     writable_file(target)  # an unwritable --out fails now, not after the work
     if format == "pdf":
         find_chromium(chromium)  # fail before the work when Chromium is missing
-    from rollspring.model import load_system  # pydantic: not for --help
+    from rollspring.cli.app import _progress_after_a_second, load  # pydantic: not for --help
+    from rollspring.service.costs import check_cost, report_cost
 
-    model = load_system(system)
-    from rollspring.cli.app import _progress_after_a_second
+    model = load(system)
+    cost = report_cost(model, duration=duration, derivation=derivation)
+    check_cost(cost, confirmed=yes)
+    if cost.long:
+        _say(f"note: the report will take {cost.describe()}; Ctrl-C stops it")
 
     with _progress_after_a_second("building the report") as progress:
         built = build_report(model, duration=duration, derivation=derivation, progress=progress)
@@ -114,5 +128,5 @@ def register(app: typer.Typer) -> None:
 
 
 def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout."""
-    typer.echo(" ".join(line.split()), err=True)
+    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
+    say(line)

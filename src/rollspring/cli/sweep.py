@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
+from rollspring.cli.text import say
 from rollspring.model import DEFAULT_PRESET, preset_names
 
 if TYPE_CHECKING:
@@ -213,5 +214,5 @@ def register(app: typer.Typer) -> None:
 
 
 def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout."""
-    typer.echo(" ".join(line.split()), err=True)
+    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
+    say(line)

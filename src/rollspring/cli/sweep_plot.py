@@ -12,6 +12,7 @@ from typing import Annotated
 
 import typer
 
+from rollspring.cli.text import say
 from rollspring.errors import SweepPlotError
 
 __all__ = ["SweepPlotError", "register", "sweep_plot"]
@@ -123,5 +124,5 @@ def register(app: typer.Typer) -> None:
 
 
 def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout."""
-    typer.echo(" ".join(line.split()), err=True)
+    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
+    say(line)

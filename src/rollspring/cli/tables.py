@@ -10,6 +10,7 @@ from rich.table import Table
 
 from rollspring.analysis import LinearAnalysis
 from rollspring.analysis.report import CONVENTIONS
+from rollspring.cli.text import markup, plain
 
 __all__ = ["print_analysis"]
 
@@ -29,9 +30,9 @@ def print_analysis(console: Console, result: LinearAnalysis) -> None:
     arrays = result.arrays
     system = result.system
     ids = arrays.ids
-    console.print(f"[bold]{system.name or 'system'}[/bold]")
-    if system.description:
-        console.print(system.description, markup=False)
+    console.print(f"[bold]{markup(system.name or 'system')}[/bold]")
+    if system.description:  # the user's text: printed as it reads, never as markup
+        console.print(plain(system.description), markup=False)
     console.print()
 
     bodies = Table(title="Bodies at equilibrium", title_justify="left")
@@ -147,7 +148,7 @@ def print_analysis(console: Console, result: LinearAnalysis) -> None:
         console.print(springs)
     console.print(f"[dim]Signs: φ {CONVENTIONS['phi']}; friction: {CONVENTIONS['friction']}.[/dim]")
     for warning in result.warnings:
-        console.print(f"[yellow]warning:[/yellow] {warning}", highlight=False)
+        console.print(f"[yellow]warning:[/yellow] {markup(warning)}", highlight=False)
 
 
 def print_simulation(console: Console, trajectory, written) -> None:
@@ -156,14 +157,15 @@ def print_simulation(console: Console, trajectory, written) -> None:
 
     summary = trajectory.summary
     head = Table(
-        title=f"{trajectory.system.name}: simulated {summary['duration']:g} s",
+        title=f"{markup(trajectory.system.name)}: simulated {summary['duration']:g} s",
         title_justify="left",
         show_header=False,
     )
     head.add_column("quantity", style="bold")
     head.add_column("value")
     head.add_row(
-        "status", summary["status"] + (f" ({summary['message']})" if summary["message"] else "")
+        "status",
+        markup(summary["status"] + (f" ({summary['message']})" if summary["message"] else "")),
     )
     step = summary["step"]
     head.add_row(
@@ -209,4 +211,4 @@ def print_simulation(console: Console, trajectory, written) -> None:
         )
     console.print(bodies)
     for path in written:
-        console.print(f"wrote {path}")
+        console.print(f"wrote {plain(path)}", markup=False)

@@ -16,6 +16,7 @@ from typing import Annotated
 
 import typer
 
+from rollspring.cli.text import say
 from rollspring.errors import WorksheetOptionError
 
 __all__ = [
@@ -142,5 +143,5 @@ def register(app: typer.Typer) -> None:
 
 
 def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout."""
-    typer.echo(" ".join(line.split()), err=True)
+    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
+    say(line)

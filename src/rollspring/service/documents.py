@@ -34,7 +34,7 @@ from rollspring.analysis.paper_check import (
     paper_figure,
 )
 from rollspring.errors import RollspringError
-from rollspring.model import System, system_from_dict
+from rollspring.model import System, as_system, system_from_dict
 from rollspring.outputs.report import (
     MathConversionError,
     Report,
@@ -80,6 +80,7 @@ def build_report(
     part for large systems); ``progress`` is called with the fraction done (0..1) after each
     stage. ``Report.timings`` holds the seconds each stage took, and their ``total``.
     """
+    system = as_system(system)
     timings: dict[str, float] = {}
     started = clock = time.perf_counter()
 
@@ -140,7 +141,7 @@ def derivation_document(
     :data:`rollspring.analysis.derivation.METHODS`; with ``symbols`` the parameters are symbols),
     rendered as ``format`` (``text``, ``markdown`` or ``latex``, a complete document), and the
     cross-check of the methods."""
-    derivation = derive(system, methods, symbols=symbols)
+    derivation = derive(as_system(system), methods, symbols=symbols)
     return derivation.render(format), derivation.cross_check
 
 
@@ -161,6 +162,7 @@ def derivation_payload(
     ``rollspring paper-check --json`` gives them, when the system is one of the paper's
     (:func:`figure_claims`); otherwise None.
     """
+    system = as_system(system)
     derivation = derive(system, method, symbols=symbols)
     check = derivation.cross_check
     paper = figure_claims(system)

@@ -282,3 +282,38 @@ def test_paper_system_equilibrium_is_the_exact_stationary_split() -> None:
     x = arrays.x0 + arrays.scale * q
     assert x[1] - x[0] == pytest.approx(0.5, rel=1e-15)
     assert 2 * x[0] + 1.5 * x[1] == pytest.approx(1.5 * 0.49, rel=1e-15)
+
+
+def test_one_and_two_coordinates_are_lapacks_eigh_in_plain_floats() -> None:
+    """The paper's systems have two coordinates: their modes come from plain floats that
+    follow LAPACK's syevd (laev2 and steqr's rotation and sort) operation for operation, so
+    NumPy's eigenvalues and eigenvectors, signs included, to the last bit or one ulp."""
+    from rollspring.analysis.linear import _small_eigh
+
+    rng = np.random.default_rng(7)
+    differ = 0
+    for k in range(20_000):
+        a, b, c = rng.normal(size=3) * 10.0 ** rng.integers(-6, 6, size=3)
+        if k % 7 == 1:
+            b = 0.0  # diagonal
+        elif k % 7 == 2:
+            c = a  # equal diagonal
+        elif k % 7 == 3:
+            b = a * 1e-17  # below steqr's split threshold
+        elif k % 7 == 4:
+            a, b, c = (float(x) for x in rng.integers(-3, 4, size=3))  # ties, zeros
+        inertia = rng.uniform(0.01, 10.0, size=2)
+        stiffness = np.array([[a, b], [b, c]])
+        expected = scipy.linalg.eigh(stiffness, np.diag(inertia))
+        eigenvalues, vectors = _small_eigh(inertia.tolist(), stiffness.tolist())
+        scale = max(float(np.max(np.abs(expected[0]))), 1e-300)
+        np.testing.assert_allclose(eigenvalues, expected[0], rtol=0, atol=4e-16 * scale)
+        np.testing.assert_allclose(vectors, expected[1], rtol=0, atol=4e-16 * np.max(vectors))
+        differ += not (
+            np.array_equal(eigenvalues, expected[0]) and np.array_equal(vectors, expected[1])
+        )
+    assert differ < 20  # a handful differ by an ulp
+    eigenvalue, vector = _small_eigh([2.0], [[3.0]])
+    one = scipy.linalg.eigh([[3.0]], [[2.0]])  # 3 / sqrt(2)^2 = 1.4999999999999998
+    assert eigenvalue.tolist() == one[0].tolist() and vector.tolist() == one[1].tolist()
+    assert _small_eigh([1.0, 1.0], [[1e300, 0.0], [0.0, 1.0]]) is None  # LAPACK rescales

@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 
 from rollspring.analysis import analyze
 from rollspring.errors import SimulationError
+from rollspring.model import load_system
 from rollspring.physics import (
     contact_forces,
     generalized_forces,
@@ -502,3 +503,57 @@ def test_a_view_without_the_outputs_layer_is_a_clear_error(monkeypatch):
     trajectory = simulate(centre_pair(1.0, 1.3, 100.0), 0.1, n_output=3)
     with pytest.raises(SimulationError, match=r"to_pandas is provided by rollspring\.outputs"):
         trajectory.to_pandas()
+
+
+def test_compiled_row_helpers_agree_with_numpy() -> None:
+    """general_states is [x0 + s q, rho q, s v, rho v]; row_extremes picks the rows NumPy's
+    argmax/argmin pick (first of equals, a NaN first), |f|/N = inf where N <= 0, -inf while
+    slipping."""
+    system = make_system(
+        [body("h", "hoop", x=0.0), body("m", "slider", radius=0.05, x=0.5)],
+        [spring("h", "m", rest_length=0.5)],
+    )
+    arrays = system_arrays(system)
+    model = kernels.kernel_model(arrays)
+    rng = np.random.default_rng(3)
+    q, v, x0 = rng.normal(size=(7, 2)), rng.normal(size=(7, 2)), rng.normal(size=2)
+    expected = np.concatenate(
+        [x0 + arrays.scale * q, arrays.rolls * q, arrays.scale * v, arrays.rolls * v], axis=-1
+    )
+    assert np.array_equal(kernels.general_states(model, q, v, x0), expected)
+    friction = rng.normal(size=(9, 2))
+    normal = rng.uniform(0.5, 2.0, size=(9, 2))
+    normal[2, 0] = 0.0  # |f|/N = inf
+    normal[4, 1] = -1.0
+    friction[5, 0] = friction[6, 0] = 50.0  # a tie: the first
+    slipping = np.zeros((9, 2), dtype=bool)
+    slipping[2, 0] = True  # -inf while slipping, even where N = 0
+    for nan in (False, True):
+        if nan:
+            friction[7, 0] = normal[3, 1] = np.nan
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(normal > 0, np.abs(friction) / normal, np.inf)
+        ratio = np.where(slipping, -np.inf, ratio)
+        rolls = np.array([1.0, 1.0])
+        best, best_row, low, low_row = kernels.row_extremes(friction, normal, slipping, rolls)
+        for i in range(2):
+            k = int(np.argmax(ratio[:, i]))
+            assert best_row[i] == k and np.array_equal(best[i], ratio[k, i], equal_nan=True)
+            k = int(np.argmin(normal[:, i]))
+            assert low_row[i] == k and np.array_equal(low[i], normal[k, i], equal_nan=True)
+
+
+def test_level_springs_keep_the_normal_forces_constant_and_nothing_is_refined() -> None:
+    """Centre springs on one level: N = m g at every instant, exactly (the summary's minimum is
+    every row's); with a tilted spring N varies and its minimum is refined between rows."""
+    level = simulate(load_system("hoop-cylinder"), 2.0)
+    assert np.all(level.normal == level.normal[0])
+    for i, name in enumerate(level.ids):
+        assert level.summary["min_normal_force"][name] == level.normal[0, i]
+    tilted = make_system(
+        [body("h", "hoop", x=0.0, track_height=0.05), body("c", "cylinder", x=0.49)],
+        [spring("h", "c", rest_length=0.5)],
+    )
+    run = simulate(tilted, 2.0)
+    assert np.ptp(run.normal[:, 0]) > 0
+    assert run.summary["min_normal_force"]["h"] <= float(np.min(run.normal[:, 0]))

@@ -12,6 +12,7 @@ module, never the other way round.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -25,6 +26,7 @@ from rollspring.physics import (
     SystemArrays,
     generalized_forces,
     mass_matrix,
+    springs_stay_level,
     stiffness_matrix,
 )
 from rollspring.physics.arrays import FloatArray
@@ -111,24 +113,33 @@ def find_equilibrium(
         def stiffness_of(state: FloatArray) -> FloatArray:
             return stiffness_matrix(system, state)
 
-    mass = mass_matrix(system)
     inv_mass = 1.0 / system.inertia
 
     def residual_of(state: FloatArray) -> float:
         force = forces(state)
-        return float(np.sqrt(np.sum(force**2 * inv_mass)))
+        return math.sqrt(float((force**2 * inv_mass).sum()))
 
     zeros = np.zeros(n)
     force_0 = forces(zeros)
-    initial = float(np.sqrt(np.sum(force_0**2 * inv_mass)))
-    scale = max(initial, _force_scale(system))
+    initial = math.sqrt(float((force_0**2 * inv_mass).sum()))
+    dx, dy = _placement_vectors(system)
+    lengths = np.sqrt(dx**2 + dy**2)
+    scale = max(initial, _force_scale(system, lengths))
     target = tolerance * scale
 
-    if _level_centre_springs(system):
-        level = _level_equilibrium(mass, stiffness_of(zeros), force_0, initial, target, residual_of)
+    if _level_centre_springs(system, dx):
+        level = _level_equilibrium(
+            system.inertia,
+            _level_stiffness(system, dx, lengths) if stiffness is None else stiffness(zeros),
+            force_0,
+            initial,
+            target,
+            residual_of,
+        )
         if level is not None:
             return level
 
+    mass = mass_matrix(system)
     root_mass = np.sqrt(system.inertia)
     #: K and the modes at the initial placement, once the search has computed them
     placement: list[tuple[FloatArray, tuple[FloatArray, FloatArray, np.ndarray]]] = []
@@ -213,23 +224,39 @@ def find_equilibrium(
     )
 
 
-def _level_centre_springs(system: SystemArrays) -> bool:
-    """True when every spring joins centres (or anchors) whose heights are equal in the
-    initial placement, no spring has zero length there, and every external force acts at a
-    centre: the springs then stay horizontal while the bodies roll (centre heights do not
-    change), so Q(q) is affine and K constant (as long as no spring's ends pass each other).
-    The class of :mod:`rollspring.analysis.batch_linear`."""
-    if not system.n_springs or np.any(system.end_r) or np.any(system.force_r):
+def _level_centre_springs(
+    system: SystemArrays, dx: FloatArray | None = None, dy: FloatArray | None = None
+) -> bool:
+    """True for the springs of :func:`~rollspring.physics.springs_stay_level` (level centre
+    springs, forces at centres: Q(q) affine and K constant while no spring's ends pass each
+    other; the class of :mod:`rollspring.analysis.batch_linear`) when, besides, no spring has
+    zero length in the placement. ``dx``: the springs' horizontal extents in the placement
+    (:func:`_placement_vectors`), when the caller has them."""
+    if not springs_stay_level(system):
         return False
-    on_body = system.end_body >= 0
-    body = np.where(on_body, system.end_body, 0)
-    height = np.where(on_body, (system.track + system.radius)[body], system.end_anchor[..., 1])
-    x = np.where(on_body, system.x0[body], system.end_anchor[..., 0])
-    return bool(np.all(height[:, 0] == height[:, 1]) and np.all(x[:, 0] != x[:, 1]))
+    if dx is None:
+        dx, _ = _placement_vectors(system)
+    return bool((dx != 0.0).all())
+
+
+def _level_stiffness(system: SystemArrays, dx: FloatArray, lengths: FloatArray) -> FloatArray:
+    r""":func:`~rollspring.physics.stiffness_matrix` of a system of
+    :func:`_level_centre_springs` (any q), :math:`K = \sum_s k_s b_s b_s^T` (M12) with the
+    constant lever arms :math:`b_{si} = e_s \sigma_{si} s_i` (:math:`e_s = \pm 1` the spring's
+    direction, :math:`\sigma_{si} = \pm 1` where end b / end a is on body i): the geometric
+    stiffness :math:`T_sH_s` vanishes exactly on level centre springs. The same operations on
+    the same numbers as ``stiffness_matrix`` (whose other terms are exact zeros there), so
+    the same bits."""
+    direction = dx / lengths
+    sigma = system.incidence[:, 1, :] - system.incidence[:, 0, :]
+    lever = direction[:, None] * sigma * system.scale
+    k_matrix = np.einsum("s,si,sj->ij", system.stiffness, lever, lever)
+    result: FloatArray = 0.5 * (k_matrix + k_matrix.T)
+    return result
 
 
 def _level_equilibrium(
-    mass: FloatArray,
+    inertia: FloatArray,
     stiffness: FloatArray,
     force_0: FloatArray,
     initial: float,
@@ -241,28 +268,28 @@ def _level_equilibrium(
     the same numbers), or None when the step does not land on an equilibrium to ``target``
     (the springs' ends would pass each other, a force along a zero mode, an unstable K) or the
     zero modes are not held to rounding: then the general search decides."""
-    modes = normal_modes(mass, stiffness)
+    modes = normal_modes(inertia, stiffness)
     eigenvalues, vectors, kinds = modes
-    zero = kinds == "zero"
-    if np.any(kinds == "unstable"):
+    listed = kinds.tolist()
+    if "unstable" in listed:
         return None
     q = np.zeros(eigenvalues.size)
     residual = initial
     if initial > target:
+        zero = kinds == "zero"
         nonzero = ~zero
-        if not np.any(nonzero):
+        if "zero" in listed and "oscillating" not in listed:
             return None
         along = vectors[:, nonzero].T @ force_0
         q = vectors[:, nonzero] @ (along / eigenvalues[nonzero])
         residual = residual_of(q)
         if not residual <= target:
             return None
-        if np.any(zero):  # held: V0^T M q at rounding, as _hold_zero_modes checks it
+        if "zero" in listed:  # held: V0^T M q at rounding, as _hold_zero_modes checks it
             basis = vectors[:, zero]
-            held = basis.T @ (mass @ q)
-            size = max(1.0, float(np.max(np.abs(q))))
-            limit = 1e-13 * size * float(np.max(np.abs(basis.T @ mass)))
-            if float(np.max(np.abs(held))) > limit:
+            held = float(np.abs(basis.T @ (inertia * q)).max())
+            size = max(1.0, float(np.abs(q).max()))
+            if held > 1e-13 * size * float(np.abs(basis.T * inertia).max()):
                 return None
     return Equilibrium(q, True, residual, "", stiffness, modes, modes)
 
@@ -330,30 +357,39 @@ def _hold_zero_modes(
     return q
 
 
-def _force_scale(system: SystemArrays) -> float:
-    """A typical generalised force of the system, for relative tolerances."""
-    spring_scale = np.sum(system.stiffness * _placement_lengths(system) * np.max(system.scale))
-    applied = np.sum(np.abs(system.force)) * (
-        np.max(system.scale) + np.max(system.force_r, initial=0)
-    )
-    return float(max(spring_scale, applied, 1e-300) / np.sqrt(np.min(system.inertia)))
+def _force_scale(system: SystemArrays, lengths: FloatArray | None = None) -> float:
+    """A typical generalised force of the system, for relative tolerances (``lengths``: the
+    springs' lengths in the placement, when the caller has them)."""
+    if lengths is None:
+        dx, dy = _placement_vectors(system)
+        lengths = np.sqrt(dx**2 + dy**2)
+    biggest = float(system.scale.max())
+    spring_scale = float((system.stiffness * lengths * biggest).sum())
+    applied = float(np.abs(system.force).sum()) * (biggest + float(system.force_r.max(initial=0)))
+    return max(spring_scale, applied, 1e-300) / math.sqrt(float(system.inertia.min()))
 
 
-def _placement_lengths(system: SystemArrays) -> FloatArray:
-    """The springs' lengths in the initial placement: :func:`~rollspring.physics.spring_state`
-    at q = 0 (the same arithmetic, so the same numbers), without its derivatives."""
-    on_body = system.end_body >= 0
-    body = np.where(on_body, system.end_body, 0)
-    r, alpha = system.end_r, system.end_alpha
-    x = np.where(on_body, system.x0[body] + r * np.sin(alpha), system.end_anchor[..., 0])
-    y = np.where(
-        on_body,
-        system.track[body] + system.radius[body] + r * np.cos(alpha),
-        system.end_anchor[..., 1],
-    )
-    dx, dy = x[:, 1] - x[:, 0], y[:, 1] - y[:, 0]
-    lengths: FloatArray = np.sqrt(dx**2 + dy**2)
-    return lengths
+def _placement_vectors(system: SystemArrays) -> tuple[FloatArray, FloatArray]:
+    """Every spring's vector (end b minus end a) in the initial placement, (dx, dy):
+    :func:`~rollspring.physics.spring_state` at q = 0 (the same arithmetic, so the same
+    numbers; its length is ``sqrt(dx**2 + dy**2)``), without its derivatives. A few springs:
+    a loop over plain floats."""
+    sin = np.sin(system.end_alpha).tolist()
+    cos = np.cos(system.end_alpha).tolist()
+    r = system.end_r.tolist()
+    anchor = system.end_anchor.tolist()
+    x0, track, radius = system.x0.tolist(), system.track.tolist(), system.radius.tolist()
+    dx, dy = [], []
+    for s, ends in enumerate(system.end_body.tolist()):
+        xy = [
+            (x0[i] + r[s][j] * sin[s][j], track[i] + radius[i] + r[s][j] * cos[s][j])
+            if i >= 0
+            else anchor[s][j]
+            for j, i in enumerate(ends)
+        ]
+        dx.append(xy[1][0] - xy[0][0])
+        dy.append(xy[1][1] - xy[0][1])
+    return np.array(dx, dtype=float), np.array(dy, dtype=float)
 
 
 @dataclass(frozen=True)
@@ -405,16 +441,20 @@ def generalized_eigh(mass: FloatArray, stiffness: FloatArray) -> tuple[FloatArra
     """
     mass = np.asarray(mass, dtype=float)
     stiffness = np.asarray(stiffness, dtype=float)
-    inertia = np.diagonal(mass) if mass.ndim == 2 else mass
-    if mass.ndim == 2 and np.count_nonzero(mass) > np.count_nonzero(inertia):
-        import scipy.linalg  # a full mass matrix (never this model's): SciPy, on demand
+    inertia = mass
+    if mass.ndim == 2:
+        inertia = np.diagonal(mass)
+        if np.count_nonzero(mass) > np.count_nonzero(inertia):
+            import scipy.linalg  # a full mass matrix (never this model's): SciPy, on demand
 
-        full: tuple[FloatArray, FloatArray] = scipy.linalg.eigh(stiffness, mass)
-        return full
-    if not (np.isfinite(stiffness).all() and np.isfinite(inertia).all()):
-        raise ValueError("array must not contain infs or NaNs")
-    if not np.all(inertia > 0):
-        raise ValueError("the mass matrix is not positive definite")
+            full: tuple[FloatArray, FloatArray] = scipy.linalg.eigh(stiffness, mass)
+            return full
+    if not ((inertia > 0) & (inertia < math.inf)).all():
+        raise ValueError("the mass matrix is not positive definite, or not finite")
+    if inertia.size <= 2 and stiffness.shape == (inertia.size, inertia.size):
+        small = _small_eigh(inertia.tolist(), stiffness.tolist())
+        if small is not None:
+            return small
     # sygvd's reduction with the Cholesky factor L = diag(b), b = sqrt(J), operation for
     # operation (its ``sygs2`` and ``trsm``), so the modes are SciPy's to the last bit:
     # C_ij = K_ij (1/b_j) / b_i below the diagonal (syevd reads the lower triangle),
@@ -423,9 +463,106 @@ def generalized_eigh(mass: FloatArray, stiffness: FloatArray) -> tuple[FloatArra
     inverse = 1.0 / factor
     reduced = stiffness * inverse / factor[:, None]
     reduced.flat[:: inertia.size + 1] = np.diagonal(stiffness) / (factor * factor)
+    if not np.isfinite(reduced).all():  # a non-finite K or M (as SciPy's check says it)
+        raise ValueError("array must not contain infs or NaNs")
     eigenvalues, standard = np.linalg.eigh(reduced)
     vectors: FloatArray = standard * inverse[:, None]
     return eigenvalues, vectors
+
+
+#: LAPACK's relative machine precision (``dlamch('E')``, half an ulp of 1)
+_LAPACK_EPS = 2.0**-53
+
+
+def _small_eigh(
+    inertia: list[float], stiffness: list[list[float]]
+) -> tuple[FloatArray, FloatArray] | None:
+    r""":func:`generalized_eigh` of one or two coordinates in plain floats: the same
+    operations as LAPACK's ``sygvd`` reduction and ``syevd`` (NumPy's ``eigh``), which for
+    one coordinate returns :math:`C_{11}` and 1, and for two takes the tridiagonal
+    :math:`(d_1, e, d_2) = (C_{11}, C_{21}, C_{22})` to ``steqr``: ``laev2``'s eigenvalues
+    and rotation, or :math:`e = 0` where :math:`|e| \le \sqrt{|d_1|}\sqrt{|d_2|}\,\epsilon`,
+    then sorted ascending (checked bit for bit against NumPy on random matrices:
+    tests/test_analysis.py). None when it cannot stand in for LAPACK: non-finite numbers, or
+    norms LAPACK would rescale (below 1e-140 or above 1e140)."""
+    factor = [math.sqrt(m) for m in inertia]
+    inverse = [1.0 / b for b in factor]
+    if len(inertia) == 1:
+        c11 = stiffness[0][0] / (factor[0] * factor[0])
+        if not math.isfinite(c11):
+            return None
+        return np.array([c11]), np.array([[inverse[0]]])
+    (k11, k12), (k21, k22) = stiffness
+    if not all(map(math.isfinite, (k11, k12, k21, k22))):
+        return None
+    d1 = k11 / (factor[0] * factor[0])
+    e = k21 * inverse[0] / factor[1]
+    d2 = k22 / (factor[1] * factor[1])
+    norm = max(abs(d1), abs(e), abs(d2))
+    if not math.isfinite(norm) or (norm != 0.0 and not 1e-140 < norm < 1e140):
+        return None
+    if e == 0.0 or abs(e) <= (math.sqrt(abs(d1)) * math.sqrt(abs(d2))) * _LAPACK_EPS:
+        w, (c, s) = [d1, d2], (1.0, 0.0)
+    else:
+        rt1, rt2, c, s = _laev2(d1, e, d2)
+        w = [rt1, rt2]
+    z = [[c, -s], [s, c]]  # steqr's rotation of the identity: columns (c, s), (-s, c)
+    if w[1] < w[0]:  # steqr's closing selection sort
+        w, z = [w[1], w[0]], [[z[0][1], z[0][0]], [z[1][1], z[1][0]]]
+    vectors = [
+        [z[0][0] * inverse[0], z[0][1] * inverse[0]],
+        [z[1][0] * inverse[1], z[1][1] * inverse[1]],
+    ]
+    return np.array(w), np.array(vectors)
+
+
+def _laev2(a: float, b: float, c: float) -> tuple[float, float, float, float]:
+    """LAPACK's ``dlaev2``: eigenvalues ``rt1`` (the larger in magnitude) and ``rt2`` of
+    [[a, b], [b, c]], and the unit eigenvector (cs1, sn1) of ``rt1``, operation for
+    operation."""
+    sm = a + c
+    df = a - c
+    adf = abs(df)
+    tb = b + b
+    ab = abs(tb)
+    acmx, acmn = (a, c) if abs(a) > abs(c) else (c, a)
+    if adf > ab:
+        rt = adf * math.sqrt(1.0 + (ab / adf) ** 2)
+    elif adf < ab:
+        rt = ab * math.sqrt(1.0 + (adf / ab) ** 2)
+    else:
+        rt = ab * math.sqrt(2.0)
+    if sm < 0.0:
+        rt1 = 0.5 * (sm - rt)
+        sgn1 = -1
+        rt2 = (acmx / rt1) * acmn - (b / rt1) * b
+    elif sm > 0.0:
+        rt1 = 0.5 * (sm + rt)
+        sgn1 = 1
+        rt2 = (acmx / rt1) * acmn - (b / rt1) * b
+    else:
+        rt1 = 0.5 * rt
+        rt2 = -0.5 * rt
+        sgn1 = 1
+    if df >= 0.0:
+        cs = df + rt
+        sgn2 = 1
+    else:
+        cs = df - rt
+        sgn2 = -1
+    if abs(cs) > ab:
+        ct = -tb / cs
+        sn1 = 1.0 / math.sqrt(1.0 + ct * ct)
+        cs1 = ct * sn1
+    elif ab == 0.0:
+        cs1, sn1 = 1.0, 0.0
+    else:
+        tn = -cs / tb
+        cs1 = 1.0 / math.sqrt(1.0 + tn * tn)
+        sn1 = tn * cs1
+    if sgn1 == sgn2:
+        cs1, sn1 = -sn1, cs1
+    return rt1, rt2, cs1, sn1
 
 
 def normal_modes(
@@ -439,16 +576,19 @@ def normal_modes(
     returned as exactly 0.
     """
     eigenvalues, vectors = generalized_eigh(mass, stiffness)
-    largest = float(np.max(np.abs(eigenvalues))) if eigenvalues.size else 0.0
-    kinds = np.empty(eigenvalues.size, dtype=object)
-    for n, lam in enumerate(eigenvalues):
+    values = eigenvalues.tolist()  # a few numbers: plain floats are faster than NumPy's calls
+    largest = max(map(abs, values), default=0.0)
+    kinds = np.empty(len(values), dtype=object)
+    for n, lam in enumerate(values):
         if largest == 0.0 or abs(lam) < ZERO_MODE_TOLERANCE * largest:
             kinds[n] = "zero"
-            eigenvalues[n] = 0.0
+            eigenvalues[n] = values[n] = 0.0
         elif lam < 0:
             kinds[n] = "unstable"
         else:
             kinds[n] = "oscillating"
+    if all(a <= b for a, b in itertools.pairwise(values)):
+        return eigenvalues, vectors, kinds  # still ascending (the usual case)
     order = np.argsort(eigenvalues, kind="stable")
     return eigenvalues[order], vectors[:, order], kinds[order]
 
@@ -460,14 +600,14 @@ def stationary_weights(
     :math:`w_i = J_i v_{0i}/s_i` normalised to :math:`\sum w = 1`, from the single zero mode
     :math:`v_0` among ``vectors`` (columns, kinds from :func:`normal_modes`); None when there is
     no zero mode, more than one, or its weights sum to zero (no point is stationary)."""
-    zero = np.flatnonzero(np.asarray(kinds) == "zero")
-    if zero.size != 1:
+    listed = np.asarray(kinds).tolist()
+    if listed.count("zero") != 1:
         return None
-    raw = system.inertia * vectors[:, zero[0]] / system.scale
-    total = float(np.sum(raw))
-    if not abs(total) > 1e-9 * float(np.sum(np.abs(raw))):
+    raw = system.inertia * vectors[:, listed.index("zero")] / system.scale
+    total = float(raw.sum())
+    if not abs(total) > 1e-9 * float(np.abs(raw).sum()):
         return None
-    weights = raw / total
+    weights: FloatArray = raw / total
     weights[np.abs(weights) < 1e-15] = 0.0
     return weights
 

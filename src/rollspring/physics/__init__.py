@@ -18,6 +18,7 @@ from rollspring.physics.mechanics import (
     mass_matrix,
     potential_energy,
     spring_state,
+    springs_stay_level,
     stiffness_matrix,
     total_energy,
 )
@@ -40,6 +41,7 @@ __all__ = [
     "mass_matrix",
     "potential_energy",
     "spring_state",
+    "springs_stay_level",
     "stiffness_matrix",
     "system_arrays",
     "total_energy",

@@ -77,17 +77,34 @@ class SystemArrays:
 
 
 def system_arrays(system: System) -> SystemArrays:
-    """Flatten a validated :class:`~rollspring.model.System` into :class:`SystemArrays`."""
+    """Flatten a validated :class:`~rollspring.model.System` into :class:`SystemArrays`.
+
+    The per-body and the per-spring numbers are gathered in plain Python and made into one
+    array each (rows of read-only views): a few large NumPy calls instead of one per field.
+    """
     bodies = system.bodies
     index = {b.id: i for i, b in enumerate(bodies)}
     n = len(bodies)
-
-    def arr(values: list[float]) -> FloatArray:
-        out = np.array(values, dtype=np.float64)
-        out.setflags(write=False)
-        return out
-
-    rolls = [1.0 if b.rolls else 0.0 for b in bodies]
+    per_body = np.array(
+        [
+            [
+                b.mass,
+                b.radius,
+                b.gamma,
+                b.track_height,
+                b.x,
+                b.v,
+                b.radius if b.rolls else 1.0,
+                1.0 if b.rolls else 0.0,
+                b.contact_inertia,
+                b.mu_static,
+                b.mu_kinetic_value,
+            ]
+            for b in bodies
+        ],
+        dtype=np.float64,
+    ).T.copy()  # (11, n): each row a contiguous view
+    per_body.setflags(write=False)
     springs = system.springs
     n_s = len(springs)
     end_body = np.full((n_s, 2), -1, dtype=np.int64)
@@ -95,7 +112,7 @@ def system_arrays(system: System) -> SystemArrays:
     end_alpha = np.zeros((n_s, 2))
     end_anchor = np.zeros((n_s, 2, 2))
     incidence = np.zeros((n_s, 2, n))
-    anchors = system.anchor_map
+    anchors = system.anchor_map if system.anchors else {}
     names = []
     for s, spring in enumerate(springs):
         names.append(f"{spring.ends[0]}-{spring.ends[1]}")
@@ -103,50 +120,78 @@ def system_arrays(system: System) -> SystemArrays:
             if end in index:
                 i = index[end]
                 end_body[s, j] = i
-                end_r[s, j], end_alpha[s, j] = at.polar(bodies[i])
+                if not at.is_centre_form:  # a centre is (0, 0)
+                    end_r[s, j], end_alpha[s, j] = at.polar(bodies[i])
                 incidence[s, j, i] = 1.0
             else:
                 end_anchor[s, j] = (anchors[end].x, anchors[end].y)
+    per_spring = np.array(
+        [
+            [s.stiffness for s in springs],
+            system.rest_lengths,
+            [s.damping for s in springs],
+        ],
+        dtype=np.float64,
+    ).reshape(3, n_s)
+    per_spring.setflags(write=False)
     forces = system.forces
     n_f = len(forces)
     force_body = np.array([index[f.body] for f in forces], dtype=np.int64).reshape(n_f)
-    force_polar = [f.at.polar(system.body_map[f.body]) for f in forces]
+    force_polar = [f.at.polar(bodies[index[f.body]]) for f in forces]
     force_incidence = np.zeros((n_f, n))
     force_incidence[np.arange(n_f), force_body] = 1.0
-    for a in (end_body, end_r, end_alpha, end_anchor, incidence, force_body, force_incidence):
+    per_force = np.array(
+        [[p[0] for p in force_polar], [p[1] for p in force_polar]], dtype=np.float64
+    ).reshape(2, n_f)
+    force = np.array([[f.fx, f.fy] for f in forces], dtype=np.float64).reshape(n_f, 2)
+    for a in (
+        end_body,
+        end_r,
+        end_alpha,
+        end_anchor,
+        incidence,
+        force_body,
+        force_incidence,
+        per_force,
+        force,
+    ):
         a.setflags(write=False)
     # disambiguate repeated spring names (two springs between the same ends)
-    counts: dict[str, int] = {}
-    unique = []
-    for name in names:
-        counts[name] = counts.get(name, 0) + 1
-        unique.append(name if names.count(name) == 1 else f"{name}#{counts[name]}")
+    unique = names
+    if len(set(names)) < len(names):
+        counts: dict[str, int] = {}
+        unique = []
+        for name in names:
+            counts[name] = counts.get(name, 0) + 1
+            unique.append(name if names.count(name) == 1 else f"{name}#{counts[name]}")
+    mass, radius, gamma, track, x0, v0, scale, rolls, inertia, mu_static, mu_kinetic = per_body
+    stiffness, rest_length, damping = per_spring
     return SystemArrays(
-        ids=tuple(b.id for b in bodies),
+        ids=tuple(index),
         spring_names=tuple(unique),
-        mass=arr([b.mass for b in bodies]),
-        radius=arr([b.radius for b in bodies]),
-        gamma=arr([b.gamma for b in bodies]),
-        track=arr([b.track_height for b in bodies]),
-        x0=arr([b.x for b in bodies]),
-        v0=arr([b.v for b in bodies]),
-        scale=arr([b.radius if b.rolls else 1.0 for b in bodies]),
-        rolls=arr(rolls),
-        inertia=arr([b.contact_inertia for b in bodies]),
-        mu_static=arr([b.mu_static for b in bodies]),
-        mu_kinetic=arr([b.mu_kinetic_value for b in bodies]),
+        mass=mass,
+        radius=radius,
+        gamma=gamma,
+        track=track,
+        x0=x0,
+        v0=v0,
+        scale=scale,
+        rolls=rolls,
+        inertia=inertia,
+        mu_static=mu_static,
+        mu_kinetic=mu_kinetic,
         gravity=float(system.gravity),
-        stiffness=arr([s.stiffness for s in springs]),
-        rest_length=arr(system.rest_lengths),
-        damping=arr([s.damping for s in springs]),
+        stiffness=stiffness,
+        rest_length=rest_length,
+        damping=damping,
         end_body=end_body,
         end_r=end_r,
         end_alpha=end_alpha,
         end_anchor=end_anchor,
         incidence=incidence,
         force_body=force_body,
-        force_r=arr([p[0] for p in force_polar]),
-        force_alpha=arr([p[1] for p in force_polar]),
-        force=np.array([[f.fx, f.fy] for f in forces], dtype=np.float64).reshape(n_f, 2),
+        force_r=per_force[0],
+        force_alpha=per_force[1],
+        force=force,
         force_incidence=force_incidence,
     )

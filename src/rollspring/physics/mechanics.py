@@ -35,6 +35,7 @@ __all__ = [
     "mass_matrix",
     "potential_energy",
     "spring_state",
+    "springs_stay_level",
     "stiffness_matrix",
     "total_energy",
 ]
@@ -273,6 +274,26 @@ def stiffness_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
         k_matrix += np.diag(diag)
     result: FloatArray = 0.5 * (k_matrix + k_matrix.T)
     return result
+
+
+def springs_stay_level(system: SystemArrays) -> bool:
+    r"""True when every spring joins body centres (or anchors) at one height in the initial
+    placement and every external force acts at a centre (docs/physics.md section 8).
+
+    Rolling keeps the centres' heights, so such springs stay horizontal whatever q (while
+    their ends do not pass each other): the lever arms :math:`b_{si} = e_s\sigma_{si}s_i` are
+    constant, the geometric stiffness :math:`T_sH_s` vanishes (K does not depend on q, Q is
+    affine in q) and the normal forces :math:`N_i = m_i g - F_{iy}` are constant, exactly.
+    """
+    if not system.n_springs or system.end_r.any() or system.force_r.any():
+        return False
+    centre = (system.track + system.radius).tolist()  # a few numbers: plain Python
+    for (a, b), (ya, yb) in zip(
+        system.end_body.tolist(), system.end_anchor[..., 1].tolist(), strict=True
+    ):
+        if (centre[a] if a >= 0 else ya) != (centre[b] if b >= 0 else yb):
+            return False
+    return True
 
 
 def damping_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:

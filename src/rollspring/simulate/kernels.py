@@ -48,11 +48,13 @@ __all__ = [
     "advance",
     "advance_many",
     "body_loads",
+    "general_states",
     "generalized_forces",
     "kernel_model",
     "observe",
     "refine_extremes",
     "rolling_forces",
+    "row_extremes",
     "run_fixed_step",
     "signal_zero",
     "slipping_derivatives",
@@ -83,7 +85,8 @@ def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple[An
     ``x0`` overrides the reference centre positions (after a body re-sticks:
     ``x_i - R_i phi_i``). Few packed arrays keep the compiled calls cheap."""
     a = arrays
-    bodies = np.column_stack(
+    # one array of the columns as rows, transposed: the cheapest packing for a few bodies
+    bodies = np.array(
         [
             a.x0 if x0 is None else x0,
             a.scale,
@@ -96,32 +99,28 @@ def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple[An
             a.mu_kinetic,
             a.radius,
             1.0 / a.inertia,
-        ]
-    ).astype(np.float64)
-    springs = (
-        np.column_stack(
-            [
-                a.end_r[:, 0],
-                a.end_alpha[:, 0],
-                a.end_r[:, 1],
-                a.end_alpha[:, 1],
-                a.end_anchor[:, 0, 0],
-                a.end_anchor[:, 0, 1],
-                a.end_anchor[:, 1, 0],
-                a.end_anchor[:, 1, 1],
-                a.stiffness,
-                a.rest_length,
-                a.damping,
-            ]
-        )
-        .reshape(-1, 11)
-        .astype(np.float64)
-    )
-    forces = (
-        np.column_stack([a.force_r, a.force_alpha, a.force[:, 0], a.force[:, 1]])
-        .reshape(-1, 4)
-        .astype(np.float64)
-    )
+        ],
+        dtype=np.float64,
+    ).T
+    springs = np.array(
+        [
+            a.end_r[:, 0],
+            a.end_alpha[:, 0],
+            a.end_r[:, 1],
+            a.end_alpha[:, 1],
+            a.end_anchor[:, 0, 0],
+            a.end_anchor[:, 0, 1],
+            a.end_anchor[:, 1, 0],
+            a.end_anchor[:, 1, 1],
+            a.stiffness,
+            a.rest_length,
+            a.damping,
+        ],
+        dtype=np.float64,
+    ).T.reshape(-1, 11)
+    forces = np.array(
+        [a.force_r, a.force_alpha, a.force[:, 0], a.force[:, 1]], dtype=np.float64
+    ).T.reshape(-1, 4)
     return (
         np.ascontiguousarray(bodies),
         np.ascontiguousarray(springs),
@@ -130,6 +129,64 @@ def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple[An
         np.ascontiguousarray(a.force_body, dtype=np.int64),
         float(a.gravity),
     )
+
+
+@njit(cache=True, error_model="numpy")
+def general_states(model, q, v, x0):
+    r"""The general states ``[x, phi, u, omega]`` (rows, 4n) of all-rolling states (rows of
+    ``q``, ``v``, (rows, n)) with reference centre positions ``x0``: :math:`x = x_0 + s q`,
+    :math:`\varphi = \rho q`, :math:`u = s \dot q`, :math:`\omega = \rho \dot q` (a compiled
+    loop: NumPy's broadcasting over a last axis of a few bodies costs far more)."""
+    bodies = model[0]
+    rows, n = q.shape
+    out = np.empty((rows, 4 * n))
+    for row in range(rows):
+        for i in range(n):
+            scale = bodies[i, SCALE]
+            rolls = bodies[i, ROLLS]
+            out[row, i] = x0[i] + scale * q[row, i]
+            out[row, n + i] = rolls * q[row, i]
+            out[row, 2 * n + i] = scale * v[row, i]
+            out[row, 3 * n + i] = rolls * v[row, i]
+    return out
+
+
+@njit(cache=True, error_model="numpy")
+def row_extremes(friction, normal, slipping, rolls):
+    r"""Per body over the rows: the largest :math:`|f|/N` while rolling (:math:`\infty` where
+    :math:`N \le 0`, :math:`-\infty` while slipping) and the smallest N, each with its first
+    row, as ``argmax``/``argmin`` of those columns pick them (a NaN wins, first one first).
+    Returns (ratio (n,), ratio row (n,), normal (n,), normal row (n,)); the ratio of a body
+    that does not roll is left at :math:`-\infty`, row 0."""
+    rows, n = friction.shape
+    ratio_best = np.full(n, -np.inf)
+    ratio_row = np.zeros(n, dtype=np.int64)
+    normal_best = np.full(n, np.inf)
+    normal_row = np.zeros(n, dtype=np.int64)
+    for i in range(n):
+        found_nan = False
+        for row in range(rows):
+            if slipping[row, i]:
+                value = -np.inf
+            elif normal[row, i] > 0.0:
+                value = abs(friction[row, i]) / normal[row, i]
+            else:
+                value = np.inf
+            if row == 0 or (not found_nan and (value > ratio_best[i] or value != value)):
+                ratio_best[i] = value
+                ratio_row[i] = row
+                found_nan = value != value
+        found_nan = False
+        for row in range(rows):
+            value = normal[row, i]
+            if row == 0 or (not found_nan and (value < normal_best[i] or value != value)):
+                normal_best[i] = value
+                normal_row[i] = row
+                found_nan = value != value
+        if rolls[i] <= 0.0:
+            ratio_best[i] = -np.inf
+            ratio_row[i] = 0
+    return ratio_best, ratio_row, normal_best, normal_row
 
 
 @njit(cache=True, inline="always", error_model="numpy")

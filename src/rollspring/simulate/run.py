@@ -3,10 +3,11 @@ r"""``simulate``: the exact nonlinear motion, with every force, slip and lift-of
 While every body rolls and no spring is damped, the motion is integrated by an explicit
 symplectic composition (:data:`~rollspring.simulate.kernels.SCHEMES`) compiled with Numba, with
 a fixed step chosen from the highest linear frequency :math:`\omega` and ``rtol``: the relative
-frequency error of an order-p scheme is :math:`C_p(\omega h)^p`, so over the run the phase
-error is :math:`\omega T C_p (\omega h)^p \le \mathrm{rtol}`. Damped springs, a slipping body
-(docs/physics.md (M19)) or ``integrator="dop853"`` use SciPy's adaptive DOP853 on the general state
-:math:`[x, \varphi, u, \omega]`.
+frequency error of an order-p scheme is :math:`C_p(\omega h)^p`, and the step keeps the phase
+error over the run, :math:`\omega T C_p (\omega h)^p`, and the outputs within the accuracy
+contract (:mod:`rollspring.simulate.integrators`, README "Accuracy"). Damped springs, a
+slipping body (docs/physics.md (M19)) or ``integrator="dop853"`` use SciPy's adaptive DOP853
+on the general state :math:`[x, \varphi, u, \omega]`.
 
 Events are found to the instant: after every step the friction each body needs and its normal
 force are checked (:math:`|f_i| \ge \mu_s N_i` slip, :math:`N_i < 0` lift-off) and the crossing
@@ -29,7 +30,12 @@ from numpy.typing import NDArray
 from rollspring.analysis import find_equilibrium, normal_modes, stationary_weights
 from rollspring.errors import SimulationError
 from rollspring.model import System
-from rollspring.physics import SystemArrays, mass_matrix, stiffness_matrix, system_arrays
+from rollspring.physics import (
+    SystemArrays,
+    springs_stay_level,
+    stiffness_matrix,
+    system_arrays,
+)
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import arguments, kernels
 from rollspring.simulate.arguments import ON_SLIP
@@ -47,6 +53,7 @@ __all__ = ["INTEGRATORS", "Trajectory", "simulate"]
 #: :data:`rollspring.simulate.integrators.INTEGRATORS`).
 INTEGRATORS = ("auto", *SCHEME_REGISTRY, "dop853")
 _DEFAULT_OUTPUTS = 2001
+_NO_SAMPLES = np.empty(0)
 
 
 @dataclass
@@ -157,6 +164,16 @@ def _presenter(name: str) -> Callable[..., Any]:
         ) from None
 
 
+def _rows_of(values: np.ndarray, rows: int, dtype: type) -> np.ndarray:
+    """``values`` (n,) repeated on ``rows`` rows, a new (rows, n) array (zeros without
+    broadcasting when they are all zero, the usual case: NumPy broadcasts slowly over a last
+    axis of a few bodies)."""
+    values = np.asarray(values, dtype=dtype)
+    if not values.any():
+        return np.zeros((rows, values.shape[-1]), dtype=dtype)
+    return np.broadcast_to(values, (rows, values.shape[-1])).copy()
+
+
 class _Observed(NamedTuple):
     """What the kernel observes at rows of states (see :func:`kernels.observe`)."""
 
@@ -257,13 +274,23 @@ def simulate(
     :math:`J_i\ddot\varphi_i = Q_i(\varphi)` while every body rolls (docs/physics.md (M7)); a body
     whose needed friction reaches :math:`\mu_s N` slips ((M19), with ``on_slip="continue"``;
     ``"stop"`` ends the run at that instant); lift-off (:math:`N < 0`) ends the run.
-    ``rtol`` bounds the relative phase (hence position) error over the run; the energy error is
-    checked against ``energy_tolerance`` (default ``100 rtol + 1e-12``) and a run that exceeds
-    it, or goes non-finite, stops with that status. ``n_output`` output times, evenly spaced
-    (default 2001), interpolated inside the steps (quintic Hermite, error far below ``rtol``), so
-    the output spacing never limits the step; ``step`` fixes the step of a symplectic scheme
-    (``auto`` then means Yoshida-4; rounded down so that whole steps fill each rolling
-    stretch); ``progress`` is called with the fraction done.
+    ``rtol`` is an accuracy contract (README, "Accuracy"): while every body rolls and no spring
+    is damped, every output position (``x``, ``phi``) and velocity (``v``, ``omega``) is within
+    ``rtol * |value| + rtol / 10 * scale`` of the exact motion, ``scale`` being that quantity's
+    largest ``|value|`` over the run (values passing near zero included). The step is chosen
+    for it from the fastest linear frequency (at the placement and the equilibrium) with
+    safety factors measured on random nonlinear systems (:mod:`rollspring.simulate.integrators`,
+    ``bench/bench_accuracy.py``): checked there for 1e-10 <= rtol <= 1e-2 (much below, the
+    rounding of double precision, a few 1e-13 of the scale, takes over), on motions whose
+    stiffest local frequency stays within 1.5 times the linear one and that are not chaotic
+    over the run. Damped and slipping stretches (DOP853) take ``rtol`` as SciPy's local
+    tolerance. The energy error is checked against ``energy_tolerance`` (default
+    ``100 rtol + 1e-12``) and a run that exceeds it, or goes non-finite, stops with that
+    status. ``n_output`` output times, evenly spaced (default 2001), on step ends or
+    interpolated inside the steps (quintic Hermite), whichever takes fewer steps within the
+    contract; ``step`` fixes the step of a symplectic scheme (``auto`` then means Yoshida-4;
+    rounded down so that whole steps fill each rolling stretch); ``progress`` is called with
+    the fraction done.
     """
     duration, rtol, step = _check_arguments(
         duration, rtol, integrator, on_slip, n_output, energy_tolerance, step
@@ -273,37 +300,33 @@ def simulate(
     duration = float(duration)
     arrays = system_arrays(system)
     n = arrays.n_bodies
-    mass = mass_matrix(arrays)
-    start_model = kernels.kernel_model(arrays)
-    start_stiffness: list[FloatArray] = []  # K at the initial placement, if the search made it
-
-    def stiffness_of(q: FloatArray) -> FloatArray:
-        k = stiffness_matrix(arrays, q)
-        if not start_stiffness and not np.any(q):
-            start_stiffness.append(k)
-        return k
-
+    mass = arrays.inertia  # the diagonal of M
+    model = kernels.kernel_model(arrays)  # the initial placement's: the run's reference
     equilibrium = find_equilibrium(
-        arrays,
-        forces=lambda q: kernels.generalized_forces(start_model, np.asarray(q, float)),
-        stiffness=stiffness_of,
+        arrays, forces=lambda q: kernels.generalized_forces(model, np.asarray(q, float))
     )
-    if equilibrium.modes is not None:
-        omegas_eq, vectors_eq, kinds_eq = equilibrium.modes
-    else:
-        omegas_eq, vectors_eq, kinds_eq = normal_modes(
-            mass, stiffness_matrix(arrays, equilibrium.q)
+    # the modes at the equilibrium and at the placement (the step suits both): those the
+    # search computed, else computed here (without an equilibrium q is the placement)
+    modes_0 = equilibrium.placement_modes
+    if modes_0 is None:
+        modes_0 = normal_modes(mass, stiffness_matrix(arrays, np.zeros(n)))
+    modes_eq = equilibrium.modes
+    if modes_eq is None:
+        modes_eq = (
+            modes_0
+            if not np.any(equilibrium.q)
+            else normal_modes(mass, stiffness_matrix(arrays, equilibrium.q))
         )
-    stiffness_0 = start_stiffness[0] if start_stiffness else stiffness_matrix(arrays, np.zeros(n))
-    omegas_0, _, _ = normal_modes(mass, stiffness_0)
-    omega_max = float(np.sqrt(max(np.max(np.abs(omegas_eq)), np.max(np.abs(omegas_0)), 0.0)))
-    oscillating = np.flatnonzero(kinds_eq == "oscillating")
+    omegas_eq, vectors_eq, kinds_eq = modes_eq
+    # a few numbers: plain floats
+    omega_max = math.sqrt(max(map(abs, omegas_eq.tolist() + modes_0[0].tolist()), default=0.0))
+    oscillating = [k for k, kind in enumerate(kinds_eq.tolist()) if kind == "oscillating"]
     period_linear = (
         2 * math.pi / math.sqrt(omegas_eq[oscillating[0]])
-        if equilibrium.found and oscillating.size
+        if equilibrium.found and oscillating
         else None
     )
-    damped = bool(np.any(arrays.damping > 0))
+    damped = bool((arrays.damping > 0).any())
     if damped or integrator == "dop853":
         name, step = "dop853", None
     elif step is not None:
@@ -314,14 +337,14 @@ def simulate(
     grid = np.linspace(0.0, duration, n_output)
     tolerance = energy_tolerance if energy_tolerance is not None else 100 * rtol + 1e-12
 
-    run = _Run(arrays, grid, name, step, rtol, on_slip, damped, tolerance, progress)
-    if oscillating.size and equilibrium.found:  # the lowest mode's coordinate, for its period
-        run.mode_weights = np.ascontiguousarray(mass @ vectors_eq[:, oscillating[0]])
+    run = _Run(arrays, grid, name, step, rtol, on_slip, damped, tolerance, progress, model)
+    if oscillating and equilibrium.found:  # the lowest mode's coordinate, for its period
+        run.mode_weights = arrays.inertia * vectors_eq[:, oscillating[0]]  # M v (M diagonal)
         run.q_ref = np.ascontiguousarray(equilibrium.q, dtype=float)
     run.execute()
     timings = {"setup": run.started - clock, "integrate": run.integrate_time}
     trajectory = run.trajectory(system)
-    lowest = vectors_eq[:, oscillating[0]] if oscillating.size else None
+    lowest = vectors_eq[:, oscillating[0]] if oscillating else None
     trajectory.summary = _summary(
         trajectory, run, arrays, equilibrium.q, lowest, mass, period_linear, (vectors_eq, kinds_eq)
     )
@@ -344,9 +367,11 @@ class _Run:
         damped: bool,
         tolerance: float,
         progress: Callable[[float], None] | None,
+        model: tuple[Any, ...] | None = None,
     ) -> None:
         self.arrays = arrays
-        self.model = kernels.kernel_model(arrays)
+        #: the kernel model of the initial placement (``model``, when the caller has it)
+        self.model = kernels.kernel_model(arrays) if model is None else model
         self.grid = grid
         self.scheme = scheme
         self.rtol = rtol
@@ -384,12 +409,27 @@ class _Run:
         self.crossings: list[tuple[int, list[_Segment]]] = []
         self.mode_weights = np.zeros(self.n)
         self.q_ref = np.zeros(self.n)
+        #: the release's general state until it is recorded (:meth:`_flush_pending`)
+        self.pending: FloatArray | None = None
+        #: a rolling segment's (slipping, sign): nobody slips (shared, never written)
+        self.all_rolling = (np.zeros(self.n, dtype=bool), np.zeros(self.n))
+        #: the normal forces cannot change (level centre springs, forces at centres)
+        self.constant_normal = springs_stay_level(arrays)
 
     # -- state conversions ---------------------------------------------------------------
     def general_state(self, q: FloatArray, v: FloatArray, x0: FloatArray) -> FloatArray:
-        """[x, phi, u, omega] of an all-rolling state (q, qdot) with reference positions x0."""
-        a = self.arrays
-        return np.concatenate([x0 + a.scale * q, a.rolls * q, a.scale * v, a.rolls * v], axis=-1)
+        """[x, phi, u, omega] of an all-rolling state (q, qdot) with reference positions x0
+        (rows of states for 2-D ``q``, ``v``)."""
+        q = np.asarray(q, dtype=float)
+        single = q.ndim == 1
+        rows_q = np.ascontiguousarray(q[None, :] if single else q)
+        v = np.asarray(v, dtype=float)
+        rows_v = np.ascontiguousarray(v[None, :] if single else v)
+        x0 = np.asarray(x0, dtype=float)
+        if not x0.flags.writeable or not x0.flags.c_contiguous:  # one compiled variant
+            x0 = x0.copy()
+        states: FloatArray = kernels.general_states(self.model, rows_q, rows_v, x0)
+        return states[0] if single else states
 
     def rolling_state(self, state: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """(q, qdot, x0) of a general state in which every body rolls."""
@@ -403,36 +443,57 @@ class _Run:
     # -- the run ---------------------------------------------------------------------------
     def execute(self) -> None:
         a = self.arrays
-        state = self.general_state(np.zeros(self.n), a.v0 / a.scale, a.x0)
+        initial = (np.zeros(self.n), a.v0 / a.scale, a.x0)  # (q, qdot, x0) at release
+        state = self.general_state(*initial)
         slipping = np.zeros(self.n, dtype=bool)
         sign = np.zeros(self.n)
-        self._record(0.0, state, slipping, sign)
-        self.e0 = self._energy(state[None, :], slipping[None], sign[None])[0]
+        observed = self._observe(state[None, :], slipping[None], sign[None])
+        # the first output row: recorded with the first rolling segment's rows (one block),
+        # or on its own before anything else happens
+        self.pending = state
+        self.e0 = observed.potential[0] + observed.kinetic[0]
         t = 0.0
         # a body already beyond its friction limit at release slips from the start
-        verdict = self._contact_verdict(state, slipping)
+        verdict = self._contact_verdict(state, slipping, observed)
         if verdict is not None:
+            self._flush_pending()
             kind, body = verdict
             done = self._event(kind, body, 0.0, state, slipping, sign)
             if done:
                 return
         while t < self.grid[-1] and self.status == Status.FINISHED.label:
             if not slipping.any() and not self.damped and self.scheme != "dop853":
-                t, state, slipping, sign = self._rolling_segment(t, state)
+                if self.pending is not None:  # from the release: its state and energy known
+                    t, state, slipping, sign = self._rolling_segment(t, state, self.e0, initial)
+                else:
+                    t, state, slipping, sign = self._rolling_segment(t, state)
             else:
+                self._flush_pending()
                 t, state, slipping, sign = self._general_segment(t, state, slipping, sign)
+        self._flush_pending()
 
-    def _record(self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray) -> None:
-        self._record_block(np.array([t]), np.asarray(state, dtype=float)[None, :], slipping, sign)
+    def _flush_pending(self) -> None:
+        """Record the first output row (the release) if it is not recorded yet."""
+        if self.pending is not None:
+            state, self.pending = self.pending, None
+            self._record(0.0, state, np.zeros(self.n, dtype=bool), np.zeros(self.n))
+
+    def _record(
+        self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> _Observed:
+        return self._record_block(
+            np.array([t]), np.asarray(state, dtype=float)[None, :], slipping, sign
+        )
 
     def _record_block(
         self, times: FloatArray, states: FloatArray, slipping: BoolArray, sign: FloatArray
     ) -> _Observed:
         """Keep output rows with everything observed at them; returns what was observed."""
-        self.times.append(np.asarray(times, dtype=float).copy())
-        self.rows.append(np.ascontiguousarray(states, dtype=float).copy())
-        self.row_slipping.append(np.broadcast_to(slipping, (len(times), self.n)).copy())
-        self.row_sign.append(np.broadcast_to(sign, (len(times), self.n)).copy())
+        rows = len(times)
+        self.times.append(np.array(times, dtype=float))
+        self.rows.append(np.array(states, dtype=float, order="C"))
+        self.row_slipping.append(_rows_of(slipping, rows, bool))
+        self.row_sign.append(_rows_of(sign, rows, float))
         observed = self._observe(self.rows[-1], self.row_slipping[-1], self.row_sign[-1])
         self.observed.append(observed)
         return observed
@@ -470,9 +531,14 @@ class _Run:
         )
         return out
 
-    def _contact_verdict(self, state: FloatArray, slipping: BoolArray) -> tuple[str, int] | None:
-        """('liftoff' | 'slip', body) if a rolling body violates its contact now, else None."""
-        friction, normal, *_ = self._observe(state[None, :], slipping[None], np.zeros((1, self.n)))
+    def _contact_verdict(
+        self, state: FloatArray, slipping: BoolArray, observed: _Observed | None = None
+    ) -> tuple[str, int] | None:
+        """('liftoff' | 'slip', body) if a rolling body violates its contact now, else None.
+        ``observed``: the state observed already (with no slip direction)."""
+        if observed is None:
+            observed = self._observe(state[None, :], slipping[None], np.zeros((1, self.n)))
+        friction, normal = observed.friction, observed.normal
         mu = self.arrays.mu_static
         for i in range(self.n):
             if normal[0, i] < 0:
@@ -526,24 +592,42 @@ class _Run:
             self.progress(min(1.0, t / self.grid[-1]))
 
     # -- symplectic (all rolling, undamped) -------------------------------------------------
-    def _rolling_segment(self, t: float, state: FloatArray) -> _Handover:
-        q, qdot, x0 = self.rolling_state(state)
+    def _rolling_segment(
+        self,
+        t: float,
+        state: FloatArray,
+        energy: float | None = None,
+        rolling: tuple[FloatArray, FloatArray, FloatArray] | None = None,
+    ) -> _Handover:
+        """Integrate from the all-rolling ``state`` at ``t`` to the end or the next event.
+        From the release, ``energy`` is its energy and ``rolling`` its (q, qdot, x0), and the
+        release's row is recorded with the segment's first rows (:attr:`pending`)."""
+        q, qdot, x0 = self.rolling_state(state) if rolling is None else rolling
         # energy is conserved from here on: the reference is its value now (slip lost some)
-        self.e_segment = self._energy(
-            state[None, :], np.zeros((1, self.n), dtype=bool), np.zeros((1, self.n))
-        )[0]
-        model = kernels.kernel_model(self.arrays, x0)
+        if energy is None:
+            energy = self._energy(
+                state[None, :], np.zeros((1, self.n), dtype=bool), np.zeros((1, self.n))
+            )[0]
+        self.e_segment = energy
+        # the reference positions move only when a body slipped: the same model as the run's
+        same = rolling is not None or np.array_equal(x0, self.arrays.x0)
+        model = self.model if same else kernels.kernel_model(self.arrays, x0)
         slipping = np.zeros(self.n, dtype=bool)
         sign = np.zeros(self.n)
         grid = self.grid
         span = float(grid[-1]) - t
         if span <= 1e-12 * grid[-1]:
+            self._flush_pending()
             return float(grid[-1]), self.general_state(q, qdot, x0), slipping, sign
         # equal steps that land on the end; outputs are interpolated inside the steps
         assert self.step is not None  # rolling segments run with a fixed-step scheme only
         n_total = max(1, math.ceil(span / self.step * (1 - 1e-12)))
         h = self.h = span / n_total
         first = int(np.searchsorted(grid, t + 1e-12 * grid[-1], side="right"))
+        # the release's row goes first in the first block (its row of the grid is t = 0)
+        lead = 1 if self.pending is not None and first == 1 and grid[0] == t else 0
+        if not lead:
+            self._flush_pending()
         # chunks of about 2e5 steps: progress reports and energy checks a few times a second
         chunk = 200_000
         row_times = [np.array([t])]
@@ -571,8 +655,13 @@ class _Run:
             else:
                 last = int(np.searchsorted(grid, t + (done + steps) * h, side="right"))
             out_times = grid[first:last]
-            out_q = np.empty((out_times.size, n))
-            out_v = np.empty((out_times.size, n))
+            # rows [lead:] for the kernel; row 0 the release's when it leads
+            block_q = np.empty((out_times.size + lead, n))
+            block_v = np.empty((out_times.size + lead, n))
+            if lead:
+                block_q[0] = q
+                block_v[0] = qdot
+            out_q, out_v = block_q[lead:], block_v[lead:]
             began = time.perf_counter()
             status, taken, body, filled = kernels.run_fixed_step(
                 model,
@@ -599,9 +688,14 @@ class _Run:
             row_times.append(out_times[:filled])
             row_q.append(out_q[:filled])
             row_v.append(out_v[:filled])
-            states = self.general_state(out_q[:filled], out_v[:filled], x0)
-            if filled and not self._energy_ok(
-                self._record_block(out_times[:filled], states, slipping, sign)
+            states = self.general_state(block_q[: lead + filled], block_v[: lead + filled], x0)
+            if lead:
+                self.pending = None
+                block_times = grid[first - 1 : first + filled]
+            else:
+                block_times = out_times[:filled]
+            if lead + filled and not self._energy_ok(
+                self._record_block(block_times, states, slipping, sign)
             ):
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
                 self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
@@ -624,6 +718,7 @@ class _Run:
                 return self._locate(model, t_before, before[0].copy(), before[1].copy(), h, 1, x0)
             first += filled
             done += steps
+            lead = 0
             self._report(t + done * h)
         self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
         self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
@@ -638,12 +733,22 @@ class _Run:
         v: FloatArray,
         h: float,
     ) -> _Segment:
-        """A segment of two steps from the state (q, v) at ``t_start``."""
-        segment = self._rolling_evaluator(
-            model, [t_start], [q.copy()], [v.copy()], h, x0, t_end=t_start + 2 * h
-        )
-        segment.start = _Start(t_start, q.copy(), v.copy(), model, self.coeffs, h, x0)
-        return segment
+        """A segment of two steps from the state (q, v) at ``t_start``. Its interpolant is
+        built on first use: most are refined from their ``start`` in one compiled call."""
+        start = _Start(t_start, q.copy(), v.copy(), model, self.coeffs, h, x0)
+        built: list[_Segment] = []
+        slipping, sign = self.all_rolling
+
+        def evaluate(t: float | FloatArray) -> FloatArray:
+            if not built:
+                built.append(
+                    self._rolling_evaluator(
+                        model, [t_start], [start.q], [start.v], h, x0, t_end=t_start + 2 * h
+                    )
+                )
+            return built[0].evaluate(t)
+
+        return _Segment(t_start, t_start + 2 * h, slipping, sign, evaluate, _NO_SAMPLES, start)
 
     def _offer_steps(
         self,
@@ -656,15 +761,16 @@ class _Run:
         h: float,
     ) -> None:
         """Hand the kernel's extremes and crossings over, each with the state it starts from."""
+        found = extremes.tolist()
         for i in range(self.n):
-            for kind, row, better in (("ratio", 0, np.greater), ("normal", 2, np.less)):
-                value = float(extremes[row, i])
-                if not np.isfinite(value) or (kind == "ratio" and not self.rolls[i]):
+            for kind, row in (("ratio", 0), ("normal", 2)):
+                value = found[row][i]
+                if not math.isfinite(value) or (kind == "ratio" and not self.rolls[i]):
                     continue
                 old = self.step_extremes.get((kind, i))
-                if old is None or better(value, old[0]):
+                if old is None or (value > old[0] if kind == "ratio" else value < old[0]):
                     k = 0 if kind == "ratio" else 1
-                    t_start = float(extremes[row + 1, i])
+                    t_start = found[row + 1][i]
                     local = self._local(
                         model, x0, t_start, extreme_states[k, i, 0], extreme_states[k, i, 1], h
                     )
@@ -726,14 +832,24 @@ class _Run:
         t_end: float | None = None,
     ) -> _Segment:
         """A segment whose state at any t is the integrator run on from the row before t.
-        ``times``/``qs``/``vs`` are lists of rows or of blocks of rows."""
-        row_t = np.concatenate([np.atleast_1d(np.asarray(x, dtype=float)) for x in times])
-        row_q = np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in qs])
-        row_v = np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in vs])
+        ``times``/``qs``/``vs`` are lists of rows or of blocks of rows (joined on first use:
+        most segments are never evaluated)."""
+        first = float(np.atleast_1d(np.asarray(times[0], dtype=float))[0])
+        last = float(np.atleast_1d(np.asarray(times[-1], dtype=float))[-1])
         coeffs = self.coeffs
+        rows_of: list[tuple[FloatArray, FloatArray, FloatArray]] = []
 
         def evaluate(t: float | FloatArray) -> FloatArray:
             """The state at time(s) ``t``: (4n,) for a number, (m, 4n) for an array."""
+            if not rows_of:
+                rows_of.append(
+                    (
+                        np.concatenate([np.atleast_1d(np.asarray(x, dtype=float)) for x in times]),
+                        np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in qs]),
+                        np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in vs]),
+                    )
+                )
+            row_t, row_q, row_v = rows_of[0]
             at = np.atleast_1d(np.asarray(t, dtype=float))
             if len(row_t) == 1:
                 rows = np.zeros(at.size, dtype=np.int64)
@@ -747,16 +863,10 @@ class _Run:
             states = self.general_state(q, v, x0)
             return states if np.ndim(t) else states[0]
 
-        # extremes: every step boundary is a candidate; sample at output rows and midpoints
-        samples = np.empty(0)  # the output rows and the kernel extremes cover it
-        return _Segment(
-            float(row_t[0]),
-            float(row_t[-1] if t_end is None else t_end),
-            np.zeros(self.n, dtype=bool),
-            np.zeros(self.n),
-            evaluate,
-            samples,
-        )
+        # extremes: the output rows and the kernel's extremes over every step cover it
+        slipping, sign = self.all_rolling
+        end = last if t_end is None else float(t_end)
+        return _Segment(first, end, slipping, sign, evaluate, _NO_SAMPLES)
 
     def _locate(
         self,
@@ -933,15 +1043,15 @@ class _Run:
     # -- results ----------------------------------------------------------------------------
     def trajectory(self, system: System) -> Trajectory:
         a, n = self.arrays, self.n
-        times = np.concatenate(self.times)
+        times = self.times[0] if len(self.times) == 1 else np.concatenate(self.times)
         pick = None  # rows in time order, each time once (events can repeat a time)
-        if times.size > 1 and not np.all(np.diff(times) > 0):
+        if times.size > 1 and not (times[1:] > times[:-1]).all():
             order = np.argsort(times, kind="stable")
             keep = np.concatenate([[True], np.diff(times[order]) > 0])
             pick = order[keep]
 
         def column(parts: list[Any]) -> Any:
-            joined = np.concatenate(parts)
+            joined = parts[0] if len(parts) == 1 else np.concatenate(parts)
             return joined if pick is None else joined[pick]
 
         times = times if pick is None else times[pick]
@@ -997,9 +1107,10 @@ def _summary(
     conservative = not run.damped and not any(e["kind"] == "slip" for e in run.events)
     energy = trajectory.energy
     e0 = float(energy[0])
-    scale = max(abs(e0), float(np.max(np.abs(energy))), 1e-300)
-    if conservative:
-        energy_error = float(np.max(np.abs(energy - e0))) / scale
+    high, low = float(energy.max()), float(energy.min())  # NaN if any is
+    scale = max(abs(e0), max(abs(high), abs(low)) if high == high else math.nan, 1e-300)
+    if conservative:  # the largest |E - E0|: at the largest or the smallest E
+        energy_error = (max(high - e0, e0 - low) if high == high else math.nan) / scale
     else:  # spurious growth above the running minimum
         energy_error = float(np.max(energy - np.minimum.accumulate(energy))) / scale
     # weights of the stationary point (M14) at equilibrium
@@ -1058,11 +1169,13 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     1e-9 relative."""
     n = run.n
     spacing = float(run.grid[1] - run.grid[0])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(
-            trajectory.normal > 0, np.abs(trajectory.friction) / trajectory.normal, np.inf
-        )
-    ratio = np.where(trajectory.slipping, -np.inf, ratio)
+    # per body: the largest |f|/N over the rows while rolling, the smallest N, and their rows
+    ratio, ratio_row, normal, normal_row = kernels.row_extremes(
+        np.ascontiguousarray(trajectory.friction),
+        np.ascontiguousarray(trajectory.normal),
+        np.ascontiguousarray(trajectory.slipping),
+        run.model[0][:, kernels.ROLLS].copy(),
+    )
     best: dict[tuple[str, int], tuple[float, float, float, _Segment | None]] = {}
 
     def offer(
@@ -1076,12 +1189,11 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     # the kernel's extremes first: on a tie they win, as they carry their state
     for (kind, i), (value, t, width, kept) in run.step_extremes.items():
         offer(kind, i, value, t, width, kept)
+    times = trajectory.t
     for i in range(n):
         if run.rolls[i]:
-            k = int(np.argmax(ratio[:, i]))
-            offer("ratio", i, float(ratio[k, i]), float(trajectory.t[k]), spacing)
-        k = int(np.argmin(trajectory.normal[:, i]))
-        offer("normal", i, float(trajectory.normal[k, i]), float(trajectory.t[k]), spacing)
+            offer("ratio", i, float(ratio[i]), float(times[ratio_row[i]]), spacing)
+        offer("normal", i, float(normal[i]), float(times[normal_row[i]]), spacing)
     for segment in run.segments:
         if segment.samples.size < 2 or segment.slipping.all():
             continue
@@ -1100,10 +1212,16 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
             offer("normal", i, float(normal[k, i]), float(segment.samples[k]), width)
 
     result = {"ratio": [0.0] * n, "normal": [math.inf] * n}
+    # level centre springs (physics.springs_stay_level): N is the same at every instant,
+    # exactly, so its smallest value is every row's and there is nothing to refine
+    fixed = {key for key in best if key[0] == "normal" and run.constant_normal}
+    for kind, i in fixed:
+        result[kind][i] = float(best[(kind, i)][0])
     batched = {
         key: entry
         for key, entry in best.items()
-        if entry[3] is not None
+        if key not in fixed
+        and entry[3] is not None
         and getattr(entry[3], "start", None) is not None
         and np.isfinite(entry[0])
     }
@@ -1116,7 +1234,7 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
         for (kind, i), value in _refine_together(group).items():
             result[kind][i] = value
     for (kind, i), (value, t, width, local) in best.items():
-        if (kind, i) in batched:
+        if (kind, i) in batched or (kind, i) in fixed:
             continue
         if np.isfinite(value):
             value = _refine(run, kind, i, value, t, width, local)
@@ -1129,16 +1247,16 @@ def _refine_together(entries: dict[tuple[str, int], Any]) -> dict[tuple[str, int
     state the kernel kept (one compiled call per zoom level for all of them)."""
     keys = list(entries)
     first = entries[keys[0]][3].start
-    q0 = np.stack([entries[k][3].start.q for k in keys])
-    v0 = np.stack([entries[k][3].start.v for k in keys])
+    q0 = np.array([entries[k][3].start.q for k in keys])
+    v0 = np.array([entries[k][3].start.v for k in keys])
     kinds = np.array([0 if kind == "ratio" else 1 for kind, _ in keys], dtype=np.int64)
     bodies = np.array([i for _, i in keys], dtype=np.int64)
-    sign = np.where(kinds == 0, 1.0, -1.0)
-    best = np.array([entries[k][0] for k in keys]) * sign
+    sign = [1.0 if kind == "ratio" else -1.0 for kind, _ in keys]
+    best = np.array([entries[k][0] * sign[j] for j, k in enumerate(keys)])
     refined = kernels.refine_extremes(
         first.model, first.coeffs, first.h, q0, v0, kinds, bodies, best
-    )
-    return {key: float(refined[j] * sign[j]) for j, key in enumerate(keys)}
+    ).tolist()
+    return {key: refined[j] * sign[j] for j, key in enumerate(keys)}
 
 
 def _refine(
@@ -1194,9 +1312,10 @@ def _measured_period(
     run: _Run, trajectory: Trajectory, mode: FloatArray, mass: FloatArray, q_eq: FloatArray
 ) -> float | None:
     r"""Mean period of the lowest mode's coordinate :math:`s = v_1^T M (q - q^*)`, from its
-    upward crossings of its mean, each located by root-finding on the integrator's interpolant."""
+    upward crossings of its mean, each located by root-finding on the integrator's interpolant.
+    ``mass``: the diagonal of M."""
     arrays = run.arrays
-    weights = mode @ mass
+    weights = mode * mass
 
     def signal_of(states: FloatArray) -> FloatArray:
         n = run.n

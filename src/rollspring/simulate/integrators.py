@@ -11,12 +11,14 @@ the phase error over the run, what batches and sweeps use).
 A single run (:func:`rollspring.simulate`) keeps the accuracy contract (README, "Accuracy"):
 every output position and velocity within :math:`\mathrm{rtol}\,|\text{value}| +
 \mathrm{rtol}/10\cdot\text{scale}` (scale: that quantity's largest |value| over the run). Its
-step (:meth:`Integrator.contract_omega_step`) is chosen for rtol/10 -- the phase error over the
-run, and the error of the quintic Hermite interpolant that gives the outputs between step ends
-(:func:`output_omega_step`) -- then shrunk by safety factors measured on 40 random nonlinear
-systems (``bench/bench_accuracy.py``): per scheme for the phase (:attr:`Integrator.safety`),
-:data:`OUTPUT_SAFETY` for the interpolant, which takes the motion's harmonics above the fastest
-linear frequency into account.
+step (:meth:`Integrator.contract_step`) is chosen for rtol/10: the phase error over the run
+(:meth:`Integrator.phase_omega_step`) and, where outputs fall inside steps, the error of the
+quintic Hermite interpolant that gives them (:func:`output_omega_step`), each shrunk by a safety
+factor measured on random nonlinear systems (``bench/bench_accuracy.py``; the motion's harmonics
+above the fastest linear frequency make both errors larger than on a harmonic oscillator): per
+scheme for the phase (:attr:`Integrator.safety`), :data:`OUTPUT_SAFETY` for the interpolant.
+When it takes fewer steps, the step is instead rounded down to a whole fraction of the output
+spacing, so that every output lands on a step end and only the phase bound applies.
 """
 
 from __future__ import annotations
@@ -92,13 +94,41 @@ class Integrator:
         )
         return result
 
-    def contract_omega_step(self, rtol: float, radians: float) -> float:
-        r""":math:`\omega h` of a single run (:func:`rollspring.simulate`): :attr:`safety` times
-        the step of a phase error of rtol/10 after ``radians`` of the fastest mode, at most
-        :func:`output_omega_step` (the interpolated outputs) and :data:`MAX_OMEGA_STEP`."""
+    def phase_omega_step(self, rtol: float, radians: float) -> float:
+        r""":math:`\omega h` of a single run's phase: :attr:`safety` times the step of a phase
+        error of rtol/10 after ``radians`` of the fastest mode, at most
+        :data:`MAX_OMEGA_STEP`."""
         phase = (CONTRACT_SHARE * rtol / (self.error_constant * radians)) ** (1.0 / self.order)
-        result: float = min(self.safety * phase, output_omega_step(rtol), MAX_OMEGA_STEP)
+        result: float = min(self.safety * phase, MAX_OMEGA_STEP)
         return result
+
+    def contract_omega_step(self, rtol: float, radians: float) -> float:
+        r""":math:`\omega h` of a single run whose outputs are interpolated inside the steps:
+        :meth:`phase_omega_step`, at most :func:`output_omega_step`."""
+        return min(self.phase_omega_step(rtol, radians), output_omega_step(rtol))
+
+    def contract_step(
+        self, omega: float, duration: float, rtol: float, n_output: int | None = None
+    ) -> float:
+        r"""The step h (s) of a single run (:func:`rollspring.simulate`) that keeps the accuracy
+        contract over ``duration`` with fastest linear frequency ``omega``: outputs
+        interpolated inside the steps (:meth:`contract_omega_step`) or, with ``n_output``
+        evenly spaced outputs, the phase step alone rounded down so that every output lands on
+        a step end (no interpolation): whichever takes fewer steps."""
+        if omega <= 0:
+            return duration
+        radians = max(omega * duration, 2 * math.pi)
+        interpolated = self.contract_omega_step(rtol, radians) / omega
+        if n_output is None or n_output < 2:
+            return interpolated
+        spacing = duration / (n_output - 1)
+        per_output = max(
+            1, math.ceil(spacing * omega / self.phase_omega_step(rtol, radians) - 1e-9)
+        )
+        steps_interpolated = math.ceil(duration / interpolated * (1 - 1e-12))
+        if (n_output - 1) * per_output <= steps_interpolated:
+            return spacing / per_output
+        return interpolated
 
 
 def _symmetric(outer: tuple[float, ...]) -> tuple[float, ...]:

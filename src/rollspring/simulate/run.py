@@ -233,23 +233,23 @@ def _check_arguments(
 
 
 def choose_scheme(
-    omega: float, duration: float, rtol: float, integrator: str = "auto"
+    omega: float,
+    duration: float,
+    rtol: float,
+    integrator: str = "auto",
+    n_output: int | None = None,
 ) -> tuple[str, float]:
     r"""The scheme and step for a run, within the accuracy contract (README, "Accuracy"):
-    :math:`\omega h` from
-    :meth:`~rollspring.simulate.integrators.Integrator.contract_omega_step` -- a phase error of
-    rtol/10 after :math:`\omega T` radians, and outputs interpolated inside the steps within
-    rtol/10, each shrunk by its measured safety factor; at most 0.5. ``auto`` takes the scheme
-    with the fewest force evaluations. Returns ``(name, h)``."""
+    :meth:`~rollspring.simulate.integrators.Integrator.contract_step` -- a phase error of
+    rtol/10 after :math:`\omega T` radians and outputs interpolated inside the steps within
+    rtol/10 (or, with ``n_output`` evenly spaced outputs, outputs on step ends when that takes
+    fewer steps), each shrunk by its measured safety factor; :math:`\omega h` at most 0.5.
+    ``auto`` takes the scheme with the fewest force evaluations. Returns ``(name, h)``."""
     names = list(SCHEMES) if integrator == "auto" else [integrator]
     best: tuple[str, float, float] | None = None
     for name in names:
         scheme = SCHEME_REGISTRY[name]
-        if omega <= 0:
-            step = duration
-        else:
-            radians = max(omega * duration, 2 * math.pi)
-            step = scheme.contract_omega_step(rtol, radians) / omega
+        step = scheme.contract_step(omega, duration, rtol, n_output)
         cost = scheme.stages * duration / step
         if best is None or cost < best[2]:
             best = (name, step, cost)
@@ -332,7 +332,8 @@ def simulate(
     elif step is not None:
         name = "yoshida4" if integrator == "auto" else integrator
     else:
-        name, step = choose_scheme(omega_max, duration, rtol, integrator)
+        outputs = n_output or _DEFAULT_OUTPUTS  # the step suits them (on step ends or between)
+        name, step = choose_scheme(omega_max, duration, rtol, integrator, outputs)
     n_output = n_output or _DEFAULT_OUTPUTS
     grid = np.linspace(0.0, duration, n_output)
     tolerance = energy_tolerance if energy_tolerance is not None else 100 * rtol + 1e-12

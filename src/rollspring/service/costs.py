@@ -10,8 +10,9 @@ under a second, before any long work.
   estimated from the same frequency. Seconds follow from steps × (bodies + springs) at the
   measured cost of a body and step (docs/system-files.md), memory from the output arrays (and
   the CSV text when files are written).
-* An analysis (:func:`analysis_cost`): its time grows with the square of the number of bodies
-  (the friction each body needs is searched over the modal phases), measured on chains.
+* An analysis (:func:`analysis_cost`): its time grows with the cube of the number of bodies
+  (dense matrices of the modes and the friction each body needs), measured on chains: 1 s for
+  100 bodies, 6 min for 1000.
 * A derivation (:func:`derivation_cost`, SymPy) as n^1.5; a report (:func:`report_cost`) is an
   analysis, a simulation of at most 20 s and, unless left out, a derivation.
 
@@ -57,11 +58,13 @@ _SYMPLECTIC_BODY_STEP = 1.5e-6
 _DOP853_STEP, _DOP853_BODY_STEP = 1e-3, 3e-5
 #: DOP853 steps per radian of the fastest mode at rtol 1e-8, and how they grow as rtol falls
 _DOP853_STEPS_PER_RADIAN, _DOP853_ORDER = 1.5, 7.0
+#: the largest step × decay rate DOP853 stays stable at (its stability region on the real axis)
+_DOP853_STABILITY = 3.0
 #: setup (equilibrium, stiffness matrices, eigensolvers) of a simulation of n bodies: this many
 #: seconds × (n/1000)² (the stiffness matrix is O(n²) Python work)
 _SETUP_PER_SQUARED_THOUSAND = 150.0
-#: an analysis of n bodies: seconds ≈ 1 + this × n²
-_ANALYSIS_PER_BODY_SQUARED = 3e-3
+#: an analysis of n bodies: seconds ≈ 1 + this × n³
+_ANALYSIS_PER_BODY_CUBED = 3.5e-7
 #: a derivation of n bodies: seconds ≈ 10 + this × n^1.5
 _DERIVATION_PER_BODY = 0.15
 #: the longest simulation a report makes by itself (its default duration), s
@@ -152,13 +155,15 @@ def simulation_cost(
     n_output = check_count("n_output", outputs, 2)
     n = len(system.bodies)
     springs = len(system.springs)
-    omega = _highest_frequency(system)
+    omega, rate = _highest_rates(system)
     damped = any(spring.damping > 0 for spring in system.springs)
     setup = 0.05 + _SETUP_PER_SQUARED_THOUSAND * (n / 1000.0) ** 2
     if damped or integrator == "dop853":
         name = "dop853"
         radians = max(omega * duration, 2 * math.pi)
         steps = radians * _DOP853_STEPS_PER_RADIAN * (1e-8 / rtol) ** (1.0 / _DOP853_ORDER)
+        # an explicit scheme is stable only for steps below ~3.3/rate of the fastest damping
+        steps = max(steps, rate * duration / _DOP853_STABILITY)
         seconds = setup + steps * (_DOP853_STEP + _DOP853_BODY_STEP * n)
     else:
         name, step = choose_scheme(omega, duration, rtol, integrator)
@@ -177,7 +182,7 @@ def simulation_cost(
 def analysis_cost(system: System, what: str = "the analysis") -> Cost:
     """The estimated cost of :func:`rollspring.analyze` on ``system``."""
     n = len(system.bodies)
-    return Cost(what, n, 1.0 + _ANALYSIS_PER_BODY_SQUARED * n**2)
+    return Cost(what, n, 1.0 + _ANALYSIS_PER_BODY_CUBED * n**3)
 
 
 def derivation_cost(system: System, what: str = "the derivation") -> Cost:
@@ -202,20 +207,23 @@ def report_cost(
     return Cost(what, run.bodies, seconds, run.memory, smaller="a shorter --duration, fewer bodies")
 
 
-def _highest_frequency(system: System) -> float:
-    r"""An upper bound of the highest linear frequency (rad/s) at the initial placement: what
-    sets the step. Gershgorin's bound on :math:`M^{-1/2} K M^{-1/2}`, with each spring's share of
-    :math:`K` bounded by its stiffness and tension (:math:`(k + |T|/L)\,\ell_i \ell_j`, plus
-    :math:`|T| r_i` on the diagonal, :math:`\ell = s + r` the most a point of the body moves per
-    unit of its coordinate) and each force's by :math:`|F| r`: within a few per cent of the
-    exact frequency for springs at the centres, in O(springs) where the exact one costs O(n²)
-    Python work (a minute for 1000 bodies)."""
+def _highest_rates(system: System) -> tuple[float, float]:
+    r"""Upper bounds of the highest linear frequency (rad/s) at the initial placement, what sets
+    the step, and of the fastest decay rate of the springs' damping (1/s), what bounds an
+    explicit scheme's step in a damped run. Gershgorin's bound on :math:`M^{-1/2} K M^{-1/2}`,
+    with each spring's share of :math:`K` bounded by its stiffness and tension
+    (:math:`(k + |T|/L)\,\ell_i \ell_j`, plus :math:`|T| r_i` on the diagonal,
+    :math:`\ell = s + r` the most a point of the body moves per unit of its coordinate) and each
+    force's by :math:`|F| r`: within a few per cent of the exact frequency for springs at the
+    centres, in O(springs) where the exact one costs O(n²) Python work (a minute for 1000
+    bodies); the damping's the same way, :math:`c\,\ell_i \ell_j`."""
     bodies = system.body_map
     anchors = system.anchor_map
     index = {body.id: i for i, body in enumerate(system.bodies)}
     inertia = np.array([body.contact_inertia for body in system.bodies])
     diagonal = np.zeros(len(system.bodies))
     rows = np.zeros(len(system.bodies))
+    damping = np.zeros(len(system.bodies))
     for spring, rest in zip(system.springs, system.rest_lengths, strict=True):
         ends = []
         for end, at in zip(spring.ends, spring.attachments, strict=True):
@@ -233,16 +241,22 @@ def _highest_frequency(system: System) -> float:
         for i, lever, r, _ in ends:
             if i >= 0:
                 diagonal[i] += share * lever**2 + tension * r
+                damping[i] += spring.damping * lever**2 / inertia[i]
         (i, li, _, _), (j, lj, _, _) = ends
         if i >= 0 and j >= 0:
-            coupling = share * li * lj / math.sqrt(inertia[i] * inertia[j])
+            root = math.sqrt(inertia[i] * inertia[j])
+            coupling = share * li * lj / root
             rows[i] += coupling
             rows[j] += coupling
+            damping[i] += spring.damping * li * lj / root
+            damping[j] += spring.damping * li * lj / root
     for force in system.forces:
         r, _ = force.at.polar(bodies[force.body])
         diagonal[index[force.body]] += math.hypot(force.fx, force.fy) * r
-    bound = float(np.max(diagonal / inertia + rows)) if len(system.bodies) else 0.0
-    return math.sqrt(bound) if math.isfinite(bound) and bound > 0 else 0.0
+    bound = float(np.max(diagonal / inertia + rows))
+    rate = float(np.max(damping))
+    omega = math.sqrt(bound) if math.isfinite(bound) and bound > 0 else 0.0
+    return omega, rate if math.isfinite(rate) else 0.0
 
 
 def _physical_memory() -> float | None:

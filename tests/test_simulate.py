@@ -505,42 +505,24 @@ def test_a_view_without_the_outputs_layer_is_a_clear_error(monkeypatch):
         trajectory.to_pandas()
 
 
-def test_compiled_row_helpers_agree_with_numpy() -> None:
-    """general_states is [x0 + s q, rho q, s v, rho v]; row_extremes picks the rows NumPy's
-    argmax/argmin pick (first of equals, a NaN first), |f|/N = inf where N <= 0, -inf while
-    slipping."""
+def test_general_states_of_rows_are_the_formula() -> None:
+    """[x0 + s q, rho q, s v, rho v] per row (computed transposed for speed), and per state."""
+    from rollspring.simulate.run import _Run
+
     system = make_system(
         [body("h", "hoop", x=0.0), body("m", "slider", radius=0.05, x=0.5)],
         [spring("h", "m", rest_length=0.5)],
     )
     arrays = system_arrays(system)
-    model = kernels.kernel_model(arrays)
+    run = _Run(arrays, np.linspace(0, 1, 3), "kahanli8", 0.1, 1e-8, "stop", False, 1e-6, None)
     rng = np.random.default_rng(3)
     q, v, x0 = rng.normal(size=(7, 2)), rng.normal(size=(7, 2)), rng.normal(size=2)
     expected = np.concatenate(
         [x0 + arrays.scale * q, arrays.rolls * q, arrays.scale * v, arrays.rolls * v], axis=-1
     )
-    assert np.array_equal(kernels.general_states(model, q, v, x0), expected)
-    friction = rng.normal(size=(9, 2))
-    normal = rng.uniform(0.5, 2.0, size=(9, 2))
-    normal[2, 0] = 0.0  # |f|/N = inf
-    normal[4, 1] = -1.0
-    friction[5, 0] = friction[6, 0] = 50.0  # a tie: the first
-    slipping = np.zeros((9, 2), dtype=bool)
-    slipping[2, 0] = True  # -inf while slipping, even where N = 0
-    for nan in (False, True):
-        if nan:
-            friction[7, 0] = normal[3, 1] = np.nan
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = np.where(normal > 0, np.abs(friction) / normal, np.inf)
-        ratio = np.where(slipping, -np.inf, ratio)
-        rolls = np.array([1.0, 1.0])
-        best, best_row, low, low_row = kernels.row_extremes(friction, normal, slipping, rolls)
-        for i in range(2):
-            k = int(np.argmax(ratio[:, i]))
-            assert best_row[i] == k and np.array_equal(best[i], ratio[k, i], equal_nan=True)
-            k = int(np.argmin(normal[:, i]))
-            assert low_row[i] == k and np.array_equal(low[i], normal[k, i], equal_nan=True)
+    states = run.general_state(q, v, x0)
+    assert np.array_equal(states, expected) and states.flags.c_contiguous
+    assert np.array_equal(run.general_state(q[3], v[3], x0), expected[3])
 
 
 def test_level_springs_keep_the_normal_forces_constant_and_nothing_is_refined() -> None:

@@ -48,13 +48,11 @@ __all__ = [
     "advance",
     "advance_many",
     "body_loads",
-    "general_states",
     "generalized_forces",
     "kernel_model",
     "observe",
     "refine_extremes",
     "rolling_forces",
-    "row_extremes",
     "run_fixed_step",
     "signal_zero",
     "slipping_derivatives",
@@ -129,64 +127,6 @@ def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple[An
         np.ascontiguousarray(a.force_body, dtype=np.int64),
         float(a.gravity),
     )
-
-
-@njit(cache=True, error_model="numpy")
-def general_states(model, q, v, x0):
-    r"""The general states ``[x, phi, u, omega]`` (rows, 4n) of all-rolling states (rows of
-    ``q``, ``v``, (rows, n)) with reference centre positions ``x0``: :math:`x = x_0 + s q`,
-    :math:`\varphi = \rho q`, :math:`u = s \dot q`, :math:`\omega = \rho \dot q` (a compiled
-    loop: NumPy's broadcasting over a last axis of a few bodies costs far more)."""
-    bodies = model[0]
-    rows, n = q.shape
-    out = np.empty((rows, 4 * n))
-    for row in range(rows):
-        for i in range(n):
-            scale = bodies[i, SCALE]
-            rolls = bodies[i, ROLLS]
-            out[row, i] = x0[i] + scale * q[row, i]
-            out[row, n + i] = rolls * q[row, i]
-            out[row, 2 * n + i] = scale * v[row, i]
-            out[row, 3 * n + i] = rolls * v[row, i]
-    return out
-
-
-@njit(cache=True, error_model="numpy")
-def row_extremes(friction, normal, slipping, rolls):
-    r"""Per body over the rows: the largest :math:`|f|/N` while rolling (:math:`\infty` where
-    :math:`N \le 0`, :math:`-\infty` while slipping) and the smallest N, each with its first
-    row, as ``argmax``/``argmin`` of those columns pick them (a NaN wins, first one first).
-    Returns (ratio (n,), ratio row (n,), normal (n,), normal row (n,)); the ratio of a body
-    that does not roll is left at :math:`-\infty`, row 0."""
-    rows, n = friction.shape
-    ratio_best = np.full(n, -np.inf)
-    ratio_row = np.zeros(n, dtype=np.int64)
-    normal_best = np.full(n, np.inf)
-    normal_row = np.zeros(n, dtype=np.int64)
-    for i in range(n):
-        found_nan = False
-        for row in range(rows):
-            if slipping[row, i]:
-                value = -np.inf
-            elif normal[row, i] > 0.0:
-                value = abs(friction[row, i]) / normal[row, i]
-            else:
-                value = np.inf
-            if row == 0 or (not found_nan and (value > ratio_best[i] or value != value)):
-                ratio_best[i] = value
-                ratio_row[i] = row
-                found_nan = value != value
-        found_nan = False
-        for row in range(rows):
-            value = normal[row, i]
-            if row == 0 or (not found_nan and (value < normal_best[i] or value != value)):
-                normal_best[i] = value
-                normal_row[i] = row
-                found_nan = value != value
-        if rolls[i] <= 0.0:
-            ratio_best[i] = -np.inf
-            ratio_row[i] = 0
-    return ratio_best, ratio_row, normal_best, normal_row
 
 
 @njit(cache=True, inline="always", error_model="numpy")

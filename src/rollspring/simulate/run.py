@@ -421,16 +421,21 @@ class _Run:
     def general_state(self, q: FloatArray, v: FloatArray, x0: FloatArray) -> FloatArray:
         """[x, phi, u, omega] of an all-rolling state (q, qdot) with reference positions x0
         (rows of states for 2-D ``q``, ``v``)."""
-        q = np.asarray(q, dtype=float)
-        single = q.ndim == 1
-        rows_q = np.ascontiguousarray(q[None, :] if single else q)
-        v = np.asarray(v, dtype=float)
-        rows_v = np.ascontiguousarray(v[None, :] if single else v)
-        x0 = np.asarray(x0, dtype=float)
-        if not x0.flags.writeable or not x0.flags.c_contiguous:  # one compiled variant
-            x0 = x0.copy()
-        states: FloatArray = kernels.general_states(self.model, rows_q, rows_v, x0)
-        return states[0] if single else states
+        a, n = self.arrays, self.n
+        q, v, x0 = (np.asarray(values, dtype=float) for values in (q, v, x0))
+        if q.ndim == 1:
+            return np.concatenate([x0 + a.scale * q, a.rolls * q, a.scale * v, a.rolls * v])
+        # rows: computed as (4n, rows) and transposed once, as NumPy broadcasts slowly over a
+        # last axis of a few bodies
+        out = np.empty((4 * n, q.shape[0]))
+        scale, rolls = a.scale[:, None], a.rolls[:, None]
+        np.multiply(scale, q.T, out=out[:n])
+        np.add(x0[:, None], out[:n], out=out[:n])
+        np.multiply(rolls, q.T, out=out[n : 2 * n])
+        np.multiply(scale, v.T, out=out[2 * n : 3 * n])
+        np.multiply(rolls, v.T, out=out[3 * n :])
+        states: FloatArray = out.T.copy()
+        return states
 
     def rolling_state(self, state: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """(q, qdot, x0) of a general state in which every body rolls."""
@@ -1171,12 +1176,14 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     n = run.n
     spacing = float(run.grid[1] - run.grid[0])
     # per body: the largest |f|/N over the rows while rolling, the smallest N, and their rows
-    ratio, ratio_row, normal, normal_row = kernels.row_extremes(
-        np.ascontiguousarray(trajectory.friction),
-        np.ascontiguousarray(trajectory.normal),
-        np.ascontiguousarray(trajectory.slipping),
-        run.model[0][:, kernels.ROLLS].copy(),
-    )
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratios = np.where(
+            trajectory.normal > 0, np.abs(trajectory.friction) / trajectory.normal, np.inf
+        )
+    ratios = np.where(trajectory.slipping, -np.inf, ratios)
+    ratio_row, normal_row = ratios.argmax(axis=0).tolist(), trajectory.normal.argmin(axis=0)
+    ratio = ratios[ratio_row, np.arange(n)].tolist()
+    normal = trajectory.normal[normal_row, np.arange(n)].tolist()
     best: dict[tuple[str, int], tuple[float, float, float, _Segment | None]] = {}
 
     def offer(

@@ -412,6 +412,7 @@ class _Run:
         self.q_ref = np.zeros(self.n)
         #: the release's general state until it is recorded (:meth:`_flush_pending`)
         self.pending: FloatArray | None = None
+        self.release_forces = (np.zeros(self.n), np.zeros(self.n))
         #: a rolling segment's (slipping, sign): nobody slips (shared, never written)
         self.all_rolling = (np.zeros(self.n, dtype=bool), np.zeros(self.n))
         #: the normal forces cannot change (level centre springs, forces at centres)
@@ -457,6 +458,8 @@ class _Run:
         # the first output row: recorded with the first rolling segment's rows (one block),
         # or on its own before anything else happens
         self.pending = state
+        #: the release's friction and normal forces (the same numbers as the kernel's)
+        self.release_forces = (observed.friction[0], observed.normal[0])
         self.e0 = observed.potential[0] + observed.kinetic[0]
         t = 0.0
         # a body already beyond its friction limit at release slips from the start
@@ -641,7 +644,10 @@ class _Run:
         row_v = [qdot[None, :].copy()]
         n = self.n
         # seeded with the segment's first state: the extremes include its start
-        _, _, friction0, normal0 = kernels.advance(model, self.coeffs, q, qdot, 0.0, 0)
+        if rolling is not None:  # observed at release already (no Numba kernel to load)
+            friction0, normal0 = self.release_forces
+        else:
+            _, _, friction0, normal0 = kernels.advance(model, self.coeffs, q, qdot, 0.0, 0)
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio0 = np.where(normal0 > 0, np.abs(friction0) / normal0, np.inf)
         extremes = np.array([np.where(self.rolls, ratio0, -np.inf), [t] * n, normal0, [t] * n])

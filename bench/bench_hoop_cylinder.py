@@ -6,11 +6,14 @@ compressed by 0.01 m). Its exact solution is known (``common.HoopCylinder.exact`
 is scored by its largest position error, its frequency error (from the phase drift) and its
 energy change. The key figure is the wall time each engine needs for a frequency error
 <= 1e-9 over the 10 s, and its ratio to rollspring's. Run: ``python bench/bench_hoop_cylinder.py``
-(about a minute; see bench/README.md).
+(about a minute; see bench/README.md); ``--engines rollspring,scipy`` runs only those (a few
+seconds), ``--repeats N`` times rollspring's calls N times (default 30).
 """
 
 from __future__ import annotations
 
+import argparse
+import importlib.util
 import math
 import time
 from dataclasses import dataclass
@@ -158,6 +161,9 @@ def rollspring_runs(repeats: int = 30) -> list[Run]:
         )
         call, trajectory = min(timed, key=lambda pair: pair[0])
         integrate = min(tr.timings["integrate"] for _, tr in timed)
+        # the fixed cost of each call: everything but the compiled stepping
+        fixed = sorted(wall - tr.timings["integrate"] for wall, tr in timed)
+        FIXED[n_output] = (fixed[0], fixed[len(fixed) // 2])
         errors = modal_errors(CASE, trajectory.t, trajectory.x, trajectory.v, trajectory.energy)
         evals = trajectory.n_steps * len(SCHEMES[trajectory.integrator][1])
         period = trajectory.summary["period_measured"]
@@ -182,6 +188,10 @@ def rollspring_runs(repeats: int = 30) -> list[Run]:
             )
         )
     return runs
+
+
+#: n_output -> (best, median) fixed cost of rollspring's call (whole call minus integration), s
+FIXED: dict[int, tuple[float, float]] = {}
 
 
 # -- MuJoCo ------------------------------------------------------------------------------------
@@ -422,7 +432,27 @@ HEADERS = [
 ]
 
 
+ENGINES = ("rollspring", "mujoco", "pymunk", "scipy")
+#: the whole simulate() call against SciPy's DOP853 on the same equations (issue 12)
+DOP853_TARGET = 30
+
+
 def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--engines",
+        default=",".join(ENGINES),
+        help=f"comma-separated subset of {','.join(ENGINES)} (rollspring always runs)",
+    )
+    parser.add_argument("--repeats", type=int, default=30, help="timed rollspring calls (best of)")
+    args = parser.parse_args()
+    chosen = {e.strip() for e in args.engines.split(",") if e.strip()} | {"rollspring"}
+    if chosen - set(ENGINES):
+        parser.error(f"unknown engine(s): {', '.join(sorted(chosen - set(ENGINES)))}")
+    for engine in ("mujoco", "pymunk"):
+        if engine in chosen and importlib.util.find_spec(engine) is None:
+            print(f"({engine} is not installed: skipped; pip install -e '.[bench]')")
+            chosen.discard(engine)
     print("hoop-cylinder, 10 s (the paper's Fig. 2): every engine against the exact modal solution")
     print(machine_note())
     print(
@@ -433,31 +463,46 @@ def main() -> None:
         print(f"  {name}: {text}")
 
     began = time.perf_counter()
-    rolls = rollspring_runs()
-    # MuJoCo: its defaults, the RK4 setting rollspring's MJCF export uses, then tuned
-    default = min((mujoco_run(0.002, "Euler", tuned=False) for _ in range(3)), key=lambda r: r.wall)
-    exported = mujoco_run(1e-4, "RK4", tuned=False)
-    # first-order Euler with the tuned contact, for comparison (RK4 is far cheaper at 1e-9)
-    euler = [mujoco_run(dt, "Euler", tuned=True) for dt in (1e-3, 2.5e-4)]
-    engines = {"MuJoCo tuned": mujoco_tuned_ladder(), "pymunk": pymunk_ladder()}
-    rhs = reduced_rhs()
-    for method in ("DOP853", "RK45"):
-        engines[f"SciPy {method}"] = scipy_ladder(method, rhs)
+    rolls = rollspring_runs(args.repeats)
+    engines: dict[str, tuple[list[Run], dict[str, Choice]]] = {}
+    default = exported = None
+    euler: list[Run] = []
+    if "mujoco" in chosen:
+        # MuJoCo: its defaults, the RK4 setting rollspring's MJCF export uses, then tuned
+        default = min(
+            (mujoco_run(0.002, "Euler", tuned=False) for _ in range(3)), key=lambda r: r.wall
+        )
+        exported = mujoco_run(1e-4, "RK4", tuned=False)
+        # first-order Euler with the tuned contact, for comparison (RK4 is far cheaper at 1e-9)
+        euler = [mujoco_run(dt, "Euler", tuned=True) for dt in (1e-3, 2.5e-4)]
+        engines["MuJoCo tuned"] = mujoco_tuned_ladder()
+    if "pymunk" in chosen:
+        engines["pymunk"] = pymunk_ladder()
+    if "scipy" in chosen:
+        rhs = reduced_rhs()
+        for method in ("DOP853", "RK45"):
+            engines[f"SciPy {method}"] = scipy_ladder(method, rhs)
 
     print_table(
         "All runs. wall: 'rollspring integrate' = time in the compiled stepping kernel "
-        "(timings['integrate']), 'simulate()' = the whole call, both best of 30; others = "
-        "their stepping loop, timed once on the ladders (the chosen settings are re-timed: "
-        "next table)",
+        f"(timings['integrate']), 'simulate()' = the whole call, both best of {args.repeats}; "
+        "others = their stepping loop, timed once on the ladders (the chosen settings are "
+        "re-timed: next table)",
         HEADERS,
         [r.row() for r in rolls]
-        + [default.row(), exported.row()]
+        + [r.row() for r in (default, exported) if r is not None]
         + [r.row() for r in euler]
         + [r.row() for ladder, _ in engines.values() for r in ladder],
     )
     for r in rolls[::2]:
         print(f"  rollspring {r.setting}: {r.note}")
-    print(f"  {TUNED_NOTE}")
+    for n_output, (best, median) in FIXED.items():
+        print(
+            f"  rollspring n_output={n_output}: fixed cost (whole call minus integration) "
+            f"best {best * 1e3:.3f} ms, median {median * 1e3:.3f} ms"
+        )
+    if "mujoco" in chosen:
+        print(f"  {TUNED_NOTE}")
 
     # -- the key figure ---------------------------------------------------------------------
     walls = {(r.engine.split()[1], r.setting): r.wall for r in rolls}
@@ -533,6 +578,8 @@ def main() -> None:
     # -- the issue's targets ------------------------------------------------------------------
     print("\nThe issue's targets (criterion 'freq'; ratios with 2001 outputs, [201 outputs]):")
     for name in ("MuJoCo tuned", "pymunk"):
+        if name not in engines:
+            continue
         choice = engines[name][1]["freq"]
         wall = choice.run.wall
         qualifier = (
@@ -550,11 +597,24 @@ def main() -> None:
                 f"{'met' if wall / b_full >= target else 'NOT met'} "
                 f"[{'met' if wall / b_short >= target else 'NOT met'}]"
             )
-    print(
-        f"\nMuJoCo defaults over 10 s: energy change {default.errors.energy:+.2e}, frequency "
-        f"error {default.errors.frequency:+.2e}; RK4 at dt=1e-4 with default contact: "
-        f"{exported.errors.energy:+.2e}, {exported.errors.frequency:+.2e}"
-    )
+    if "SciPy DOP853" in engines:
+        for criterion, choice in engines["SciPy DOP853"][1].items():
+            if not choice.reached:
+                continue
+            wall = choice.run.wall
+            print(
+                f"  whole simulate() call >= {DOP853_TARGET}x faster than SciPy DOP853 "
+                f"({criterion}: {choice.run.setting}, {wall * 1e3:.1f} ms): "
+                f"{wall / bases[1]:.1f}x [{wall / bases[3]:.1f}x] -> "
+                f"{'met' if wall / bases[1] >= DOP853_TARGET else 'NOT met'} "
+                f"[{'met' if wall / bases[3] >= DOP853_TARGET else 'NOT met'}]"
+            )
+    if default is not None and exported is not None:
+        print(
+            f"\nMuJoCo defaults over 10 s: energy change {default.errors.energy:+.2e}, "
+            f"frequency error {default.errors.frequency:+.2e}; RK4 at dt=1e-4 with default "
+            f"contact: {exported.errors.energy:+.2e}, {exported.errors.frequency:+.2e}"
+        )
     print(f"benchmark time {time.perf_counter() - began:.0f} s")
 
 

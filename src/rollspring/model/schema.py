@@ -71,7 +71,7 @@ RANGES: dict[str, tuple[float, float, str]] = {
     "damping": (0.0, 1e6, "N s/m"),
     "gravity": (0.0, 1e3, "m/s²"),
     "force": (-1e9, 1e9, "N"),
-    "attachment": (0.0, 1e3, "m"),  # an attachment's height or radius
+    "attachment": (0.0, 1e4, "m"),  # an attachment's height or radius (2 R and more)
     "angle": (-360.0, 360.0, "degrees"),
     "friction": (0.0, 1e6, ""),  # mu_static (which may also be inf) and mu_kinetic
 }

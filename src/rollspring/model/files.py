@@ -238,9 +238,7 @@ def _parse(text: str, path: Path, *, shown: str | None = None) -> dict[str, Any]
             return tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise ModelError(f"{name}: TOML syntax error: {_oneline(exc)}") from None
-    raise ModelError(
-        f"{name}: unknown file type {_quoted(suffix)} (use .toml or .json)"
-    )
+    raise ModelError(f"{name}: unknown file type {_quoted(suffix)} (use .toml or .json)")
 
 
 def _no_duplicate_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:

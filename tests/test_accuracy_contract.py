@@ -35,7 +35,8 @@ from rollspring.physics import (
     stiffness_matrix,
     system_arrays,
 )
-from rollspring.simulate import Trajectory, simulate
+from rollspring.simulate import Trajectory, choose_scheme, simulate
+from rollspring.simulate.integrators import INTEGRATORS, output_omega_step
 
 #: quantities the contract covers: positions and velocities, per body
 QUANTITIES = ("x", "phi", "v", "omega")
@@ -306,3 +307,32 @@ def test_the_reference_agrees_with_scipy_dop853():
             scale = np.max(np.abs(truth), axis=0)
             error = np.abs(scipy_values[name] - truth)
             assert np.all(error <= 1e-11 * scale + 1e-300), name
+
+
+def test_the_step_puts_outputs_on_step_ends_when_that_takes_fewer_steps():
+    """The contract's step: interpolated outputs within rtol/10 (with their safety factor), or
+    a whole fraction of the output spacing within the phase bound, whichever is fewer steps."""
+    scheme = INTEGRATORS["kahanli8"]
+    omega, rtol = 10.0, 1e-10
+    # a long run: 8 steps per output beat 4x as many interpolated ones
+    duration, n_output = 100.0, 2001
+    spacing = duration / (n_output - 1)
+    radians = omega * duration
+    step = scheme.contract_step(omega, duration, rtol, n_output)
+    per_output = spacing / step
+    assert per_output == pytest.approx(round(per_output), rel=1e-12) and round(per_output) == 8
+    assert omega * step <= scheme.phase_omega_step(rtol, radians)
+    assert omega * spacing / (round(per_output) - 1) > scheme.phase_omega_step(rtol, radians)
+    interpolated = scheme.contract_step(omega, duration, rtol)
+    assert omega * interpolated == pytest.approx(output_omega_step(rtol), rel=1e-12)
+    assert choose_scheme(omega, duration, rtol, "kahanli8", n_output) == ("kahanli8", step)
+    # a short run with dense outputs: interpolating inside fewer, longer steps is cheaper
+    duration = 1.0
+    step = scheme.contract_step(omega, duration, rtol, n_output)
+    assert step == scheme.contract_step(omega, duration, rtol) > duration / (n_output - 1)
+    # the safety factors shrink omega h below the phase error of rtol/10 and the sine's
+    # interpolation error of rtol/10
+    for name, integrator in INTEGRATORS.items():
+        unsafe = (0.1 * rtol / (integrator.error_constant * radians)) ** (1 / integrator.order)
+        assert integrator.phase_omega_step(rtol, radians) < unsafe, name
+    assert output_omega_step(rtol) < (13420.0 * 0.1 * rtol) ** 0.2

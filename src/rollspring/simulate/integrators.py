@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = [
+    "CONTRACT_SHARE",
     "HERMITE_POSITION",
     "HERMITE_VELOCITY",
     "INTEGRATORS",

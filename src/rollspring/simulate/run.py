@@ -164,6 +164,17 @@ def _presenter(name: str) -> Callable[..., Any]:
         ) from None
 
 
+def _linspace(end: float, count: int) -> FloatArray:
+    """``np.linspace(0.0, end, count)`` operation for operation (``arange * step``, the last
+    set to ``end``) without its generic overhead."""
+    if count < 2:
+        return np.linspace(0.0, end, count)
+    grid = np.arange(count, dtype=float)
+    grid *= end / (count - 1)
+    grid[-1] = end
+    return grid
+
+
 def _rows_of(values: np.ndarray, rows: int, dtype: type) -> np.ndarray:
     """``values`` (n,) repeated on ``rows`` rows, a new (rows, n) array (zeros without
     broadcasting when they are all zero, the usual case: NumPy broadcasts slowly over a last
@@ -186,9 +197,9 @@ class _Observed(NamedTuple):
     kinetic: FloatArray
 
 
-@dataclass(frozen=True)
-class _Start:
-    """A rolling state (q, v) at time t with what the kernel needs to step on from it."""
+class _Start(NamedTuple):
+    """A rolling state (q, v) at time t with what the kernel needs to step on from it (a
+    tuple: a run makes a few of them for every segment)."""
 
     t: float
     q: FloatArray
@@ -335,7 +346,7 @@ def simulate(
         outputs = n_output or _DEFAULT_OUTPUTS  # the step suits them (on step ends or between)
         name, step = choose_scheme(omega_max, duration, rtol, integrator, outputs)
     n_output = n_output or _DEFAULT_OUTPUTS
-    grid = np.linspace(0.0, duration, n_output)
+    grid = _linspace(duration, n_output)
     tolerance = energy_tolerance if energy_tolerance is not None else 100 * rtol + 1e-12
 
     run = _Run(arrays, grid, name, step, rtol, on_slip, damped, tolerance, progress, model)
@@ -648,9 +659,13 @@ class _Run:
             friction0, normal0 = self.release_forces
         else:
             _, _, friction0, normal0 = kernels.advance(model, self.coeffs, q, qdot, 0.0, 0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio0 = np.where(normal0 > 0, np.abs(friction0) / normal0, np.inf)
-        extremes = np.array([np.where(self.rolls, ratio0, -np.inf), [t] * n, normal0, [t] * n])
+        ratio0 = [  # |f|/N of rolling bodies (inf where N <= 0), a few plain floats
+            (abs(f) / nn if nn > 0 else math.inf) if rolls else -math.inf
+            for f, nn, rolls in zip(
+                friction0.tolist(), normal0.tolist(), self.rolls.tolist(), strict=True
+            )
+        ]
+        extremes = np.array([ratio0, [t] * n, normal0, [t] * n])
         extreme_states = np.empty((2, n, 2, n))
         extreme_states[:, :, 0, :] = q
         extreme_states[:, :, 1, :] = qdot
@@ -1182,11 +1197,10 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     n = run.n
     spacing = float(run.grid[1] - run.grid[0])
     # per body: the largest |f|/N over the rows while rolling, the smallest N, and their rows
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratios = np.where(
-            trajectory.normal > 0, np.abs(trajectory.friction) / trajectory.normal, np.inf
-        )
-    ratios = np.where(trajectory.slipping, -np.inf, ratios)
+    positive = trajectory.normal > 0
+    ratios = np.full(positive.shape, np.inf)  # inf where N <= 0, and |f|/N elsewhere
+    np.divide(np.abs(trajectory.friction), trajectory.normal, out=ratios, where=positive)
+    ratios[trajectory.slipping] = -np.inf
     ratio_row, normal_row = ratios.argmax(axis=0).tolist(), trajectory.normal.argmin(axis=0)
     ratio = ratios[ratio_row, np.arange(n)].tolist()
     normal = trajectory.normal[normal_row, np.arange(n)].tolist()

@@ -8,6 +8,8 @@ to differ. Symbols are the engine's: m_1, m_2, R (equal radii) or R_1, R_2, k.
 
 from __future__ import annotations
 
+import math
+
 import pytest
 import sympy as sp
 
@@ -234,18 +236,21 @@ def test_fig3_angular_momentum_is_conserved_with_the_right_geometry(fig3) -> Non
 
 def test_fig3_as_the_paper_sizes_it_tilts_the_spring() -> None:
     """R1 = R2/2 on one floor: ends at heights 2R1 = R2 and 1.5R2, so the spring tilts by beta
-    and Omega^2 = cos^2(beta) (2k/m1 + 3k/(2m2)) (README table)."""
+    and Omega^2 = cos^2(beta) (2k/m1 + 3k/(2m2)) (README table); the tilt in the parameters:
+    tan(beta) = (3R2/2 - 2R1)/ell, ell the horizontal distance between the ends."""
     system = make_system(
         [body("hoop", "hoop", radius=0.05, x=0.0), body("cyl", "cylinder", radius=0.1, x=0.5)],
         [spring("hoop", "cyl", at=[{"height": 0.1}, {"height": 0.15}])],
     )
     result = derive(system, ["newton", "natural-frequencies"], symbols=True)
     s = names(result)
-    m1, m2, k, beta = s["m_1"], s["m_2"], s["k"], s["beta"]
+    m1, m2, k, R1, R2, ell = s["m_1"], s["m_2"], s["k"], s["R_1"], s["R_2"], s["ell"]
+    cos2 = ell**2 / (ell**2 + (sp.Rational(3, 2) * R2 - 2 * R1) ** 2)
     for name in ("newton", "natural-frequencies"):
         (omega2,) = result.methods[name].omega2
-        assert zero(omega2 - sp.cos(beta) ** 2 * (2 * k / m1 + 3 * k / (2 * m2))), name
-    assert result.symbolic.values[beta] == pytest.approx(0.0996686524911620)  # atan(0.05/0.5)
+        assert zero(omega2 - cos2 * (2 * k / m1 + 3 * k / (2 * m2))), name
+    beta = math.atan2(1.5 * 0.1 - 2 * 0.05, result.symbolic.values[ell])
+    assert beta == pytest.approx(0.0996686524911620)  # atan(0.05/0.5)
 
 
 def test_appendix_a_friction_law_and_zero_friction_heights() -> None:

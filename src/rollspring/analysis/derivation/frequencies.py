@@ -31,6 +31,9 @@ __all__ = ["OMEGA2", "BudgetExceeded", "Frequencies", "normal_frequencies", "tim
 OMEGA2 = sp.Symbol("Omega^2")
 #: Largest number of bodies whose characteristic polynomial is expanded.
 MAX_POLYNOMIAL = 12
+#: Largest degree (in Omega^2, zero roots taken out) factored in search of quadratic factors:
+#: factoring a symbolic polynomial of higher degree costs seconds and finds none in general.
+MAX_FACTORED = 4
 
 
 @contextlib.contextmanager
@@ -103,6 +106,23 @@ def characteristic_polynomial(A: sp.Matrix, variable: sp.Symbol = OMEGA2) -> sp.
     return A.charpoly(variable).as_expr()
 
 
+def _tridiagonal_determinant(sym: SymbolicSystem) -> sp.Poly:
+    r""":math:`\det(K - \Omega^2 M)` of a tridiagonal K (a chain) by the three-term recurrence,
+    as a polynomial in :math:`\Omega^2` and the parameters."""
+    K = sym.stiffness_matrix
+    gens = [OMEGA2, *sorted(K.free_symbols | sym.mass_matrix.free_symbols, key=str)]
+
+    def poly(expr: sp.Expr) -> sp.Poly:
+        return sp.Poly(expr, *gens)
+
+    previous, current = poly(sp.Integer(1)), poly(K[0, 0] - OMEGA2 * sym.bodies[0].J)
+    for k in range(1, sym.n):
+        diagonal = poly(K[k, k] - OMEGA2 * sym.bodies[k].J)
+        coupling = poly(K[k, k - 1] * K[k - 1, k])
+        previous, current = current, diagonal * current - coupling * previous
+    return current
+
+
 def normal_frequencies(
     sym: SymbolicSystem, *, budget: float | None = 10.0, matrix: sp.Matrix | None = None
 ) -> Frequencies:
@@ -160,16 +180,30 @@ def normal_frequencies(
         return Frequencies(None, [None] * len(numeric), numeric, n_zero, notes)
     try:
         with time_budget(left()):
-            poly = characteristic_polynomial(A)
+            if matrix is None and _is_tridiagonal(sym.stiffness_matrix):
+                # det(K - Omega^2 M) = (-1)^n prod(J) det(Omega^2 - M^-1 K): polynomial
+                # arithmetic, no rational functions
+                determinant = _tridiagonal_determinant(sym)
+                scale = sp.Mul(*[-b.J for b in sym.bodies])
+                poly = sp.Mul(determinant.as_expr(), sp.Pow(scale, -1))
+                reduced = sp.Poly(determinant, OMEGA2)
+            else:
+                poly = characteristic_polynomial(A)
+                reduced = sp.Poly(poly, OMEGA2)
     except BudgetExceeded:
         notes.append(f"the characteristic polynomial took longer than the {budget:g} s budget")
         return Frequencies(None, [None] * len(numeric), numeric, n_zero, notes)
-    reduced = sp.Poly(poly, OMEGA2)
     removed = 0
     while removed < n_zero and reduced.degree() > 0 and sp.cancel(reduced.nth(0)) == 0:
         reduced = sp.Poly(sp.cancel(reduced.as_expr() / OMEGA2), OMEGA2)
         removed += 1
     roots: list[sp.Expr | None] = []
+    if reduced.degree() > MAX_FACTORED:
+        notes.append(
+            f"the characteristic polynomial has degree {reduced.degree()} in Omega^2 after its "
+            "zero roots: no closed form offered (its roots are given numerically)"
+        )
+        return Frequencies(poly, [None] * len(numeric), numeric, n_zero, notes)
     try:
         with time_budget(left()):
             factors = sp.factor_list(reduced.as_expr(), OMEGA2)[1] if reduced.degree() > 0 else []
@@ -219,7 +253,7 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     expr = sp.sympify(expr)
     if expr.count_ops() > 300:
         return expr
+    if any(not p.exp.is_Integer for p in expr.atoms(sp.Pow)):
+        return sp.together(expr)  # the quadratic formula: one fraction, no factoring (slow)
     candidates = [expr, sp.factor(sp.cancel(expr))]
-    if expr.count_ops() <= 150:
-        candidates.append(sp.simplify(expr))
     return min(candidates, key=sp.count_ops)

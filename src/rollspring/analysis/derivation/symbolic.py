@@ -29,6 +29,8 @@ Public API (stable; :mod:`rollspring.analysis.derivation` re-exports it)::
     sym.contact_torques    # Q_i computed as torques about the contact points (Newton's route)
     sym.in_time(expr)      # q -> phi(t), qd -> phi'(t), qdd -> phi''(t)
     sym.values             # {Symbol: float}: the system's numbers, to check against numerics
+    sym.conditions         # [Eq]: what the parameters satisfy for this system (level ends)
+    sym.apply_conditions(expr)  # expr with the conditions used
     sym.numeric(expr)      # float(expr.subs(values))
     sym.reference          # "equilibrium" or "initial placement"; sym.q_reference (rad, floats)
 
@@ -46,8 +48,15 @@ and each body end moves by
           \sin\theta_0),\; r(\cos(\theta_0+\rho_i\varphi_i) - \cos\theta_0)\bigr)
 
 (:math:`\theta_0` the attachment's angle from the upward vertical at the reference; rolling
-:math:`s_i = R_i, \rho_i = 1`; slider :math:`s_i = 1, \rho_i = 0`). Track heights and absolute
-positions therefore never appear: only :math:`\ell_s, \beta_s` and the attachments do.
+:math:`s_i = R_i, \rho_i = 1`; slider :math:`s_i = 1, \rho_i = 0`). Absolute positions therefore
+never appear: only the reference vectors :math:`d_s(0)` and the attachments do. With
+``symbols=True`` a spring between two bodies has :math:`d_s(0) = (\ell_s, \Delta y_s)`, its
+rise :math:`\Delta y_s` the difference of its ends' heights in the parameters (track heights
+:math:`h_i`, heights such as :math:`2R_1`), so the exact potential holds for any sizes, a tilted
+spring too; where the ends are level only for this system's numbers (the paper's Fig. 3,
+:math:`2R_1 = \tfrac32 R_2`) that is a condition (:attr:`SymbolicSystem.conditions`) which the
+expansions about the reference (K, the linear forces) use. A spring to an anchor keeps
+:math:`\ell_s(\cos\beta_s, \sin\beta_s)`.
 
 ``symbols=False``: every number is an exact rational (the system's decimal values; the inertia
 factors of the built-in shapes exactly: 1, 1/2, 2/5, 2/3). ``symbols=True``: masses
@@ -220,9 +229,17 @@ class Attachment:
 @dataclass(frozen=True)
 class SymbolicSpring:
     r"""One spring: ends a, b (body index or None for an anchor, with their attachments),
-    stiffness ``k``, rest length ``L``, reference vector ``d0`` = :math:`\ell(\cos\beta,
-    \sin\beta)`, and its exact vector :math:`d(q)`, length :math:`l(q)` and tension
-    :math:`T = k(l - L)`."""
+    stiffness ``k``, rest length ``L``, reference vector ``d0`` (from end a to end b), and its
+    exact vector :math:`d(q)`, length :math:`l(q)` and tension :math:`T = k(l - L)`.
+
+    ``d0`` is general in the parameters where the ends' heights are: between two bodies its
+    vertical part is the difference of the end heights above the lower floor (track heights
+    :math:`h_i` and heights above the contacts such as :math:`2R_1`), so the exact potential
+    holds for a tilted spring too; where those heights are equal only for this system's numbers
+    (the paper's Fig. 3: :math:`2R_1 = \tfrac32 R_2`), the system records the condition
+    (:attr:`SymbolicSystem.conditions`). ``e0`` and ``ell`` are the direction and length at the
+    reference for this system (the conditions holding): the expansions about the reference use
+    them. ``relaxed``: the spring is at its rest length at the reference."""
 
     index: int
     name: str
@@ -236,6 +253,13 @@ class SymbolicSpring:
     vector: tuple[sp.Expr, sp.Expr]
     length: sp.Expr
     stays_horizontal: bool
+    e0: tuple[sp.Expr, sp.Expr] = (sp.Integer(1), sp.Integer(0))
+    relaxed: bool = True
+
+    @property
+    def reference_tension(self) -> sp.Expr:
+        r""":math:`T = k(\ell - L)` at the reference (0 for a relaxed spring)."""
+        return sp.Integer(0) if self.relaxed else self.k * (self.ell - self.L)
 
     @property
     def bodies(self) -> tuple[int, ...]:
@@ -256,7 +280,7 @@ class SymbolicSpring:
     def direction(self) -> tuple[sp.Expr, sp.Expr]:
         """Unit vector e = d/l from end a to end b."""
         if self.stays_horizontal:
-            return sp.sign(self.d0[0]), sp.Integer(0)
+            return self.e0
         return self.vector[0] / self.length, self.vector[1] / self.length
 
 
@@ -286,7 +310,19 @@ class SymbolicSystem:
     q_reference: np.ndarray
     t: sp.Symbol = field(default_factory=lambda: dynamicsymbols._t)
     notes: list[str] = field(default_factory=list)
+    conditions: list[sp.Eq] = field(default_factory=list)
     _cache: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    def apply_conditions(self, expr: Any) -> Any:
+        """``expr`` with :attr:`conditions` used: each solved for its last parameter (in name
+        order) and substituted (``2R_1 = 3R_2/2`` -> ``R_2 = 4R_1/3``)."""
+        for condition in self.conditions:
+            unknown = sorted(condition.free_symbols, key=lambda x: x.name)[-1]
+            (value,) = sp.solve(condition, unknown)
+            expr = _xreplace(
+                sp.sympify(expr) if not isinstance(expr, list | tuple) else expr, {unknown: value}
+            )
+        return expr
 
     # -- coordinates ---------------------------------------------------------------------------
     @property
@@ -444,8 +480,8 @@ class SymbolicSystem:
         n = self.n
         entries: dict[tuple[int, int], list[sp.Expr]] = {}
         for spring in self.springs:
-            ex, ey = spring.d0[0] / spring.ell, spring.d0[1] / spring.ell
-            tension = spring.k * (spring.ell - spring.L)
+            ex, ey = spring.e0
+            tension = spring.reference_tension
             first: dict[int, tuple[sp.Expr, sp.Expr]] = {}
             second: dict[int, tuple[sp.Expr, sp.Expr]] = {}
             for sign, at in zip((-1, 1), spring.attachments, strict=True):
@@ -596,8 +632,8 @@ class SymbolicSystem:
         fx: list[sp.Expr] = [sp.Integer(0)] * self.n
         fy: list[sp.Expr] = [sp.Integer(0)] * self.n
         for spring in self.springs:
-            tension = spring.k * (spring.ell - spring.L)
-            ex, ey = spring.d0[0] / spring.ell, spring.d0[1] / spring.ell
+            tension = spring.reference_tension
+            ex, ey = spring.e0
             for sign, at in zip((1, -1), spring.attachments, strict=True):
                 if at is not None:
                     fx[at.body] += sign * tension * ex
@@ -615,8 +651,8 @@ class SymbolicSystem:
         n = self.n
         out = [[(sp.Integer(0), sp.Integer(0)) for _ in range(n)] for _ in range(n)]
         for spring in self.springs:
-            ex, ey = spring.d0[0] / spring.ell, spring.d0[1] / spring.ell
-            tension = spring.k * (spring.ell - spring.L)
+            ex, ey = spring.e0
+            tension = spring.reference_tension
             delta: dict[int, tuple[sp.Expr, sp.Expr]] = {}
             for sign, at in zip((-1, 1), spring.attachments, strict=True):
                 if at is not None:
@@ -755,6 +791,33 @@ def _zero_mode(sym: SymbolicSystem) -> sp.Matrix | None:
     return v.applyfunc(sp.cancel)
 
 
+def _end_height(
+    at: Attachment | None, bodies: tuple[SymbolicBody, ...], track: Any
+) -> sp.Expr | None:
+    """The height of a spring end above the lowest floor at the reference, in the parameters
+    (None for an anchor: its height is a number of the system, not a parameter)."""
+    if at is None:
+        return None
+    body = bodies[at.body]
+    if at.height is not None:
+        above = at.height
+    elif at.r == 0:
+        above = body.R
+    else:
+        above = body.R + at.r * sp.cos(at.theta0)
+    return track(at.body) + above
+
+
+def _rise(
+    ats: list[Attachment | None], bodies: tuple[SymbolicBody, ...], track: Any
+) -> sp.Expr | None:
+    """End b's height minus end a's, in the parameters (None if an end is an anchor)."""
+    heights = [_end_height(a, bodies, track) for a in ats]
+    if heights[0] is None or heights[1] is None:
+        return None
+    return sp.expand(heights[1] - heights[0])
+
+
 def _is_tridiagonal(K: sp.Matrix) -> bool:
     n = K.shape[0]
     return all(K[i, j] == 0 for i in range(n) for j in range(n) if abs(i - j) > 1)
@@ -878,6 +941,15 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
     position, _, _ = end_kinematics(arrays, q_ref) if arrays.n_springs else (None, None, None)
     n_springs = len(system.springs)
     springs = []
+    conditions: list[sp.Eq] = []
+    lifted = [i for i, b in enumerate(system.bodies) if b.track_height != 0.0]
+
+    def track(i: int) -> sp.Expr:
+        """Body i's track height above the lowest floor (a symbol h_i where it is not 0)."""
+        if i not in lifted:
+            return sp.Integer(0)
+        return name(sub("h", str(i + 1)), system.bodies[i].track_height, real=True)
+
     for s, spring in enumerate(system.springs):
         assert position is not None and ref_state is not None  # there are springs
         label = str(s + 1)
@@ -888,28 +960,54 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
         rest = float(arrays.rest_length[s])
         horizontal = abs(dy) <= _ZERO_TILT * length
         relaxed = abs(length - rest) <= _ZERO_TENSION * length
-        ell = name("ell" if only else f"ell_{label}", length, positive=True)
-        if horizontal:
-            beta = sp.Integer(0) if dx > 0 else sp.pi
-        elif symbols:
-            beta = name("beta" if only else f"beta_{label}", math.atan2(dy, dx), real=True)
-        else:
-            beta = None
-        if symbols or horizontal:
-            d0 = (ell * sp.cos(beta), ell * sp.sin(beta))
-        else:  # exact numbers: the reference vector itself
-            d0x, d0y = exact_number(dx), exact_number(dy)
-            ell = sp.sqrt(d0x**2 + d0y**2)
-            beta = sp.atan2(d0y, d0x)
-            d0 = (d0x, d0y)
-        L = ell if relaxed else name("L" if only else f"L_{label}", rest, nonnegative=True)
         ats: list[Attachment | None] = []
         for end, at in zip(spring.ends, spring.attachments, strict=True):
             ats.append(attachment(index[end], at, label) if end in index else None)
+        rise = _rise(ats, bodies_t, track) if symbols else None
+        ell_name = "ell" if only else f"ell_{label}"
+        e0: tuple[sp.Expr, sp.Expr]
+        if rise is not None and sp.expand(rise) != 0:
+            # the vertical part in the parameters: exact for any sizes (a tilted spring too)
+            ell = name(ell_name, abs(dx), positive=True)
+            across = ell if dx > 0 else -ell
+            d0 = (across, rise)
+            if horizontal:  # level for this system's numbers only: a condition on them
+                heights = [_end_height(a, bodies_t, track) for a in ats]
+                assert heights[0] is not None and heights[1] is not None  # rise is known
+                conditions.append(sp.Eq(heights[0], heights[1], evaluate=False))
+                e0 = (sp.sign(across), sp.Integer(0))
+            else:
+                ell = sp.sqrt(ell**2 + rise**2)
+                e0 = (across / ell, rise / ell)
+            beta = sp.atan2(rise, across)
+            general_length = sp.sqrt(across**2 + rise**2)
+        else:
+            ell = name(ell_name, length, positive=True)
+            if horizontal:
+                beta = sp.Integer(0) if dx > 0 else sp.pi
+            elif symbols:
+                beta = name("beta" if only else f"beta_{label}", math.atan2(dy, dx), real=True)
+            else:
+                beta = None
+            if symbols or horizontal:
+                d0 = (ell * sp.cos(beta), ell * sp.sin(beta))
+            else:  # exact numbers: the reference vector itself
+                d0x, d0y = exact_number(dx), exact_number(dy)
+                ell = sp.sqrt(d0x**2 + d0y**2)
+                beta = sp.atan2(d0y, d0x)
+                d0 = (d0x, d0y)
+            e0 = (sp.cos(beta), sp.sin(beta)) if horizontal else (d0[0] / ell, d0[1] / ell)
+            general_length = ell
+        L = (
+            general_length
+            if relaxed
+            else name("L" if only else f"L_{label}", rest, nonnegative=True)
+        )
         moves = [a.displacement(bodies_t[a.body]) if a is not None else (0, 0) for a in ats]
         vx = d0[0] + moves[1][0] - moves[0][0]
         vy = d0[1] + moves[1][1] - moves[0][1]
-        stays = horizontal and all(a is None or a.r == 0 for a in ats)
+        level = horizontal and (rise is None or sp.expand(rise) == 0)
+        stays = level and all(a is None or a.r == 0 for a in ats)
         if stays:
             vy = sp.Integer(0)
             exact_length = vx if dx > 0 else -vx
@@ -929,6 +1027,8 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
                 (vx, vy),
                 exact_length,
                 stays,
+                e0,
+                relaxed,
             )
         )
 
@@ -964,6 +1064,7 @@ def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
         reference=reference,
         q_reference=q_ref,
         notes=notes,
+        conditions=conditions,
     )
 
 

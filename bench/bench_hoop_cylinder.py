@@ -194,6 +194,40 @@ def rollspring_runs(repeats: int = 30) -> list[Run]:
 FIXED: dict[int, tuple[float, float]] = {}
 
 
+def rollspring_ladder(
+    n_output: int, repeats: int
+) -> tuple[list[tuple[Run, Run]], dict[str, tuple[Run, Run]]]:
+    """rollspring at the same accuracy as the other engines' ladders: rtol = 1e-9 Omega T x 1000,
+    100, 10, 1 (loosest first); the loosest meeting each criterion, as (integration, whole
+    call), each the best of ``repeats`` calls."""
+    system = load_system("hoop-cylinder")
+    ladder: list[tuple[Run, Run]] = []
+    chosen: dict[str, tuple[Run, Run]] = {}
+    for factor in (1000.0, 100.0, 10.0, 1.0):
+        rtol = TARGET * CASE.omega * DURATION * factor
+        timed = repeat(
+            lambda r=rtol: simulate(system, DURATION, rtol=r, n_output=n_output),
+            repeats,
+            warmup=2,
+        )
+        call, trajectory = min(timed, key=lambda pair: pair[0])
+        integrate = min(tr.timings["integrate"] for _, tr in timed)
+        errors = modal_errors(CASE, trajectory.t, trajectory.x, trajectory.v, trajectory.energy)
+        evals = trajectory.n_steps * len(SCHEMES[trajectory.integrator][1])
+        setting = f"rtol={rtol:.3g}, n_output={n_output}"
+        pair = (
+            Run("rollspring integrate", setting, integrate, trajectory.n_steps, evals, errors),
+            Run("rollspring simulate()", setting, call, trajectory.n_steps, evals, errors),
+        )
+        ladder.append(pair)
+        for name in CRITERIA:
+            if name not in chosen and pair[1].meets(name):
+                chosen[name] = pair
+        if len(chosen) == len(CRITERIA):
+            break
+    return ladder, chosen
+
+
 # -- MuJoCo ------------------------------------------------------------------------------------
 
 #: contact settings of the tuned runs
@@ -609,6 +643,32 @@ def main() -> None:
                 f"{'met' if wall / bases[1] >= DOP853_TARGET else 'NOT met'} "
                 f"[{'met' if wall / bases[3] >= DOP853_TARGET else 'NOT met'}]"
             )
+        # at the same accuracy: each engine at its loosest setting meeting the criterion
+        print(
+            "\nAt the same accuracy (each at the loosest setting meeting the criterion; "
+            "rollspring's rtol ladder 1e-9 Omega T x 1000, 100, 10, 1):"
+        )
+        for n_output in (2001, 201):
+            ladder, chosen_rtol = rollspring_ladder(n_output, max(5, args.repeats // 3))
+            for integrate_run, call_run in ladder:
+                e = call_run.errors
+                print(
+                    f"  rollspring {call_run.setting}: integration {integrate_run.wall * 1e3:.3f}"
+                    f" ms, whole call {call_run.wall * 1e3:.3f} ms, {call_run.steps} steps, "
+                    f"freq. error {e.frequency:.1e}, max phase error {e.phase:.1e}"
+                )
+            for criterion, choice in engines["SciPy DOP853"][1].items():
+                if not choice.reached or criterion not in chosen_rtol:
+                    continue
+                wall = choice.run.wall
+                integrate_run, call_run = chosen_rtol[criterion]
+                ratio = wall / call_run.wall
+                print(
+                    f"  {criterion}: SciPy DOP853 {choice.run.setting} {wall * 1e3:.1f} ms / "
+                    f"rollspring {call_run.setting} whole call {call_run.wall * 1e3:.3f} ms = "
+                    f"{ratio:.1f}x (integration {wall / integrate_run.wall:.0f}x) -> "
+                    f"{'met' if ratio >= DOP853_TARGET else 'NOT met'}"
+                )
     if default is not None and exported is not None:
         print(
             f"\nMuJoCo defaults over 10 s: energy change {default.errors.energy:+.2e}, "

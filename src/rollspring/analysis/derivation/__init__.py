@@ -8,7 +8,8 @@ Public API::
     sym.mass_matrix, sym.stiffness_matrix, sym.potential, sym.friction, sym.normal, ...
 
     result = derive(system, method="all", symbols=True)   # a Derivation
-    result.methods["lagrange"].steps       # [Step(equation, latex, words, ref), ...]
+    result.methods["lagrange"].steps       # [Step(equation, words, ref, tag, how), ...]
+    step.tag, step.how                     # "L5"; How("substitute", uses=("L3", "L4"), ...)
     result.methods["newton"].omega2        # Omega^2 of the oscillating modes (closed forms)
     result.cross_check                     # CrossCheck: which methods agree, residuals, reasons
     result.to_text(), result.to_markdown(), result.to_latex()   # renderers (latex: a document)
@@ -17,8 +18,13 @@ Public API::
     appendix_a_friction()                  # the paper's f(y) = F(1 - mRy/(I + mR^2)) derived
     zero_friction_heights()                # y* = R + I/(mR) for every shape
 
-Methods (the paper's order of ideas): ``newton`` (dynamic equations, Sec. 2 and 4.1),
-``conservation`` (energy and the conserved angular-momentum combination, Sec. 4.2),
+Every displayed step is numbered (``S5``, ``N3``, ...) and says how it follows from the steps it
+names: one operation a student can name (:data:`OPERATIONS`: substitute, solve, add,
+differentiate, integrate, linearise, ...). The setup (``S``) derives the constraints, the
+inertias about the contact lines, T, V, M and K once; every method refers to it.
+
+Methods (the paper's order of ideas): ``newton`` (torques about the contact points, Sec. 2 and
+4.1), ``conservation`` (energy and the zero mode's momentum, Sec. 4.2),
 ``lagrange`` (Euler-Lagrange, Sec. 4.3; also via ``sympy.physics.mechanics.LagrangesMethod``),
 ``natural-frequencies`` (subsystem frequencies, Sec. 4.4 and App. B, C) and ``hamilton``
 (canonical equations, Sec. 4.5).
@@ -46,7 +52,7 @@ from rollspring.analysis.derivation.methods import (
     run_method,
 )
 from rollspring.analysis.derivation.render import FORMATS
-from rollspring.analysis.derivation.steps import Section, Step
+from rollspring.analysis.derivation.steps import OPERATIONS, How, Section, Step
 from rollspring.analysis.derivation.symbolic import (
     EXACT_INERTIA_FACTORS,
     SymbolicBody,
@@ -64,11 +70,13 @@ __all__ = [
     "FORMATS",
     "METHODS",
     "OMEGA2",
+    "OPERATIONS",
     "Check",
     "CrossCheck",
     "Derivation",
     "DerivationError",
     "Frequencies",
+    "How",
     "MethodResult",
     "Section",
     "Step",

@@ -17,7 +17,7 @@ import sympy as sp
 
 from rollspring.analysis.derivation.frequencies import BudgetExceeded, Frequencies, time_budget
 from rollspring.analysis.derivation.methods import MethodResult
-from rollspring.analysis.derivation.steps import Section, latex_of, named
+from rollspring.analysis.derivation.steps import How, Section, latex_of, named
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
 
 __all__ = ["Check", "CrossCheck", "cross_check", "equations_matrix"]
@@ -61,12 +61,14 @@ class CrossCheck:
             section.add(
                 check.residual,
                 f"{check.method}: {check.what} {verdict[check.agrees]}.",
+                how=How("check"),
                 latex=r"\mathrm{residual} = " + latex_of(check.residual),
             )
         for name, reason in self.not_applicable.items():
             section.add(
                 named("not applicable", r"\text{not applicable}"),
                 f"{name} does not apply: {reason}.",
+                how=How("check"),
                 latex=r"\text{not applicable}",
             )
         overall = "all methods agree" if self.agree else "the methods DO NOT all agree"

@@ -14,12 +14,13 @@ from rollspring.analysis.derivation.forces import appendix_a_friction, contact_f
 from rollspring.analysis.derivation.frequencies import Frequencies, normal_frequencies
 from rollspring.analysis.derivation.methods import METHODS, MethodResult, run_method
 from rollspring.analysis.derivation.render import latex_document, markdown, text
-from rollspring.analysis.derivation.steps import Section, matrix_equation, named
+from rollspring.analysis.derivation.setup import setup_section
+from rollspring.analysis.derivation.steps import Section
 from rollspring.analysis.derivation.symbolic import SymbolicSystem, symbolic_system
 from rollspring.errors import DerivationError
 from rollspring.model import System
 
-__all__ = ["ALL", "Derivation", "DerivationError", "derive", "parse_methods"]
+__all__ = ["ALL", "Derivation", "DerivationError", "derive", "parse_methods", "setup_section"]
 
 #: ``method="all"`` runs every method in :data:`METHODS`.
 ALL = "all"
@@ -79,6 +80,8 @@ class Derivation:
                     result.title,
                     list(result.section.steps),
                     note=f"Does not apply: {result.reason}.",
+                    prefix=result.section.prefix,
+                    rates=result.section.rates,
                 )
                 out.append(section)
         out.append(self.forces)
@@ -121,7 +124,7 @@ class Derivation:
         lines = []
         for section in self.sections:
             for step in section.steps:
-                lines.append(step.latex)
+                lines.append(step.math)
         return r"$$\begin{gathered}" + r" \\ ".join(lines[:60]) + r"\end{gathered}$$"
 
 
@@ -180,67 +183,3 @@ def derive(
         appendix,
         extras={"forces": force_results},
     )
-
-
-def setup_section(sym: SymbolicSystem) -> Section:
-    """The symbolic system: parameters, coordinates, M, the exact V, equilibrium, K."""
-    section = Section("The system in symbols" if sym.symbolic else "The system")
-    rows = []
-    for b in sym.bodies:
-        kind = f"{b.shape} (gamma = {b.gamma})" if b.rolls else "slider"
-        rows.append(f"{b.label} = {b.id}: {kind}")
-    section.add(
-        sp.Matrix([[b.q, b.m, b.R if b.rolls else sp.Integer(0), b.gamma] for b in sym.bodies]),
-        "Bodies " + "; ".join(rows) + ". Columns: coordinate, mass, radius, inertia "
-        "factor gamma (I = gamma m R^2).",
-        "docs/physics.md Sec. 1",
-    )
-    if sym.symbolic and sym.values:
-        section.add(
-            [
-                sp.Eq(s, sp.Float(v, 6))
-                for s, v in sorted(sym.values.items(), key=lambda p: p[0].name)
-            ],
-            "The numbers of this system (SI units).",
-        )
-    if sym.springs:
-        section.add(
-            [matrix_equation(f"d_{s.index + 1}", sp.Matrix(s.d0).T) for s in sym.springs],
-            "Each spring's vector from its first to its second end at the reference: "
-            "length ell, tilt beta above the horizontal.",
-            "(M1)",
-        )
-    section.add(
-        matrix_equation("M", sym.mass_matrix),
-        "Mass matrix: the inertias about the "
-        "contact lines, constant and diagonal for any geometry.",
-        "(M4), (M12)",
-    )
-    summed = named("sum_s k_s (l_s - L_s)^2/2", r"\sum_s \tfrac12 k_s (l_s - L_s)^2")
-    section.add(
-        sp.Eq(sp.Symbol("V"), sym.potential if sp.count_ops(sym.potential) < 400 else summed),
-        "Potential energy, exact (gravity is a constant while the bodies roll).",
-        "(M5)",
-    )
-    forces = sym.reference_forces
-    if any(f != 0 for f in forces):
-        if sym.symbolic:
-            section.add(
-                [sp.Eq(f, 0) for f in forces if f != 0],
-                "Equilibrium conditions Q(0) = 0 the parameters satisfy (pre-tensioned "
-                "springs or constant forces).",
-                "(M7)",
-            )
-        else:
-            section.add(
-                matrix_equation("Q(0)", sp.Matrix([sp.Float(sym.numeric(f), 3) for f in forces])),
-                "Generalised forces at the reference: zero to rounding (the equilibrium "
-                "angles are found numerically; the exact numbers carry it).",
-                "(M7)",
-            )
-    section.add(
-        matrix_equation("K", sym.stiffness_matrix),
-        "Stiffness matrix K = d2V/dq2 at the reference, spring by spring.",
-        "(M12), (M13)",
-    )
-    return section

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 
-from rollspring.analysis.derivation.steps import Section, Step
+from rollspring.analysis.derivation.steps import Section, Step, inline, pretty_text
 
 __all__ = ["FORMATS", "LATEX_PREAMBLE", "latex_document", "latex_text", "markdown", "text"]
 
@@ -21,7 +21,8 @@ FORMATS = ("text", "markdown", "latex")
 
 
 def text(title: str, subtitle: str, sections: Sequence[Section]) -> str:
-    """Plain text: words, then the equation pretty-printed (Unicode)."""
+    """Plain text: each step's number and words, then its equation pretty-printed (Unicode,
+    names as a textbook prints them)."""
     lines = [title, "=" * len(title)]
     if subtitle:
         lines += [subtitle]
@@ -31,7 +32,8 @@ def text(title: str, subtitle: str, sections: Sequence[Section]) -> str:
             lines.append(section.note)
         for step in section.steps:
             ref = f"   [{step.ref}]" if step.ref else ""
-            lines.append(f"* {step.words}{ref}")
+            tag = f"({step.tag}) " if step.tag else "* "
+            lines.append(f"{tag}{step.words}{ref}")
             lines.extend("    " + line for line in _pretty(step).splitlines())
     return "\n".join(lines) + "\n"
 
@@ -46,10 +48,10 @@ def _pretty(step: Step) -> str:
         try:
             if isinstance(item, sp.MatrixBase) and max(item.shape) > 8:
                 out.append(f"<{item.shape[0]}x{item.shape[1]} matrix>")
-            elif isinstance(item, sp.Basic | sp.MatrixBase) and sp.count_ops(item) > 400:
-                out.append(_ascii(str(item)))
+            elif isinstance(item, sp.Basic | sp.MatrixBase) and sp.count_ops(item) > 200:
+                out.append(inline(item))
             else:
-                out.append(sp.pretty(item, use_unicode=True, num_columns=100))
+                out.append(pretty_text(item, columns=100))
         except Exception:  # noqa: BLE001 - a printer limitation must not lose the step
             out.append(str(item))
     return "\n".join(out)
@@ -125,8 +127,43 @@ _LATEX_SPECIAL = {
 }
 
 
+#: Characters of names in words, as LaTeX math (a combining hat is taken with its letter).
+_MATH_CHARACTERS = {
+    "P\u0302": r"$\hat P$",
+    "X\u0302": r"$\hat X$",
+    "±": r"$\pm$",
+    "√": r"$\surd$",
+    "ℓ": r"$\ell$",
+    "ℒ": r"$\mathcal{L}$",
+    "ℋ": r"$\mathcal{H}$",
+    "φ": r"$\varphi$",
+    "θ": r"$\theta$",
+    "γ": r"$\gamma$",
+    "λ": r"$\lambda$",
+    "η": r"$\eta$",
+    "α": r"$\alpha$",
+    "β": r"$\beta$",
+    "Ω": r"$\Omega$",
+    "ω": r"$\omega$",
+    "Φ": r"$\Phi$",
+}
+_MATH_PATTERN = re.compile("|".join(re.escape(k) for k in _MATH_CHARACTERS))
+
+
 def latex_text(words: str) -> str:
-    """Words as LaTeX text: special characters escaped, non-ASCII transliterated."""
+    """Words as LaTeX text: special characters escaped, Greek letters and the like as math,
+    other non-ASCII characters transliterated (subscript digits become digits)."""
+    out = []
+    position = 0
+    for match in _MATH_PATTERN.finditer(words):
+        out.append(_escape(words[position : match.start()]))
+        out.append(_MATH_CHARACTERS[match.group(0)])
+        position = match.end()
+    out.append(_escape(words[position:]))
+    return "".join(out)
+
+
+def _escape(words: str) -> str:
     return "".join(_LATEX_SPECIAL.get(char, char) for char in _ascii(words))
 
 

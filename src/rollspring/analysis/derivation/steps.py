@@ -1,48 +1,138 @@
-r"""Steps and sections of a derivation: a displayed equation with one line of words.
+r"""Steps and sections of a derivation: a displayed equation, one line of words, and how it follows.
 
 A :class:`Step` holds the SymPy object (an ``Eq``, an expression, a list of them or a matrix),
-its LaTeX, the words, and where it comes from (``ref``: the paper's equation label or a
-docs/physics.md tag). A :class:`Section` is a titled list of steps.
+its LaTeX, the words, where it comes from (``ref``: the paper's equation label or a
+docs/physics.md tag), its ``tag`` (``"N3"``: the third step of the Newton section, shown as
+the equation's number) and ``how`` it follows from earlier steps: a :class:`How`, one operation
+a student can name (:data:`OPERATIONS`) applied to the steps it names by their tags. A
+:class:`Section` is a titled list of steps; it numbers them with its ``prefix``.
+
+Names print as a textbook would (:func:`pretty_text`, :func:`latex_of`): subscripts and
+superscripts in their places (:math:`y^*_1`, :math:`\Omega_1^2`), :math:`\ell` for ``ell``, and
+display-only symbols (:func:`named`) with their own plain-text and LaTeX forms.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import sympy as sp
+from sympy.printing.conventions import split_super_sub
+from sympy.printing.latex import LatexPrinter
+from sympy.printing.precedence import PRECEDENCE
+from sympy.printing.pretty.pretty import PrettyPrinter
+from sympy.printing.pretty.pretty_symbology import pretty_symbol
+from sympy.printing.pretty.stringpict import prettyForm
+from sympy.printing.str import StrPrinter
 
 __all__ = [
+    "DEFINE",
+    "GIVEN",
     "MAX_SHOWN",
+    "OPERATIONS",
+    "How",
     "Named",
     "Section",
     "Step",
+    "eq",
+    "inline",
     "latex_of",
     "make_step",
     "matrix_equation",
     "named",
+    "pretty_name",
+    "pretty_text",
 ]
 
 #: Matrices larger than this are shown by their non-zero entries, lists by their first entries.
 MAX_SHOWN = 8
 _MAX_LIST = 12
 
+#: The operations a step may apply, with what each means. Every displayed step names one.
+OPERATIONS: dict[str, str] = {
+    "given": "a law of physics, or the system's data, stated (the words say which)",
+    "define": "a name for an expression",
+    "substitute": "replace the named quantities using the equations of other steps",
+    "solve": "solve the equations of earlier steps for the quantities on the left",
+    "add": "add the equations of a step, each multiplied by its weight",
+    "differentiate in time": "take d/dt of both sides",
+    "integrate in time": "integrate both sides over time (the constant is stated)",
+    "differentiate": "take the partial derivative with respect to the named variable",
+    "rearrange": "multiply or divide by a factor that is not zero, and move terms across",
+    "divide": "divide by a factor that is not zero during the motion",
+    "linearise": "keep the first order in the coordinates (Taylor about the reference)",
+    "expand to second order": "keep the second order in the coordinates (Taylor)",
+    "second derivative": "the matrix of second derivatives at the reference q = 0",
+    "matrix form": "write the equations as one matrix equation",
+    "characteristic equation": "put q = v cos(Omega t): det(K - Omega^2 M) = 0",
+    "read off": "compare with a standard form and read off its coefficient",
+    "evaluate": "compute: both sides are equal",
+    "check": "a comparison of results, not a step of a derivation",
+}
+
+
+@dataclass(frozen=True)
+class How:
+    """How a step follows: ``op`` (a key of :data:`OPERATIONS`) applied to the steps ``uses``
+    names by their tags (``"N3"``; ``"N3:1"`` for its first equation only), with ``args``
+    (weights, variables, a factor), ``law``: an equation (or a list) the words state that the
+    operation applies to (a law such as Hooke's, or the standard form read off), and ``given``:
+    equations the words state that the operation uses as well (such as dE/dt = 0).
+
+    ``substitute`` works on ``law`` if there is one, else on the first step used, and
+    eliminates the quantities ``args`` with the other equations (their time derivatives
+    included); ``solve``: the displayed values satisfy the equations used (``args``: the
+    unknowns); ``add``: ``args`` are the weights; ``divide``: ``args[0]`` is the factor;
+    ``differentiate``: ``args`` are the variables, one per displayed equation;
+    ``second derivative``, ``expand to second order`` and ``read off`` a matrix: ``args[0]``
+    is the vector of coordinates (or rates)."""
+
+    op: str
+    uses: tuple[str, ...] = ()
+    args: tuple[Any, ...] = ()
+    law: Any = None
+    given: tuple[Any, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.op not in OPERATIONS:
+            raise ValueError(f"unknown operation {self.op!r}")  # a programming error
+
+
+GIVEN = How("given")
+DEFINE = How("define")
+
 
 class Named(sp.Symbol):
-    """A display symbol with its own LaTeX (e.g. a calligraphic L), printed by name in text."""
+    """A display symbol with its own plain-text (Unicode) and LaTeX forms (e.g. a calligraphic
+    L, a partial derivative written out)."""
 
-    _forms: dict[str, str] = {}  # noqa: RUF012 - a registry shared by all instances
+    _forms: dict[str, tuple[str, str]] = {}  # noqa: RUF012 - a registry shared by all instances
 
     def _latex(self, printer: Any) -> str:  # SymPy's printer hook (printer unused)
         name: str = self.name
-        return self._forms.get(name, name)
+        return self._forms.get(name, (name, name))[1]
+
+    @property
+    def text(self) -> str:
+        """The plain-text (Unicode) form."""
+        name: str = self.name
+        return self._forms.get(name, (name, name))[0]
 
 
-def named(text: str, latex: str) -> Named:
-    """A :class:`Named` symbol printed as ``text`` in plain text and ``latex`` in LaTeX."""
-    Named._forms[text] = latex
-    return Named(text)
+def named(name: str, latex: str, text: str | None = None, **assumptions: bool) -> Named:
+    """A :class:`Named` symbol printed as ``text`` (default: ``name``) in plain text and
+    ``latex`` in LaTeX."""
+    Named._forms[name] = (text if text is not None else name, latex)
+    return Named(name, **assumptions)
+
+
+def eq(lhs: Any, rhs: Any, **_: Any) -> sp.Eq:
+    """``lhs = rhs`` unevaluated: SymPy does not try to decide it (costly on large
+    expressions, and a displayed equation is never to become True or False)."""
+    return sp.Eq(lhs, rhs, evaluate=False)
 
 
 def matrix_equation(name: str, matrix: sp.MatrixBase) -> sp.Eq:
@@ -51,38 +141,170 @@ def matrix_equation(name: str, matrix: sp.MatrixBase) -> sp.Eq:
     return sp.Eq(sp.MatrixSymbol(name, rows, cols), sp.ImmutableMatrix(matrix), evaluate=False)
 
 
+# -- printing names as a textbook does ----------------------------------------------------------
+
+_SUBSCRIPTS = dict(
+    zip("0123456789+-=()aehijklmnoprstuvx", "₀₁₂₃₄₅₆₇₈₉₊₋₌₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ", strict=True)
+)
+_SUPERSCRIPTS = dict(zip("0123456789+-=()in*", "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁼⁽⁾ⁱⁿ*", strict=True))
+_BASES = {"ell": "ℓ"}
+_STAR = "\ue000"  # a private-use character: the * of a name such as y*, while printing
+
+
+def pretty_name(name: str) -> str:
+    """A symbol name in plain text as a textbook prints it: ``y^*_1`` -> ``y₁*``,
+    ``Omega_1^2`` -> ``Ω₁²``, ``ell_1`` -> ``ℓ₁``, ``phiddot_2`` -> ``φ̈₂``, ``r_1,2`` ->
+    ``r₁,₂``; a subscript letter that Unicode cannot lower follows on the line (``F_1y`` ->
+    ``F₁y``)."""
+    base, sups, subs = split_super_sub(name)
+    head = _BASES.get(base) or pretty_symbol(base)
+
+    def script(text: str, table: dict[str, str]) -> str:
+        out: list[str] = []
+        for i, c in enumerate(text):
+            if c not in table and c != ",":
+                return "".join(out) + text[i:]
+            out.append(table.get(c, c))
+        return "".join(out)
+
+    return head + script("".join(subs), _SUBSCRIPTS) + script("".join(sups), _SUPERSCRIPTS)
+
+
+class _TextbookPretty(PrettyPrinter):
+    """SymPy's pretty printer with names printed by :func:`pretty_name`."""
+
+    def _print_Symbol(self, e: sp.Symbol, bold_name: bool = False) -> prettyForm:
+        if isinstance(e, Named):
+            return prettyForm(e.text)
+        return prettyForm(pretty_name(e.name))
+
+    def _print_MatrixSymbol(self, e: sp.MatrixSymbol) -> prettyForm:
+        return prettyForm(pretty_name(str(e.name)))
+
+
+class _TextbookStr(StrPrinter):
+    """One-line plain text with textbook names (for words)."""
+
+    def _print_Symbol(self, expr: sp.Symbol) -> str:
+        name = expr.text if isinstance(expr, Named) else pretty_name(expr.name)
+        return name.replace("*", _STAR)  # kept apart from the multiplication signs
+
+    def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
+        base, exponent = expr.as_base_exp()
+        if exponent.is_Integer and 1 < int(exponent) < 10:
+            text: str = self.parenthesize(base, PRECEDENCE["Pow"])
+            return text + "".join(_SUPERSCRIPTS[c] for c in str(exponent))
+        if exponent == sp.S.Half:
+            return f"√({self._print(base)})"
+        result: str = super()._print_Pow(expr, rational)
+        return result.replace("**", "^")
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        result: str = super()._print_Mul(expr)
+        return result.replace("*", "·")
+
+
+def inline(obj: Any) -> str:
+    """``obj`` as one line of plain text with textbook names (``R_2/R_1`` -> ``R₂/R₁``)."""
+    result: str = _TextbookStr({"order": None}).doprint(obj)
+    return result.replace(_STAR, "*")
+
+
+class _TextbookLatex(LatexPrinter):
+    """SymPy's LaTeX printer (names: ``ell`` is ``\\ell``, ``y^*_1`` is ``y^{*}_{1}``)."""
+
+
+def pretty_text(obj: Any, *, columns: int = 100) -> str:
+    """Unicode pretty-printing with textbook names (:func:`pretty_name`)."""
+    printer = _TextbookPretty({"use_unicode": True, "num_columns": columns})
+    result: str = printer.doprint(obj)
+    return result
+
+
+def _latex(obj: Any, **settings: Any) -> str:
+    result: str = _TextbookLatex(settings).doprint(obj)
+    return result
+
+
+# -- steps and sections -------------------------------------------------------------------------
+
+
 @dataclass(frozen=True)
 class Step:
-    """One step: ``equation`` (SymPy), its ``latex``, one line of ``words``, and ``ref`` (the
-    paper's label such as ``"paper (QQQ1)"`` or a docs/physics.md tag such as ``"(M7)"``)."""
+    """One step: ``equation`` (SymPy), one line of ``words``, ``ref`` (the paper's label such
+    as ``"paper (QQQ1)"`` or a docs/physics.md tag such as ``"(M7)"``), ``tag`` (its number,
+    e.g. ``"N3"``; empty for the cross-check), ``how`` it follows from earlier steps, and
+    ``source``: its LaTeX where it is written by hand (else :attr:`math` prints the
+    equation, when first asked: plain text never needs it)."""
 
     equation: Any
-    latex: str
     words: str
     ref: str = ""
+    tag: str = ""
+    how: How | None = None
+    source: str | None = None
+
+    @cached_property
+    def math(self) -> str:
+        """The equation's LaTeX, without its number."""
+        return self.source if self.source is not None else latex_of(self.equation)
+
+    @property
+    def latex(self) -> str:
+        """The LaTeX shown: the equation with its number (``\\tag{N3}``)."""
+        return self.math + (rf" \tag{{{self.tag}}}" if self.tag else "")
+
+    @property
+    def equations(self) -> list[Any]:
+        """The displayed equation(s) as a list."""
+        eq = self.equation
+        return list(eq) if isinstance(eq, list | tuple) else [eq]
 
     def _repr_latex_(self) -> str:
-        return f"$\\displaystyle {self.latex}$"
+        return f"$\\displaystyle {self.math}$"
 
 
 @dataclass
 class Section:
-    """A titled list of steps (one method's derivation, the setup, the cross-check, ...)."""
+    """A titled list of steps (one method's derivation, the setup, the cross-check, ...);
+    ``prefix`` numbers its steps (``N1``, ``N2``, ...); ``rates`` maps each symbol that
+    changes in time to the symbol of its rate (``phi_1 -> phidot_1``), for the steps that
+    differentiate or integrate in time."""
 
     title: str
     steps: list[Step] = field(default_factory=list)
     note: str = ""
+    prefix: str = ""
+    rates: dict[sp.Symbol, sp.Symbol] = field(default_factory=dict)
 
-    def add(self, equation: Any, words: str, ref: str = "", *, latex: str | None = None) -> Step:
-        """Append a step (LaTeX from the equation unless given) and return it."""
-        step = make_step(equation, words, ref, latex=latex)
+    def add(
+        self,
+        equation: Any,
+        words: str,
+        ref: str = "",
+        *,
+        how: How | None = None,
+        latex: str | None = None,
+    ) -> Step:
+        """Append a step (LaTeX from the equation unless given), numbered, and return it."""
+        tag = f"{self.prefix}{len(self.steps) + 1}" if self.prefix else ""
+        step = make_step(equation, words, ref, latex=latex, tag=tag, how=how)
         self.steps.append(step)
         return step
 
 
-def make_step(equation: Any, words: str, ref: str = "", *, latex: str | None = None) -> Step:
-    """A :class:`Step` with LaTeX generated from ``equation`` unless ``latex`` is given."""
-    return Step(equation, latex if latex is not None else latex_of(equation), words, ref)
+def make_step(
+    equation: Any,
+    words: str,
+    ref: str = "",
+    *,
+    latex: str | None = None,
+    tag: str = "",
+    how: How | None = None,
+) -> Step:
+    """A :class:`Step`; its LaTeX is ``latex`` if given, else generated from ``equation`` when
+    first needed."""
+    return Step(equation, words, ref, tag, how, latex)
 
 
 def latex_of(obj: Any) -> str:
@@ -101,9 +323,8 @@ def latex_of(obj: Any) -> str:
     if isinstance(obj, str):
         return obj
     if isinstance(obj, sp.Eq) and isinstance(obj.rhs, sp.MatrixBase):
-        return f"{sp.latex(obj.lhs)} = {_matrix_latex(obj.rhs)}"
-    result: str = sp.latex(obj)
-    return result
+        return f"{_latex(obj.lhs)} = {_matrix_latex(obj.rhs)}"
+    return _latex(obj)
 
 
 def _aligned(line: str) -> str:
@@ -122,8 +343,7 @@ def _aligned(line: str) -> str:
 def _matrix_latex(matrix: sp.MatrixBase) -> str:
     rows, cols = matrix.shape
     if rows <= MAX_SHOWN and cols <= MAX_SHOWN:
-        result: str = sp.latex(matrix, mat_delim="", mat_str="pmatrix")
-        return result
+        return _latex(matrix, mat_delim="", mat_str="pmatrix")
     entries = [
         (i, j, matrix[i, j])
         for i in range(rows)
@@ -131,7 +351,7 @@ def _matrix_latex(matrix: sp.MatrixBase) -> str:
         if matrix[i, j] != 0 and j >= i
     ]
     shown = entries[:6]
-    body = r",\; ".join(f"({i + 1},{j + 1}):\\ {sp.latex(v)}" for i, j, v in shown)
+    body = r",\; ".join(f"({i + 1},{j + 1}):\\ {_latex(v)}" for i, j, v in shown)
     more = (
         rf",\;\dots\ \text{{({len(entries)} non-zero entries on and above the diagonal)}}"
         if len(entries) > len(shown)

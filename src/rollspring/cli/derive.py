@@ -79,8 +79,9 @@ def derive_command(
 ) -> None:
     """Derive the equations of motion step by step by Newton, conservation laws, Lagrange,
     subsystem frequencies and Hamilton; check that they agree (symbolically)."""
-    from rollspring.analysis.derivation import ALL, FORMATS, METHODS, DerivationError
-    from rollspring.service.documents import derivation_document
+    # the derivation engine itself, not rollspring.service.documents: that module brings the
+    # report, the simulation (Numba) and Matplotlib, a second of start-up this command never uses
+    from rollspring.analysis.derivation import ALL, FORMATS, METHODS, DerivationError, derive
 
     if format not in FORMATS:
         raise DerivationError(
@@ -104,7 +105,8 @@ def derive_command(
     check_cost(cost, confirmed=yes)
     if cost.long:
         _say(f"note: the derivation will take {cost.describe()}; Ctrl-C stops it")
-    rendered, check = derivation_document(model, methods, format=format, symbols=symbols)
+    derivation = derive(model, methods, symbols=symbols)
+    rendered, check = derivation.render(format), derivation.cross_check
     if out is None:
         sys.stdout.write(rendered)
         sys.stdout.flush()

@@ -26,13 +26,24 @@ M and K are compared numerically (random parameter values).
     .venv/bin/python bench/bench_derive.py            # about 3-5 minutes
     .venv/bin/python bench/bench_derive.py --limit 60 # give SymPy more time per N
     .venv/bin/python bench/bench_derive.py --full     # SymPy at every N, measured (~10 min)
+    .venv/bin/python bench/bench_derive.py --commands # `rollspring derive` per preset (~2 min)
+
+``--commands`` times the whole command a user runs, ``rollspring derive PRESET`` (all five
+methods, the cross-check, plain text to a file), for every preset with exact numbers and with
+``--symbols``, and a free chain of six bodies written to a system file: a fresh process each
+time (start-up and imports included), best of 3 wall-clock seconds and that run's CPU seconds,
+against the target of 3 s for the largest preset.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
+import resource
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -45,7 +56,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import machine_note
 
 from rollspring.analysis.derivation import symbolic_system
-from rollspring.model import System, system_from_dict
+from rollspring.model import System, load_system, preset_names, system_from_dict
 
 SIZES = (2, 4, 8, 16, 32, 64, 128)
 LIMIT = 30.0  # seconds: SymPy mechanics stops doubling N after a run longer than this
@@ -197,6 +208,59 @@ def power_law(points: list[tuple[int, float]]) -> tuple[float, float] | None:
     return math.exp(log_a), p
 
 
+COMMAND_TARGET = 3.0  # seconds: `rollspring derive` on the largest preset (issue 13)
+
+
+def command_seconds(arguments: list[str]) -> tuple[float, float]:
+    """(wall, CPU) seconds of one ``rollspring derive ...`` in a fresh process."""
+    executable = Path(sys.executable).with_name("rollspring")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    began = time.perf_counter()
+    subprocess.run([str(executable), "derive", *arguments], check=True, capture_output=True)
+    wall = time.perf_counter() - began
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu
+
+
+def commands(repeats: int = 3) -> None:
+    """Time ``rollspring derive`` for every preset and a six-body chain (see the module)."""
+    print(machine_note())
+    print(
+        "`rollspring derive SYSTEM -o FILE` (text), a fresh process each: best of "
+        f"{repeats} wall seconds (its CPU seconds)\n"
+    )
+    with tempfile.TemporaryDirectory() as folder:
+        six = Path(folder) / "chain-6.json"
+        bodies = [
+            {
+                "id": f"b{i + 1}",
+                "shape": ("hoop", "cylinder", "sphere")[i % 3],
+                "mass": 1.0 + 0.1 * i,
+                "radius": 0.1,
+                "x": 0.5 * i,
+            }
+            for i in range(6)
+        ]
+        springs = [{"ends": [f"b{i + 1}", f"b{i + 2}"], "stiffness": 100.0 + i} for i in range(5)]
+        six.write_text(json.dumps({"name": "chain of 6", "bodies": bodies, "springs": springs}))
+        out = str(Path(folder) / "out.txt")
+        cases = [(name, [name]) for name in preset_names()] + [("chain of 6", [str(six)])]
+        largest = max(preset_names(), key=lambda name: len(load_system(name).bodies))
+        print(f"{'system':24s} {'numbers':>16s} {'--symbols':>16s}")
+        for label, system in cases:
+            cells = []
+            for extra in ([], ["--symbols"]):
+                runs = [command_seconds([*system, *extra, "-o", out]) for _ in range(repeats)]
+                wall, cpu = min(runs)
+                verdict = ""
+                if label == largest:
+                    verdict = " ok" if wall <= COMMAND_TARGET else " SLOW"
+                cells.append(f"{wall:6.2f} s ({cpu:4.2f}){verdict}")
+            print(f"{label:24s} " + " ".join(f"{c:>16s}" for c in cells), flush=True)
+        print(f"\ntarget: the largest preset ({largest}) within {COMMAND_TARGET:g} s")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument(
@@ -210,7 +274,15 @@ def main() -> None:
         action="store_true",
         help="run SymPy mechanics at every N (no extrapolation; ~10 minutes)",
     )
+    parser.add_argument(
+        "--commands",
+        action="store_true",
+        help="time `rollspring derive` for every preset instead (~2 minutes)",
+    )
     args = parser.parse_args()
+    if args.commands:
+        commands()
+        return
     print(machine_note())
     print(
         "Symbolic EoM + M + K for chains of alternating hoops and cylinders (parameters as "

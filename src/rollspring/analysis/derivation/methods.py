@@ -1398,6 +1398,8 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     for i, b in enumerate(sym.bodies):
         # m_i q_i'' = -dV/dq_i with q = s phi: m s phi'' = -(1/s) dV/dphi; times s: J phi''
         rhs = -(scale[i] * dV[i]).xreplace({qs[j]: scale[j] * sym.q[j] for j in range(n)})
+        if sp.count_ops(rhs) < 120:  # the roots of J_i/m_i cancel once multiplied out
+            rhs = sp.expand(rhs)
         nonlinear.append(eq(b.J * b.qdd, _short(sp.powsimp(rhs))))
     section.add(
         nonlinear,

@@ -252,7 +252,7 @@ class Step:
     @property
     def latex(self) -> str:
         """The LaTeX shown: the equation with its number (``\\tag{N3}``)."""
-        return self.math + (rf" \tag{{{self.tag}}}" if self.tag else "")
+        return self.math + (rf" \qquad \tag{{{self.tag}}}" if self.tag else "")
 
     @property
     def equations(self) -> list[Any]:

@@ -52,6 +52,25 @@ def pulled_slider_pair():
     )
 
 
+def wall_hoop():
+    """One hoop held by a wall spring at its top (off the centre: the exact equation is not
+    linear)."""
+    return make_system(
+        [body("hoop", "hoop", x=0.0)],
+        [spring("wall", "hoop", at=[{}, {"height": 0.2}], rest_length=0.5)],
+        anchors=[{"id": "wall", "x": -0.5, "y": 0.2}],
+    )
+
+
+def pulled_cylinder():
+    """A cylinder pulled by a constant force: no equilibrium, the exact equations only."""
+    return make_system(
+        [body("c", "cylinder", x=0.0)],
+        [],
+        forces=[{"body": "c", "at": {"height": 0.05}, "fx": 1.0}],
+    )
+
+
 CASES: dict[str, Any] = {
     **{f"{name} (symbols)": (lambda n=name: load_system(n), True) for name in preset_names()},
     "hoop-cylinder (numbers)": (lambda: load_system("hoop-cylinder"), False),
@@ -60,6 +79,8 @@ CASES: dict[str, Any] = {
     "wall chain (symbols)": (wall_chain, True),
     "wall chain (numbers)": (wall_chain, False),
     "slider and cylinder (symbols)": (pulled_slider_pair, True),
+    "one hoop on a wall spring (symbols)": (wall_hoop, True),
+    "a pulled cylinder, no equilibrium (numbers)": (pulled_cylinder, False),
 }
 
 

@@ -151,6 +151,11 @@ def _ref(tags: dict[str, str], key: str) -> str:
     return f" ({tags[key]})" if key in tags else ""
 
 
+def _coordinates_word(sym: SymbolicSystem) -> str:
+    """'angles' when every body rolls, else 'coordinates' (a slider's is a displacement)."""
+    return "angles" if all(b.rolls for b in sym.bodies) else "coordinates"
+
+
 def _tuple_text(values: Sequence[sp.Expr]) -> str:
     return "(" + ", ".join(inline(v) for v in values) + ")"
 
@@ -234,7 +239,7 @@ def _whole_system(
         added = section.add(
             eq(_content_free(weighted, accels), 0),
             f"Adding the equations ({eqs_tag}) multiplied by v0 = {_tuple_text(v0)}, the zero "
-            "mode (K v0 = 0: rolling along it stretches no spring): the spring terms cancel.",
+            "mode (K v0 = 0: moving along it stretches no spring): the spring terms cancel.",
             refs[0],
             how=How("add", (eqs_tag,), args=tuple(v0)),
         )
@@ -595,7 +600,7 @@ def newton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         exact_tag = section.add(
             nonlinear,
             f"Substituting the spring forces ({tension.tag}) into ({law_step.tag}): each "
-            "body's equation of motion, exact at any amplitude while the bodies roll.",
+            "body's equation of motion, exact at any amplitude (while the bodies roll).",
             "paper (w2), (w22); (M7)",
             how=How("substitute", (law_step.tag, tension.tag), args=tuple(forces)),
         ).tag
@@ -621,6 +626,7 @@ def newton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         frequencies=freq,
         in_angles=True,
         momentum_words=_names_momentum(sym, _v0(sym)),
+        names=_coordinates_word(sym),
     )
     result.system_equation = out.get("system_equation")
     result.omega2 = out.get("omega2", [])
@@ -673,7 +679,7 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     energy = section.add(
         eq(esym, sym.kinetic + _short(quad)),
         f"The mechanical energy E = T + V with T of ({tags['kinetic']}) (about the contact "
-        f"lines the kinetic energy is purely rotational) and V to second order "
+        f"lines a rolling body's kinetic energy is purely rotational) and V to second order "
         f"({tags['quadratic']}).",
         "paper (mu); (M6)",
         how=How(
@@ -699,7 +705,7 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         equation = eq(b.J * b.qdd, sym.reference_forces[0] - K[0, 0] * b.q)
         divided = section.add(
             equation,
-            f"Dividing ({rate.tag}) by the angular velocity (not zero while the body moves).",
+            f"Dividing ({rate.tag}) by the rate {inline(b.qd)} (not zero while the body moves).",
             "",
             how=How("divide", (rate.tag,), args=(b.qd,)),
         )
@@ -742,15 +748,15 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     )
     again = section.add(
         eq(_content_free(sp.Add(*[J[i] * v0[i] * sym.q[i] for i in range(2)]), sym.q), 0),
-        f"Integrating ({conserved.tag}) over time; the constant is zero when the angles are "
-        "measured from the stationary point.",
+        f"Integrating ({conserved.tag}) over time; the constant is zero when the "
+        f"{_coordinates_word(sym)} are measured from the stationary point.",
         "",
         how=How("integrate in time", (conserved.tag,)),
     )
     ratio = sp.cancel(-J[0] * v0[0] / (J[1] * v0[1]))
     solved = section.add(
         [eq(p2, ratio * p1), eq(w2, ratio * w1)],
-        f"Solving ({again.tag}) and ({conserved.tag}) for the second angle and its rate.",
+        f"Solving ({again.tag}) and ({conserved.tag}) for {inline(p2)} and {inline(w2)}.",
         "",
         how=How("solve", (again.tag, conserved.tag), args=(p2, w2)),
     )
@@ -772,7 +778,7 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     )
     divided = section.add(
         eq(alpha * a1 + beta * p1, 0),
-        f"Dividing ({rate.tag}) by phi1' (not zero while the bodies move).",
+        f"Dividing ({rate.tag}) by {inline(w1)} (not zero while the bodies move).",
         "",
         how=How("divide", (rate.tag,), args=(w1,)),
     )
@@ -819,7 +825,7 @@ def _paper_route(
         eq(k * amplitude**2 / 2, J[0] * rates[0] ** 2 / 2 + J[1] * rates[1] ** 2 / 2),
         "The paper's route. Energy is conserved between two instants: at the largest "
         "deformation A of the spring the bodies stop (all energy in the spring); at the "
-        "undeformed spring all of it is kinetic, and the angular velocities are largest (Phi').",
+        "undeformed spring all of it is kinetic, and the rates are largest (Phi').",
         "paper (mu)",
         how=GIVEN,
     )
@@ -1025,6 +1031,7 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         frequencies=freq,
         in_angles=True,
         momentum_words=_names_momentum(sym, _v0(sym)),
+        names=_coordinates_word(sym),
         labels=(
             "paper (ga)",
             "paper (ga) integrated; (M14)",
@@ -1492,7 +1499,12 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         v0=v0q,
         frequencies=freq,
         in_angles=False,
-        momentum_words=_names_momentum(sym, v0),
+        momentum_words=(
+            "in the original coordinates it is sum J_i v0_i phi_i' with v0 = "
+            f"{_tuple_text(v0)}: " + _names_momentum(sym, v0)
+            if v0 is not None
+            else ""
+        ),
         names="coordinates",
         labels=(
             "paper p2' = (2/sqrt3) p1' (sign-corrected)",

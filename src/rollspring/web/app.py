@@ -197,10 +197,15 @@ _ERRORS: dict[int | str, dict[str, Any]] = {
 }
 
 
-class JSONBytes(Response):
-    """A JSON body already encoded (by a worker, with orjson)."""
+class JSONBytes(JSONResponse):
+    """A JSON body already encoded (by a worker, with orjson). A JSONResponse to FastAPI, so
+    the documented 200 schema is the model's alone (a plain Response class makes FastAPI add
+    ``"type": "string"`` beside the model's ``$ref``, which no JSON object satisfies)."""
 
     media_type = "application/json"
+
+    def render(self, content: Any) -> bytes:
+        return content if isinstance(content, bytes) else super().render(content)
 
 
 # ------------------------------------------------------------------------------------ the app

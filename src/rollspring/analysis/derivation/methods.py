@@ -433,6 +433,36 @@ def _whole_system(
     return out
 
 
+def _whole_system_in_angles(
+    section: Section,
+    sym: SymbolicSystem,
+    eqs_tag: str,
+    equations: list[sp.Eq],
+    budget: float | None,
+    labels: tuple[str, ...] = (),
+) -> dict[str, Any]:
+    """:func:`_whole_system` for the methods whose equations are in the bodies' own coordinates
+    (angles, lengths for sliders) with the inertias about the contact lines (Newton, Lagrange)."""
+    v0 = _v0(sym)
+    return _whole_system(
+        section,
+        sym,
+        eqs_tag=eqs_tag,
+        eqs=equations,
+        coords=sym.q,
+        velocities=sym.qd,
+        accels=sym.qdd,
+        masses=[b.J for b in sym.bodies],
+        K=sym.stiffness_matrix,
+        v0=v0,
+        frequencies=_frequencies(sym, budget),
+        in_angles=True,
+        momentum_words=_names_momentum(sym, v0),
+        names=_coordinates_word(sym),
+        labels=labels,
+    )
+
+
 def _content_free(expr: sp.Expr, variables: list[sp.Symbol]) -> sp.Expr:
     """expr with its variable-free factor dropped (an expression equated to zero)."""
     expr = sp.factor_terms(sp.expand(expr))
@@ -611,23 +641,7 @@ def newton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         return result
     eqs_tag, equations = _linearised_step(section, sym, exact_tag, "newton")
     result.equations = equations
-    freq = _frequencies(sym, budget)
-    out = _whole_system(
-        section,
-        sym,
-        eqs_tag=eqs_tag,
-        eqs=equations,
-        coords=sym.q,
-        velocities=sym.qd,
-        accels=sym.qdd,
-        masses=[b.J for b in sym.bodies],
-        K=sym.stiffness_matrix,
-        v0=_v0(sym),
-        frequencies=freq,
-        in_angles=True,
-        momentum_words=_names_momentum(sym, _v0(sym)),
-        names=_coordinates_word(sym),
-    )
+    out = _whole_system_in_angles(section, sym, eqs_tag, equations, budget)
     result.system_equation = out.get("system_equation")
     result.omega2 = out.get("omega2", [])
     result.extras.update(out)
@@ -1016,22 +1030,12 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         return result
     eqs_tag, equations = _linearised_step(section, sym, exact.tag, "lagrange")
     result.equations = equations
-    freq = _frequencies(sym, budget)
-    out = _whole_system(
+    out = _whole_system_in_angles(
         section,
         sym,
-        eqs_tag=eqs_tag,
-        eqs=equations,
-        coords=sym.q,
-        velocities=sym.qd,
-        accels=sym.qdd,
-        masses=[b.J for b in sym.bodies],
-        K=sym.stiffness_matrix,
-        v0=_v0(sym),
-        frequencies=freq,
-        in_angles=True,
-        momentum_words=_names_momentum(sym, _v0(sym)),
-        names=_coordinates_word(sym),
+        eqs_tag,
+        equations,
+        budget,
         labels=(
             "paper (ga)",
             "paper (ga) integrated; (M14)",
@@ -1044,7 +1048,7 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     result.system_equation = out.get("system_equation")
     result.omega2 = out.get("omega2", [])
     result.extras.update(out)
-    split = _spring_split(sym, freq)
+    split = _spring_split(sym, _frequencies(sym, budget))
     if split is not None:
         section.add(
             [eq(sp.Symbol(f"k_{sym.bodies[i].label}", positive=True), split[i]) for i in range(2)],

@@ -53,6 +53,12 @@ table#paper-claims th:nth-child(2) { width: 31%; }
 table#paper-claims th:nth-child(3) { width: 9%; }
 table#paper-claims th:nth-child(4) { width: 26%; }
 .cellmath { display: block; overflow-x: auto; max-width: 100%; padding: .15rem 0; }
+/* phones: the claims table scrolls sideways with readable columns instead of squeezing them */
+@media (max-width: 760px) {
+  table#paper-claims { display: block; overflow-x: auto; table-layout: auto; }
+  table#paper-claims th, table#paper-claims td { min-width: 8rem; max-width: 20rem; }
+  table#paper-claims td { overflow-wrap: break-word; }
+}
 span.ref { color: var(--muted); font-size: .85em; }
 .formula { overflow-x: auto; }
 pre.tex-source, code.tex-source { background: #fff4f4; border: 1px dashed var(--bad);

@@ -539,3 +539,85 @@ def test_level_springs_keep_the_normal_forces_constant_and_nothing_is_refined() 
     run = simulate(tilted, 2.0)
     assert np.ptp(run.normal[:, 0]) > 0
     assert run.summary["min_normal_force"]["h"] <= float(np.min(run.normal[:, 0]))
+
+
+@pytest.mark.parametrize(("gravity", "mu_static"), [(0.0, 0.5), (9.81, 0.0)])
+def test_zero_friction_at_zero_normal_force_is_no_slip(gravity: float, mu_static: float) -> None:
+    """No spring, so every body needs f = 0; with N = 0 (no gravity) or mu_s = 0 the no-slip
+    condition |f| <= mu_s N holds with equality: the bodies roll on, no event (the rule was
+    |f| >= mu_s N, which called 0 >= 0 a slip and then found no crossing: "nonfinite")."""
+    from rollspring.model import system_from_dict
+    from rollspring.simulate import simulate_batch
+
+    system = system_from_dict(
+        {
+            "gravity": gravity,
+            "bodies": [
+                {
+                    "id": "a",
+                    "shape": "hoop",
+                    "mass": 1.0,
+                    "radius": 0.1,
+                    "x": 0.0,
+                    "mu_static": mu_static,
+                    "v": 0.3,
+                },
+                {
+                    "id": "b",
+                    "shape": "cylinder",
+                    "mass": 1.0,
+                    "radius": 0.1,
+                    "x": 1.0,
+                    "mu_static": mu_static,
+                },
+            ],
+        }
+    )
+    run = simulate(system, 1.0)
+    assert run.status == "finished", run.message
+    assert run.events == []
+    # uniform rolling: x = x0 + v t exactly
+    assert run.x[-1, 0] == pytest.approx(0.3, rel=1e-12)
+    assert run.x[-1, 1] == 1.0
+    batch = simulate_batch(system, {"gravity": [gravity, gravity]}, 1.0)
+    assert list(batch.status_names) == ["finished", "finished"]
+
+
+def test_the_summary_names_the_integrators_actually_used() -> None:
+    """A run that slips from its first instant runs on DOP853 alone and says so (it used to
+    report the symplectic scheme chosen beforehand and its step); one that switches back and
+    forth counts the steps of each."""
+    slipping = simulate(wall_cylinder(0.2, 0.3, 0.2), 0.1, on_slip="continue")
+    assert slipping.events[0] == {"kind": "slip", "time": 0.0, "body": "c"}
+    assert [e["kind"] for e in slipping.events] == ["slip"]  # slips all along
+    assert slipping.integrator == "dop853"
+    assert slipping.step is None and slipping.summary["step"] is None
+    assert list(slipping.steps_by_integrator) == ["dop853"]
+    assert slipping.n_steps == slipping.steps_by_integrator["dop853"] > 0
+    assert slipping.summary["steps_by_integrator"] == slipping.steps_by_integrator
+    assert slipping.summary["integrator"] == "dop853"
+
+    stick_slip = simulate(wall_cylinder(0.1, 0.3, 0.25), 2.0, on_slip="continue")
+    kinds = [e["kind"] for e in stick_slip.events]
+    assert kinds[:2] == ["slip", "stick"]
+    used = stick_slip.steps_by_integrator
+    assert list(used) == ["dop853", stick_slip.integrator.split("+")[1]]
+    assert stick_slip.integrator == "+".join(used)
+    assert all(count > 0 for count in used.values())
+    assert stick_slip.n_steps == sum(used.values()) == stick_slip.summary["steps"]
+    assert stick_slip.step is not None  # the symplectic scheme's step
+
+    rolling = simulate(load_system("hoop-cylinder"), 1.0)
+    assert list(rolling.steps_by_integrator) == [rolling.integrator]
+    assert rolling.steps_by_integrator[rolling.integrator] == rolling.n_steps
+
+
+def test_integrator_words_name_each_integrator_and_its_steps() -> None:
+    from rollspring.outputs.numbers import integrator_words
+
+    assert integrator_words({"kahanli8": 1130}, 0.00885) == "kahanli8, 1130 steps of 0.00885 s"
+    assert (
+        integrator_words({"yoshida6": 400, "dop853": 34}, 0.005)
+        == "yoshida6, 400 steps of 0.005 s; dop853, 34 adaptive steps"
+    )
+    assert integrator_words({}, 0.005, "yoshida6") == "yoshida6, 0 steps"

@@ -6,7 +6,7 @@ fits its documented schema; and uvicorn's concurrency limit answers overload wit
 
 from __future__ import annotations
 
-import threading
+import socket
 import time
 from collections.abc import Iterator
 
@@ -72,26 +72,28 @@ def test_the_api_keeps_its_schema_and_never_fails(server: Server, mode: Generati
 
 
 def test_overload_is_answered_503_at_once() -> None:
-    """With room for two connections, a third gets 503 at once while two are served (a
-    connection counts itself: a limit of 1 would refuse everything)."""
+    """With room for two connections, a third gets 503 at once while the open one is still
+    served (a connection counts itself: a limit of 1 would refuse everything).
+
+    Deterministic, whatever the machine's speed: the open connection is a raw socket holding
+    a request whose headers are not finished, so it stays open until the test finishes it."""
     busy = Server("--limit-concurrency", "2", "--workers", "1", "--budget", "30")
     try:
-        three = requests.get(busy.url + "api/presets", timeout=10).json()
-        chain = next(p["system"] for p in three if p["name"] == "three-bodies")
-        slow: dict[str, object] = {}
-
-        def derive() -> None:  # a symbolic derivation: seconds of work
-            slow["response"] = requests.post(
-                busy.url + "api/derive", json={"system": chain}, timeout=60
-            )
-
-        worker = threading.Thread(target=derive)
-        worker.start()
-        time.sleep(0.5)
-        refused = requests.get(busy.url + "api/presets", timeout=10)
-        worker.join()
-        assert refused.status_code == 503
-        assert slow["response"].status_code == 200  # type: ignore[attr-defined]
+        host, port = busy.url.split("//")[1].rstrip("/").split(":")
+        held = socket.create_connection((host, int(port)), timeout=30)
+        try:
+            held.sendall(f"GET /api/presets HTTP/1.1\r\nHost: {host}\r\n".encode())
+            refused = requests.get(busy.url + "api/presets", timeout=10)
+            assert refused.status_code == 503
+            # the held request, finished now, is served
+            held.sendall(b"Connection: close\r\n\r\n")
+            answer = b""
+            while chunk := held.recv(65536):
+                answer += chunk
+        finally:
+            held.close()
+        assert answer.startswith(b"HTTP/1.1 200"), answer[:200]
+        assert b"hoop-cylinder" in answer
         # and once the connections have closed, it serves again
         deadline = time.monotonic() + 10
         while requests.get(busy.url + "api/presets", timeout=10).status_code != 200:

@@ -11,6 +11,7 @@ from rich.table import Table
 from rollspring.analysis import LinearAnalysis
 from rollspring.analysis.report import CONVENTIONS
 from rollspring.cli.text import markup, plain
+from rollspring.outputs.numbers import integrator_words
 
 __all__ = ["print_analysis"]
 
@@ -167,11 +168,9 @@ def print_simulation(console: Console, trajectory, written) -> None:
         "status",
         markup(summary["status"] + (f" ({summary['message']})" if summary["message"] else "")),
     )
-    step = summary["step"]
     head.add_row(
         "integrator",
-        f"{summary['integrator']}, {summary['steps']} steps"
-        + (f" of {_g(step)} s" if step else ""),
+        integrator_words(summary["steps_by_integrator"], summary["step"], summary["integrator"]),
     )
     head.add_row("energy (J)", f"{_g(summary['energy'])}, error {summary['energy_error']:.2e}")
     if summary["period_linear"] is not None:

@@ -34,7 +34,7 @@ import numpy as np
 
 from rollspring.analysis import LinearAnalysis, Mode
 from rollspring.model import System
-from rollspring.outputs.numbers import attachment_words
+from rollspring.outputs.numbers import attachment_words, integrator_words
 from rollspring.outputs.numbers import short_number as _g
 from rollspring.simulate import Trajectory
 
@@ -303,11 +303,10 @@ def trajectory_html(trajectory: Trajectory) -> str:
         ["time", f"0 … {_g(float(trajectory.t[-1]))} s, {trajectory.t.size} outputs"],
         [
             "integrator",
-            html.escape(str(trajectory.integrator))
-            + (
-                f", {trajectory.n_steps} steps of {_g(trajectory.step)} s"
-                if trajectory.step
-                else ""
+            html.escape(
+                integrator_words(
+                    trajectory.steps_by_integrator, trajectory.step, trajectory.integrator
+                )
             ),
         ],
         [

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-__all__ = ["attachment_words", "html_number", "short_number"]
+__all__ = ["attachment_words", "html_number", "integrator_words", "short_number"]
 
 
 def short_number(value: float | None, digits: int = 6) -> str:
@@ -41,3 +41,21 @@ def attachment_words(at: Any) -> str:
     if at.radius is not None:
         return f"r = {short_number(at.radius)} m at {short_number(at.angle or 0.0)}°"
     return "centre"
+
+
+def integrator_words(
+    steps_by_integrator: dict[str, int], step: float | None, fallback: str = ""
+) -> str:
+    """The integrators a run used and their steps: ``kahanli8, 1130 steps of 0.00885 s`` or,
+    for a run that switched, ``kahanli8, 400 steps of 0.005 s; dop853, 34 adaptive steps``
+    (``fallback``, the chosen scheme, with 0 steps when none was taken)."""
+    if not steps_by_integrator:
+        return f"{fallback}, 0 steps"
+    parts = []
+    for name, count in steps_by_integrator.items():
+        if name == "dop853":
+            parts.append(f"{name}, {count} adaptive steps")
+        else:
+            of = f" of {short_number(step)} s" if step else ""
+            parts.append(f"{name}, {count} steps{of}")
+    return "; ".join(parts)

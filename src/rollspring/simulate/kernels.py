@@ -396,7 +396,7 @@ def run_fixed_step(
                 event = STATUS_LIFTOFF
                 event_body = i
                 break
-            if bodies[i, ROLLS] > 0.0 and abs(friction) >= bodies[i, MU_S] * normal:
+            if bodies[i, ROLLS] > 0.0 and abs(friction) > bodies[i, MU_S] * normal:
                 event = STATUS_SLIP
                 event_body = i
                 break

@@ -32,7 +32,7 @@ from rollspring.analysis.report import CONVENTIONS
 from rollspring.model import System
 from rollspring.outputs import figures
 from rollspring.outputs.files import atomic_write_text
-from rollspring.outputs.numbers import attachment_words
+from rollspring.outputs.numbers import attachment_words, integrator_words
 from rollspring.outputs.report._assets import CSS, PLAYER_JS
 from rollspring.outputs.report._html import (
     Markup,
@@ -772,8 +772,7 @@ class _Page:
                 ["status", run.status + (f": {run.message}" if run.message else "")],
                 [
                     "integrator",
-                    f"{run.integrator}, {run.n_steps} steps"
-                    + (f" of {fmt(run.step)} s" if run.step else ""),
+                    integrator_words(run.steps_by_integrator, run.step, run.integrator),
                 ],
                 [
                     "energy (J), max relative error",

@@ -288,13 +288,13 @@ class Source:
         F, terms = self.fld, []
         simple = {i for members in self.p.simple.values() for i in members}
         for k in sorted(self.p.simple):
-            terms.append(f"(abs(tx{k}) >= {F(f'tth_{k}')})")
+            terms.append(f"(abs(tx{k}) > {F(f'tth_{k}')})")
         for i in range(self.n):
             if self.p.slip_check[i] and i not in simple:
                 if self.p.normal_const[i]:
-                    terms.append(f"(abs(f{i}) >= {F(f'mn_{i}')})")
+                    terms.append(f"(abs(f{i}) > {F(f'mn_{i}')})")
                 else:
-                    terms.append(f"(abs(f{i}) >= {F(f'mu_{i}')} * N{i})")
+                    terms.append(f"(abs(f{i}) > {F(f'mu_{i}')} * N{i})")
             if not self.p.normal_const[i]:
                 terms.append(f"(N{i} < 0.0)")
         return " | ".join(terms) if terms else "False"
@@ -478,7 +478,7 @@ class Source:
         body += [f"{S(f'TM{k}')} = abs(tx{k})" for k in sorted(self.p.simple)]
         # at t = 0 every body is checked, lift-off included
         terms = [f"(N{i} < 0.0)" for i in range(n)]
-        terms += [f"(abs(f{i}) >= {F(f'mu_{i}')} * N{i})" for i in range(n) if self.p.rolls[i]]
+        terms += [f"(abs(f{i}) > {F(f'mu_{i}')} * N{i})" for i in range(n) if self.p.rolls[i]]
         terms.append("(not (abs(E) <= 1e308))")
         body.append(f"ev |= {' | '.join(terms)}")
         loop = ["ev = 0", "for j in range(B):", *_indent(self.loads("j") + body)]
@@ -518,7 +518,7 @@ class Source:
         inner.append(self.energy(ve))
         # a lane's first event (the conditions are recomputed here, so lanes that did not
         # trigger the pass are left alone): of the bodies whose condition holds (lift-off
-        # N < 0, slip 0 <= mu_s N <= |f|), the one whose margin crossed zero first in this step, the
+        # N < 0, slip 0 <= mu_s N < |f|), the one whose margin crossed zero first in this step, the
         # margins interpolated linearly between this step and the previous one, reconstructed
         # by a step backwards (the compositions are time-reversible)
         candidates = []  # (condition, margin now, margin before, status, body)
@@ -528,7 +528,7 @@ class Source:
                 mu = F(f"mu_{i}")
                 candidates.append(
                     (
-                        f"(N{i} >= 0.0 and abs(f{i}) >= {mu} * N{i})",
+                        f"(N{i} >= 0.0 and abs(f{i}) > {mu} * N{i})",
                         f"abs(f{i}) - {mu} * N{i}",
                         f"abs(fb{i}) - {mu} * Nb{i}",
                         STATUS_SLIP,

@@ -49,6 +49,10 @@ _Handover = tuple[float, FloatArray, BoolArray, FloatArray]
 
 __all__ = ["INTEGRATORS", "Trajectory", "simulate"]
 
+#: How many times a run whose energy error exceeds its tolerance is started again with a
+#: smaller step, when the step is the contract's choice (not the caller's ``step``).
+_ENERGY_RETRIES = 3
+
 #: Accepted values of ``integrator`` (the symplectic schemes are
 #: :data:`rollspring.simulate.integrators.INTEGRATORS`).
 INTEGRATORS = ("auto", *SCHEME_REGISTRY, "dop853")
@@ -300,8 +304,10 @@ def simulate(
     stiffest local frequency stays within 1.5 times the linear one and that are not chaotic
     over the run. Damped and slipping stretches (DOP853) take ``rtol`` as SciPy's local
     tolerance. The energy error is checked against ``energy_tolerance`` (default
-    ``100 rtol + 1e-12``) and a run that exceeds it, or goes non-finite, stops with that
-    status. ``n_output`` output times, evenly spaced (default 2001), on step ends or
+    ``100 rtol + 1e-12``): a run that exceeds it with the step the contract chose (a swing
+    stiffer than its linear frequencies) is started again with the step its error asks for,
+    up to three times (``summary["retries"]``); one that still exceeds it, or goes
+    non-finite, stops with that status (naming a spring that passes through zero length). ``n_output`` output times, evenly spaced (default 2001), on step ends or
     interpolated inside the steps (quintic Hermite), whichever takes fewer steps within the
     contract; ``step`` fixes the step of a symplectic scheme (``auto`` then means Yoshida-4;
     rounded down so that whole steps fill each rolling stretch); ``progress`` is called with
@@ -310,6 +316,7 @@ def simulate(
     duration, rtol, step = _check_arguments(
         duration, rtol, integrator, on_slip, n_output, energy_tolerance, step
     )
+    user_step = step
     n_output = None if n_output is None else int(n_output)
     clock = time.perf_counter()
     duration = float(duration)
@@ -353,13 +360,30 @@ def simulate(
     grid = _linspace(duration, n_output)
     tolerance = energy_tolerance if energy_tolerance is not None else 100 * rtol + 1e-12
 
-    run = _Run(arrays, grid, name, step, rtol, on_slip, damped, tolerance, progress, model)
-    if oscillating and equilibrium.found:  # the lowest mode's coordinate, for its period
-        run.mode_weights = arrays.inertia * vectors_eq[:, oscillating[0]]  # M v (M diagonal)
-        run.q_ref = np.ascontiguousarray(equilibrium.q, dtype=float)
-    run.execute()
+    chosen = step is not None and user_step is None  # the step is the contract's choice
+    retries = 0
+    while True:
+        run = _Run(arrays, grid, name, step, rtol, on_slip, damped, tolerance, progress, model)
+        if oscillating and equilibrium.found:  # the lowest mode's coordinate, for its period
+            run.mode_weights = arrays.inertia * vectors_eq[:, oscillating[0]]  # M v (M diagonal)
+            run.q_ref = np.ascontiguousarray(equilibrium.q, dtype=float)
+        run.execute()
+        if not (
+            chosen and run.status == Status.ENERGY_ERROR.label and retries < _ENERGY_RETRIES
+        ):
+            break
+        # The motion is stiffer than its linear frequencies say (a large nonlinear swing):
+        # the step chosen from them does not keep the energy. Run again with the step that
+        # the error seen asks for (the energy error of an order-p scheme grows as h^p).
+        assert step is not None
+        order = SCHEME_REGISTRY[name].order
+        step *= min(0.5, 0.8 * (tolerance / max(run.energy_error, tolerance)) ** (1.0 / order))
+        retries += 1
+    run.retries = retries
     timings = {"setup": run.started - clock, "integrate": run.integrate_time}
     trajectory = run.trajectory(system)
+    if run.status == Status.ENERGY_ERROR.label:
+        trajectory.message += _singular_springs(trajectory)
     lowest = vectors_eq[:, oscillating[0]] if oscillating else None
     trajectory.summary = _summary(
         trajectory, run, arrays, equilibrium.q, lowest, mass, period_linear, (vectors_eq, kinds_eq)
@@ -367,6 +391,25 @@ def simulate(
     timings["total"] = time.perf_counter() - clock
     trajectory.timings = timings
     return trajectory
+
+
+def _singular_springs(trajectory: Trajectory) -> str:
+    """Why a run may not keep its energy whatever the step: a spring whose length passes
+    through (nearly) zero, where the direction of its force turns over at once (the motion is
+    not smooth there). Empty when no spring does."""
+    lengths = trajectory.spring_length
+    if lengths.size == 0:
+        return ""
+    shortest = np.nanmin(lengths, axis=0)
+    longest = np.nanmax(lengths, axis=0)
+    near_zero = np.flatnonzero(shortest <= 1e-2 * longest)
+    if near_zero.size == 0:
+        return ""
+    k = int(near_zero[0])
+    return (
+        f"; spring {k} passes through (nearly) zero length (down to {shortest[k]:.3g} m), "
+        "where its force turns direction at once: the motion is not smooth there"
+    )
 
 
 class _Run:
@@ -418,6 +461,9 @@ class _Run:
         self.started = time.perf_counter()
         self.rolls = arrays.rolls > 0
         self.e0 = 0.0  # the energy at release (set by execute)
+        self.energy_error = 0.0  # the relative energy error that ended the run, if one did
+        #: how many times the run was started again with a smaller step (its energy error)
+        self.retries = 0
         self.e_segment = 0.0  # the energy at the start of the current rolling segment
         #: (kind, body) -> (value, time, width, segment): the kernel's extremes over its steps,
         #: each with a two-step segment around it to refine it on
@@ -865,6 +911,7 @@ class _Run:
             self.message = "the energy became non-finite; the step cannot resolve the motion"
             return False
         if error > self.tolerance and abs(self.e0) > 0:
+            self.energy_error = error
             self.status = Status.ENERGY_ERROR.label
             self.message = (
                 f"the energy error {error:.3g} exceeds its tolerance "
@@ -1201,6 +1248,7 @@ def _summary(
         "step": run.symplectic_step,
         "steps": int(run.n_steps),
         "steps_by_integrator": dict(run.steps_by_integrator),
+        "retries": run.retries,
         "energy": e0,
         "energy_error": energy_error,
         "period_measured": period,

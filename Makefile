@@ -8,7 +8,9 @@
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
-PIP    := $(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt
+# uv installs the pinned packages (it downloads in parallel and compiles no bytecode up front:
+# a fresh `make demo` installs in about 7 s where pip took about 30 s); pinned in constraints.txt
+PIP    := $(BIN)/uv pip install --quiet --python $(BIN)/python -c constraints.txt
 # one stamp per install: the demo's (core + report) and the full one (test: every extra)
 DEMO_STAMP := $(VENV)/.installed-demo
 STAMP      := $(VENV)/.installed
@@ -27,7 +29,7 @@ system-packages:
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --disable-pip-version-check --upgrade "pip==26.3"
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt uv
 
 $(DEMO_STAMP): pyproject.toml constraints.txt | $(BIN)/python
 	$(PIP) -e ".[report]"

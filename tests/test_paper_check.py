@@ -388,6 +388,17 @@ def _fig3_no_friction(c: Claim) -> str:
     return verdict(c.paper, third_order, stated=(c.paper, (0, 0)))
 
 
+def _fric_coupled(c: Claim) -> str:
+    """(fric) with the spring's force: Fig. 2 (at the centres) exact, Fig. 3 (at the percussion
+    heights, where (fric) gives zero) exact against first order."""
+    paper = by_name(c.paper, {"F_1x": Fig2.spring[0], "F_2x": Fig2.spring[1], "R_1": R2 / 2})
+    first_order = tuple(Fig3.linear(f_) for f_ in Fig3.friction)
+    assert first_order == (0, 0)
+    return verdict(
+        paper, Fig2.friction + Fig3.friction, stated=(paper, Fig2.friction + first_order)
+    )
+
+
 def _geometry(c: Claim) -> str:
     h = sp.Symbol("h", real=True)  # the hoop's track above the cylinder's
     hoop_top, cylinder_pull = h + 2 * R1, sp.Rational(3, 2) * R2  # zero-friction heights
@@ -563,12 +574,62 @@ def _isotonic(c: Claim) -> str:
     return verdict(c.paper, sp.true if depends else sp.false)
 
 
-def _quadratic_energy() -> Any:
-    alpha, beta = sp.symbols("alpha beta", positive=True)
-    q, qd, qdd = sp.symbols("q qdot qddot", real=True)
-    lagrangian = alpha * qd**2 / 2 - beta * q**2 / 2
-    acc = sp.solve(sp.Eq(alpha * qdd, sp.diff(lagrangian, q)), qdd)[0]
-    return sp.true if sp.simplify(acc / q + beta / alpha) == 0 else sp.false
+def _oscillates(alpha: float, beta: float) -> bool:
+    """Does q stay bounded and return through zero, for L = alpha qdot^2/2 - beta q^2/2 from
+    q(0) = 1 at rest (solved numerically, no SymPy)?"""
+
+    def rhs(_t: float, s: np.ndarray) -> list[float]:
+        return [s[1], -beta / alpha * s[0]]
+
+    sol = solve_ivp(rhs, (0, 20), [1.0, 0.0], rtol=1e-10, atol=1e-12, max_step=0.05)
+    return bool(np.max(np.abs(sol.y[0])) < 1.5 and np.min(sol.y[0]) < -0.5)
+
+
+def _quadratic_energy(c: Claim) -> str:
+    # constant alpha, beta of either sign (beta < 0: an inverted pendulum's energy) against
+    # alpha, beta > 0: only the latter all oscillate
+    every_constant = all(_oscillates(a_, b_) for a_, b_ in ((1.0, 2.0), (0.5, 3.0), (1.0, -2.0)))
+    same_sign = all(_oscillates(a_, b_) for a_, b_ in ((1.0, 2.0), (0.5, 3.0), (2.0, 0.1)))
+    return verdict(
+        c.paper,
+        sp.true if every_constant else sp.false,
+        unstated=(c.paper, sp.true if same_sign else sp.false),
+    )
+
+
+def _friction_sum_without_zeros() -> Any:
+    """Sec. 4: does a stationary centre of mass need f_1 = f_2 = 0? A hoop of radius
+    r_1 = 3R_2/4 beside the cylinder on one floor, the spring horizontal at the height h = r_1
+    on both (the hoop's centre): Newton m a = F + f and I' phiddot = F h about the contact line,
+    to first order (a point at height h moves by h phi)."""
+    r1, h = sp.Rational(3, 4) * R2, sp.Rational(3, 4) * R2
+    J1_, J2_ = 2 * m1 * r1**2, sp.Rational(3, 2) * m2 * R2**2
+    pull = k * (h * phi2 - h * phi1)  # the spring on the hoop, along x
+    acc = (pull * h / J1_, -pull * h / J2_)
+    friction = (m1 * r1 * acc[0] - pull, m2 * R2 * acc[1] + pull)
+    cancel = sp.simplify(sum(friction)) == 0  # (m_1 + m_2) Xddot = f_1 + f_2 = 0
+    # two hoops at their centres, the paper's own Sec. 3: the same
+    hoops = [(2 * mm * R**2) for mm in (m1, m2)]
+    force = k * (R * phi2 - R * phi1)
+    hoop_friction = (m1 * R * force * R / hoops[0] - force, -m2 * R * force * R / hoops[1] + force)
+    hoops_cancel = sp.simplify(sum(hoop_friction)) == 0
+    needed = not (
+        (cancel and sp.simplify(friction[0]) != 0)
+        or (hoops_cancel and sp.simplify(hoop_friction[0]) != 0)
+    )
+    return sp.true if needed else sp.false
+
+
+def _contact_axis() -> Any:
+    """About the contact line the spring's torque R F alone gives I' phiddot: Newton about the
+    centre, I phiddot = -f R and m R phiddot = F + f, gives (I + m R^2) phiddot = R F."""
+    out = []
+    for index, inertia, mass in ((0, Fig2.I1, m1), (1, Fig2.I2, m2)):
+        force = Fig2.spring[index]
+        f_, acc = sp.symbols("f acc", real=True)
+        solved = sp.solve([inertia * acc + f_ * R, mass * R * acc - force - f_], [f_, acc])
+        out.append(sp.simplify((inertia + mass * R**2) * solved[acc] - R * force))
+    return tuple(out)
 
 
 def _undeformed() -> sp.Expr:
@@ -683,6 +744,7 @@ INDEPENDENT: dict[str, Check] = {
     "fig1-vertical": _plain(lambda: Fig1.normal_minus_weight),
     "fig2-dof": _plain(lambda: 2),
     "fig2-constraints": _plain(lambda: (R * phi1, R * phi2)),
+    "contact-axis": _plain(_contact_axis),
     "fig2-rotation": _plain(lambda: Fig2.acc),
     "fig2-spring-force": _plain(lambda: (Fig2.spring[0], sp.Abs(Fig2.spring[1]))),
     "steiner": _plain(lambda: (Fig2.J1, Fig2.J1, Fig2.J2, Fig2.J2)),
@@ -703,6 +765,7 @@ INDEPENDENT: dict[str, Check] = {
     "two-cylinders": _plain(lambda: (m1 / (m1 + m2), m2 / (m1 + m2))),
     "steady-cm": _fig3_at_rest,
     "fig2-caption": _plain(lambda: sp.true if Fig2.in_mode(Fig2.friction[0]) != 0 else sp.false),
+    "friction-must-vanish": _plain(_friction_sum_without_zeros),
     "fric": lambda c: verdict(
         c.paper,
         (
@@ -714,9 +777,7 @@ INDEPENDENT: dict[str, Check] = {
     "zero-friction-heights": _plain(
         lambda: tuple(sp.solve(_pulled(i)[0], y)[0] for i in (m * R**2, m * R**2 / 2))
     ),
-    "fric-coupled": lambda c: verdict(
-        by_name(c.paper, {"F_1x": Fig2.spring[0], "F_2x": Fig2.spring[1]}), Fig2.friction
-    ),
+    "fric-coupled": _fric_coupled,
     "fig3-no-friction": _fig3_no_friction,
     "fig3-geometry": _geometry,
     "fig3-caption": _fig3_no_friction,
@@ -799,8 +860,11 @@ INDEPENDENT: dict[str, Check] = {
     "normal-oscillation": _plain(lambda: sp.true if Fig2.ratio.is_real else sp.false),
     "sum-rule-consequently": _sum_rule_consequently,
     "clamped-is-coupled": _clamped_is_coupled,
-    "quadratic-energy": _plain(_quadratic_energy),
+    "quadratic-energy": _quadratic_energy,
     "sum-rule": _plain(lambda: Fig2.omega2 - k * R**2 / Fig2.J1 - k * R**2 / Fig2.J2),
+    "frequencies-detect-errors": _plain(
+        lambda: Fig2.omega2 - k * R**2 / Fig2.J1 - k * R**2 / Fig2.J2
+    ),
     "lagrangian-hamilton": _oriented(lambda: sp.expand(Fig2.T - Fig2.V)),
     "hamiltonian": _oriented(lambda: _canonical_h()[0]),
     "canonical-coordinates": _plain(
@@ -1188,3 +1252,20 @@ def test_the_readme_counts_are_the_checks() -> None:
         f"{counts[HOLDS_ONLY_IF]} hold only under a condition the paper does not state" in section
     )
     assert f"{counts[WRONG]} wrong" in section
+
+
+def test_the_second_review_findings(checks) -> None:
+    # Sec. 4: "We need to ensure that there is no static friction force": sufficient, not
+    # necessary (the frictions need only cancel: two hoops, or a hoop of radius 3R2/4)
+    need = checks["friction-must-vanish"]
+    assert need.verdict == WRONG and "sufficient, not necessary" in need.reason
+    assert "3*R_2*k*(phi_1 - phi_2)/8" in need.reason  # f_1 = -F/2, F = k(3R2/4)(phi2 - phi1)
+    # Sec. 5.4: a quadratic energy oscillates only for beta/alpha > 0
+    energy_check = checks["quadratic-energy"]
+    assert energy_check.verdict == HOLDS_ONLY_IF and "β/α > 0" in energy_check.reason
+    # the sentences that assert them, not the one next to them
+    assert checks["friction-ratio"].claim.location == "Sec. 3, paragraph after eq. (c)"
+    assert checks["k-equal"].claim.location == "Sec. 5.3, second sentence after eq. (k2)"
+    assert "not equal for the same masses" in checks["k-equal-masses"].claim.quote
+    assert checks["contact-axis"].verdict == VERIFIED
+    assert checks["frequencies-detect-errors"].verdict == VERIFIED

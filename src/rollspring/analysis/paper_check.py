@@ -198,6 +198,12 @@ SYSTEMS: dict[str, dict[str, Any]] = {
             {"ends": ["b1", "b2"], "stiffness": 100.0, "rest_length": 0.5},
         ],
     },
+    # Sec. 4's "We need to ensure that there is no static friction force": a hoop of radius
+    # 3R2/4 beside the cylinder on one floor, the spring level with the hoop's centre (at
+    # 3R2/4 on the cylinder): the frictions cancel, neither vanishes
+    "zero-sum": _pair(
+        "hoop", "cylinder", r1=0.075, r2=0.1, at=[{"height": 0.075}, {"height": 0.075}]
+    ),
     # App. A: a body with I = gamma m R^2 pulled at height y; and a hoop, a cylinder
     "pulled": _pulled("custom", inertia_factor=0.3),
     "pulled-hoop": _pulled("hoop"),
@@ -1063,13 +1069,27 @@ def _fric_app_a(b: _Bench) -> Derived:
 
 
 def _fric_coupled(b: _Bench) -> Derived:
+    """Sec. 4: (fric) with the spring's varying force, on the coupled systems it is meant for:
+    Fig. 2 (the spring at the centres, y = R: exact) and Fig. 3 (at 2R_1 and 3R_2/2, where (fric)
+    gives zero: to first order in the angles)."""
     sym = b.sym("fig2")
     forces = [F_[0] for F_ in sym.body_forces]
     exact = tuple(_tidy(f) for f in sym.friction_configuration)
+    fig3 = b.sym("fig3")
+    geometry = _fig3_geometry(b)
+    exact3 = tuple(f.xreplace(geometry) for f in fig3.friction_configuration)
+    linear3 = tuple(
+        _tidy(f.xreplace(geometry)) for f in fig3.linearized(fig3.friction_configuration)
+    )
     return Derived(
-        exact,
-        "the engine's exact friction (M8) of the coupled bodies at every configuration",
+        exact + exact3,
+        "the engine's exact friction (M8) of the coupled bodies at every configuration: Fig. 2 "
+        "and Fig. 3",
+        assumed=exact + linear3,
         paper_subs={Fx1: forces[0], Fx2: forces[1]},
+        why="exact for the spring at the centres (Fig. 2, y = R); in Fig. 3 the attachment points "
+        "leave 2R₁ and 3R₂/2 as the bodies turn and the spring tilts: there the frictions are "
+        "O(φ³), zero only to first order",
     )
 
 
@@ -1666,17 +1686,27 @@ def _clamped_is_not_coupled(b: _Bench) -> Derived:
 
 
 def _quadratic_energy(b: _Bench) -> Derived:
-    alpha, beta = sp.symbols("alpha beta", positive=True)
-    q, qd, qdd = sp.symbols("q qdot qddot", real=True)
-    energy_ = alpha * qd**2 / 2 + beta * q**2 / 2
-    rate = sp.diff(energy_, qd) * qdd + sp.diff(energy_, q) * qd  # dE/dt
-    (acc,) = sp.solve(sp.Eq(rate, 0), qdd)
-    ratio = _tidy(acc / q)
-    harmonic = ratio.free_symbols <= {alpha, beta} and ratio.is_negative
+    """Sec. 5.4: E = alpha qdot^2/2 + beta q^2/2 conserved gives qddot = -(beta/alpha) q: a
+    harmonic oscillation only when beta/alpha > 0 (for any real constants, not in general)."""
+
+    def harmonic(**assumptions: bool) -> bool:
+        alpha, beta = sp.symbols("alpha beta", **assumptions)
+        q, qd, qdd = sp.symbols("q qdot qddot", real=True)
+        energy_ = alpha * qd**2 / 2 + beta * q**2 / 2
+        rate = sp.diff(energy_, qd) * qdd + sp.diff(energy_, q) * qd  # dE/dt
+        (acc,) = sp.solve(sp.Eq(rate, 0), qdd)
+        ratio = _tidy(acc / q)
+        return bool(ratio.free_symbols <= {alpha, beta} and ratio.is_negative)
+
     return Derived(
-        sp.true if harmonic else sp.false,
-        f"dE/dt = 0 gives qddot = ({sp.sstr(ratio)}) q: a harmonic oscillation at Omega = "
-        "sqrt(beta/alpha) for constant alpha, beta > 0 (SymPy)",
+        sp.true if harmonic(real=True, nonzero=True) else sp.false,
+        "dE/dt = 0 gives qddot = -(beta/alpha) q (SymPy): harmonic at Omega = sqrt(beta/alpha) "
+        "when beta/alpha > 0; for beta/alpha < 0, q grows as exp(sqrt(-beta/alpha) t)",
+        condition="β/α > 0 (the energy has a minimum at q = 0): a quadratic energy with β < 0, "
+        "as an inverted pendulum's, has constant α and β and does not oscillate",
+        value_if=sp.true if harmonic(positive=True) else sp.false,
+        correction=r"\ddot q=-\frac{\beta}{\alpha}q\ \text{is a harmonic oscillation only for}"
+        r"\ \beta/\alpha>0",
     )
 
 
@@ -1685,6 +1715,61 @@ def _friction_in_mode(b: _Bench) -> Derived:
     return Derived(
         sp.true if any(f_ != 0 for f_ in friction) else sp.false,
         f"the engine's linearised frictions (M8) in the mode: {sp.sstr(tuple(friction))}",
+    )
+
+
+_ZERO_SUM_NAMES = {
+    "two-hoops": "two hoops joined at their centres (Sec. 3)",
+    "zero-sum": "a hoop of radius 3R₂/4 beside the cylinder on one floor, the spring level with "
+    "the hoop's centre",
+}
+
+
+def _friction_not_needed(b: _Bench) -> Derived:
+    """Sec. 4's "We need to ensure that there is no static friction force on rigid bodies": the
+    centre of mass stays at rest when the frictions cancel (M8, (m_1 + m_2) Xddot = f_1 + f_2),
+    which does not need each to vanish: two hoops joined at their centres (the paper's own
+    Sec. 3) and a hoop of radius 3R_2/4 beside the cylinder, the spring level with the hoop's
+    centre."""
+    found = []
+    for key in ("two-hoops", "zero-sum"):
+        sym = b.sym(key)
+        friction = b.friction_linear(key)
+        if key == "zero-sum":  # the engine names the radii: the hoop's is 3R_2/4
+            radius = sym.bodies[0].s
+            friction = [sp.factor(f_.subs(radius, sp.Rational(3, 4) * R2)) for f_ in friction]
+        if _same(sp.Add(*friction), 0) and friction[0] != 0:
+            found.append((key, friction[0]))
+    return Derived(
+        sp.false if found else sp.true,
+        "the engine's linearised frictions (M8) of two hoops joined at their centres and of a "
+        "hoop of radius 3R_2/4 beside the cylinder with the spring level with the hoop's centre: "
+        "their sum (m_1 + m_2) Xddot, and f_1",
+        why="not needed: the centre of mass stays at rest when f₁ + f₂ = 0 ((m₁ + m₂)Ẍ = f₁ + f₂), "
+        "which does not need each friction to vanish: "
+        + "; ".join(f"{_ZERO_SUM_NAMES[key]}: f₁ = −f₂ = {sp.sstr(f_)}" for key, f_ in found)
+        + "; f₁ = f₂ = 0 is sufficient, not necessary",
+        correction=r"\dot X=0\ \Leftrightarrow\ f_1+f_2=0\ \text{(each}\ f_i=0\ \text{is "
+        r"sufficient, not necessary)}",
+    )
+
+
+def _contact_axis(b: _Bench) -> Derived:
+    """Sec. 3: about the contact line z' the friction has no arm: I'_i phiddot_i is the spring's
+    torque alone (the engine's M7, derived without the friction)."""
+    sym = b.sym("fig2")
+    accelerations = b.accelerations("fig2")
+    forces = [force[0] for force in sym.body_forces]
+    value = tuple(
+        _tidy(body.J * acc - body.s * force)
+        for body, acc, force in zip(sym.bodies, accelerations, forces, strict=True)
+    )
+    return Derived(
+        value,
+        "I'_i phiddot_i - R F_ix with the engine's equations of motion (M7, Lagrange's, in which "
+        "no friction appears) and its spring forces: the friction's torque about z' is zero (its "
+        "line passes through z'), and z' may be used although it accelerates (its acceleration "
+        "R phidot^2 points through the centre)",
     )
 
 
@@ -2368,6 +2453,19 @@ def paper_claims() -> list[Claim]:
             _fig2_constraints,
         ),
         _c(
+            "contact-axis",
+            "Sec. 3, paragraph after the constraint relations",
+            r"Static friction forces ($f_1$, $f_2$) can be eliminated by the proper choice of the "
+            r"axis of rotation",
+            "about the contact lines z' the friction has no torque: the spring's torque alone "
+            "turns each body",
+            r"I'_i\ddot\varphi_i=RF_{ix}\ \text{about}\ z'\ \text{(no}\ f_i\text{)}",
+            r"\left(I'_1\ddot\varphi_1-RF_{1x},\ I'_2\ddot\varphi_2-RF_{2x}\right)",
+            (sp.Integer(0), sp.Integer(0)),
+            "fig2",
+            _contact_axis,
+        ),
+        _c(
             "fig2-rotation",
             "Sec. 3, eqs. (e), (f)",
             r"F_1R=I'_1\ddot{\varphi_1}, -F_2R=I'_2\ddot{\varphi_2}",
@@ -2490,7 +2588,7 @@ def paper_claims() -> list[Claim]:
         ),
         _c(
             "same-spring-forces",
-            "Sec. 3, sentence after eq. (c)",
+            "Sec. 3, paragraph after eq. (c)",
             "the bodies are subjected to the same spring forces (and their torques)",
             "the two bodies feel the same spring force and torque",
             r"F_2=F_1,\quad F_2R=F_1R",
@@ -2502,7 +2600,7 @@ def paper_claims() -> list[Claim]:
         ),
         _c(
             "friction-ratio",
-            "Sec. 3, sentence after eq. (c)",
+            "Sec. 3, paragraph after eq. (c)",
             r"different amounts of static friction forces ($f_1/f_2=3/2$)",
             "ratio of the static friction forces",
             r"f_1/f_2=3/2",
@@ -2565,6 +2663,17 @@ def paper_claims() -> list[Claim]:
         ),
         # ---- Sec. 4: the frictionless system (Fig. 3)
         _c(
+            "friction-must-vanish",
+            "Sec. 4, paragraph 1",
+            "We need to ensure that there is no static friction force on rigid bodies.",
+            "a stationary centre of mass needs both static frictions to vanish",
+            r"\dot X=0\ \Rightarrow\ f_1=f_2=0",
+            r"\dot X=0\ \text{requires}\ f_1=f_2=0",
+            _TRUE,
+            "two-hoops, zero-sum",
+            _friction_not_needed,
+        ),
+        _c(
             "fric",
             "Sec. 4, eq. (fric)",
             r"linearly decreasing function \begin{equation} "
@@ -2595,14 +2704,18 @@ def paper_claims() -> list[Claim]:
             "Sec. 4, paragraph after eq. (fric)",
             r"it seems reasonable to assume that the equation (\ref{fric}) remains valid",
             "(fric) remains valid for the coupled system, with the varying spring force",
-            r"f_i=-F_{ix}\left(1-\frac{m_iR\,y_i}{I_i+m_iR^2}\right),\quad y_i=R",
-            r"\left(f_1,\ f_2\right)",
+            r"f_i=-F_{ix}\left(1-\frac{m_iR_i\,y_i}{I_i+m_iR_i^2}\right):\ y_i=R\ "
+            r"\text{(Fig. 2)},\ y_1=2R_1,\ y_2=\tfrac32R_2\ \text{(Fig. 3)}",
+            r"\left(f_1,\ f_2\right)_{\text{Fig. 2}},\ \left(f_1,\ f_2\right)_{\text{Fig. 3}}",
             (
                 -Fx1 * (1 - m1 * R * R / (m1 * R**2 + m1 * R**2)),
                 -Fx2 * (1 - m2 * R * R / (m2 * R**2 / 2 + m2 * R**2)),
+                -Fx1 * (1 - m1 * R1 * 2 * R1 / (m1 * R1**2 + m1 * R1**2)),
+                -Fx2 * (1 - m2 * R2 * sp.Rational(3, 2) * R2 / (m2 * R2**2 / 2 + m2 * R2**2)),
             ),
-            "fig2",
+            "fig2, fig3",
             _fric_coupled,
+            _SMALL_ANGLES,
         ),
         _c(
             "fig3-no-friction",
@@ -2957,7 +3070,7 @@ def paper_claims() -> list[Claim]:
         ),
         _c(
             "undeformed-at-top-speed",
-            "Sec. 5.2, sentence after eq. (nu)",
+            "Sec. 5.2, paragraph after eq. (nu)",
             "the maximum angular velocities are related to the undeformed state of the spring",
             "both bodies are fastest when the spring is undeformed",
             r"\text{deformation}=0\ \text{at}\ \dot\Phi_1,\ \dot\Phi_2",
@@ -3284,7 +3397,7 @@ def paper_claims() -> list[Claim]:
         ),
         _c(
             "k-equal",
-            "Sec. 5.3, sentence after eq. (k2)",
+            "Sec. 5.3, second sentence after eq. (k2)",
             r"Note $k_1=k_2$ (and $A_1=A_2$) if $m_1/m_2=3/4$",
             "k1 = k2 (and A1 = A2) if m1/m2 = 3/4",
             r"k_1=k_2\ (A_1=A_2)\ \text{if}\ m_1/m_2=3/4",
@@ -3295,7 +3408,8 @@ def paper_claims() -> list[Claim]:
         ),
         _c(
             "k-equal-masses",
-            "Sec. 5.3, display after eq. (k2)",
+            "Sec. 5.3, display after eq. (k2) and the words before it",
+            r"but they are not equal for the same masses: \begin{eqnarray} "
             r"k_1=\frac{7k}{3},\quad k_2=\frac{7k}{4}",
             "spring parts for equal masses",
             r"k_1=\frac{7k}{3},\quad k_2=\frac{7k}{4}",
@@ -3404,6 +3518,20 @@ def paper_claims() -> list[Claim]:
             "fig2",
             _sum_rule_fig2,
         ),
+        # ---- Sec. 5.5: what the natural frequencies are for
+        _c(
+            "frequencies-detect-errors",
+            "Sec. 5.5, paragraph 1",
+            "knowledge of natural frequencies helps students to detect errors that may occur "
+            "during the calculation",
+            "the subsystems' frequencies check Omega^2 of the coupled system: Omega^2 = Omega_1^2 "
+            "+ Omega_2^2",
+            r"\Omega^2=\Omega_1^2+\Omega_2^2",
+            r"\Omega^2-\left(\Omega_1^2+\Omega_2^2\right)",
+            sp.Integer(0),
+            "fig2",
+            _sum_rule_fig2,
+        ),
         # ---- Sec. 5.6: Hamilton
         _c(
             "lagrangian-hamilton",
@@ -3435,7 +3563,7 @@ def paper_claims() -> list[Claim]:
         ),
         _c(
             "canonical-coordinates",
-            "Sec. 5.6, sentence after eq. (k)",
+            "Sec. 5.6, paragraph after eq. (k)",
             r"As a result of this we get $q_1=\sqrt{2}R\phi_1$ and $q_2=\sqrt{3/2}R\phi_2$.",
             "the canonical coordinates",
             r"q_1=\sqrt{2}R\phi_1,\quad q_2=\sqrt{3/2}R\phi_2",
@@ -3926,9 +4054,9 @@ def paper_claims() -> list[Claim]:
         ),
         _c(
             "sum-rule-app-b",
-            "App. B, sentence after the third display",
-            r"where $\Omega_{f}^2$ is indeed the sum of the eigen frequency squares of the "
-            r"individual system components",
+            "App. B, third display and the sentence after it",
+            r"\Omega_{f}^2=\frac{k}{2m_1}+\frac{2k}{3m_2}, \end{eqnarray} where $\Omega_{f}^2$ is "
+            r"indeed the sum of the eigen frequency squares of the individual system components",
             "Omega_f^2 = k/(2m_1) + 2k/(3m_2) is the sum of the subsystems' squared frequencies",
             r"\Omega_{f}^2=\frac{k}{2m_1}+\frac{2k}{3m_2}=\Omega_1^2+\Omega_2^2",
             r"\Omega^2-\left(\Omega_1^2+\Omega_2^2\right)",

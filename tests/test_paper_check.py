@@ -521,6 +521,17 @@ def _fig3_quadratic() -> sp.Expr:
 Fig3.linear_potential = staticmethod(_fig3_quadratic)  # type: ignore[attr-defined]
 
 
+def _potential_fig3(c: Claim) -> str:
+    """App. C (k02): Fig. 3's exact potential in q_i = sqrt(J_i/m_i) phi_i, its quadratic form
+    under the paper's small angles, and the first coordinate counted the other way."""
+    to_q = {phi1: q3 * sp.sqrt(m1 / Fig3.J1), phi2: q4 * sp.sqrt(m2 / Fig3.J2)}
+    exact = Fig3.V.subs(to_q)
+    quadratic = _canonical_h("fig3")[1]
+    return verdict(
+        c.paper, exact, stated=(c.paper, quadratic), unstated=(flip_first(c.paper), quadratic)
+    )
+
+
 def _canonical_ratio(c: Claim) -> str:
     ratio = sp.sqrt(Fig2.J2 / m2) / sp.sqrt(Fig2.J1 / m1) * Fig2.ratio  # q_2/q_1 in the mode
     truth = (m2 * ratio / m1 * pd1, ratio * q1)
@@ -618,6 +629,15 @@ def _friction_sum_without_zeros() -> Any:
         or (hoops_cancel and sp.simplify(hoop_friction[0]) != 0)
     )
     return sp.true if needed else sp.false
+
+
+def _fig2_vertical_pull() -> Any:
+    """The spring between the centres (R phi_1, R) and (l + R phi_2, R), l its rest length: the
+    vertical component of its pull on each body."""
+    d = (L + R * phi2 - R * phi1, R - R)
+    length = sp.sqrt(d[0] ** 2 + d[1] ** 2)
+    pull = k * (length - L) / length
+    return (sp.simplify(pull * d[1]), sp.simplify(-pull * d[1]))
 
 
 def _contact_axis() -> Any:
@@ -742,6 +762,7 @@ INDEPENDENT: dict[str, Check] = {
     "fig1-momentum-sum": _plain(lambda: (sum(Fig1.forces), sum(Fig1.forces))),
     "fig1-cm-at-rest": _fig1_at_rest,
     "fig1-vertical": _plain(lambda: Fig1.normal_minus_weight),
+    "fig2-horizontal": _plain(_fig2_vertical_pull),
     "fig2-dof": _plain(lambda: 2),
     "fig2-constraints": _plain(lambda: (R * phi1, R * phi2)),
     "contact-axis": _plain(_contact_axis),
@@ -918,7 +939,7 @@ INDEPENDENT: dict[str, Check] = {
     "potential-coefficients": _plain(lambda: (1 / sp.sqrt(2), sp.sqrt(sp.Rational(2, 3)))),
     "potential-fig2": _oriented(lambda: _canonical_h()[1]),
     "omega1-omega2": _plain(lambda: (sp.sqrt(k * R**2 / Fig2.J1), sp.sqrt(k * R**2 / Fig2.J2))),
-    "potential-fig3": _oriented(lambda: _canonical_h("fig3")[1]),
+    "potential-fig3": _potential_fig3,
     "omega3-omega4": _plain(lambda: _fig3_clamped(True)),
 }
 

@@ -828,6 +828,14 @@ def _cm_velocity(key: str, how: str, *, small: bool = False) -> Callable[[_Bench
     return derive
 
 
+def _fig2_horizontal(b: _Bench) -> Derived:
+    return Derived(
+        tuple(_tidy(force[1]) for force in b.sym("fig2").body_forces),
+        "the vertical components of the engine's spring forces on the two bodies (M7) at every "
+        "configuration: the centres, both at height R, stay level",
+    )
+
+
 def _fig2_dof(b: _Bench) -> Derived:
     return Derived(
         sp.Integer(b.sym("fig2").n), "the engine's generalised coordinates of the rolling pair"
@@ -1879,10 +1887,18 @@ def _potential_q(key: str, qs: tuple[Any, ...], ps: tuple[Any, ...]) -> Callable
 
 
 def _potential_fig3(b: _Bench) -> Derived:
+    """App. C (k02): the Fig. 3 potential in q_3, q_4: exact (the spring turns with the bodies)
+    and quadratic (the paper's small angles)."""
+    sym = b.sym("fig3")
     _, V = b.hamiltonian("fig3", (q3, q4), (p3, p4))
+    to_q = {
+        body.q: sp.sqrt(body.m / body.J) * qq for body, qq in zip(sym.bodies, (q3, q4), strict=True)
+    }
+    exact = sym.potential.xreplace(to_q).xreplace(_fig3_geometry(b))
     return Derived(
-        V,
-        "the engine's V of Fig. 3 in q_i = sqrt(J_i/m_i) phi_i",
+        exact,
+        "the engine's exact V of Fig. 3 in q_i = sqrt(J_i/m_i) phi_i, and its quadratic form",
+        assumed=V,
         condition="the first canonical coordinate is counted the other way (q₃ with the hoop "
         "anticlockwise); the paper's own Sec. 4 spring force F = k(3R₂φ₂/2 − 2R₁φ₁) counts both "
         "angles one way, which gives the coefficients (−Ω₃/√(k/m₁), +Ω₄/√(k/m₂))",
@@ -2429,6 +2445,18 @@ def paper_claims() -> list[Claim]:
             _fig1_vertical,
         ),
         # ---- Sec. 3: hoop and cylinder (Fig. 2)
+        _c(
+            "fig2-horizontal",
+            "Sec. 3, paragraph 1",
+            "Both bodies are placed on a horizontal surface so that the orientation of the spring "
+            "is also horizontal.",
+            "two bodies of one radius R on one floor: the spring between their centres is level",
+            r"R_1=R_2=R\ \Rightarrow\ F_{1y}=F_{2y}=0",
+            r"\left(F_{1y},\ F_{2y}\right)",
+            (sp.Integer(0), sp.Integer(0)),
+            "fig2",
+            _fig2_horizontal,
+        ),
         _c(
             "fig2-dof",
             "Sec. 3, paragraph after Fig. 2",
@@ -4138,6 +4166,7 @@ def paper_claims() -> list[Claim]:
             k / 2 * (_Omega3 / sp.sqrt(k / m1) * q3 + _Omega4 / sp.sqrt(k / m2) * q4) ** 2,
             "fig3",
             _potential_fig3,
+            _SMALL_ANGLES,
         ),
         _c(
             "omega3-omega4",

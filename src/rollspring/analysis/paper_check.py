@@ -1755,7 +1755,9 @@ def _friction_not_needed(b: _Bench) -> Derived:
         "their sum (m_1 + m_2) Xddot, and f_1",
         why="not needed: the centre of mass stays at rest when f₁ + f₂ = 0 ((m₁ + m₂)Ẍ = f₁ + f₂), "
         "which does not need each friction to vanish: "
-        + "; ".join(f"{_ZERO_SUM_NAMES[key]}: f₁ = −f₂ = {sp.sstr(f_)}" for key, f_ in found)
+        + "; ".join(
+            f"{_ZERO_SUM_NAMES[key]}: f₁ = −f₂ = {sp.sstr(sp.factor(f_))}" for key, f_ in found
+        )
         + "; f₁ = f₂ = 0 is sufficient, not necessary",
         correction=r"\dot X=0\ \Leftrightarrow\ f_1+f_2=0\ \text{(each}\ f_i=0\ \text{is "
         r"sufficient, not necessary)}",

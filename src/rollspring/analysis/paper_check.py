@@ -3702,8 +3702,8 @@ def paper_claims() -> list[Claim]:
         _c(
             "conclusion-cm-moves",
             "Sec. 7, sentence 1",
-            "consisting of a hoop and a cylinder joining their centers by an ideal spring, its CM "
-            "does not remain at rest",
+            "during normal modes of an oscillatory system consisting of a hoop and a cylinder "
+            "joining their centers by an ideal spring, its CM does not remain at rest",
             "in a normal mode of the hoop-cylinder system the centre of mass moves",
             r"\dot X\neq 0\ \text{in the normal mode}",
             r"\dot X\neq 0",
@@ -3738,8 +3738,8 @@ def paper_claims() -> list[Claim]:
         _c(
             "conclusion-fig3",
             "Sec. 7, sentence 3",
-            "by proper positioning the two fixed end points of the spring vertically, it was "
-            "shown that the CM of the system remains at rest",
+            "in case of different moment of inertia by proper positioning the two fixed end points "
+            "of the spring vertically, it was shown that the CM of the system remains at rest",
             "with the spring's ends at the right heights (Fig. 3) the centre of mass stays at rest",
             r"\dot X=0\ \text{(Fig. 3)}",
             r"\dot X",

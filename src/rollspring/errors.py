@@ -16,6 +16,7 @@ The tree, grouped by the layer that raises each class (bottom layer first)::
     ├── AnalysisError           the analysis cannot be carried out (e.g. no equilibrium)
     │   └── DerivationError     invalid arguments to derive() (an unknown method)
     ├── BudgetExceeded          a symbolic step ran past its time budget (caught inside)
+    ├── CostTooHigh             a run's estimated time or memory is above the bound (--yes)
     │ simulate
     ├── SimulationError         invalid simulation arguments (duration, tolerance, integrator)
     │ outputs
@@ -29,7 +30,6 @@ The tree, grouped by the layer that raises each class (bottom layer first)::
     │ service
     ├── SweepError              a sweep cannot be run as asked (a PATH, value, metric, store)
     │   └── StoreMismatchError  the store at --out holds another sweep (another fingerprint)
-    ├── CostTooHigh             a run's estimated time or memory is above the bound (--yes)
     │ web
     ├── WebError                the web server could not compute a request
     │   ├── Overloaded          no worker was free within the time budget (HTTP 503)
@@ -110,6 +110,14 @@ class BudgetExceeded(RollspringError):
     which fall back to numbers or say so: it never reaches a user)."""
 
 
+class CostTooHigh(RollspringError, ValueError):
+    """A run's estimated cost (steps × bodies, hence time, or the memory of its outputs) is above
+    the bound (:mod:`rollspring.analysis.costs`); the message gives the estimate, and how to
+    confirm the run (``--yes`` on the command line, ``confirm=True`` in Python) or make it
+    smaller. Raised by :func:`rollspring.analyze`, :func:`rollspring.derive`,
+    :func:`rollspring.simulate`, :func:`rollspring.build_report` and the command line."""
+
+
 # ------------------------------------------------------------------------------- simulate
 
 
@@ -158,12 +166,6 @@ class SweepError(RollspringError, ValueError):
 
 class StoreMismatchError(SweepError):
     """The store at ``--out`` holds another sweep (its grid fingerprint differs)."""
-
-
-class CostTooHigh(RollspringError, ValueError):
-    """A run's estimated cost (steps × bodies, hence time, or the memory of its outputs) is above
-    the bound an interface sets; the message gives the estimate, and how to confirm the run
-    (``--yes``) or make it smaller."""
 
 
 # ------------------------------------------------------------------------------------ web

@@ -70,7 +70,7 @@ class Equilibrium:
 
 
 def find_equilibrium(
-    system: SystemArrays,
+    system: SystemArrays | System | dict[str, Any] | str,
     *,
     max_iterations: int = 200,
     tolerance: float = 1e-13,
@@ -100,7 +100,16 @@ def find_equilibrium(
     ``forces`` may replace :func:`~rollspring.physics.generalized_forces` of ``system`` by an
     equal but faster function of q (the simulator passes its compiled kernel), ``stiffness``
     likewise :func:`~rollspring.physics.stiffness_matrix`.
+
+    ``system`` is the :class:`~rollspring.physics.SystemArrays` of a system, or the system
+    itself as :func:`rollspring.analyze` takes it (a System, its JSON form, a file path or a
+    preset name); anything else is a one-line :class:`~rollspring.errors.ModelError`.
     """
+    if not isinstance(system, SystemArrays):
+        from rollspring.model import as_system
+        from rollspring.physics import system_arrays
+
+        system = system_arrays(as_system(system))
     n = system.n_bodies
     if forces is None:
 

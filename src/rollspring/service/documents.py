@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import functools
 import math
+import numbers
+import os
 import time
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
@@ -64,12 +66,13 @@ __all__ = [
 
 
 def build_report(
-    system: System,
+    system: System | dict[str, Any] | str | os.PathLike[str],
     *,
     duration: float | None = None,
     rtol: float = 1e-8,
     derivation: bool = True,
     progress: Callable[[float], None] | None = None,
+    confirm: bool = False,
 ) -> Report:
     """Analyse and simulate ``system``, derive it, check the paper's claims about it, and render
     its self-contained report page (:func:`rollspring.outputs.report.render_report`).
@@ -79,8 +82,31 @@ def build_report(
     symbolic part (the derivation by the five methods and the paper's claims: SymPy, the slowest
     part for large systems); ``progress`` is called with the fraction done (0..1) after each
     stage. ``Report.timings`` holds the seconds each stage took, and their ``total``.
+
+    ``system`` is a :class:`~rollspring.model.System`, its JSON form (a dict) or a file path or
+    preset name. Every bad argument is a one-line :class:`~rollspring.errors.RollspringError`,
+    raised before any work; a report estimated at more than 5 minutes or 2 GiB
+    (:func:`rollspring.service.costs.report_cost`) is refused with its estimate
+    (:class:`~rollspring.errors.CostTooHigh`) unless ``confirm=True`` (``--yes`` on the command
+    line).
     """
+    from rollspring.service.costs import CONFIRM, check_cost, report_cost
+    from rollspring.simulate.arguments import check_rtol_range
+
     system = as_system(system)
+    if duration is not None and (
+        isinstance(duration, bool)
+        or not isinstance(duration, numbers.Real)
+        or not math.isfinite(duration)
+        or duration <= 0
+    ):
+        raise ReportError(f"duration: must be a positive number of seconds, got {duration!r}")
+    check_rtol_range(rtol)
+    for name, flag in (("derivation", derivation), ("confirm", confirm)):
+        if not isinstance(flag, bool):
+            raise ReportError(f"{name}: must be True or False, got {flag!r}")
+    cost = report_cost(system, duration=duration, derivation=derivation, flag=CONFIRM)
+    check_cost(cost, confirmed=confirm, flag=CONFIRM)
     timings: dict[str, float] = {}
     started = clock = time.perf_counter()
 
@@ -95,17 +121,16 @@ def build_report(
     analysis = analyze(system)
     if duration is None:
         duration = default_duration(analysis)
-    elif not (isinstance(duration, int | float) and math.isfinite(duration) and duration > 0):
-        raise ReportError(f"duration: must be a positive number of seconds, got {duration!r}")
     done("analyze", 0.05)
-    frames, rows = animation_frames(duration)
-    trajectory = simulate(system, float(duration), rtol=rtol, n_output=rows)
+    frames, rows = animation_frames(float(duration))
+    # confirmed above, as a whole (report_cost)
+    trajectory = simulate(system, float(duration), rtol=rtol, n_output=rows, confirm=True)
     computed = 0.2
     done("simulate", computed)
     derived = error = paper = None
     if derivation:
         try:
-            derived = derive(system, symbols=True)
+            derived = derive(system, symbols=True, confirm=True)
         except RollspringError as exc:
             error = str(exc)
         done("derive", 0.5)
@@ -131,17 +156,18 @@ def build_report(
 
 
 def derivation_document(
-    system: System,
+    system: System | dict[str, Any] | str | os.PathLike[str],
     methods: str | Sequence[str] = ALL,
     *,
     format: str = "text",  # noqa: A002 - mirrors --format
     symbols: bool = False,
+    confirm: bool = False,
 ) -> tuple[str, CrossCheck]:
     """``system`` derived step by step by ``methods`` (``"all"`` or names of
     :data:`rollspring.analysis.derivation.METHODS`; with ``symbols`` the parameters are symbols),
     rendered as ``format`` (``text``, ``markdown`` or ``latex``, a complete document), and the
-    cross-check of the methods."""
-    derivation = derive(as_system(system), methods, symbols=symbols)
+    cross-check of the methods. ``confirm``: as :func:`rollspring.derive`'s."""
+    derivation = derive(as_system(system), methods, symbols=symbols, confirm=confirm)
     return derivation.render(format), derivation.cross_check
 
 
@@ -240,10 +266,11 @@ def worksheet(level: int, seed: int) -> Worksheet:
     same seed gives the same sheet): a random system of the level, its analysis, questions and
     answers; the derivation its solutions show (Lagrange, the parameters as symbols) is made
     when the solutions first need it."""
-    if isinstance(level, bool) or not isinstance(level, int) or level not in LEVELS:
+    if isinstance(level, bool) or not isinstance(level, numbers.Integral) or level not in LEVELS:
         raise WorksheetError(f"--level: must be 1, 2, 3 or 4 (got {level})")
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
         raise WorksheetError(f"--seed: must be a non-negative integer (got {seed})")
+    level, seed = int(level), int(seed)
     variant, data, setting = exercises.draw(level, seed)
     system = system_from_dict(data)
     analysis = analyze(system)

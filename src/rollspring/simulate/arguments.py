@@ -10,25 +10,36 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
 from collections.abc import Iterable
-from typing import Any, Literal, overload
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias, overload
 
 import numpy as np
 
 from rollspring.errors import SimulationError
 
+if TYPE_CHECKING:
+    from rollspring.model import System
+
 __all__ = [
     "ON_SLIP",
+    "SystemLike",
     "check_choice",
     "check_count",
     "check_duration",
+    "check_flag",
     "check_positive",
     "check_rtol",
+    "check_rtol_range",
     "check_step",
 ]
 
 #: Accepted values of ``on_slip``.
 ON_SLIP = ("stop", "continue")
+
+#: What the public functions take as a system: a System, its JSON form (a dict), or a file path
+#: or preset name (:func:`rollspring.model.as_system` turns each into a System, or says why not).
+SystemLike: TypeAlias = "System | dict[str, Any] | str | os.PathLike[str]"
 
 
 def _bad(name: str, reason: str) -> SimulationError:
@@ -58,6 +69,23 @@ def check_rtol(rtol: Any) -> float:
     return value
 
 
+def check_rtol_range(rtol: Any) -> float:
+    """A number within :data:`~rollspring.analysis.costs.RTOL_RANGE` (what
+    :func:`~rollspring.simulate.simulate` and the command line accept: finer is below what
+    double precision delivers over a run, coarser is no accuracy)."""
+    from rollspring.analysis.costs import RTOL_RANGE
+
+    value = check_rtol(rtol)
+    low, high = RTOL_RANGE
+    if not low <= value <= high:
+        raise _bad(
+            "rtol",
+            f"must be between {low:g} and {high:g} (finer is below what double precision "
+            f"delivers), got {rtol!r}",
+        )
+    return value
+
+
 def check_step(step: Any, duration: float) -> float | None:
     """None, or a positive number of seconds up to ``duration``."""
     if step is None:
@@ -83,6 +111,14 @@ def check_count(name: str, value: Any, minimum: int, *, optional: bool = False) 
     ):
         raise _bad(name, f"must be an integer >= {minimum}, got {value!r}")
     return int(value)
+
+
+def check_flag(name: str, value: Any) -> bool:
+    """True or False (a Python or NumPy bool): ``confirm=1`` or ``confirm="yes"`` is refused
+    rather than read as a yes."""
+    if not isinstance(value, bool | np.bool_):
+        raise _bad(name, f"must be True or False, got {value!r}")
+    return bool(value)
 
 
 def check_choice(name: str, value: Any, choices: Iterable[str], what: str) -> str:

@@ -4,9 +4,13 @@ Jupyter)."""
 
 from __future__ import annotations
 
+import math
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
+import numpy as np
 import sympy as sp
 
 from rollspring.analysis.derivation.crosscheck import CrossCheck, cross_check
@@ -130,7 +134,17 @@ class Derivation:
 
 def parse_methods(method: str | Sequence[str]) -> list[str]:
     """``"all"``, one name or a list of names -> method names (validated, paper order)."""
-    names = [method] if isinstance(method, str) else list(method)
+    if isinstance(method, str):
+        names = [method]
+    elif isinstance(method, Sequence | set | frozenset) and all(
+        isinstance(name, str) for name in method
+    ):
+        names = list(method)
+    else:
+        raise DerivationError(
+            f"method: must be a method name or a list of them "
+            f"(methods: {', '.join(METHODS)}, {ALL}), got {_shown(method)}"
+        )
     if ALL in names:
         return list(METHODS)
     for name in names:
@@ -141,12 +155,24 @@ def parse_methods(method: str | Sequence[str]) -> list[str]:
     return [name for name in METHODS if name in names]
 
 
+def _check_flag(name: str, value: object) -> None:
+    if not isinstance(value, bool | np.bool_):
+        raise DerivationError(f"{name}: must be True or False, got {_shown(value)}")
+
+
+def _shown(value: object) -> str:
+    """``repr(value)``, at most 60 characters (a message stays one short line)."""
+    text = repr(value)
+    return text if len(text) <= 60 else f"{text[:50]}… ({type(value).__name__})"
+
+
 def derive(
-    system: System | str,
+    system: System | dict[str, Any] | str | os.PathLike[str],
     method: str | Sequence[str] = ALL,
     *,
     symbols: bool = False,
     budget: float | None = 10.0,
+    confirm: bool = False,
 ) -> Derivation:
     r"""Derive the equations of motion of ``system`` step by step, by each ``method``.
 
@@ -155,12 +181,30 @@ def derive(
     ``natural-frequencies``, ``hamilton``; ``symbols``: parameters as symbols
     (:math:`m_1, R, k, \dots`) instead of exact numbers; ``budget``: seconds allowed for each
     open-ended symbolic step (factoring, simplifying residuals), where SymPy can be slow.
-    """
-    names = parse_methods(method)
-    if isinstance(system, str):
-        from rollspring.model import load_system
 
-        system = load_system(system)
+    ``system`` may also be its JSON form (a dict); anything else is a one-line
+    :class:`~rollspring.errors.ModelError` (:func:`rollspring.model.as_system`). A derivation
+    estimated at more than 5 minutes (:func:`~rollspring.analysis.costs.derivation_cost`: many
+    bodies) is refused with its estimate (:class:`~rollspring.errors.CostTooHigh`) unless
+    ``confirm=True`` (``--yes`` on the command line). Every check comes before any work.
+    """
+    from rollspring.analysis.costs import CONFIRM, check_cost, derivation_cost
+    from rollspring.model import as_system
+
+    system = as_system(system)
+    names = parse_methods(method)
+    _check_flag("symbols", symbols)
+    _check_flag("confirm", confirm)
+    if budget is not None and (
+        isinstance(budget, bool)
+        or not isinstance(budget, int | float)
+        or not math.isfinite(budget)
+        or budget <= 0
+    ):
+        raise DerivationError(
+            f"budget: must be a positive number of seconds or None, got {budget!r}"
+        )
+    check_cost(derivation_cost(system), confirmed=bool(confirm), flag=CONFIRM)
     sym = symbolic_system(system, symbols=symbols)
     setup = setup_section(sym)
     frequencies = normal_frequencies(sym, budget=budget)

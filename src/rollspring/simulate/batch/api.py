@@ -12,7 +12,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rollspring.errors import ModelError
-from rollspring.model import System
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import arguments
 from rollspring.simulate.batch import cache
@@ -226,7 +225,7 @@ def kernel_fields(
 
 
 def simulate_batch(
-    system: System,
+    system: arguments.SystemLike,
     parameters: Mapping[str, ArrayLike],
     duration: float,
     *,
@@ -249,7 +248,9 @@ def simulate_batch(
     default, the initial length, in every run. The topology (bodies, shapes, springs, anchors,
     attachments, forces) is the system's. Unknown paths, wrong lengths and invalid values raise
     :class:`~rollspring.errors.ModelError` naming the key; damped springs are refused (the
-    batch integrators are symplectic: use :func:`rollspring.simulate`).
+    batch integrators are symplectic: use :func:`rollspring.simulate`). ``system`` is a
+    :class:`~rollspring.model.System`, its JSON form (a dict) or a file path or preset name
+    (:func:`rollspring.model.as_system`).
 
     Each run starts at the system's placement (``phi = 0``) with its velocities and follows the
     rolling equations (M7) with an integrator of
@@ -293,15 +294,18 @@ def simulate_batch(
                                          "bodies.hoop.mu_static": 0.04}, 10.0)
         result.period_measured, result.first_slip_time, result.status_names
     """
+    from rollspring.model import as_system
+
     clock = time.perf_counter()
+    system = as_system(system)
     duration = arguments.check_duration(duration)
     rtol = arguments.check_rtol(rtol)
     arguments.check_choice("integrator", integrator, INTEGRATORS, "integrator")
     step = arguments.check_step(step, duration)
     n_output = arguments.check_count("n_output", n_output, 2)
     metric_every = arguments.check_count("metric_every", metric_every, 1, optional=True)
-    if not isinstance(system, System):
-        raise ModelError(f"system: must be a rollspring System, got {type(system).__name__}")
+    arguments.check_flag("keep_trajectories", keep_trajectories)
+    arguments.check_flag("stop_on_slip", stop_on_slip)
     damped = [k for k, s in enumerate(system.springs) if s.damping > 0]
     if damped:
         raise ModelError(

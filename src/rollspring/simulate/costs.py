@@ -1,0 +1,154 @@
+"""What a simulation will cost, known before it starts: steps × bodies, seconds, memory.
+
+:func:`simulation_cost`: the step comes from the highest linear frequency at the initial
+placement and ``rtol``, exactly as :func:`rollspring.simulate.choose_scheme` chooses it (the
+compiled symplectic schemes), or is the ``step`` asked for; damped springs run DOP853, whose
+adaptive steps are estimated from the same frequency. Seconds follow from steps × (bodies +
+springs) at the measured cost of a body and step (docs/system-files.md), memory from the output
+arrays (and the CSV text when files are written). :func:`rollspring.simulate` refuses a run above
+the bound (:func:`rollspring.analysis.costs.check_cost`) unless called with ``confirm=True``;
+the command line with ``--yes`` (:mod:`rollspring.service.costs`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from rollspring.analysis.costs import Cost
+from rollspring.model import System
+
+__all__ = ["API_SMALLER", "CLI_SMALLER", "simulation_cost"]
+
+#: how to make a simulation smaller, in the command line's words and in Python's
+CLI_SMALLER = "a shorter --duration, fewer --outputs"
+API_SMALLER = "a shorter duration, fewer n_output"
+
+#: seconds per body (or spring) and step of a compiled symplectic step, all its stages
+_SYMPLECTIC_BODY_STEP = 1.5e-6
+#: seconds per DOP853 step (SciPy's Python loop), and per body of it
+_DOP853_STEP, _DOP853_BODY_STEP = 1e-3, 3e-5
+#: DOP853 steps per radian of the fastest mode at rtol 1e-8, and how they grow as rtol falls
+_DOP853_STEPS_PER_RADIAN, _DOP853_ORDER = 1.5, 7.0
+#: the largest step × decay rate DOP853 stays stable at (its stability region on the real axis)
+_DOP853_STABILITY = 3.0
+#: setup (equilibrium, stiffness matrices, eigensolvers) of a simulation of n bodies: this many
+#: seconds × (n/1000)² (the stiffness matrix is O(n²) Python work)
+_SETUP_PER_SQUARED_THOUSAND = 150.0
+#: bytes per output number: the arrays and their copies; with files, the CSV text and the table
+_BYTES_IN_MEMORY, _BYTES_WRITTEN = 16, 40
+
+
+def simulation_cost(
+    system: System,
+    duration: Any,
+    *,
+    rtol: Any = 1e-8,
+    integrator: Any = "auto",
+    outputs: Any = 2001,
+    step: Any = None,
+    written: bool = False,
+    what: str = "this run",
+    smaller: str = CLI_SMALLER,
+    choose: Callable[[float, float, float, str], tuple[str, float]],
+) -> Cost:
+    """The estimated cost of ``simulate(system, duration, rtol=..., integrator=...,
+    n_output=outputs, step=...)``, its files too when ``written``. The arguments are checked
+    first, with the messages of :func:`rollspring.simulate`
+    (:class:`~rollspring.errors.SimulationError` naming the argument); ``rtol`` must also be
+    within :data:`~rollspring.analysis.costs.RTOL_RANGE`. ``smaller`` says how to make the run
+    smaller, for the message (:data:`CLI_SMALLER`, :data:`API_SMALLER`). ``choose`` is
+    :func:`rollspring.simulate.choose_scheme` (given, not imported: the simulation imports this
+    module)."""
+    from rollspring.simulate.arguments import (
+        check_choice,
+        check_count,
+        check_duration,
+        check_rtol_range,
+        check_step,
+    )
+    from rollspring.simulate.integrators import INTEGRATORS as SCHEMES
+
+    duration = check_duration(duration)
+    rtol = check_rtol_range(rtol)
+    check_choice("integrator", integrator, ("auto", *SCHEMES, "dop853"), "integrator")
+    n_output = check_count("n_output", outputs, 2)
+    step = check_step(step, duration)
+    n = len(system.bodies)
+    springs = len(system.springs)
+    omega, rate = _highest_rates(system)
+    damped = any(spring.damping > 0 for spring in system.springs)
+    setup = 0.05 + _SETUP_PER_SQUARED_THOUSAND * (n / 1000.0) ** 2
+    if damped or integrator == "dop853":
+        name = "dop853"
+        radians = max(omega * duration, 2 * math.pi)
+        steps = radians * _DOP853_STEPS_PER_RADIAN * (1e-8 / rtol) ** (1.0 / _DOP853_ORDER)
+        # an explicit scheme is stable only for steps below ~3.3/rate of the fastest damping
+        steps = max(steps, rate * duration / _DOP853_STABILITY)
+        seconds = setup + steps * (_DOP853_STEP + _DOP853_BODY_STEP * n)
+    else:
+        if step is None:
+            name, step = choose(omega, duration, rtol, integrator)
+        else:  # a fixed step: "auto" means Yoshida-4
+            name = "yoshida4" if integrator == "auto" else integrator
+        steps = max(1.0, duration / step)
+        stages = SCHEMES[name].stages / SCHEMES["kahanli8"].stages  # measured on kahanli8
+        seconds = setup + steps * stages * _SYMPLECTIC_BODY_STEP * (n + springs)
+    numbers = n_output * (8 * n + 2 * springs + 6)
+    memory = numbers * (_BYTES_IN_MEMORY + (_BYTES_WRITTEN if written else 0))
+    return Cost(what, n, seconds, float(memory), steps, name, smaller)
+
+
+def _highest_rates(system: System) -> tuple[float, float]:
+    r"""Upper bounds of the highest linear frequency (rad/s) at the initial placement, what sets
+    the step, and of the fastest decay rate of the springs' damping (1/s), what bounds an
+    explicit scheme's step in a damped run. Gershgorin's bound on :math:`M^{-1/2} K M^{-1/2}`,
+    with each spring's share of :math:`K` bounded by its stiffness and tension
+    (:math:`(k + |T|/L)\,\ell_i \ell_j`, plus :math:`|T| r_i` on the diagonal,
+    :math:`\ell = s + r` the most a point of the body moves per unit of its coordinate) and each
+    force's by :math:`|F| r`: within a few per cent of the exact frequency for springs at the
+    centres, in O(springs) where the exact one costs O(n²) Python work (a minute for 1000
+    bodies); the damping's the same way, :math:`c\,\ell_i \ell_j`."""
+    bodies = system.body_map
+    anchors = system.anchor_map
+    index = {body.id: i for i, body in enumerate(system.bodies)}
+    inertia = np.array([body.contact_inertia for body in system.bodies])
+    diagonal = np.zeros(len(system.bodies))
+    rows = np.zeros(len(system.bodies))
+    damping = np.zeros(len(system.bodies))
+    for spring, rest in zip(system.springs, system.rest_lengths, strict=True):
+        ends = []
+        for end, at in zip(spring.ends, spring.attachments, strict=True):
+            if end in bodies:
+                body = bodies[end]
+                r, _ = at.polar(body)
+                lever = (body.radius if body.rolls else 1.0) + r
+                ends.append((index[end], lever, r, body.point_at_rest(at)))
+            else:
+                ends.append((-1, 0.0, 0.0, (anchors[end].x, anchors[end].y)))
+        (_, _, _, (xa, ya)), (_, _, _, (xb, yb)) = ends
+        length = math.hypot(xb - xa, yb - ya)
+        tension = abs(spring.stiffness * (length - rest))
+        share = spring.stiffness + tension / length
+        for i, lever, r, _ in ends:
+            if i >= 0:
+                diagonal[i] += share * lever**2 + tension * r
+                damping[i] += spring.damping * lever**2 / inertia[i]
+        (i, li, _, _), (j, lj, _, _) = ends
+        if i >= 0 and j >= 0:
+            root = math.sqrt(inertia[i] * inertia[j])
+            coupling = share * li * lj / root
+            rows[i] += coupling
+            rows[j] += coupling
+            damping[i] += spring.damping * li * lj / root
+            damping[j] += spring.damping * li * lj / root
+    for force in system.forces:
+        r, _ = force.at.polar(bodies[force.body])
+        diagonal[index[force.body]] += math.hypot(force.fx, force.fy) * r
+    bound = float(np.max(diagonal / inertia + rows))
+    rate = float(np.max(damping))
+    omega = math.sqrt(bound) if math.isfinite(bound) and bound > 0 else 0.0
+    return omega, rate if math.isfinite(rate) else 0.0

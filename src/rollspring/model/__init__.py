@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 from rollspring.model.catalog import DEFAULT_PRESET, preset_names, preset_path
 
 if TYPE_CHECKING:
+    from rollspring.model.chains import chain
     from rollspring.model.files import (
         MAX_FILE_BYTES,
         as_system,
@@ -37,6 +38,7 @@ if TYPE_CHECKING:
 
 #: name -> the module that defines it, imported on first use
 _LAZY = {
+    "chain": "rollspring.model.chains",
     **dict.fromkeys(
         (
             "MAX_FILE_BYTES",
@@ -96,6 +98,7 @@ __all__ = [
     "Spring",
     "System",
     "as_system",
+    "chain",
     "load_system",
     "preset_names",
     "preset_path",

@@ -142,7 +142,8 @@ def cross_check(
             report.checks.append(
                 Check(
                     name,
-                    "exact equations of motion vs -dV/dphi",
+                    "exact equations of motion vs -dV/dphi (residual: each body's right side "
+                    "minus -dV/dphi_i)",
                     simplified,
                     zero if lhs_ok else False,
                 )
@@ -150,7 +151,16 @@ def cross_check(
         if result.equations is not None:
             A, c = equations_matrix(result.equations, sym)
             simplified, zero = _zero((A - reference_A).row_join(c - reference_c), budget)
-            report.checks.append(Check(name, "linearised equations vs -M^-1 K", simplified, zero))
+            report.checks.append(
+                Check(
+                    name,
+                    "linearised equations vs -M^-1 K (residual: the "
+                    "coefficients of q in q'' = A q + b minus -M^-1 K, then b minus the "
+                    "reference's constant terms)",
+                    simplified,
+                    zero,
+                )
+            )
         if result.omega2 or frequencies.omega2:
             report.checks.append(_compare_omega2(name, result.omega2, frequencies, budget))
         mechanics = result.extras.get("mechanics")
@@ -198,7 +208,8 @@ def _compare_omega2(
         agrees = None
     return Check(
         name,
-        "Omega^2 vs the roots of det(K - Omega^2 M)",
+        "Omega^2 vs the roots of det(K - Omega^2 M) (residual: each squared frequency "
+        "minus the root)",
         sp.Matrix(residuals) if len(residuals) != 1 else residuals[0],
         agrees,
     )

@@ -52,8 +52,8 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
     rolling = section.add(
         eq(a, R * acc), "Rolling without slipping.", "paper a = R phi''", how=GIVEN
     )
-    from_newton = sp.solve(newton.subs(a, R * acc), acc)[0]
-    from_torque = sp.solve(torque, acc)[0]
+    from_newton = _solve_linear(newton.subs(a, R * acc), acc)
+    from_torque = _solve_linear(torque, acc)
     first = section.add(
         eq(acc, from_newton),
         f"The angular acceleration from the first of ({laws.tag}), with a of ({rolling.tag}).",
@@ -66,7 +66,7 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
         "paper App. A",
         how=How("solve", (f"{laws.tag}:2",), args=(acc,)),
     )
-    friction = sp.solve(eq(from_newton, from_torque), f)[0]
+    friction = _solve_linear(eq(from_newton, from_torque), f)
     friction = sp.collect(sp.expand(friction), F)
     law = section.add(
         eq(f, F * (1 - m * R * y / (I + m * R**2))),
@@ -76,7 +76,7 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
         how=How("solve", (first.tag, second.tag), args=(f, acc)),
         latex=sp.latex(eq(sp.Function("f")(y), F * (1 - m * R * y / (I + m * R**2)))),
     )
-    y_star = sp.expand(sp.solve(eq(friction, 0), y)[0])
+    y_star = sp.expand(_solve_linear(eq(friction, 0), y))
     star = sp.Symbol("y^*", positive=True)
     zero = section.add(
         eq(star, y_star),
@@ -114,6 +114,13 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
         "phi_ddot": from_torque,
         "symbols": {"m": m, "R": R, "I": I, "F": F, "y": y},
     }
+
+
+def _solve_linear(equation: sp.Eq, x: sp.Symbol) -> sp.Expr:
+    """The root of an equation linear in x (``sp.solve`` costs most of a second here)."""
+    expr = sp.expand(equation.lhs - equation.rhs)
+    slope = expr.coeff(x)
+    return sp.cancel(-(expr - slope * x) / slope)
 
 
 def _shape_height(shape: str) -> sp.Symbol:

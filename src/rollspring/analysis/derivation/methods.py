@@ -49,6 +49,7 @@ from rollspring.analysis.derivation.steps import (
     eq,
     inline,
     named,
+    pretty_name,
 )
 from rollspring.analysis.derivation.symbolic import SymbolicSystem, _derivatives_at_reference
 
@@ -180,7 +181,7 @@ def _names_momentum(sym: SymbolicSystem, v0: sp.Matrix | None) -> str:
         return (
             f"here the weights v0_i are equal{condition} and the bodies roll on one floor, so "
             "P̂ is the total angular momentum about any fixed point O of the floor, L_O = "
-            "sum J_i phi_i' (clockwise; the paper's L_1 + L_2)"
+            f"sum J_i phi_i' (clockwise; {_paper_sum(sym.n)})"
         )
     if equal and not any(b.rolls for b in bodies):
         return (
@@ -197,6 +198,18 @@ def _names_momentum(sym: SymbolicSystem, v0: sp.Matrix | None) -> str:
         "P̂ is not the total angular momentum L_O = sum J_i phi_i' about a point of the floor "
         f"({why}): it is the momentum of the free rolling motion along v0"
     )
+
+
+def _mode_omega2(n: int) -> sp.Symbol:
+    """The squared frequency of normal mode n, printed Ω₍ₙ₎² (the paper's Ω_i are the
+    subsystems' frequencies)."""
+    return named(f"Omega_({n})^2", rf"\Omega_{{({n})}}^2", pretty_name(f"Omega_({n})^2"))
+
+
+def _paper_sum(n: int) -> str:
+    """The paper's L_1 + L_2 for two bodies; L_1 + L_2 + L_3 (and so on) otherwise."""
+    terms = " + ".join(f"L_{i + 1}" for i in range(n)) if n <= 4 else f"L_1 + ... + L_{n}"
+    return "the paper's L_1 + L_2" if n == 2 else f"{terms}, the paper's L_1 + L_2 for {n} bodies"
 
 
 def _whole_system(
@@ -236,10 +249,14 @@ def _whole_system(
     if single_zero:
         assert v0 is not None
         weighted = sp.Add(*[masses[i] * v0[i] * accels[i] for i in range(n)])
+        shown = _content_free(weighted, accels)
+        factor = sp.factor(sp.cancel(weighted / shown))
+        divided = _shown_scaled("the sum", factor)
         added = section.add(
-            eq(_content_free(weighted, accels), 0),
+            eq(shown, 0),
             f"Adding the equations ({eqs_tag}) multiplied by v0 = {_tuple_text(v0)}, the zero "
-            "mode (K v0 = 0: moving along it stretches no spring): the spring terms cancel.",
+            "mode (K v0 = 0: moving along it stretches no spring): the spring terms cancel"
+            f"{divided}.",
             refs[0],
             how=How("add", (eqs_tag,), args=tuple(v0)),
         )
@@ -247,8 +264,9 @@ def _whole_system(
         out["conserved"] = momentum
         integrated = section.add(
             eq(_content_free(momentum, velocities), 0),
-            f"Integrating ({added.tag}) over time: the momentum P̂ = v0^T M q' of the left "
-            "side is conserved; the constant is its value at the start, zero for a start from "
+            f"Integrating ({added.tag}) over time: the momentum P̂ = v0^T M q' "
+            + ("(the left side)" if factor == 1 else f"= {inline(factor)} times the left side")
+            + " is conserved; the constant is its value at the start, zero for a start from "
             f"rest. {momentum_words[:1].upper() + momentum_words[1:]}.",
             refs[1],
             how=How("integrate in time", (added.tag,)),
@@ -320,9 +338,8 @@ def _whole_system(
             out["system_equation"] = eq(accels[0] + omega2 * coords[0], 0)
             standard = section.add(
                 out["system_equation"],
-                f"Dividing ({substituted.tag}) by {inline(masses[0])} and bringing every term "
-                "to the left: the equation of motion of the whole system, a simple harmonic "
-                "oscillation.",
+                _to_the_left(substituted.tag, masses[0])
+                + ": the equation of motion of the whole system, a simple harmonic oscillation.",
                 refs[3],
                 how=How("rearrange", (substituted.tag,)),
             )
@@ -344,8 +361,9 @@ def _whole_system(
         out["omega2"] = [omega2] if frequencies.n_zero == 0 else []
         standard = section.add(
             out["system_equation"],
-            f"One body: dividing ({eqs_tag}) by {inline(masses[0])} and bringing every term to "
-            "the left gives the equation of motion.",
+            "One body: "
+            + _to_the_left(eqs_tag, masses[0], lower=True)
+            + " gives the equation of motion.",
             "",
             how=How("rearrange", (eqs_tag,)),
         )
@@ -413,18 +431,22 @@ def _whole_system(
             how=How("characteristic equation", (matrix.tag,), args=(mass, K)),
         )
     closed = [w for w in frequencies.omega2 if w is not None]
-    roots = [eq(sp.Symbol(f"Omega_{0}^2"), 0)] * (frequencies.n_zero > 0) + [
+    roots = [eq(_mode_omega2(0), 0)] * (frequencies.n_zero > 0) + [
         eq(
-            sp.Symbol(f"Omega_{j + 1}^2"),
+            _mode_omega2(j + 1),
             w if w is not None else sp.Float(frequencies.numeric[j], 12),
         )
         for j, w in enumerate(frequencies.omega2)
     ]
-    words = f"The roots of ({char.tag}), the squared frequencies"
+    words = (
+        f"The roots of ({char.tag}), the squared frequencies of the normal modes, numbered in "
+        "parentheses (Omega_(n); Omega_i without them is body i's subsystem frequency)"
+    )
     if frequencies.n_zero:
         words += (
-            f"; Omega_0^2 = 0 ({frequencies.n_zero} zero mode(s)) is a free, uniform rolling "
-            "with no restoring force"
+            "; Omega_(0)^2 = 0 ("
+            + ("a zero mode" if frequencies.n_zero == 1 else f"{frequencies.n_zero} zero modes")
+            + ") is a free, uniform rolling with no restoring force"
         )
     if len(closed) != len(frequencies.omega2):
         words += " (closed forms where SymPy finds them, else the numbers)"
@@ -461,6 +483,29 @@ def _whole_system_in_angles(
         names=_coordinates_word(sym),
         labels=labels,
     )
+
+
+def _shown_scaled(what: str, factor: sp.Expr) -> str:
+    """'; the sum is shown multiplied by 200' when the displayed equation is ``what``/factor
+    (an equation = 0 freed of its constant factor), '' when the factor is 1."""
+    if factor == 1:
+        return ""
+    if factor.is_Rational and factor.p == 1:
+        return f"; {what} is shown multiplied by {inline(1 / factor)}"
+    return f"; {what} is shown divided by its common factor {inline(factor)}"
+
+
+def _to_the_left(tag: str, factor: sp.Expr, *, lower: bool = False) -> str:
+    """'Dividing (N10) by 2·R²·m₁ and bringing every term to the left'; 'Multiplying (N10)
+    by 50 ...' for a number 1/50; 'Bringing every term of (N10) to the left' for 1."""
+    factor = sp.sympify(factor)
+    if factor == 1:
+        words = f"Bringing every term of ({tag}) to the left"
+    elif factor.is_Rational and factor.p == 1:
+        words = f"Multiplying ({tag}) by {inline(1 / factor)} and bringing every term to the left"
+    else:
+        words = f"Dividing ({tag}) by {inline(factor)} and bringing every term to the left"
+    return words[:1].lower() + words[1:] if lower else words
 
 
 def _content_free(expr: sp.Expr, variables: list[sp.Symbol]) -> sp.Expr:
@@ -752,11 +797,13 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     w1, w2 = sym.qd
     a1 = sym.qdd[0]
     momentum = sp.Add(*[J[i] * v0[i] * sym.qd[i] for i in range(2)])
+    shown = _content_free(momentum, sym.qd)
+    scaled = _shown_scaled("P̂", sp.factor(sp.cancel(momentum / shown)))
     conserved = section.add(
-        eq(_content_free(momentum, sym.qd), 0),
+        eq(shown, 0),
         f"The momentum P̂ = v0^T M phi' with the zero mode v0 = {_tuple_text(v0)} (K v0 = 0) "
         "is conserved: its rate is v0^T Q = -v0^T K phi = 0, the torques about the contact "
-        f"points cancel in it. It is zero for a start from rest; {angular}.",
+        f"points cancel in it. It is zero for a start from rest{scaled}; {angular}.",
         "paper (nu), (rel1); (M14)",
         how=GIVEN,
     )
@@ -873,8 +920,9 @@ def _paper_route(
     ]
     fast = section.add(
         [eq(v_syms[i], _root_display(speeds[i], amplitude)) for i in range(2)],
-        f"The largest centre speeds v_i = R_i Phi_i'{_ref(tags, 'rates')} (a slider: its "
-        f"largest speed), with Phi2' = "
+        f"The largest centre speeds v_i = R_i Phi_i'{_ref(tags, 'rates')}"
+        + ("" if all(b.rolls for b in sym.bodies) else " (a slider: its largest speed)")
+        + ", with Phi2' = "
         f"{inline(ratio_abs)} Phi1' and Phi1' of ({top.tag}).",
         "paper (om), (pi)",
         how=How("substitute", (top.tag,), args=(rates[0],), law=speed_law),
@@ -1053,9 +1101,12 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         section.add(
             [eq(sp.Symbol(f"k_{sym.bodies[i].label}", positive=True), split[i]) for i in range(2)],
             "The stiffnesses of the spring's two parts, on either side of the stationary point "
-            "(the paper's k_1, k_2): part i carries the spring force F with the share Omega_i^2 "
-            "/ Omega^2 of the deformation, so k_i = k Omega^2 / Omega_i^2 (then 1/k = 1/k_1 + "
-            "1/k_2).",
+            "(the paper's k_1, k_2). Both parts carry the spring force F; with the stationary "
+            "point fixed (the relation of the angles above), part i takes the share Omega_i^2 / "
+            "Omega^2 of the deformation, where Omega_i^2 = K_ii/J_i is body i's frequency with "
+            "the other body clamped (the subsystem frequency of the next method) and Omega^2 = "
+            "Omega_1^2 + Omega_2^2. So k_i = F / (share_i x deformation) = k Omega^2 / Omega_i^2, "
+            "and 1/k = 1/k_1 + 1/k_2 because the shares add up to 1.",
             "paper (k1), (k2), (part)",
             how=DEFINE,
         )
@@ -1127,13 +1178,15 @@ def natural_frequencies(sym: SymbolicSystem, budget: float | None) -> MethodResu
             reason = (
                 f"{sym.n} bodies: the subsystem frequencies do not add up to a normal "
                 "frequency (the sum rule needs two bodies and a rank-1 K); only the trace "
-                "identity sum(omega_n^2) = sum(K_ii/J_i) holds"
+                "identity holds: the sum of the normal modes' Omega_(n)^2 is the sum of the "
+                "subsystem frequencies Omega_i^2 = K_ii/J_i"
             )
         elif sym.n == 2 and n_zero != 1:
             reason = (
                 "no zero mode (a wall or a pre-tensioned spring): K has rank 2 and "
-                "Omega^2 is not Omega_1^2 + Omega_2^2; only the trace identity "
-                "omega_1^2 + omega_2^2 = K_11/J_1 + K_22/J_2 holds"
+                "no normal mode's Omega^2 is Omega_1^2 + Omega_2^2 (Omega_i^2 = K_ii/J_i, body "
+                "i's frequency with the other clamped); only the trace identity holds: "
+                "Omega_(1)^2 + Omega_(2)^2 = Omega_1^2 + Omega_2^2"
             )
     if reason:
         result.reason = reason
@@ -1282,9 +1335,11 @@ def natural_frequencies(sym: SymbolicSystem, budget: float | None) -> MethodResu
         values = [-values[0] if sign < 0 else values[0], values[1]]
         section.add(
             [eq(coefficients[i], values[i]) for i in range(2)],
-            "Coefficients of the Hamiltonian potential (k/2)(c1 q1 + c2 q2)^2 (Sec. 4.5), "
-            "defined by |c_i| = Omega_i / sqrt(k/m_i); in a common orientation of the angles "
-            "they have opposite signs here.",
+            "Coefficients of the Hamiltonian potential (k/2)(c1 q1 + c2 q2)^2 in the canonical "
+            "coordinates q_i = sqrt(J_i/m_i) phi_i of Hamilton's method (paper Sec. 4.5, App. "
+            "C), defined by |c_i| = Omega_i / sqrt(k/m_i) with Omega_i of "
+            f"({natural.tag}); in a common orientation of the angles they have opposite signs "
+            "here.",
             "paper (k0), App. C (sign-corrected)",
             how=DEFINE,
         )
@@ -1396,8 +1451,8 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     )
     in_q = section.add(
         [eq(m[i] * qdds[i], _short(-dV[i])) for i in range(n)],
-        f"Substituting ({momentum_rates.tag}) into the second half of ({canonical.tag}): "
-        "Newton's law in the canonical coordinates.",
+        f"Substituting ({momentum_rates.tag}) into the second half of ({canonical.tag}) "
+        "(and changing the sign of both sides): Newton's law in the canonical coordinates.",
         "",
         how=How(
             "substitute",
@@ -1474,8 +1529,9 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     ]
     newton_q = section.add(
         linear_eqs,
-        f"With p_i' = m_i q_i'' ({momentum_rates.tag}) in ({derivative.tag}).",
-        "paper -p1' = k(q1/2 + 2 m1 q1/(3 m2))",
+        f"With p_i' = m_i q_i'' ({momentum_rates.tag}) in ({derivative.tag}) (and changing the "
+        "sign of both sides).",
+        "paper (h) with p1' = m1 q1''",
         how=How("substitute", (derivative.tag, momentum_rates.tag), args=tuple(pdots)),
     )
     equations = []
@@ -1504,8 +1560,9 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         frequencies=freq,
         in_angles=False,
         momentum_words=(
-            "in the original coordinates it is sum J_i v0_i phi_i' with v0 = "
-            f"{_tuple_text(v0)}: " + _names_momentum(sym, v0)
+            "in the original coordinates it is proportional to sum J_i v0_i phi_i' with v0 = "
+            f"{_tuple_text(v0)} (q_i = sqrt(J_i/m_i) phi_i): "
+            + _names_momentum(sym, v0).replace("P̂ is", "that sum is")
             if v0 is not None
             else ""
         ),

@@ -99,7 +99,7 @@ def setup_section(sym: SymbolicSystem) -> Section:
     rows = []
     for b in sym.bodies:
         kind = f"{b.shape} (gamma = {b.gamma})" if b.rolls else "slider"
-        rows.append(f"{b.label} = {b.id}: {kind}")
+        rows.append(f"{b.label} = {kind}" if b.id == b.shape else f"{b.label} = {b.id}: {kind}")
     section.add(
         sp.Matrix([[b.q, b.m, b.R if b.rolls else sp.Integer(0), b.gamma] for b in sym.bodies]),
         "The bodies (data): " + "; ".join(rows) + ". Columns: coordinate, mass, radius, "

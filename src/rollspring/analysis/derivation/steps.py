@@ -14,6 +14,7 @@ display-only symbols (:func:`named`) with their own plain-text and LaTeX forms.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -170,7 +171,73 @@ def pretty_name(name: str) -> str:
     return head + script("".join(subs), _SUBSCRIPTS) + script("".join(sups), _SUPERSCRIPTS)
 
 
-class _TextbookPretty(PrettyPrinter):
+def _rank(term: sp.Expr) -> int:
+    """How a textbook orders the terms of a sum: second derivatives first, then rates and
+    momenta (the kinetic part), then the rest."""
+    names = [split_super_sub(s.name)[0] for s in term.free_symbols if isinstance(s, sp.Symbol)]
+    if any(n.endswith("ddot") for n in names):
+        return 2
+    if any(n.endswith("dot") or n == "p" for n in names):
+        return 1
+    return 0
+
+
+def _index(term: sp.Expr) -> float:
+    """The lowest body number among the subscripts of a term's symbols (inf if none)."""
+    found = []
+    for s in term.free_symbols:
+        if isinstance(s, sp.Symbol):
+            subs = split_super_sub(s.name)[2]
+            digits = re.match(r"\d+", subs[0]) if subs else None
+            if digits:
+                found.append(int(digits.group(0)))
+    return min(found) if found else float("inf")
+
+
+def textbook_order(terms: list[sp.Expr]) -> list[sp.Expr]:
+    """The terms of a sum in a textbook's order: :func:`_rank` first (``φ̈ + Ω²φ``, the kinetic
+    part before the potential), then by body number (``p₁`` before ``p₂``), else SymPy's
+    order; a difference of two terms with its positive term first (``φ₂ - φ₁``, ``1 - x``)."""
+    ordered = sorted(terms, key=lambda t: (-_rank(t), _index(t)))
+    if (
+        len(ordered) == 2
+        and _rank(ordered[0]) == _rank(ordered[1])
+        and ordered[0].could_extract_minus_sign()
+        and not ordered[1].could_extract_minus_sign()
+    ):
+        ordered.reverse()
+    return ordered
+
+
+def _merged_power(expr: sp.Expr) -> sp.Symbol | None:
+    """``(Omega^2)**3`` as the symbol ``Omega^6`` (a squared name raised to a power prints as
+    one power, Ω⁶, not Ω²³); None for any other expression."""
+    base, exponent = expr.as_base_exp()
+    if not (isinstance(base, sp.Symbol) and not isinstance(base, Named) and exponent.is_Integer):
+        return None
+    head, sups, subs = split_super_sub(base.name)
+    if len(sups) != 1 or not sups[0].isdigit() or int(exponent) < 2:
+        return None
+    sub = f"_{''.join(subs)}" if subs else ""
+    return sp.Symbol(f"{head}{sub}^{int(sups[0]) * int(exponent)}")
+
+
+class _TextbookOrder:
+    """Printer mixin: the terms of a sum in :func:`textbook_order`; a power of a squared
+    name as one power (:func:`_merged_power`)."""
+
+    def _print_Pow(self, expr: sp.Pow, *args: Any, **kwargs: Any) -> Any:
+        merged = _merged_power(expr)
+        if merged is not None:
+            return self._print(merged)  # type: ignore[attr-defined]
+        return super()._print_Pow(expr, *args, **kwargs)  # type: ignore[misc]
+
+    def _as_ordered_terms(self, expr: sp.Expr, order: Any = None) -> list[sp.Expr]:
+        terms: list[sp.Expr] = super()._as_ordered_terms(expr, order=order)  # type: ignore[misc]
+        return textbook_order(list(terms))
+
+
+class _TextbookPretty(_TextbookOrder, PrettyPrinter):
     """SymPy's pretty printer with names printed by :func:`pretty_name`."""
 
     def _print_Symbol(self, e: sp.Symbol, bold_name: bool = False) -> prettyForm:
@@ -182,7 +249,7 @@ class _TextbookPretty(PrettyPrinter):
         return prettyForm(pretty_name(str(e.name)))
 
 
-class _TextbookStr(StrPrinter):
+class _TextbookStr(_TextbookOrder, StrPrinter):
     """One-line plain text with textbook names (for words)."""
 
     def _print_Symbol(self, expr: sp.Symbol) -> str:
@@ -190,12 +257,16 @@ class _TextbookStr(StrPrinter):
         return name.replace("*", _STAR)  # kept apart from the multiplication signs
 
     def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
+        merged = _merged_power(expr)
+        if merged is not None:
+            return self._print_Symbol(merged)
         base, exponent = expr.as_base_exp()
-        if exponent.is_Integer and 1 < int(exponent) < 10:
+        if exponent.is_Integer and int(exponent) > 1:
             text: str = self.parenthesize(base, PRECEDENCE["Pow"])
             return text + "".join(_SUPERSCRIPTS[c] for c in str(exponent))
         if exponent == sp.S.Half:
-            return f"√({self._print(base)})"
+            inner = self._print(base)
+            return f"√{inner}" if base.is_Atom else f"√({inner})"
         result: str = super()._print_Pow(expr, rational)
         return result.replace("**", "^")
 
@@ -210,7 +281,7 @@ def inline(obj: Any) -> str:
     return result.replace(_STAR, "*")
 
 
-class _TextbookLatex(LatexPrinter):
+class _TextbookLatex(_TextbookOrder, LatexPrinter):
     """SymPy's LaTeX printer (names: ``ell`` is ``\\ell``, ``y^*_1`` is ``y^{*}_{1}``)."""
 
 

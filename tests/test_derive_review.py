@@ -1,0 +1,109 @@
+"""Fixes from a review of ``derive`` by a reader who did not write it (issue 13.3): what a
+student stumbled on in the paper's system, a wall chain and three bodies stays fixed."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+import sympy as sp
+
+from rollspring.analysis.derivation import Derivation, derive
+from rollspring.analysis.derivation.steps import Step, inline, pretty_text
+from rollspring.model import load_system
+
+CASES = {
+    "hoop-cylinder": ("hoop-cylinder", False),
+    "hoop-cylinder (symbols)": ("hoop-cylinder", True),
+    "wall-hoop-cylinder": ("wall-hoop-cylinder", False),
+    "three-bodies": ("three-bodies", False),
+}
+
+
+@pytest.fixture(scope="module")
+def derivations() -> dict[str, Derivation]:
+    return {
+        label: derive(load_system(name), symbols=symbols)
+        for label, (name, symbols) in CASES.items()
+    }
+
+
+def steps(derivation: Derivation) -> dict[str, Step]:
+    return {s.tag: s for section in derivation.sections for s in section.steps if s.tag}
+
+
+def test_the_equation_of_motion_reads_as_the_papers(derivations) -> None:
+    """q'' + Omega^2 q = 0 with the second derivative first, Omega^2 = k/(2m1) + 2k/(3m2) in
+    the paper's order (QQQ1), F = k(R phi2 - R phi1) with its positive term first, and the
+    friction of App. A as F(1 - ...)."""
+    text = derivations["hoop-cylinder"].to_text()
+    assert re.search(r"\n    φ̈₁ \+ ", text)
+    assert "F = 10⋅(φ₂ - φ₁)" in text
+    symbolic = steps(derivations["hoop-cylinder (symbols)"])
+    assert inline(symbolic["N12"].equation.rhs) == "k/(2·m₁) + 2·k/(3·m₂)"
+    assert inline(symbolic["N1"].equation[0].rhs) == "R·k·(φ₂ - φ₁)"
+    assert "1 - " in pretty_text(symbolic["A5"].equation)
+    hamiltonian = inline(symbolic["H3"].equation.rhs)
+    assert hamiltonian.startswith("p₁²/(2·m₁) + p₂²/(2·m₂) + ")  # the kinetic part first
+
+
+def test_a_scaled_sum_says_so_and_names_its_factor(derivations) -> None:
+    """The weighted sum of the equations is displayed freed of a constant factor; the words
+    say which, and the momentum is that factor times the left side."""
+    numbers = steps(derivations["hoop-cylinder"])
+    assert "shown multiplied by 200" in numbers["N4"].words
+    assert "P̂ = v0^T M q' = 1/200 times the left side" in numbers["N5"].words
+    assert "shown multiplied by 200" in numbers["E2"].words
+    symbols = steps(derivations["hoop-cylinder (symbols)"])
+    assert "divided by its common factor R²" in symbols["N4"].words
+    assert "proportional to sum J_i v0_i phi_i'" in symbols["H12"].words
+    assert "P̂ is the total" not in symbols["H12"].words
+
+
+def test_no_division_by_one_and_numbers_multiply(derivations) -> None:
+    for derivation in derivations.values():
+        for step in steps(derivation).values():
+            assert not re.search(r"by 1 |by 1/\d", step.words), (step.tag, step.words)
+    numbers = steps(derivations["hoop-cylinder"])
+    assert numbers["N11"].words.startswith("Multiplying (N10) by 50 ")
+    assert numbers["H16"].words.startswith("Bringing every term of (H15) to the left")
+
+
+def test_normal_mode_frequencies_are_not_the_subsystem_frequencies(derivations) -> None:
+    """The paper's Omega_1, Omega_2 are the clamped subsystems' frequencies: the normal modes'
+    roots are Omega_(n), and the subsystem names appear only in their own section."""
+    for label, derivation in derivations.items():
+        for tag, step in steps(derivation).items():
+            for item in step.equations:
+                if isinstance(item, sp.Eq) and isinstance(item.lhs, sp.Symbol):
+                    name = item.lhs.name
+                    if re.fullmatch(r"Omega_\d+\^2", name):
+                        assert tag.startswith("F"), (label, tag, name)
+    text = derivations["wall-hoop-cylinder"].to_text()
+    assert "Ω₍₁₎² = " in text and "Ω₁²" not in text
+    assert "omega" not in text
+
+
+def test_the_sum_of_angular_momenta_counts_the_bodies(derivations) -> None:
+    three = steps(derivations["three-bodies"])
+    assert "L_1 + L_2 + L_3" in three["N5"].words
+    two = steps(derivations["hoop-cylinder"])
+    assert "the paper's L_1 + L_2)" in two["N5"].words
+
+
+def test_words_fit_the_system(derivations) -> None:
+    numbers = steps(derivations["hoop-cylinder"])
+    assert "slider" not in numbers["E13"].words
+    assert "hoop: hoop" not in numbers["S1"].words
+    assert "(paper Sec. 4.5" in numbers["F10"].words and "(F4)" in numbers["F10"].words
+    assert "Omega_i^2 = K_ii/J_i" in numbers["L15"].words  # defined where it is used
+    assert numbers["H10"].ref == "paper (h) with p1' = m1 q1''"
+    assert "zero mode(s)" not in derivations["three-bodies"].to_text()
+
+
+def test_powers_of_a_squared_name_print_as_one_power(derivations) -> None:
+    text = derivations["hoop-cylinder"].to_text()
+    assert "3⋅Ω⁴" in text
+    latex = derivations["hoop-cylinder"].to_latex()
+    assert r"\Omega^{4}" in latex and r"\Omega^{2}^{2}" not in latex
+    assert inline(sp.Symbol("R") ** 10) == "R¹⁰"

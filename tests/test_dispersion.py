@@ -16,6 +16,7 @@ from typer.testing import CliRunner
 
 from rollspring import analyze
 from rollspring.analysis.dispersion import (
+    EQUILIBRIUM_BODIES,
     diatomic_branches,
     dispersion,
     monatomic_branch,
@@ -213,7 +214,15 @@ def test_a_displaced_chain_is_read_at_its_equilibrium_and_a_pretension_changes_n
     for spring in data["springs"]:
         spring["rest_length"] = 0.45
     tense = dispersion(system_from_dict(data), 21)
+    assert not tense.warnings
     np.testing.assert_allclose(tense.omega, tense.closed_form, atol=1e-12)
+    # unequal rest lengths: a short chain is read where its springs relax, a = 0.45 + 0.55 m
+    for s, spring in enumerate(data["springs"]):
+        spring["rest_length"] = 0.45 if s % 2 else 0.55
+    relaxed = dispersion(system_from_dict(data), 21)
+    assert any("equilibrium" in w for w in relaxed.warnings)
+    assert relaxed.cell.a == pytest.approx(1.0, rel=1e-12)
+    np.testing.assert_allclose(relaxed.omega, relaxed.closed_form, atol=1e-10)
 
 
 def test_what_is_not_a_periodic_chain_is_a_one_line_error() -> None:
@@ -225,10 +234,13 @@ def test_what_is_not_a_periodic_chain_is_a_one_line_error() -> None:
     data["springs"][1]["stiffness"] = 99.0  # (spring 3 would leave a period of 4 bodies)
     with pytest.raises(AnalysisError, match="differs from springs"):
         unit_cell(system_from_dict(data))
-    data = system_to_json(chain("hoop,cylinder", 8))
+    # a long chain is read as placed: a displaced or unbalanced placement is refused
+    with pytest.raises(AnalysisError, match=r"not a periodic chain .* give the chain at rest"):
+        dispersion(chain("hoop,cylinder", EQUILIBRIUM_BODIES + 2, pluck=5))
+    data = system_to_json(chain("hoop,cylinder", EQUILIBRIUM_BODIES + 2))
     for s, spring in enumerate(data["springs"]):
         spring["rest_length"] = 0.45 if s % 2 else 0.55
-    with pytest.raises(AnalysisError, match="not an equilibrium of the periodic chain"):
+    with pytest.raises(AnalysisError, match=r"not an equilibrium of the periodic chain .* at rest"):
         dispersion(system_from_dict(data))
     data = system_to_json(chain("hoop", 4))
     data["bodies"] = data["bodies"][::-1]

@@ -48,7 +48,7 @@ import numpy as np
 
 from rollspring.analysis.linear import ZERO_MODE_TOLERANCE, find_equilibrium
 from rollspring.errors import AnalysisError
-from rollspring.model import System, rolled, system_from_dict, system_to_json
+from rollspring.model import LIMITS, System, rolled, system_from_dict, system_to_json
 from rollspring.physics import (
     contact_forces,
     contact_forces_jacobian,
@@ -170,17 +170,23 @@ def _period_failure(system: System, p: int, links: dict[tuple[int, int], tuple[A
             return f"'{second.id}' is on another track than '{first.id}'"
         if not _same(second.x - first.x, a, a):
             return f"'{second.id}' is not {a:g} m after '{first.id}'"
+    size = max(b.radius for b in bodies)
+    checked: set[tuple[int, int]] = set()
     for (i, j), (k, rest, damping, polar, s) in links.items():
         d = j - i
+        if (i % p, d) in checked:
+            continue  # its kind was compared along the whole chain already
+        checked.add((i % p, d))
         for shift in range(i % p, n - d, p):
             other = links.get((shift, shift + d))
             where = f"'{bodies[shift].id}' and '{bodies[shift + d].id}'"
             if other is None:
                 return f"no spring joins {where} as springs[{s}] does a cell earlier or later"
             k2, rest2, damping2, polar2, _ = other
-            size = max(b.radius for b in bodies)
             same_ends = all(
-                _same(r1, r2, size) and _same(math.cos(t1), math.cos(t2), 1.0)
+                _same(r1, r2, size)
+                and _same(math.cos(t1), math.cos(t2), 1.0)
+                and _same(math.sin(t1), math.sin(t2), 1.0)
                 for (r1, t1), (r2, t2) in zip(polar, polar2, strict=True)
             )
             if not (_same(k, k2, 0.0) and _same(rest, rest2, size) and damping == damping2):
@@ -195,6 +201,11 @@ def _cell(system: System, p: int, links: dict[tuple[int, int], tuple[Any, ...]])
     bodies = system.bodies
     a = bodies[p].x - bodies[0].x
     reach = max(-(-(j - i) // p) for i, j in links)  # ceil(d / p)
+    if (2 * reach + 1) * p > LIMITS["bodies"]:
+        raise AnalysisError(
+            f"dispersion: the chain repeats only every {p} bodies: its lattice of "
+            f"{2 * reach + 1} cells would exceed {LIMITS['bodies']} bodies"
+        )
     # one spring of each kind: the first occurrence of (i mod p, d)
     kinds: dict[tuple[int, int], tuple[int, int]] = {}
     for i, j in sorted(links):
@@ -387,15 +398,6 @@ def dispersion(
     p, a, first = cell.p, cell.a, cell.index
     rows = slice(first, first + p)
     zero = np.zeros(arrays.n_bodies)
-    force = generalized_forces(arrays, zero)[rows]
-    scale = float(np.sum(arrays.stiffness) * np.max(arrays.radius) * a)
-    if np.max(np.abs(force)) > 1e-9 * scale:
-        worst = int(np.argmax(np.abs(force)))
-        raise AnalysisError(
-            f"dispersion: the placement is not an equilibrium of the periodic chain (a net "
-            f"torque of {force[worst]:.3g} N m on '{cell.ids[worst]}'): the springs' rest "
-            "lengths must balance in every cell"
-        )
     stiffness = stiffness_matrix(arrays, zero)[rows]
     d_friction, d_normal = contact_forces_jacobian(arrays, zero)
     friction_rest, normal_rest = contact_forces(arrays, zero)
@@ -477,30 +479,53 @@ def dispersion(
     )
 
 
+def _unbalanced(cell: UnitCell) -> str:
+    """Why the lattice's placement is not an equilibrium ('' when it is: the generalised
+    forces on cell 0, (M7), vanish to 1e-9 of the springs' force scale)."""
+    arrays = system_arrays(cell.lattice)
+    force = generalized_forces(arrays, np.zeros(arrays.n_bodies))[cell.index : cell.index + cell.p]
+    scale = float(np.sum(arrays.stiffness) * np.max(arrays.radius) * cell.a)
+    if float(np.max(np.abs(force))) <= 1e-9 * scale:
+        return ""
+    worst = int(np.argmax(np.abs(force)))
+    return (
+        f"dispersion: the placement is not an equilibrium of the periodic chain (a net "
+        f"generalised force of {force[worst]:.3g} on '{cell.ids[worst]}'): the springs' rest "
+        "lengths must balance in every cell"
+    )
+
+
 def _periodic_cell(system: System) -> tuple[UnitCell, list[str]]:
-    """The unit cell of the chain as placed or, when the placement is displaced (an initial
-    condition) and the chain has at most :data:`EQUILIBRIUM_BODIES` bodies, as it rests in the
-    equilibrium nearest the placement (:func:`~rollspring.analysis.linear.find_equilibrium`)."""
+    """The unit cell of the chain as placed, when its placement is an equilibrium of the
+    lattice; otherwise (an initial condition displaces it), for a chain of at most
+    :data:`EQUILIBRIUM_BODIES` bodies, as it rests in the equilibrium nearest the placement
+    (:func:`~rollspring.analysis.linear.find_equilibrium`)."""
     try:
-        return unit_cell(system), []
-    except AnalysisError as placed:
-        if len(system.bodies) > EQUILIBRIUM_BODIES:
-            raise AnalysisError(
-                f"{placed} (the placement is read as it is: give the chain at rest, e.g. "
-                "rollspring chain without an initial condition)"
-            ) from None
-        equilibrium = find_equilibrium(system_arrays(system))
-        if not equilibrium.found:
-            raise placed from None
-        at_rest = rolled(system, equilibrium.q, velocities=np.zeros(len(system.bodies)))
-        try:
-            cell = unit_cell(at_rest)
-        except AnalysisError:
-            raise placed from None
-        return cell, [
-            "read about the chain's equilibrium: the displacements and velocities of its "
-            "initial condition are left out"
-        ]
+        cell = unit_cell(system)
+        problem = _unbalanced(cell)
+    except AnalysisError as exc:
+        cell, problem = None, str(exc)
+    if cell is not None and not problem:
+        return cell, []
+    if len(system.bodies) > EQUILIBRIUM_BODIES:
+        raise AnalysisError(
+            f"{problem} (the placement is read as it is: give the chain at rest, e.g. "
+            "rollspring chain without an initial condition)"
+        )
+    equilibrium = find_equilibrium(system_arrays(system))
+    if not equilibrium.found:
+        raise AnalysisError(problem)
+    at_rest = rolled(system, equilibrium.q, velocities=np.zeros(len(system.bodies)))
+    try:
+        cell = unit_cell(at_rest)
+    except AnalysisError:
+        raise AnalysisError(problem) from None
+    if _unbalanced(cell):
+        raise AnalysisError(problem)
+    return cell, [
+        "read about the chain's equilibrium: the displacements and velocities of its "
+        "initial condition are left out"
+    ]
 
 
 def _closed_form(cell: UnitCell, q: FloatArray, mass: FloatArray, arrays: Any) -> FloatArray | None:

@@ -1,11 +1,14 @@
 """Start-up time of the command line and of ``import rollspring`` (issue 12, point 3).
 
 Each case is a fresh process, run ``RUNS`` times after one untimed warm-up (which fills Numba's
-on-disk kernel cache and the byte-code caches as a user's first run would); the median wall time
-is reported in seconds and as a multiple of a bare ``python -c pass`` timed in the same run, with
-the target and ✔/✘ (on the median wall time), and the median CPU time (user + system) of the
-process, which other work on the machine inflates far less than the wall time. The figures are
-also written to ``build/bench/startup.json``.
+on-disk kernel cache and the byte-code caches as a user's first run would: the processes run
+without ``PYTHONDONTWRITEBYTECODE``, which would make every run compile rollspring's own modules
+from source again, about 0.1 s of CPU, where an installed package has its byte code); the median
+wall time is reported in seconds and as a multiple of a bare ``python -c pass`` timed in the same
+run, with the target and ✔/✘ (on the median wall time), and the median CPU time (user + system)
+of the process, which other work on the machine inflates far less than the wall time. The load
+average is printed at the start and the end. The figures are also written to
+``build/bench/startup.json``.
 
 Cases and targets (seconds):
 
@@ -53,6 +56,15 @@ CASES: list[tuple[str, list[str], float | None]] = [
 ]
 
 
+#: The processes' environment: a fixed width for Rich, and byte-code caches written and read as
+#: on a user's machine (``PYTHONDONTWRITEBYTECODE``, set in some sandboxes and CI images, would
+#: compile rollspring's modules from source in every run).
+ENVIRONMENT = {
+    **{k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"},
+    "COLUMNS": "110",
+}
+
+
 def run_once(argv: list[str]) -> tuple[float, float]:
     """(wall time, CPU time user + system) of one process; raises if it fails. The CPU time
     is what the process itself spent, so it grows far less than the wall time when other work
@@ -64,7 +76,7 @@ def run_once(argv: list[str]) -> tuple[float, float]:
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
         check=False,
-        env={**os.environ, "COLUMNS": "110"},
+        env=ENVIRONMENT,
     )
     elapsed = time.perf_counter() - began
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -107,6 +119,7 @@ def main() -> None:
                 "target_s": target,
             }
         )
+    load_end = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     bare = results[0]["median_s"]
     for row in results:
         row["multiple_of_bare_python"] = row["median_s"] / bare
@@ -138,6 +151,7 @@ def main() -> None:
         if n == 0:
             print("  ".join("-" * w for w in widths))
 
+    print(f"load average {load_end:.2f} at the end")
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(
         json.dumps(
@@ -147,6 +161,7 @@ def main() -> None:
                     "cpus": os.cpu_count(),
                     "python": platform.python_version(),
                     "load_average": load,
+                    "load_average_end": load_end,
                 },
                 "runs": args.runs,
                 "bare_python_s": bare,

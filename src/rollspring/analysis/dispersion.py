@@ -48,7 +48,14 @@ import numpy as np
 
 from rollspring.analysis.linear import ZERO_MODE_TOLERANCE, find_equilibrium
 from rollspring.errors import AnalysisError
-from rollspring.model import LIMITS, System, rolled, system_from_dict, system_to_json
+from rollspring.model import (
+    LIMITS,
+    System,
+    as_system,
+    rolled,
+    system_from_dict,
+    system_to_json,
+)
 from rollspring.physics import (
     contact_forces,
     contact_forces_jacobian,
@@ -383,12 +390,14 @@ def _num(value: float) -> float | None:
 
 
 def dispersion(
-    system: System, points: int = DEFAULT_POINTS, *, wavenumbers: Any = None
+    system: System | dict[str, Any] | str, points: int = DEFAULT_POINTS, *, wavenumbers: Any = None
 ) -> Dispersion:
     """The branches of ``system`` read as a periodic chain (:func:`unit_cell`), at ``points``
     wavenumbers evenly over the Brillouin zone :math:`[-\\pi/a, \\pi/a]` (ends included), about
     the placement, which must be an equilibrium of the lattice (AnalysisError otherwise);
-    ``wavenumbers`` (rad/m, finite) replaces the grid when given."""
+    ``wavenumbers`` (rad/m, finite) replaces the grid when given. ``system``: a System, its
+    JSON form, a file path or a preset name."""
+    system = as_system(system)
     if isinstance(points, bool) or not isinstance(points, int) or not 3 <= points <= MAX_POINTS:
         raise AnalysisError(
             f"points: must be a whole number from 3 to {MAX_POINTS} (got {points!r})"

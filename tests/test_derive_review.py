@@ -107,3 +107,21 @@ def test_powers_of_a_squared_name_print_as_one_power(derivations) -> None:
     latex = derivations["hoop-cylinder"].to_latex()
     assert r"\Omega^{4}" in latex and r"\Omega^{2}^{2}" not in latex
     assert inline(sp.Symbol("R") ** 10) == "R¹⁰"
+
+
+def test_names_in_the_words_are_typeset_in_latex(derivations) -> None:
+    """In the LaTeX document the words' names are math: Omega^2 typeset, a rate keeps its dot
+    (it was transliterated to a bare phi), R² its exponent; equation tags such as (M12) and
+    possessives (body i's) stay text."""
+    from rollspring.analysis.derivation.render import latex_text, latex_words
+
+    assert (
+        latex_text("by φ̇₁ and 2·R²·m₁") == r"by $\dot{\varphi}_{1}$ and 2$\cdot R^{2} \cdot m_{1}$"
+    )
+    words = latex_words("det(K - Omega^2 M), v0^T M q', body i's K_11/J_1 (M12), Omega_(n)")
+    assert r"$\Omega^{2}$" in words and r"$v_{0}^{T}$" in words and r"$q'$" in words
+    assert "body i's" in words and r"$K_{11}$" in words and "(M12)" in words
+    assert r"$\Omega_{(n)}$" in words
+    latex = derivations["hoop-cylinder"].to_latex()
+    assert r"\textasciicircum" not in latex
+    assert r"Dividing (E6) by $\dot{\varphi}_{1}$" in latex

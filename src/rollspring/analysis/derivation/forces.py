@@ -45,7 +45,7 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
         [newton, torque],
         "Newton's law for the centre, and the torque equation about the contact point (its "
         "acceleration points through the centre, so J phi'' = torque holds there, with J = I + "
-        "mR^2 by Steiner's theorem); f is the static friction, counted against the pull F.",
+        "m R^2 by Steiner's theorem); f is the static friction, counted against the pull F.",
         "paper (a1), (a2)",
         how=GIVEN,
     )

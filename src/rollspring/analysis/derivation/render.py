@@ -14,7 +14,16 @@ import sympy as sp
 
 from rollspring.analysis.derivation.steps import Section, Step, inline, pretty_text
 
-__all__ = ["FORMATS", "LATEX_PREAMBLE", "latex_document", "latex_text", "markdown", "text"]
+__all__ = [
+    "FORMATS",
+    "LATEX_PREAMBLE",
+    "latex_document",
+    "latex_ref",
+    "latex_text",
+    "latex_words",
+    "markdown",
+    "text",
+]
 
 #: Output formats.
 FORMATS = ("text", "markdown", "latex")
@@ -99,11 +108,11 @@ def latex_document(title: str, subtitle: str, sections: Sequence[Section]) -> st
     for section in sections:
         body.append(rf"\subsection*{{{latex_text(section.title)}}}")
         if section.note:
-            body.append(latex_text(section.note))
+            body.append(latex_words(section.note))
         for step in section.steps:
-            ref = rf" \hfill{{\small ({latex_text(step.ref)})}}" if step.ref else ""
+            ref = rf" \hfill{{\small ({latex_ref(step.ref)})}}" if step.ref else ""
             body.append("")
-            body.append(latex_text(step.words) + ref)
+            body.append(latex_words(step.words) + ref)
             body.append(r"\begin{equation*}")
             body.append(_ascii(step.latex))
             body.append(r"\end{equation*}")
@@ -132,6 +141,7 @@ _MATH_CHARACTERS = {
     "P\u0302": r"$\hat P$",
     "X\u0302": r"$\hat X$",
     "±": r"$\pm$",
+    "·": r"$\cdot$",
     "√": r"$\surd$",
     "ℓ": r"$\ell$",
     "ℒ": r"$\mathcal{L}$",
@@ -150,9 +160,57 @@ _MATH_CHARACTERS = {
 _MATH_PATTERN = re.compile("|".join(re.escape(k) for k in _MATH_CHARACTERS))
 
 
+_SUB = "₀₁₂₃₄₅₆₇₈₉₍₎"
+_SUP = "⁰¹²³⁴⁵⁶⁷⁸⁹"
+_ACCENTS = {"\u0302": r"\hat", "\u0307": r"\dot", "\u0308": r"\ddot"}
+_GREEK_LETTERS = {k: v.strip("$") for k, v in _MATH_CHARACTERS.items() if len(k) == 1}
+#: A name as :func:`~.steps.inline` prints it in words: a letter with an accent (φ̇, P̂),
+#: subscript digits (m₁, Ω₍₁₎) or superscript digits (R²).
+_UNICODE_NAME = re.compile(
+    "(?P<base>[A-Za-z" + "".join(_GREEK_LETTERS) + "])"
+    "(?P<accent>[" + "".join(_ACCENTS) + "]?)"
+    f"(?P<sub>[{_SUB}]*)(?P<sup>[{_SUP}]*)"
+)
+
+
+def _unicode_name(match: re.Match[str]) -> str | None:
+    """A name of :data:`_UNICODE_NAME` as inline LaTeX math (None: plain text)."""
+    base, accent, sub, sup = match.group("base", "accent", "sub", "sup")
+    if base not in _GREEK_LETTERS and not (accent or sub or sup):
+        return None
+    math = _GREEK_LETTERS.get(base, base)
+    if accent:
+        math = f"{_ACCENTS[accent]}{{{math}}}"
+    if sub:
+        math += "_{" + "".join("0123456789()"[_SUB.index(c)] for c in sub) + "}"
+    if sup:
+        math += "^{" + "".join(str(_SUP.index(c)) for c in sup) + "}"
+    return f"${math}$"
+
+
 def latex_text(words: str) -> str:
-    """Words as LaTeX text: special characters escaped, Greek letters and the like as math,
-    other non-ASCII characters transliterated (subscript digits become digits)."""
+    """Words as LaTeX text: special characters escaped, names as :func:`~.steps.inline`
+    prints them (φ̇₁, m₁, R², P̂), Greek letters and the like as math, other non-ASCII
+    characters transliterated."""
+    out = []
+    position = 0
+    for match in _UNICODE_NAME.finditer(words):
+        math = _unicode_name(match)
+        if math is None:
+            continue
+        out.append(_symbols_text(words[position : match.start()]))
+        out.append(math)
+        position = match.end()
+    out.append(_symbols_text(words[position:]))
+    return _joined_math("".join(out))
+
+
+def _joined_math(latex: str) -> str:
+    """Adjacent inline formulas as one (``$R^{2}$$\\cdot$`` -> ``$R^{2} \\cdot$``)."""
+    return re.sub(r"(?<!\\)\$\$", " ", latex)
+
+
+def _symbols_text(words: str) -> str:
     out = []
     position = 0
     for match in _MATH_PATTERN.finditer(words):
@@ -160,6 +218,74 @@ def latex_text(words: str) -> str:
         out.append(_MATH_CHARACTERS[match.group(0)])
         position = match.end()
     out.append(_escape(words[position:]))
+    return "".join(out)
+
+
+_GREEK = {
+    "Omega": r"\Omega",
+    "omega": r"\omega",
+    "Phi": r"\Phi",
+    "phi": r"\varphi",
+    "alpha": r"\alpha",
+    "beta": r"\beta",
+    "gamma": r"\gamma",
+    "lambda": r"\lambda",
+    "eta": r"\eta",
+    "sigma": r"\sigma",
+}
+#: A name written in ASCII in the words: a Greek name or a letter, with digits (lower-case
+#: letters only: "(M12)" is an equation tag), a subscript, primes, a superscript or a star.
+_ASCII_NAME = re.compile(
+    r"(?<![A-Za-z0-9_])(?P<base>" + "|".join(_GREEK) + r"|[A-Za-z])"
+    r"(?P<digits>(?<=[a-z])[0-9]+)?"
+    r"(?P<sub>_(?:\([A-Za-z0-9]+\)|[A-Za-z0-9]+))?"
+    r"(?P<primes>'+)?"
+    r"(?P<sup>\^(?:[0-9]+|T|\*|-1)|\*)?"
+    r"(?![A-Za-z0-9'])"
+    r"|(?<=\))\^(?P<power>[0-9]+|T)"
+)
+
+
+def latex_words(words: str) -> str:
+    """:func:`latex_text` with the names the words write in ASCII (``Omega_i^2``,
+    ``phi_1'``, ``v0^T``, ``K_11``, ``q'``, ``y*``) as inline math: a student reading the
+    document sees Omega_i^2 typeset, not its spelling."""
+    out = []
+    position = 0
+    for match in _ASCII_NAME.finditer(words):
+        base, digits, sub, primes, sup = match.group("base", "digits", "sub", "primes", "sup")
+        if match.group("power"):  # (l - L)^2
+            math = "^{" + match.group("power") + "}"
+        elif base not in _GREEK and not (digits or sub or primes or sup):
+            continue  # a plain letter or word stays text
+        else:
+            index = ",".join(part for part in (digits, sub[1:] if sub else "") if part)
+            math = _GREEK.get(base, base)
+            if index:
+                math += f"_{{{index}}}"
+            math += primes or ""
+            if sup:
+                math += "^{" + sup.lstrip("^") + "}"
+        out.append(latex_text(words[position : match.start()]))
+        out.append(f"${math}$")
+        position = match.end()
+    out.append(latex_text(words[position:]))
+    return _joined_math("".join(out))
+
+
+_LABEL = re.compile(r"\([^()\s]+\)")
+
+
+def latex_ref(ref: str) -> str:
+    """A step's reference: the paper's and the docs' equation labels (``(w2)``, ``(I'1)``,
+    ``(M12)``) as text, the formulas quoted beside them as :func:`latex_words`."""
+    out = []
+    position = 0
+    for match in _LABEL.finditer(ref):
+        out.append(latex_words(ref[position : match.start()]))
+        out.append(latex_text(match.group(0)))
+        position = match.end()
+    out.append(latex_words(ref[position:]))
     return "".join(out)
 
 

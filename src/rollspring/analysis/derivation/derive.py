@@ -65,8 +65,10 @@ class Derivation:
             else "parameters as exact numbers (SI units)"
         )
         extra = "; ".join(self.symbolic.notes)
+        n, springs = self.symbolic.n, len(self.symbolic.springs)
         return (
-            f"{self.symbolic.n} bodies, {len(self.symbolic.springs)} springs; {kind}; "
+            f"{n} {'body' if n == 1 else 'bodies'}, "
+            f"{springs} {'spring' if springs == 1 else 'springs'}; {kind}; "
             f"angles measured from the {self.symbolic.reference}"
             + (f"; {extra}" if extra else "")
             + "."

@@ -202,6 +202,7 @@ def test_cli_prints_the_toml_file_and_writes_toml_or_json(tmp_path) -> None:
         (["--pluck", "2", "--mode", "1"], "error: --mode: give at most one initial condition"),
         (["--walls", "up"], "error: --walls: must be one of none, left, both"),
         (["-o", "chain.txt"], "error: --out: chain.txt: a system file ends in .toml or .json"),
+        (["-o", "chain.json", "--json"], "error: --json: prints the file on stdout"),
     ],
 )
 def test_cli_errors_are_one_line_with_exit_code_2(args: list[str], message: str) -> None:

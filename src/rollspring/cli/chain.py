@@ -107,6 +107,8 @@ def chain(
     from rollspring.service.chains import SYSTEM_FORMATS, chain_file, system_text
     from rollspring.service.chains import chain as make_chain
 
+    if out is not None and as_json:
+        raise ModelError("--json: prints the file on stdout; with --out its extension chooses")
     if out is not None:
         from pathlib import Path
 

@@ -279,7 +279,8 @@ def _positive(label: str, value: Any) -> float:
 
 def _per_element(label: str, value: Any, p: int) -> list[float]:
     """One value for every element of the pattern, or exactly one per element."""
-    values = list(value) if isinstance(value, Sequence) and not isinstance(value, str) else [value]
+    listed = isinstance(value, Sequence | np.ndarray) and not isinstance(value, str)
+    values = list(np.ravel(value)) if listed else [value]
     if len(values) == 1:
         values = values * p
     if len(values) != p:

@@ -126,17 +126,16 @@ _BATCH = frozenset({"BatchResult", "simulate_batch"})
 
 
 def __getattr__(name: str) -> Any:
-    if name in _BATCH:
-        from rollspring.simulate import batch
+    if name in _BATCH or name == "batch":  # ``rollspring.simulate.batch`` as an attribute too
+        import importlib
 
-        value = getattr(batch, name)
-        globals()[name] = value
-        return value
+        batch = importlib.import_module("rollspring.simulate.batch")
+        return batch if name == "batch" else getattr(batch, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
-    return sorted({*globals(), *_BATCH})
+    return sorted({*globals(), *_BATCH, "batch"})
 
 
 class _CallableModule(types.ModuleType):

@@ -391,6 +391,8 @@ _COMMAND_MODULES = (
     "serve",
     "sweep",
     "sweep_plot",
+    "chain",
+    "dispersion",
 )
 
 

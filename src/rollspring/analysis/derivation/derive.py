@@ -66,10 +66,14 @@ class Derivation:
         )
         extra = "; ".join(self.symbolic.notes)
         n, springs = self.symbolic.n, len(self.symbolic.springs)
+        rolls = [b.rolls for b in self.symbolic.bodies]
+        coordinates = (
+            "angles" if all(rolls) else "displacements" if not any(rolls) else "coordinates"
+        )
         return (
             f"{n} {'body' if n == 1 else 'bodies'}, "
             f"{springs} {'spring' if springs == 1 else 'springs'}; {kind}; "
-            f"angles measured from the {self.symbolic.reference}"
+            f"{coordinates} measured from the {self.symbolic.reference}"
             + (f"; {extra}" if extra else "")
             + "."
         )

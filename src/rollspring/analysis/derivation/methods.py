@@ -675,7 +675,8 @@ def newton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         exact_tag = section.add(
             nonlinear,
             f"Substituting the spring forces ({tension.tag}) into ({law_step.tag}): each "
-            "body's equation of motion, exact at any amplitude (while the bodies roll).",
+            "body's equation of motion, exact at any amplitude"
+            + (" (while the bodies roll)." if rolling else "."),
             "paper (w2), (w22); (M7)",
             how=How("substitute", (law_step.tag, tension.tag), args=tuple(forces)),
         ).tag
@@ -731,15 +732,24 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     quad = sym.quadratic_potential
     esym, edot = sp.Symbol("E"), sp.Symbol("Edot")
     conserved_energy = eq(edot, 0)
-    energy_words = (
-        "energy is conserved, dE/dt = 0, because static friction acts at a contact point at "
-        "rest and does no work"
+    rolls = [b.rolls for b in sym.bodies]
+    energy_words = "energy is conserved, dE/dt = 0, because " + (
+        "static friction acts at a contact point at rest and does no work"
+        if all(rolls)
+        else "the floor is frictionless (no force but the springs' does work)"
+        if not any(rolls)
+        else "static friction acts at a contact point at rest and the sliders' floor is "
+        "frictionless: neither does work"
     )
     energy = section.add(
         eq(esym, sym.kinetic + _short(quad)),
-        f"The mechanical energy E = T + V with T of ({tags['kinetic']}) (about the contact "
-        f"lines a rolling body's kinetic energy is purely rotational) and V to second order "
-        f"({tags['quadratic']}).",
+        f"The mechanical energy E = T + V with T of ({tags['kinetic']})"
+        + (
+            " (about the contact lines a rolling body's kinetic energy is purely rotational)"
+            if any(rolls)
+            else ""
+        )
+        + f" and V to second order ({tags['quadratic']}).",
         "paper (mu); (M6)",
         how=How(
             "substitute",
@@ -802,8 +812,9 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     conserved = section.add(
         eq(shown, 0),
         f"The momentum P̂ = v0^T M phi' with the zero mode v0 = {_tuple_text(v0)} (K v0 = 0) "
-        "is conserved: its rate is v0^T Q = -v0^T K phi = 0, the torques about the contact "
-        f"points cancel in it. It is zero for a start from rest{scaled}; {angular}.",
+        "is conserved: its rate is v0^T Q = -v0^T K phi = 0, the "
+        + ("torques about the contact points" if any(rolls) else "spring forces")
+        + f" cancel in it. It is zero for a start from rest{scaled}; {angular}.",
         "paper (nu), (rel1); (M14)",
         how=GIVEN,
     )
@@ -882,6 +893,8 @@ def _paper_route(
     rates = [sp.Symbol("Phidot_" + b.label, positive=True) for b in sym.bodies]
     k = sym.springs[0].k
     ratio_abs = sp.Abs(ratio)
+    turning = all(b.rolls for b in sym.bodies)
+    speeds_word = "angular velocities" if turning else "rates (speeds for a slider)"
     balance = section.add(
         eq(k * amplitude**2 / 2, J[0] * rates[0] ** 2 / 2 + J[1] * rates[1] ** 2 / 2),
         "The paper's route. Energy is conserved between two instants: at the largest "
@@ -892,8 +905,12 @@ def _paper_route(
     )
     reduced = section.add(
         eq(k * amplitude**2 / 2, sp.factor(J[0] + J[1] * ratio**2) * rates[0] ** 2 / 2),
-        f"Substituting Phi2' = {inline(ratio_abs)} Phi1', the relation of ({solved_tag}) for the "
-        f"largest angular velocities (in magnitude), into ({balance.tag}).",
+        (
+            f"Substituting Phi2' = {inline(ratio_abs)} Phi1', the relation of ({solved_tag}) for "
+            if ratio_abs != 1
+            else f"Substituting Phi2' = Phi1', the relation of ({solved_tag}) for "
+        )
+        + f"the largest {speeds_word} (in magnitude), into ({balance.tag}).",
         "paper (nu)",
         how=How(
             "substitute",
@@ -921,9 +938,10 @@ def _paper_route(
     fast = section.add(
         [eq(v_syms[i], _root_display(speeds[i], amplitude)) for i in range(2)],
         f"The largest centre speeds v_i = R_i Phi_i'{_ref(tags, 'rates')}"
-        + ("" if all(b.rolls for b in sym.bodies) else " (a slider: its largest speed)")
+        + ("" if turning else " (a slider: v_i = Phi_i', its largest speed)")
         + ", with Phi2' = "
-        f"{inline(ratio_abs)} Phi1' and Phi1' of ({top.tag}).",
+        + (f"{inline(ratio_abs)} Phi1'" if ratio_abs != 1 else "Phi1'")
+        + f" and Phi1' of ({top.tag}).",
         "paper (om), (pi)",
         how=How("substitute", (top.tag,), args=(rates[0],), law=speed_law),
     )

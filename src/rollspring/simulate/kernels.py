@@ -51,8 +51,10 @@ __all__ = [
     "generalized_forces",
     "kernel_model",
     "observe",
+    "observe_rolling",
     "refine_extremes",
     "rolling_forces",
+    "row_extremes",
     "run_fixed_step",
     "signal_zero",
     "slipping_derivatives",
@@ -171,7 +173,10 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
             pby = springs[s, ABY]
         dx = pbx - pax
         dy = pby - pay
-        dist = math.sqrt(dx * dx + dy * dy)
+        # a level spring (both ends at one height): sqrt(dx^2) is |dx| exactly (IEEE
+        # round-to-nearest, dx^2 neither overflowing nor underflowing), without the square
+        # root's latency on the stepping's chain
+        dist = abs(dx) if dy == 0.0 and 1e-150 < abs(dx) < 1e150 else math.sqrt(dx * dx + dy * dy)
         t = springs[s, STIFF] * (dist - springs[s, REST])
         if damped and springs[s, DAMP] != 0.0:
             vax = 0.0
@@ -211,13 +216,73 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
     r"""Generalised forces :math:`Q_i = s_i F_{ix} + \tau_i` (M7) of the all-rolling state
     ``q`` (no damping), into ``gen``; resultant forces into ``fx``, ``fy``. ``scratch`` is a
     tuple of work arrays (x, zeros, tau, length, tension)."""
-    bodies = model[0]
-    x, zeros, tau, length, tension = scratch
+    # body_loads without damping, spring lengths and tensions, with fewer loads and stores on
+    # the stepping's chain: the same operations but for level springs (both ends at one
+    # height), whose force k (|dx| - L0) sign(dx) takes neither a square root nor a division
+    bodies, springs, ends, forces, force_body = model[0], model[1], model[2], model[3], model[4]
+    tau = scratch[2]
     for i in range(q.shape[0]):
-        x[i] = bodies[i, X0] + bodies[i, SCALE] * q[i]
-    body_loads(model, x, q, zeros, zeros, False, fx, fy, tau, length, tension)
+        fx[i] = 0.0
+        fy[i] = 0.0
+        tau[i] = 0.0
+    for s in range(springs.shape[0]):
+        ia = ends[s, 0]
+        ib = ends[s, 1]
+        oax = 0.0
+        oay = 0.0
+        obx = 0.0
+        oby = 0.0
+        if ia >= 0:
+            pax, pay, oax, oay = _rolling_point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], q)
+        else:
+            pax = springs[s, AAX]
+            pay = springs[s, AAY]
+        if ib >= 0:
+            pbx, pby, obx, oby = _rolling_point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], q)
+        else:
+            pbx = springs[s, ABX]
+            pby = springs[s, ABY]
+        dx = pbx - pax
+        dy = pby - pay
+        if dy == 0.0 and 1e-150 < abs(dx) < 1e150:
+            # a level spring (both ends at one height): T e_x = k (|dx| - L0) sign(dx), without
+            # the square root and the division on the stepping's chain
+            tx = springs[s, STIFF] * (dx - springs[s, REST] if dx > 0.0 else dx + springs[s, REST])
+            ty = 0.0
+        else:
+            dist = math.sqrt(dx * dx + dy * dy)
+            per_length = springs[s, STIFF] * (dist - springs[s, REST]) / dist
+            tx = per_length * dx
+            ty = per_length * dy
+        if ia >= 0:
+            fx[ia] += tx
+            fy[ia] += ty
+            tau[ia] += oax * tx + oay * ty
+        if ib >= 0:
+            fx[ib] -= tx
+            fy[ib] -= ty
+            tau[ib] -= obx * tx + oby * ty
+    for j in range(forces.shape[0]):
+        i = force_body[j]
+        _, _, ox, oy = _rolling_point(bodies, i, forces[j, FR], forces[j, FALPHA], q)
+        fx[i] += forces[j, FX]
+        fy[i] += forces[j, FY]
+        tau[i] += ox * forces[j, FX] + oy * forces[j, FY]
     for i in range(q.shape[0]):
         gen[i] = bodies[i, SCALE] * fx[i] + tau[i]
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _rolling_point(bodies, i, r, alpha, q):
+    """:func:`_point` of an all-rolling state q: centre x = x0 + s q, rotation q."""
+    x = bodies[i, X0] + bodies[i, SCALE] * q[i]
+    if r == 0.0:
+        return x, bodies[i, CY], 0.0, 0.0
+    rolls = bodies[i, ROLLS]
+    theta = alpha + rolls * q[i]
+    s = math.sin(theta)
+    c = math.cos(theta)
+    return x + r * s, bodies[i, CY] + r * c, rolls * r * c, -rolls * r * s
 
 
 @njit(cache=True, error_model="numpy")
@@ -264,8 +329,8 @@ def _stages(model, coeffs, h, q, v, scratch, gen, fx, fy):
             q[i] += hw * v[i]
         rolling_forces(model, q, scratch, gen, fx, fy)
         kick = 0.5 * h * (coeffs[k] + coeffs[k + 1]) if k + 1 < m else 0.5 * hw
-        for i in range(n):
-            v[i] += kick * gen[i] * bodies[i, INV_INERTIA]
+        for i in range(n):  # kick / J off the chain force -> velocity -> position
+            v[i] += gen[i] * (kick * bodies[i, INV_INERTIA])
 
 
 @njit(cache=True, error_model="numpy")
@@ -464,24 +529,43 @@ def refine_extremes(model, coeffs, h, q0, v0, kinds, bodies, best):
     r"""The extremes the kernel found at step ends, refined on the integrator itself: for
     extreme j (``kinds[j]`` 0: max :math:`|f|/N`, 1: min :math:`N`, of body ``bodies[j]``) over
     the two steps from the state (q0[j], v0[j]), three grids of 9 points, each spanning the best
-    point's neighbours on the last (spacing 2h/256 at the end), then the vertex of the parabola
-    through the best point and its neighbours: the value to about 1e-10 relative. ``best`` holds
-    the values found so far as maximised quantities (:math:`|f|/N` or :math:`-N`); returns the
-    refined ones in the same form."""
+    point's neighbours on the last (spacing 2h/256 at the end; the three points a grid shares
+    with the last are not evaluated again), then the vertex of the parabola through the best
+    point and its neighbours: the value to about 1e-10 relative. The state at
+    :math:`\tau \le h` is one step of :math:`\tau` from the start, beyond it one step of
+    :math:`\tau - h` from the kernel's step end. ``best`` holds the values found so far as
+    maximised quantities (:math:`|f|/N` or :math:`-N`); returns the refined ones in the same
+    form."""
     m, n = q0.shape
     out = best.copy()
     scratch, gen, fx, fy = _workspace(model, n)
     q = np.empty(n)
     v = np.empty(n)
+    q_mid = np.empty(n)
+    v_mid = np.empty(n)
     values = np.empty(9)
     times = np.empty(9)
     for j in range(m):
         b = bodies[j]
+        _advance_into(model, coeffs, h, q0[j], v0[j], h, q_mid, v_mid, scratch, gen, fx, fy)
         lo, hi = 0.0, 2.0 * h
+        k = -1
         for _level in range(3):
+            if k >= 0:  # the last grid's best point and neighbours: this grid's 0, 4 and 8
+                values[0], values[4], values[8] = values[k - 1], values[k], values[k + 1]
+                times[0], times[4], times[8] = times[k - 1], times[k], times[k + 1]
             for p in range(9):
+                if k >= 0 and p % 4 == 0:
+                    continue
                 times[p] = lo + (hi - lo) * p / 8.0
-                _advance_into(model, coeffs, h, q0[j], v0[j], times[p], q, v, scratch, gen, fx, fy)
+                if times[p] <= h:
+                    _advance_into(
+                        model, coeffs, h, q0[j], v0[j], times[p], q, v, scratch, gen, fx, fy
+                    )
+                else:
+                    _advance_into(
+                        model, coeffs, h, q_mid, v_mid, times[p] - h, q, v, scratch, gen, fx, fy
+                    )
                 friction, normal = _contact(model, b, gen[b], fx[b], fy[b])
                 if kinds[j] == 0:
                     values[p] = abs(friction) / normal if normal > 0.0 else np.inf
@@ -661,3 +745,217 @@ def observe(
             else:
                 ratio[row, i] = abs(friction[row, i]) / (b[i, MU_S] * normal[row, i])
         kinetic[row] = moving
+
+
+@njit(cache=True, error_model="numpy")
+def observe_rolling(
+    model,
+    x0,
+    q_rows,
+    v_rows,
+    central,
+    energy_ref,
+    states,
+    friction,
+    normal,
+    length,
+    tension,
+    potential,
+    kinetic,
+    ratio,
+    extremes,
+):
+    r""":func:`observe` of all-rolling, undamped rows given as (q, qdot) (rows of ``q_rows``,
+    ``v_rows``) with reference positions ``x0``, in one pass: the general states
+    :math:`[x_0 + s q, \rho q, s\dot q, \rho\dot q]` into ``states`` and everything
+    :func:`observe` gives, the same operations on the same numbers. ``extremes`` (4, n)
+    receives :func:`row_extremes` of the rows (nobody slips). Returns the largest
+    :math:`|U + K - \text{energy\_ref}|` over the rows (NaN if any is)."""
+    rows, n = q_rows.shape
+    b, springs, ends, forces, force_body, g = (
+        model[0],
+        model[1],
+        model[2],
+        model[3],
+        model[4],
+        model[5],
+    )
+    x = np.empty(n)
+    phi = np.empty(n)
+    fx = np.empty(n)
+    fy = np.empty(n)
+    tau = np.empty(n)
+    # each constant force's point of application at the model's reference positions
+    zero_x = b[:, X0].copy()
+    zero_phi = np.zeros(n)
+    p0 = np.empty((forces.shape[0], 2))
+    for j in range(forces.shape[0]):
+        p0x, p0y, _, _ = _point(
+            b, force_body[j], forces[j, FR], forces[j, FALPHA], zero_x, zero_phi
+        )
+        p0[j, 0] = p0x
+        p0[j, 1] = p0y
+    for i in range(n):
+        extremes[0, i] = -np.inf
+        extremes[1, i] = 0.0
+        extremes[2, i] = np.inf
+        extremes[3, i] = 0.0
+    worst = 0.0
+    invalid = False
+    for row in range(rows):
+        moving = 0.0
+        for i in range(n):
+            qi = q_rows[row, i]
+            vi = v_rows[row, i]
+            scale = b[i, SCALE]
+            rolls = b[i, ROLLS]
+            x[i] = x0[i] + scale * qi
+            phi[i] = rolls * qi
+            u = scale * vi
+            w = rolls * vi
+            states[row, i] = x[i]
+            states[row, n + i] = phi[i]
+            states[row, 2 * n + i] = u
+            states[row, 3 * n + i] = w
+            moving += 0.5 * (b[i, MASS] * u * u + central[i] * w * w)
+            fx[i] = 0.0
+            fy[i] = 0.0
+            tau[i] = 0.0
+        energy = 0.0
+        for s in range(springs.shape[0]):  # body_loads without damping, inline
+            ia = ends[s, 0]
+            ib = ends[s, 1]
+            oax = 0.0
+            oay = 0.0
+            obx = 0.0
+            oby = 0.0
+            if ia >= 0:
+                pax, pay, oax, oay = _point(b, ia, springs[s, RA], springs[s, ALPHA_A], x, phi)
+            else:
+                pax = springs[s, AAX]
+                pay = springs[s, AAY]
+            if ib >= 0:
+                pbx, pby, obx, oby = _point(b, ib, springs[s, RB], springs[s, ALPHA_B], x, phi)
+            else:
+                pbx = springs[s, ABX]
+                pby = springs[s, ABY]
+            dx = pbx - pax
+            dy = pby - pay
+            dist = (
+                abs(dx) if dy == 0.0 and 1e-150 < abs(dx) < 1e150 else math.sqrt(dx * dx + dy * dy)
+            )
+            t = springs[s, STIFF] * (dist - springs[s, REST])
+            length[row, s] = dist
+            tension[row, s] = t
+            energy += 0.5 * springs[s, STIFF] * (dist - springs[s, REST]) ** 2
+            per_length = t / dist
+            tx = per_length * dx
+            ty = per_length * dy
+            if ia >= 0:
+                fx[ia] += tx
+                fy[ia] += ty
+                tau[ia] += oax * tx + oay * ty
+            if ib >= 0:
+                fx[ib] -= tx
+                fy[ib] -= ty
+                tau[ib] -= obx * tx + oby * ty
+        for j in range(forces.shape[0]):
+            i = force_body[j]
+            px, py, ox, oy = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)
+            fx[i] += forces[j, FX]
+            fy[i] += forces[j, FY]
+            tau[i] += ox * forces[j, FX] + oy * forces[j, FY]
+        for j in range(forces.shape[0]):
+            i = force_body[j]
+            px, py, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)
+            energy -= forces[j, FX] * (px - p0[j, 0]) + forces[j, FY] * (py - p0[j, 1])
+        potential[row] = energy
+        kinetic[row] = moving
+        for i in range(n):
+            nn = b[i, MASS] * g - fy[i]
+            normal[row, i] = nn
+            if b[i, ROLLS] == 0.0:
+                f = 0.0
+                ratio[row, i] = 0.0
+            else:
+                f = (
+                    b[i, MASS] * b[i, SCALE] * (b[i, SCALE] * fx[i] + tau[i]) / b[i, INERTIA]
+                    - fx[i]
+                )
+                if nn <= 0.0:
+                    ratio[row, i] = np.inf
+                elif math.isinf(b[i, MU_S]):
+                    ratio[row, i] = 0.0
+                else:
+                    ratio[row, i] = abs(f) / (b[i, MU_S] * nn)
+            friction[row, i] = f
+            # row_extremes: the first largest |f|/N (inf where N <= 0), the first smallest N
+            value = abs(f) / nn if nn > 0.0 else np.inf
+            if value != value:
+                if extremes[0, i] == extremes[0, i]:
+                    extremes[0, i] = value
+                    extremes[1, i] = row
+            elif value > extremes[0, i] or row == 0:
+                extremes[0, i] = value
+                extremes[1, i] = row
+            if nn != nn:
+                if extremes[2, i] == extremes[2, i]:
+                    extremes[2, i] = nn
+                    extremes[3, i] = row
+            elif nn < extremes[2, i] or row == 0:
+                extremes[2, i] = nn
+                extremes[3, i] = row
+        deviation = abs(energy + moving - energy_ref)
+        if deviation != deviation:
+            invalid = True
+        elif deviation > worst:
+            worst = deviation
+    return np.nan if invalid else worst
+
+
+@njit(cache=True, error_model="numpy")
+def row_extremes(friction, normal, slipping):
+    r"""Per body over the rows: the largest :math:`|f|/N` (:math:`\infty` where
+    :math:`N \le 0`, :math:`-\infty` on slipping rows) and its row, the smallest N and its
+    row -- the first such row, and the first NaN if any, as NumPy's argmax/argmin. Returns
+    (ratio, ratio_row, normal, normal_row)."""
+    rows, n = normal.shape
+    best_ratio = np.empty(n)
+    ratio_row = np.zeros(n, dtype=np.int64)
+    best_normal = np.empty(n)
+    normal_row = np.zeros(n, dtype=np.int64)
+    for i in range(n):
+        top = -np.inf
+        at = 0
+        for r in range(rows):
+            nn = normal[r, i]
+            if slipping[r, i]:
+                value = -np.inf
+            elif nn > 0.0:
+                value = abs(friction[r, i]) / nn
+            else:
+                value = np.inf
+            if value != value:
+                top = value
+                at = r
+                break
+            if r == 0 or value > top:
+                top = value
+                at = r
+        best_ratio[i] = top
+        ratio_row[i] = at
+        low = normal[0, i]
+        at = 0
+        if low == low:
+            for r in range(1, rows):
+                nn = normal[r, i]
+                if nn != nn:
+                    low = nn
+                    at = r
+                    break
+                if nn < low:
+                    low = nn
+                    at = r
+        best_normal[i] = low
+        normal_row[i] = at
+    return best_ratio, ratio_row, best_normal, normal_row

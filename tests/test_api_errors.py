@@ -413,3 +413,46 @@ def test_analyze_refuses_a_large_system_with_the_clis_estimate(tmp_path, monkeyp
     assert message == in_api_words(cli_error("analyze", write(tmp_path, "c.json", data)))
     with pytest.raises(Reached):
         rollspring.analyze(data, confirm=True)
+
+
+# ------------------------------------------------- the command line's --yes still reaches the work
+
+#: what the command line calls after its own check (with --yes) must pass confirm=True on
+CLI_CONFIRMS = (
+    "service/runs.py, cli/derive.py, cli/report.py, cli/app.py, cli/animate.py and "
+    "service/sweeps/compute.py pass confirm=True after their own check (proposed)"
+)
+
+
+def _reaches_the_work(args: list[str], module: str, name: str, monkeypatch) -> None:
+    monkeypatch.delenv("ROLLSPRING_DEBUG", raising=False)
+    monkeypatch.setattr(importlib.import_module(module), name, _never)
+    result = runner.invoke(app, args)
+    assert "confirm=True" not in result.output, result.output  # not refused by the API
+    assert isinstance(result.exception, Reached) or "internal error: Reached" in result.stderr, (
+        result.output
+    )
+
+
+def test_the_clis_yes_reaches_the_analysis(tmp_path, monkeypatch) -> None:
+    path = write(tmp_path, "c.json", chain(1000))
+    _reaches_the_work(
+        ["analyze", path, "--yes"], "rollspring.analysis.modal", "system_arrays", monkeypatch
+    )
+
+
+@pytest.mark.xfail(raises=AssertionError, strict=True, reason=CLI_CONFIRMS)
+@pytest.mark.parametrize(
+    ("args", "module", "name"),
+    [
+        (["simulate", "hoop-cylinder", "-T", "1e9"], "rollspring.simulate.run", "system_arrays"),
+        (["report", "hoop-cylinder", "-T", "1e9"], "rollspring.service.documents", "analyze"),
+        (["derive", "CHAIN"], "rollspring.analysis.derivation.derive", "symbolic_system"),
+    ],
+    ids=["simulate", "report", "derive"],
+)
+def test_the_clis_yes_reaches_the_work(args, module, name, tmp_path, monkeypatch) -> None:
+    args = [write(tmp_path, "c.json", chain(200)) if a == "CHAIN" else a for a in args]
+    if args[0] == "report":
+        args += ["-o", str(tmp_path / "r.html")]
+    _reaches_the_work([*args, "--yes"], module, name, monkeypatch)

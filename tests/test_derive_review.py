@@ -80,8 +80,9 @@ def test_normal_mode_frequencies_are_not_the_subsystem_frequencies(derivations) 
                     if re.fullmatch(r"Omega_\d+\^2", name):
                         assert tag.startswith("F"), (label, tag, name)
     text = derivations["wall-hoop-cylinder"].to_text()
-    assert "Ω₍₁₎² = " in text and "Ω₁²" not in text
-    assert "omega" not in text
+    equations = "\n".join(line for line in text.splitlines() if line.startswith("    "))
+    assert "Ω₍₁₎² = " in equations and "Ω₁²" not in equations
+    assert "omega" not in text and "ω" not in text
 
 
 def test_the_sum_of_angular_momenta_counts_the_bodies(derivations) -> None:
@@ -99,6 +100,22 @@ def test_words_fit_the_system(derivations) -> None:
     assert "Omega_i^2 = K_ii/J_i" in numbers["L15"].words  # defined where it is used
     assert numbers["H10"].ref == "paper (h) with p1' = m1 q1''"
     assert "zero mode(s)" not in derivations["three-bodies"].to_text()
+
+
+def test_the_words_print_names_as_the_equations_do(derivations) -> None:
+    """In plain text the words write Ω², φ̈, v₀ᵀ, ∂ℒ/∂φ̇ᵢ as the equations print them; the
+    paper's I' keeps its prime (it is not a rate) and equation labels stay as written."""
+    from rollspring.analysis.derivation.render import text_words
+
+    assert text_words("J phi'' = torque, R phi'^2, v0^T M q', Omega_(n)^2, K_11/J_1") == (
+        "J φ̈ = torque, R φ̇², v₀ᵀ M q̇, Ω₍ₙ₎², K₁₁/J₁"
+    )
+    assert text_words("the paper's I'; body i's (l - L)^2; d/dt(dL/dphi_i')") == (
+        "the paper's I'; body i's (l - L)²; d/dt(∂ℒ/∂φ̇ᵢ)"
+    )
+    text = derivations["hoop-cylinder"].to_text()
+    assert "Omega" not in text.split("Cross-check")[0].replace("Omega_f", "")
+    assert "[paper (w2), (w22); (M7)]" in text
 
 
 def test_powers_of_a_squared_name_print_as_one_power(derivations) -> None:

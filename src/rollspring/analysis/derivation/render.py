@@ -23,6 +23,7 @@ __all__ = [
     "latex_words",
     "markdown",
     "text",
+    "text_words",
 ]
 
 #: Output formats.
@@ -38,11 +39,11 @@ def text(title: str, subtitle: str, sections: Sequence[Section]) -> str:
     for section in sections:
         lines += ["", section.title, "-" * len(section.title)]
         if section.note:
-            lines.append(section.note)
+            lines.append(text_words(section.note))
         for step in section.steps:
-            ref = f"   [{step.ref}]" if step.ref else ""
+            ref = f"   [{_text_ref(step.ref)}]" if step.ref else ""
             tag = f"({step.tag}) " if step.tag else "* "
-            lines.append(f"{tag}{step.words}{ref}")
+            lines.append(f"{tag}{text_words(step.words)}{ref}")
             lines.extend("    " + line for line in _pretty(step).splitlines())
     return "\n".join(lines) + "\n"
 
@@ -74,10 +75,11 @@ def markdown(title: str, subtitle: str, sections: Sequence[Section]) -> str:
     for section in sections:
         lines += ["", f"## {_md_escape(section.title)}"]
         if section.note:
-            lines += ["", _md_escape(section.note)]
+            lines += ["", _md_escape(text_words(section.note))]
         for step in section.steps:
-            ref = f" *({_md_escape(step.ref)})*" if step.ref else ""
-            lines += ["", _md_escape(step.words) + ref, "", "$$", _one_line(step.latex), "$$"]
+            ref = f" *({_md_escape(_text_ref(step.ref))})*" if step.ref else ""
+            words = _md_escape(text_words(step.words))
+            lines += ["", words + ref, "", "$$", _one_line(step.latex), "$$"]
     return "\n".join(lines) + "\n"
 
 
@@ -273,7 +275,82 @@ def latex_words(words: str) -> str:
     return _joined_math("".join(out))
 
 
-_LABEL = re.compile(r"\([^()\s]+\)")
+_GREEK_UNICODE = {
+    "Omega": "Ω",
+    "omega": "ω",
+    "Phi": "Φ",
+    "phi": "φ",
+    "alpha": "α",
+    "beta": "β",
+    "gamma": "γ",
+    "lambda": "λ",
+    "eta": "η",
+    "sigma": "σ",
+}
+_TEXT_SUB = dict(zip("0123456789()aehijklmnoprstuvx", "₀₁₂₃₄₅₆₇₈₉₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ", strict=True))
+#: Partial derivatives the words write in ASCII, as the equations print them.
+_DERIVATIVES = {
+    "dL/dphi_i'": "∂ℒ/∂φ̇ᵢ",
+    "dL/dphi_i": "∂ℒ/∂φᵢ",
+    "dV/dphi_i": "∂V/∂φᵢ",
+    "dV/dphi": "∂V/∂φ",
+    "dT/dq_i'": "∂T/∂q̇ᵢ",
+    "dH/dp_i": "∂ℋ/∂pᵢ",
+    "dH/dq_i": "∂ℋ/∂qᵢ",
+}
+_TEXT_SUP = dict(zip("0123456789T*-", "⁰¹²³⁴⁵⁶⁷⁸⁹ᵀ*⁻", strict=True))
+
+
+def text_words(words: str) -> str:
+    """The words of a step in plain text with the names they write in ASCII printed as the
+    equations print them: ``Omega_i^2`` -> ``Ωᵢ²``, ``phi''`` -> ``φ̈``, ``v0^T`` -> ``v₀ᵀ``,
+    ``K_11`` -> ``K₁₁``, ``(l - L)^2`` -> ``(l - L)²``; a prime is a time derivative (a dot)
+    except on I (the paper's I', the inertia about the contact line)."""
+    for ascii_form, printed in _DERIVATIVES.items():
+        words = words.replace(ascii_form, printed)
+    out = []
+    position = 0
+    for match in _ASCII_NAME.finditer(words):
+        base, digits, sub, primes, sup = match.group("base", "digits", "sub", "primes", "sup")
+        if match.group("power"):
+            text = "".join(_TEXT_SUP.get(c, c) for c in match.group("power"))
+            if text == match.group("power"):
+                continue
+            out.append(words[position : match.start()] + text)
+            position = match.end()
+            continue
+        if base not in _GREEK and not (digits or sub or primes or sup):
+            continue
+        index = (digits or "") + (sub[1:] if sub else "")
+        if any(c not in _TEXT_SUB for c in index):
+            continue  # a subscript Unicode cannot lower (L_O): left as written
+        name = _GREEK_UNICODE.get(base, base)
+        if primes and base != "I" and len(primes) <= 2:
+            name += "\u0307" if len(primes) == 1 else "\u0308"
+        elif primes:
+            name += primes
+        name += "".join(_TEXT_SUB[c] for c in index)
+        if sup:
+            name += "".join(_TEXT_SUP.get(c, c) for c in sup.lstrip("^"))
+        out.append(words[position : match.start()] + name)
+        position = match.end()
+    out.append(words[position:])
+    return "".join(out)
+
+
+_LABEL = re.compile(r"\([A-Za-z0-9']+\)")  # an equation label: (w2), (I'1), (M12)
+
+
+def _text_ref(ref: str) -> str:
+    """A reference in plain text: labels as written, the formulas beside them as
+    :func:`text_words`."""
+    out = []
+    position = 0
+    for match in _LABEL.finditer(ref):
+        out.append(text_words(ref[position : match.start()]) + match.group(0))
+        position = match.end()
+    out.append(text_words(ref[position:]))
+    return "".join(out)
 
 
 def latex_ref(ref: str) -> str:

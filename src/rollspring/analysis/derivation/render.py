@@ -238,7 +238,7 @@ _GREEK = {
 #: A name written in ASCII in the words: a Greek name or a letter, with digits (lower-case
 #: letters only: "(M12)" is an equation tag), a subscript, primes, a superscript or a star.
 _ASCII_NAME = re.compile(
-    r"(?<![A-Za-z0-9_])(?P<base>" + "|".join(_GREEK) + r"|[A-Za-z])"
+    r"(?<![A-Za-z_])(?P<base>" + "|".join(_GREEK) + r"|[A-Za-z])"
     r"(?P<digits>(?<=[a-z])[0-9]+)?"
     r"(?P<sub>_(?:\([A-Za-z0-9]+\)|[A-Za-z0-9]+))?"
     r"(?P<primes>'+)?"

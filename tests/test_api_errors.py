@@ -114,33 +114,23 @@ ENTRY_POINTS: dict[str, Callable[[Any], object]] = {
     "build_report": lambda s: rollspring.build_report(s, duration=0.05, derivation=False),
 }
 
-#: entry points whose head is in another engineer's file: the change is proposed (issue 13.4),
-#: and these marks come off when it lands (strict: a pass then fails here, as a reminder)
-PENDING = {
-    "analyze": "rollspring/analysis/modal.py: analyze(system) -> as_system (proposed)",
-    "system_arrays": "rollspring/physics/arrays.py: system_arrays -> as_system (proposed)",
-    "symbolic_system": "analysis/derivation/symbolic.py: symbolic_system -> as_system (proposed)",
-    "system_to_mjcf": "rollspring/outputs/mjcf.py: system_to_mjcf -> as_system (proposed)",
-    "sweep": "rollspring/service/sweeps/engine.py: sweep -> as_system (proposed)",
-}
-PENDING_POINTS: dict[str, Callable[[Any], object]] = {
-    "analyze": lambda s: rollspring.analyze(s),
-    "system_arrays": lambda s: rollspring.system_arrays(s),
-    "symbolic_system": lambda s: rollspring.symbolic_system(s),
-    "system_to_mjcf": lambda s: importlib.import_module("rollspring.outputs.mjcf").system_to_mjcf(
-        s
-    ),
-}
+ENTRY_POINTS.update(
+    {
+        "analyze": lambda s: rollspring.analyze(s),
+        "system_arrays": lambda s: rollspring.system_arrays(s),
+        "symbolic_system": lambda s: rollspring.symbolic_system(s),
+        "system_to_mjcf": lambda s: importlib.import_module(
+            "rollspring.outputs.mjcf"
+        ).system_to_mjcf(s),
+    }
+)
 #: a sweep takes a while even for two runs: only its refusals are compared
 SWEEP = {"sweep": lambda s: rollspring.sweep(s, {"springs.0.stiffness": [100.0, 120.0]}, 0.05)}
 
 
 def _points(*, errors: bool = False) -> list[Any]:
-    points = [pytest.param(call, id=name) for name, call in ENTRY_POINTS.items()]
-    for name, call in {**PENDING_POINTS, **(SWEEP if errors else {})}.items():
-        mark = pytest.mark.xfail(raises=AssertionError, strict=True, reason=PENDING[name])
-        points.append(pytest.param(call, id=name, marks=mark))
-    return points
+    calls = {**ENTRY_POINTS, **(SWEEP if errors else {})}
+    return [pytest.param(call, id=name) for name, call in calls.items()]
 
 
 def _refused(call: Callable[[Any], object], value: object) -> str:
@@ -400,10 +390,9 @@ def test_worksheet_takes_numpy_integers_and_refuses_bools() -> None:
         api_error(lambda level=level, seed=seed: rollspring.worksheet(level, seed), WorksheetError)
 
 
-# ----------------------------------------------------------- the analysis' guard (pending)
+# ----------------------------------------------------------------------- the analysis' guard
 
 
-@pytest.mark.xfail(strict=True, reason=PENDING["analyze"])
 def test_analyze_refuses_a_large_system_with_the_clis_estimate(tmp_path, monkeypatch) -> None:
     from rollspring.analysis import modal
 
@@ -416,12 +405,6 @@ def test_analyze_refuses_a_large_system_with_the_clis_estimate(tmp_path, monkeyp
 
 
 # ------------------------------------------------- the command line's --yes still reaches the work
-
-#: what the command line calls after its own check (with --yes) must pass confirm=True on
-CLI_CONFIRMS = (
-    "service/runs.py, cli/derive.py, cli/report.py, cli/app.py, cli/animate.py and "
-    "service/sweeps/compute.py pass confirm=True after their own check (proposed)"
-)
 
 
 def _reaches_the_work(args: list[str], module: str, name: str, monkeypatch) -> None:
@@ -441,7 +424,6 @@ def test_the_clis_yes_reaches_the_analysis(tmp_path, monkeypatch) -> None:
     )
 
 
-@pytest.mark.xfail(raises=AssertionError, strict=True, reason=CLI_CONFIRMS)
 @pytest.mark.parametrize(
     ("args", "module", "name"),
     [

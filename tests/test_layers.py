@@ -105,8 +105,10 @@ def test_the_analysis_modules_build_one_way() -> None:
     assert graph["rollspring.analysis.report"] == set()
     assert graph["rollspring.analysis.linear"] == {"rollspring.analysis.report"}
     assert graph["rollspring.analysis.checks"] == {"rollspring.analysis.linear"}
+    assert graph["rollspring.analysis.costs"] == set()  # the cost guard: a leaf
     assert graph["rollspring.analysis.modal"] == {
         "rollspring.analysis.checks",
+        "rollspring.analysis.costs",
         "rollspring.analysis.linear",
     }
 

@@ -676,3 +676,15 @@ def test_a_rim_spring_hoop_passes_at_default_settings() -> None:
     run = simulate(_one_body("hoop", {"radius": 0.1, "angle": 0.0}, 22.0, 2.0, 0.2), 10.0)
     assert run.status != "energy_error", run.message
     assert run.summary["energy_error"] <= 1e-6
+
+
+def test_the_summary_energy_error_is_the_one_the_message_reports() -> None:
+    """Relative to the energy at release, as the run's own check: a blow-up by a factor of
+    hundreds is an error of hundreds (the summary divided by the largest |E| and showed ~1)."""
+    run = simulate(load_system("hoop-cylinder"), 10.0, integrator="verlet", step=0.2)
+    assert run.status == "energy_error"
+    reported = float(run.message.split("the energy error ")[1].split()[0])
+    assert reported > 10
+    assert run.summary["energy_error"] == pytest.approx(reported, rel=5e-3)
+    e0 = run.energy[0]
+    assert run.summary["energy_error"] == pytest.approx(np.max(np.abs(run.energy - e0)) / e0)

@@ -441,8 +441,13 @@ def test_a_computation_past_its_budget_is_abandoned_with_503() -> None:
     Deterministic, whatever the machine's speed: the only worker is stopped (SIGSTOP), so the
     request cannot be answered at all; the pool kills it (SIGKILL reaches a stopped process)
     and starts a new one, which serves the next request."""
+    before = set(multiprocessing.active_children())  # other apps' workers (the fixture's)
     with TestClient(create_app(budget=0.5, workers=1)) as budgeted:
-        workers = [p for p in multiprocessing.active_children() if p.name == "rollspring-worker"]
+        workers = [
+            p
+            for p in multiprocessing.active_children()
+            if p.name == "rollspring-worker" and p not in before
+        ]
         assert len(workers) == 1
         assert workers[0].pid is not None
         os.kill(workers[0].pid, signal.SIGSTOP)

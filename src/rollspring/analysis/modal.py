@@ -11,6 +11,7 @@ reported here.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -25,6 +26,7 @@ from rollspring.analysis.linear import (
     normal_modes,
     stationary_weights,
 )
+from rollspring.errors import AnalysisError
 from rollspring.model import System
 from rollspring.physics import (
     SystemArrays,
@@ -41,7 +43,9 @@ from rollspring.physics.arrays import FloatArray
 __all__ = ["analyze"]
 
 
-def analyze(system: System) -> LinearAnalysis:
+def analyze(
+    system: System | dict[str, Any] | str | os.PathLike[str], *, confirm: bool = False
+) -> LinearAnalysis:
     r"""Linear analysis of a system about the equilibrium nearest its initial placement.
 
     Finds the equilibrium (:func:`find_equilibrium`), builds :math:`M` and :math:`K`
@@ -51,7 +55,21 @@ def analyze(system: System) -> LinearAnalysis:
     amplitudes, the static friction coefficient the motion needs (:math:`\max |f|/N`), for two
     bodies the paper's split of the spring into :math:`k_1, k_2`, and each spring's tilt and
     tension.
+
+    ``system`` is a :class:`~rollspring.model.System`, its JSON form (a dict) or a file path or
+    preset name (anything else is a one-line :class:`~rollspring.errors.ModelError`). An
+    analysis estimated at more than 5 minutes (:func:`~rollspring.analysis.costs.analysis_cost`:
+    about 950 bodies or more) is refused with its estimate
+    (:class:`~rollspring.errors.CostTooHigh`) unless ``confirm=True`` (``--yes`` on the command
+    line).
     """
+    from rollspring.analysis.costs import CONFIRM, analysis_cost, check_cost
+    from rollspring.model import as_system
+
+    system = as_system(system)
+    if not isinstance(confirm, bool):
+        raise AnalysisError(f"confirm: must be True or False, got {confirm!r}")
+    check_cost(analysis_cost(system), confirmed=confirm, flag=CONFIRM)
     arrays = system_arrays(system)
     warnings: list[str] = []
     equilibrium = find_equilibrium(arrays)

@@ -83,7 +83,12 @@ def animate(
     with _Bar() as bar:
         bar.start("simulating")
         trajectory = simulate(
-            model, duration, n_output=max(2001, 2 * frames), on_slip=on_slip, progress=bar.update
+            model,
+            duration,
+            n_output=max(2001, 2 * frames),
+            on_slip=on_slip,
+            progress=bar.update,
+            confirm=True,  # checked above (--yes)
         )
         bar.start(f"rendering {target.name}")
         try:

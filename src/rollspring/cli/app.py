@@ -208,7 +208,7 @@ def analyze(
     from rollspring.analysis import analyze as run_analysis
     from rollspring.cli.tables import print_analysis
 
-    print_analysis(_stdout(), run_analysis(model))
+    print_analysis(_stdout(), run_analysis(model, confirm=True))  # checked above (--yes)
 
 
 @app.command()

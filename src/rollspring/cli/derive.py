@@ -105,7 +105,7 @@ def derive_command(
     check_cost(cost, confirmed=yes)
     if cost.long:
         _say(f"note: the derivation will take {cost.describe()}; Ctrl-C stops it")
-    derivation = derive(model, methods, symbols=symbols)
+    derivation = derive(model, methods, symbols=symbols, confirm=True)  # checked above (--yes)
     rendered, check = derivation.render(format), derivation.cross_check
     if out is None:
         sys.stdout.write(rendered)

@@ -113,7 +113,9 @@ def report(
         _say(f"note: the report will take {cost.describe()}; Ctrl-C stops it")
 
     with _progress_after_a_second("building the report") as progress:
-        built = build_report(model, duration=duration, derivation=derivation, progress=progress)
+        built = build_report(
+            model, duration=duration, derivation=derivation, progress=progress, confirm=True
+        )  # checked above (--yes)
         written = write_report(built, target, format=format, chromium=chromium)
     for failure in built.math_failures:
         _say(f"warning: shown as LaTeX source: {failure}")

@@ -71,9 +71,10 @@ import math
 import os
 import xml.etree.ElementTree as ET
 from importlib import metadata
+from typing import Any
 
 from rollspring.errors import ExportError
-from rollspring.model import Body, System
+from rollspring.model import Body, System, as_system
 from rollspring.outputs.files import atomic_write_text
 from rollspring.physics import system_arrays
 
@@ -147,13 +148,17 @@ def mjcf_warnings(system: System) -> list[str]:
     return warnings
 
 
-def system_to_mjcf(system: System, *, timestep: float | None = None) -> str:
+def system_to_mjcf(
+    system: System | dict[str, Any] | str | os.PathLike[str], *, timestep: float | None = None
+) -> str:
     """The MJCF XML text of ``system`` (a pure function; see the module docstring for the
     mapping). ``timestep`` (s) defaults to :data:`DEFAULT_TIMESTEP`.
 
     Raises :class:`ExportError` for a non-positive or non-finite ``timestep`` or more than
-    :data:`MAX_TRACKS` distinct track heights.
+    :data:`MAX_TRACKS` distinct track heights. ``system`` may also be its JSON form, a file path
+    or a preset name (:func:`rollspring.model.as_system`).
     """
+    system = as_system(system)
     step = DEFAULT_TIMESTEP if timestep is None else timestep
     if not (isinstance(step, int | float) and math.isfinite(step) and step > 0):
         raise ExportError(f"timestep: must be a positive number of seconds, not {step!r}")
@@ -328,7 +333,10 @@ def system_to_mjcf(system: System, *, timestep: float | None = None) -> str:
 
 
 def write_mjcf(
-    system: System, path: str | os.PathLike[str], *, timestep: float | None = None
+    system: System | dict[str, Any] | str | os.PathLike[str],
+    path: str | os.PathLike[str],
+    *,
+    timestep: float | None = None,
 ) -> None:
     """Write :func:`system_to_mjcf` to ``path`` atomically (the previous file or the complete
     new one, never a partial file)."""

@@ -13,7 +13,9 @@ with :math:`s_i = R_i, \rho_i = 1` for a rolling body (no slip, docs/physics.md 
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -76,12 +78,18 @@ class SystemArrays:
         return bool(np.any(self.end_body < 0))
 
 
-def system_arrays(system: System) -> SystemArrays:
-    """Flatten a validated :class:`~rollspring.model.System` into :class:`SystemArrays`.
+def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> SystemArrays:
+    """Flatten a validated :class:`~rollspring.model.System` into :class:`SystemArrays` (or
+    the system that its JSON form, a file path or a preset name describes:
+    :func:`rollspring.model.as_system`).
 
     The per-body and the per-spring numbers are gathered in plain Python and made into one
     array each (rows of read-only views): a few large NumPy calls instead of one per field.
     """
+    if not isinstance(system, System):
+        from rollspring.model import as_system
+
+        system = as_system(system)
     bodies = system.bodies
     index = {b.id: i for i, b in enumerate(bodies)}
     n = len(bodies)

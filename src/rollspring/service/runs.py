@@ -34,7 +34,7 @@ __all__ = [
 
 def analysis_payload(system: System) -> tuple[dict[str, Any], list[str]]:
     """The linear analysis of ``system`` as JSON (``analyze --json``) and its warnings."""
-    result = analyze(system)
+    result = analyze(system, confirm=True)  # the interfaces check the cost themselves
     return result.to_dict(), list(result.warnings)
 
 
@@ -99,10 +99,10 @@ def run_simulation(
     equilibrium)."""
     from rollspring.simulate import simulate
 
-    analysis = analyze(system) if start is not None or linear else None
+    analysis = analyze(system, confirm=True) if start is not None or linear else None
     if start is not None:
         system = mode_start(system, start, analysis)
-        analysis = analyze(system) if linear else None
+        analysis = analyze(system, confirm=True) if linear else None
     trajectory = simulate(
         system,
         duration,
@@ -111,6 +111,7 @@ def run_simulation(
         n_output=outputs,
         on_slip=on_slip,
         progress=progress,
+        confirm=True,  # the interfaces check the cost themselves (--yes, the web's budget)
     )
     line = None
     if linear and analysis is not None and analysis.equilibrium.found:

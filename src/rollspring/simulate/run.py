@@ -243,7 +243,7 @@ def _check_arguments(
 ) -> tuple[float, float, float | None]:
     """The shared validator (:mod:`rollspring.simulate.arguments`): (duration, rtol, step)."""
     duration = arguments.check_duration(duration)
-    rtol = arguments.check_rtol(rtol)
+    rtol = arguments.check_rtol_range(rtol)
     arguments.check_choice("integrator", integrator, INTEGRATORS, "integrator")
     arguments.check_choice("on_slip", on_slip, ON_SLIP, "on_slip")
     arguments.check_count("n_output", n_output, 2, optional=True)
@@ -277,7 +277,7 @@ def choose_scheme(
 
 
 def simulate(
-    system: System,
+    system: arguments.SystemLike,
     duration: float,
     *,
     rtol: float = 1e-8,
@@ -287,6 +287,7 @@ def simulate(
     on_slip: str = "stop",
     energy_tolerance: float | None = None,
     progress: Callable[[float], None] | None = None,
+    confirm: bool = False,
 ) -> Trajectory:
     r"""Integrate the exact nonlinear equations of ``system`` for ``duration`` seconds.
 
@@ -307,15 +308,40 @@ def simulate(
     ``100 rtol + 1e-12``): a run that exceeds it with the step the contract chose (a swing
     stiffer than its linear frequencies) is started again with the step its error asks for,
     up to three times (``summary["retries"]``); one that still exceeds it, or goes
-    non-finite, stops with that status (naming a spring that passes through zero length). ``n_output`` output times, evenly spaced (default 2001), on step ends or
-    interpolated inside the steps (quintic Hermite), whichever takes fewer steps within the
-    contract; ``step`` fixes the step of a symplectic scheme (``auto`` then means Yoshida-4;
-    rounded down so that whole steps fill each rolling stretch); ``progress`` is called with
-    the fraction done.
+    non-finite, stops with that status (naming a spring that passes through zero length).
+    ``n_output`` output times, evenly spaced (default 2001), on step ends or interpolated
+    inside the steps (quintic Hermite), whichever takes fewer steps within the contract;
+    ``step`` fixes the step of a symplectic scheme (``auto`` then means Yoshida-4; rounded down
+    so that whole steps fill each rolling stretch); ``progress`` is called with the fraction
+    done.
+
+    ``system`` is a :class:`~rollspring.model.System`, its JSON form (a dict) or a file path or
+    preset name. Every bad argument is a one-line :class:`~rollspring.errors.RollspringError`
+    (the command line's message for the same mistake), raised before any work; ``rtol`` must lie
+    within :data:`~rollspring.analysis.costs.RTOL_RANGE`. A run estimated at more than 5
+    minutes or 2 GiB (:func:`~rollspring.simulate.costs.simulation_cost`) is refused with its
+    estimate (:class:`~rollspring.errors.CostTooHigh`) unless ``confirm=True`` (``--yes`` on
+    the command line); outputs that cannot fit in memory are refused even then.
     """
+    from rollspring.analysis.costs import CONFIRM, check_cost
+    from rollspring.model import as_system
+    from rollspring.simulate.costs import API_SMALLER, simulation_cost
+
+    system = as_system(system)
     duration, rtol, step = _check_arguments(
         duration, rtol, integrator, on_slip, n_output, energy_tolerance, step
     )
+    cost = simulation_cost(
+        system,
+        duration,
+        rtol=rtol,
+        integrator=integrator,
+        outputs=2001 if n_output is None else n_output,
+        step=step,
+        smaller=API_SMALLER,
+        choose=choose_scheme,
+    )
+    check_cost(cost, confirmed=arguments.check_flag("confirm", confirm), flag=CONFIRM)
     user_step = step
     n_output = None if n_output is None else int(n_output)
     clock = time.perf_counter()
@@ -368,9 +394,7 @@ def simulate(
             run.mode_weights = arrays.inertia * vectors_eq[:, oscillating[0]]  # M v (M diagonal)
             run.q_ref = np.ascontiguousarray(equilibrium.q, dtype=float)
         run.execute()
-        if not (
-            chosen and run.status == Status.ENERGY_ERROR.label and retries < _ENERGY_RETRIES
-        ):
+        if not (chosen and run.status == Status.ENERGY_ERROR.label and retries < _ENERGY_RETRIES):
             break
         # The motion is stiffer than its linear frequencies say (a large nonlinear swing):
         # the step chosen from them does not keep the energy. Run again with the step that
@@ -447,6 +471,11 @@ class _Run:
         self.coeffs = SCHEMES[scheme][1] if scheme in SCHEMES else SCHEMES["kahanli8"][1]
         self.rows: list[FloatArray] = []  # general states at output times
         self.observed: list[_Observed] = []  # forces, energies, ... at those rows
+        #: every row recorded so far is a row of the grid, in order (:meth:`_record_rolling`)
+        self.grid_rows = True
+        #: :func:`kernels.row_extremes` of the last block :meth:`_record_rolling` recorded, as
+        #: rows (ratio, its row, normal, its row)
+        self.block_extremes: FloatArray | None = None
         self.central = np.ascontiguousarray(arrays.gamma * arrays.mass * arrays.radius**2)
         self.row_slipping: list[np.ndarray] = []
         self.row_sign: list[np.ndarray] = []
@@ -467,7 +496,7 @@ class _Run:
         self.e_segment = 0.0  # the energy at the start of the current rolling segment
         #: (kind, body) -> (value, time, width, segment): the kernel's extremes over its steps,
         #: each with a two-step segment around it to refine it on
-        self.step_extremes: dict[tuple[str, int], tuple[float, float, float, _Segment]] = {}
+        self.step_extremes: dict[tuple[str, int], tuple[float, float, float, _Segment | None]] = {}
         #: per rolling segment: (upward crossings of the mode signal, [first, last] segments)
         self.crossings: list[tuple[int, list[_Segment]]] = []
         self.mode_weights = np.zeros(self.n)
@@ -560,6 +589,7 @@ class _Run:
         self, times: FloatArray, states: FloatArray, slipping: BoolArray, sign: FloatArray
     ) -> _Observed:
         """Keep output rows with everything observed at them; returns what was observed."""
+        self.grid_rows = False
         rows = len(times)
         self.times.append(np.array(times, dtype=float))
         self.rows.append(np.array(states, dtype=float, order="C"))
@@ -568,6 +598,50 @@ class _Run:
         observed = self._observe(self.rows[-1], self.row_slipping[-1], self.row_sign[-1])
         self.observed.append(observed)
         return observed
+
+    def _record_rolling(
+        self, times: FloatArray, q: FloatArray, v: FloatArray, x0: FloatArray
+    ) -> float:
+        """:meth:`_record_block` of all-rolling rows (q, qdot) with reference positions x0,
+        states and observations by one compiled pass (:func:`kernels.observe_rolling`);
+        returns the largest |E - E_segment| over the rows."""
+        rows, n = q.shape
+        ns = self.arrays.n_springs
+        states = np.empty((rows, 4 * n))
+        out = _Observed(
+            np.empty((rows, n)),
+            np.empty((rows, n)),
+            np.empty((rows, n)),
+            np.empty((rows, ns)),
+            np.empty((rows, ns)),
+            np.empty(rows),
+            np.empty(rows),
+        )
+        extremes = np.empty((4, n))
+        deviation = kernels.observe_rolling(
+            self.model,
+            x0,
+            q,
+            v,
+            self.central,
+            self.e_segment,
+            states,
+            out.friction,
+            out.normal,
+            out.length,
+            out.tension,
+            out.potential,
+            out.kinetic,
+            out.ratio,
+            extremes,
+        )
+        self.block_extremes = extremes
+        self.times.append(times)
+        self.rows.append(states)
+        self.row_slipping.append(np.zeros((rows, n), dtype=bool))
+        self.row_sign.append(np.zeros((rows, n)))
+        self.observed.append(out)
+        return float(deviation)
 
     def _energy(self, states: FloatArray, slipping: BoolArray, sign: FloatArray) -> FloatArray:
         observed = self._observe(states, slipping, sign)
@@ -766,14 +840,15 @@ class _Run:
             row_times.append(out_times[:filled])
             row_q.append(out_q[:filled])
             row_v.append(out_v[:filled])
-            states = self.general_state(block_q[: lead + filled], block_v[: lead + filled], x0)
             if lead:
                 self.pending = None
                 block_times = grid[first - 1 : first + filled]
             else:
                 block_times = out_times[:filled]
-            if lead + filled and not self._energy_ok(
-                self._record_block(block_times, states, slipping, sign)
+            if lead + filled and not self._energy_within(
+                self._record_rolling(
+                    block_times.copy(), block_q[: lead + filled], block_v[: lead + filled], x0
+                )
             ):
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
                 self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
@@ -800,7 +875,12 @@ class _Run:
             self._report(t + done * h)
         self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
         self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
-        return float(grid[-1]), self.general_state(q, qdot, x0), slipping, sign
+        end = float(grid[-1])
+        if self.grid_rows and self.times and float(self.times[-1][-1]) == end:
+            # the run is over (nothing steps on from the handover): the last row, the state
+            # at the end to rounding, instead of building it again
+            return end, self.rows[-1][-1].copy(), slipping, sign
+        return end, self.general_state(q, qdot, x0), slipping, sign
 
     def _local(
         self,
@@ -849,8 +929,13 @@ class _Run:
                 if old is None or (value > old[0] if kind == "ratio" else value < old[0]):
                     k = 0 if kind == "ratio" else 1
                     t_start = found[row + 1][i]
-                    local = self._local(
-                        model, x0, t_start, extreme_states[k, i, 0], extreme_states[k, i, 1], h
+                    # a normal force that cannot change is never refined: no segment for it
+                    local = (
+                        None
+                        if kind == "normal" and self.constant_normal
+                        else self._local(
+                            model, x0, t_start, extreme_states[k, i, 0], extreme_states[k, i, 1], h
+                        )
                     )
                     self.step_extremes[(kind, i)] = (value, t_start + h, h, local)
         self.crossings.append(
@@ -904,9 +989,14 @@ class _Run:
 
     def _energy_ok(self, observed: _Observed) -> bool:
         energy = observed.potential + observed.kinetic
+        return self._energy_within(float(np.max(np.abs(energy - self.e_segment))))
+
+    def _energy_within(self, deviation: float) -> bool:
+        """Whether the largest |E - E_segment| over the rows just recorded is within the
+        energy tolerance (relative to the energy at release); sets the status if not."""
         scale = max(abs(self.e0), 1e-300)
-        error = float(np.max(np.abs(energy - self.e_segment))) / scale
-        if not np.isfinite(error):
+        error = deviation / scale
+        if not math.isfinite(error):
             self.status = Status.NONFINITE.label
             self.message = "the energy became non-finite; the step cannot resolve the motion"
             return False
@@ -1147,7 +1237,8 @@ class _Run:
         a, n = self.arrays, self.n
         times = self.times[0] if len(self.times) == 1 else np.concatenate(self.times)
         pick = None  # rows in time order, each time once (events can repeat a time)
-        if times.size > 1 and not (times[1:] > times[:-1]).all():
+        # rows of rolling segments alone are consecutive slices of the grid: in order already
+        if not self.grid_rows and times.size > 1 and not (times[1:] > times[:-1]).all():
             order = np.argsort(times, kind="stable")
             keep = np.concatenate([[True], np.diff(times[order]) > 0])
             pick = order[keep]
@@ -1211,7 +1302,9 @@ def _summary(
     energy = trajectory.energy
     e0 = float(energy[0])
     high, low = float(energy.max()), float(energy.min())  # NaN if any is
-    scale = max(abs(e0), max(abs(high), abs(low)) if high == high else math.nan, 1e-300)
+    # relative to the energy at release, as the run's own check (a blow-up to 385 E0 is an
+    # error of 384, not ~1); the largest |E| only when E0 is 0
+    scale = abs(e0) or max(max(abs(high), abs(low)) if high == high else math.nan, 1e-300)
     if conservative:  # the largest |E - E0|: at the largest or the smallest E
         energy_error = (max(high - e0, e0 - low) if high == high else math.nan) / scale
     else:  # spurious growth above the running minimum
@@ -1275,13 +1368,13 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     n = run.n
     spacing = float(run.grid[1] - run.grid[0])
     # per body: the largest |f|/N over the rows while rolling, the smallest N, and their rows
-    positive = trajectory.normal > 0
-    ratios = np.full(positive.shape, np.inf)  # inf where N <= 0, and |f|/N elsewhere
-    np.divide(np.abs(trajectory.friction), trajectory.normal, out=ratios, where=positive)
-    ratios[trajectory.slipping] = -np.inf
-    ratio_row, normal_row = ratios.argmax(axis=0).tolist(), trajectory.normal.argmin(axis=0)
-    ratio = ratios[ratio_row, np.arange(n)].tolist()
-    normal = trajectory.normal[normal_row, np.arange(n)].tolist()
+    # (|f|/N, inf where N <= 0, -inf while slipping; the first row of each, as argmax/argmin)
+    if run.grid_rows and len(run.observed) == 1 and run.block_extremes is not None:
+        ratio, ratio_row, normal, normal_row = run.block_extremes.tolist()  # one rolling block
+        ratio_row, normal_row = [int(r) for r in ratio_row], [int(r) for r in normal_row]
+    else:
+        found = kernels.row_extremes(trajectory.friction, trajectory.normal, trajectory.slipping)
+        ratio, ratio_row, normal, normal_row = (values.tolist() for values in found)
     best: dict[tuple[str, int], tuple[float, float, float, _Segment | None]] = {}
 
     def offer(
@@ -1329,7 +1422,7 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
         if key not in fixed
         and entry[3] is not None
         and getattr(entry[3], "start", None) is not None
-        and np.isfinite(entry[0])
+        and math.isfinite(entry[0])
     }
     groups: dict[int, dict[tuple[str, int], Any]] = {}  # one per rolling segment (its model)
     for key, entry in batched.items():

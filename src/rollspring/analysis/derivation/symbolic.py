@@ -71,6 +71,7 @@ factors (a ``custom`` shape gets :math:`\gamma_i`). ``values`` holds every symbo
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -844,14 +845,20 @@ class _Namer:
         return symbol
 
 
-def symbolic_system(system: System, *, symbols: bool = False) -> SymbolicSystem:
+def symbolic_system(
+    system: System | dict[str, Any] | str | os.PathLike[str], *, symbols: bool = False
+) -> SymbolicSystem:
     """The SymPy form of a validated :class:`~rollspring.model.System`.
 
     ``symbols=False``: exact rational numbers; ``symbols=True``: parameters as symbols (see the
     module docstring). Coordinates are measured from the equilibrium nearest the initial
     placement (from :func:`rollspring.analysis.find_equilibrium`; the initial placement when
-    there is none).
+    there is none). ``system`` may also be its JSON form, a file path or a preset name
+    (:func:`rollspring.model.as_system`).
     """
+    from rollspring.model import as_system
+
+    system = as_system(system)
     arrays = system_arrays(system)
     n = arrays.n_bodies
     equilibrium = find_equilibrium(arrays)

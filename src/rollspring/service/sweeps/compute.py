@@ -153,7 +153,7 @@ class _Runs:
         try:
             system = apply_values(self.plan.system, self.system, scalars)
             if modes:
-                analysis = analyze(system)
+                analysis = analyze(system, confirm=True)
                 if not analysis.equilibrium.found:
                     raise RollspringError(f"no equilibrium: {analysis.equilibrium.reason}")
                 q = analysis.equilibrium.q.copy()
@@ -165,7 +165,7 @@ class _Runs:
                 system = rolled(system, q, velocities=np.zeros(len(system.bodies)))
             result: tuple[System | None, LinearAnalysis | None, str] = (
                 system,
-                analyze(system) if linear else None,
+                analyze(system, confirm=True) if linear else None,
                 "",
             )
         except RollspringError as exc:
@@ -646,7 +646,9 @@ def _refine_event(plan: SweepPlan, runs: _Runs, out: dict[str, np.ndarray], r: i
     if system is None:
         return
     try:
-        trajectory = simulate(system, plan.duration, rtol=plan.rtol, on_slip="stop", n_output=2)
+        trajectory = simulate(
+            system, plan.duration, rtol=plan.rtol, on_slip="stop", n_output=2, confirm=True
+        )
     except RollspringError:
         return
     ids = [b.id for b in system.bodies]
@@ -667,7 +669,7 @@ def _single_run(
     if system is None:
         return
     try:
-        trajectory = simulate(system, plan.duration, rtol=plan.rtol, on_slip=on_slip)
+        trajectory = simulate(system, plan.duration, rtol=plan.rtol, on_slip=on_slip, confirm=True)
     except RollspringError:
         out["status"][r] = STATUS_CODES["invalid"]
         return

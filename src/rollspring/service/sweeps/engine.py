@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.model import System, load_system, system_to_json, system_to_toml
+from rollspring.model import System, as_system, system_to_json, system_to_toml
 from rollspring.service.sweeps.compute import (
     STATUS_CODES,
     SweepPlan,
@@ -164,10 +164,7 @@ def sweep(
     :func:`rollspring.simulate` run instead of the batch's linear interpolation between steps.
     ``progress`` is called with a :class:`SweepProgress` after each chunk.
     """
-    if isinstance(system, str):
-        system = load_system(system)
-    if not isinstance(system, System):
-        raise SweepError(f"system: must be a rollspring System, got {type(system).__name__}")
+    system = as_system(system)
     _check_arguments(duration, rtol, on_slip, chunk, step)
     if integrator not in ("auto", "verlet", "yoshida4", "yoshida6"):
         raise SweepError(
@@ -311,7 +308,7 @@ def _check_modes(system: System, paths: tuple[str, ...]) -> None:
         return
     from rollspring.analysis import analyze
 
-    analysis = analyze(system)
+    analysis = analyze(system, confirm=True)
     oscillating = [str(i) for i, m in enumerate(analysis.modes) if m.kind == "oscillating"]
     for n in modes:
         if analysis.modes[n].kind != "oscillating":

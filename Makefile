@@ -29,13 +29,16 @@ system-packages:
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
+
+# uv, pinned, into the venv (a rule of its own: a venv made before uv was used gets it too)
+$(BIN)/uv: | $(BIN)/python
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt uv
 
-$(DEMO_STAMP): pyproject.toml constraints.txt | $(BIN)/python
+$(DEMO_STAMP): pyproject.toml constraints.txt | $(BIN)/uv
 	$(PIP) -e ".[report]"
 	touch $(DEMO_STAMP)
 
-$(STAMP): pyproject.toml constraints.txt | $(BIN)/python
+$(STAMP): pyproject.toml constraints.txt | $(BIN)/uv
 	$(PIP) -e ".[test]"
 	touch $(STAMP) $(DEMO_STAMP)
 
@@ -85,7 +88,7 @@ bench: $(STAMP) $(WEB_STAMP) system-packages bench-packages
 .PHONY: docs
 DOCS_STAMP     := $(VENV)/.docs-installed
 DOCS_NPM_STAMP := docs/node_modules/.installed
-$(DOCS_STAMP): pyproject.toml constraints.txt | $(BIN)/python
+$(DOCS_STAMP): pyproject.toml constraints.txt | $(BIN)/uv
 	$(PIP) -e ".[docs]"
 	touch $(DOCS_STAMP)
 $(DOCS_NPM_STAMP): docs/package.json docs/package-lock.json

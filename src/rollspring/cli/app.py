@@ -76,6 +76,30 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 
+def _print_version(value: bool) -> None:
+    if value:
+        from rollspring._version import version
+
+        typer.echo(f"rollspring {version()}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _options(
+    version: Annotated[
+        bool,
+        typer.Option(
+            "--version",
+            help="Print rollspring's version and exit.",
+            is_eager=True,
+            callback=_print_version,
+        ),
+    ] = False,
+) -> None:
+    """Coupled rolling oscillators: exact rolling physics, normal modes, friction and normal
+    forces."""
+
+
 SystemArg = Annotated[
     str,
     typer.Argument(

@@ -292,7 +292,7 @@ def simulate(
     r"""Integrate the exact nonlinear equations of ``system`` for ``duration`` seconds.
 
     :math:`J_i\ddot\varphi_i = Q_i(\varphi)` while every body rolls (docs/physics.md (M7)); a body
-    whose needed friction reaches :math:`\mu_s N` slips ((M19), with ``on_slip="continue"``;
+    whose needed friction exceeds :math:`\mu_s N` slips ((M19), with ``on_slip="continue"``;
     ``"stop"`` ends the run at that instant); lift-off (:math:`N < 0`) ends the run.
     ``rtol`` is an accuracy contract (README, "Accuracy"): while every body rolls and no spring
     is damped, every output position (``x``, ``phi``) and velocity (``v``, ``omega``) is within

@@ -144,6 +144,55 @@ def _point(bodies, i, r, alpha, x, phi):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _spring_geometry(bodies, springs, ends, s, x, phi):
+    """Spring ``s``: the vector from its end a to its end b (dx, dy), its length, and each
+    end's velocity per unit angular velocity of its body at a fixed centre (oax, oay, obx, oby;
+    0 for an anchor), (M1)."""
+    ia = ends[s, 0]
+    ib = ends[s, 1]
+    oax = 0.0
+    oay = 0.0
+    obx = 0.0
+    oby = 0.0
+    if ia >= 0:
+        pax, pay, oax, oay = _point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], x, phi)
+    else:
+        pax = springs[s, AAX]
+        pay = springs[s, AAY]
+    if ib >= 0:
+        pbx, pby, obx, oby = _point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], x, phi)
+    else:
+        pbx = springs[s, ABX]
+        pby = springs[s, ABY]
+    dx = pbx - pax
+    dy = pby - pay
+    # a level spring (both ends at one height): sqrt(dx^2) is |dx| exactly (IEEE
+    # round-to-nearest, dx^2 neither overflowing nor underflowing), without the square
+    # root's latency on the stepping's chain
+    dist = abs(dx) if dy == 0.0 and 1e-150 < abs(dx) < 1e150 else math.sqrt(dx * dx + dy * dy)
+    return dx, dy, dist, oax, oay, obx, oby
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau):
+    """Add spring ``s``'s tension ``t`` to its bodies: :math:`+T e` on end a, :math:`-T e` on
+    end b, and their clockwise torques about the centres."""
+    ia = ends[s, 0]
+    ib = ends[s, 1]
+    per_length = t / dist
+    tx = per_length * dx
+    ty = per_length * dy
+    if ia >= 0:
+        fx[ia] += tx
+        fy[ia] += ty
+        tau[ia] += oax * tx + oay * ty
+    if ib >= 0:
+        fx[ib] -= tx
+        fy[ib] -= ty
+        tau[ib] -= obx * tx + oby * ty
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
     r"""Resultant force and clockwise torque about each centre of springs and constant forces;
     each spring's length and tension :math:`T = k(l - L_0) + c\,\dot l` (``damped``: include
@@ -155,30 +204,11 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
         fy[i] = 0.0
         tau[i] = 0.0
     for s in range(springs.shape[0]):
-        ia = ends[s, 0]
-        ib = ends[s, 1]
-        oax = 0.0
-        oay = 0.0
-        obx = 0.0
-        oby = 0.0
-        if ia >= 0:
-            pax, pay, oax, oay = _point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], x, phi)
-        else:
-            pax = springs[s, AAX]
-            pay = springs[s, AAY]
-        if ib >= 0:
-            pbx, pby, obx, oby = _point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], x, phi)
-        else:
-            pbx = springs[s, ABX]
-            pby = springs[s, ABY]
-        dx = pbx - pax
-        dy = pby - pay
-        # a level spring (both ends at one height): sqrt(dx^2) is |dx| exactly (IEEE
-        # round-to-nearest, dx^2 neither overflowing nor underflowing), without the square
-        # root's latency on the stepping's chain
-        dist = abs(dx) if dy == 0.0 and 1e-150 < abs(dx) < 1e150 else math.sqrt(dx * dx + dy * dy)
+        dx, dy, dist, oax, oay, obx, oby = _spring_geometry(bodies, springs, ends, s, x, phi)
         t = springs[s, STIFF] * (dist - springs[s, REST])
         if damped and springs[s, DAMP] != 0.0:
+            ia = ends[s, 0]
+            ib = ends[s, 1]
             vax = 0.0
             vay = 0.0
             vbx = 0.0
@@ -192,17 +222,7 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
             t += springs[s, DAMP] * (dx * (vbx - vax) + dy * (vby - vay)) / dist
         length[s] = dist
         tension[s] = t
-        per_length = t / dist
-        tx = per_length * dx
-        ty = per_length * dy
-        if ia >= 0:
-            fx[ia] += tx
-            fy[ia] += ty
-            tau[ia] += oax * tx + oay * ty
-        if ib >= 0:
-            fx[ib] -= tx
-            fy[ib] -= ty
-            tau[ib] -= obx * tx + oby * ty
+        _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau)
     for j in range(forces.shape[0]):
         i = force_body[j]
         _, _, ox, oy = _point(bodies, i, forces[j, FR], forces[j, FALPHA], x, phi)
@@ -822,43 +842,13 @@ def observe_rolling(
             fy[i] = 0.0
             tau[i] = 0.0
         energy = 0.0
-        for s in range(springs.shape[0]):  # body_loads without damping, inline
-            ia = ends[s, 0]
-            ib = ends[s, 1]
-            oax = 0.0
-            oay = 0.0
-            obx = 0.0
-            oby = 0.0
-            if ia >= 0:
-                pax, pay, oax, oay = _point(b, ia, springs[s, RA], springs[s, ALPHA_A], x, phi)
-            else:
-                pax = springs[s, AAX]
-                pay = springs[s, AAY]
-            if ib >= 0:
-                pbx, pby, obx, oby = _point(b, ib, springs[s, RB], springs[s, ALPHA_B], x, phi)
-            else:
-                pbx = springs[s, ABX]
-                pby = springs[s, ABY]
-            dx = pbx - pax
-            dy = pby - pay
-            dist = (
-                abs(dx) if dy == 0.0 and 1e-150 < abs(dx) < 1e150 else math.sqrt(dx * dx + dy * dy)
-            )
+        for s in range(springs.shape[0]):  # body_loads without damping
+            dx, dy, dist, oax, oay, obx, oby = _spring_geometry(b, springs, ends, s, x, phi)
             t = springs[s, STIFF] * (dist - springs[s, REST])
             length[row, s] = dist
             tension[row, s] = t
             energy += 0.5 * springs[s, STIFF] * (dist - springs[s, REST]) ** 2
-            per_length = t / dist
-            tx = per_length * dx
-            ty = per_length * dy
-            if ia >= 0:
-                fx[ia] += tx
-                fy[ia] += ty
-                tau[ia] += oax * tx + oay * ty
-            if ib >= 0:
-                fx[ib] -= tx
-                fy[ib] -= ty
-                tau[ib] -= obx * tx + oby * ty
+            _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau)
         for j in range(forces.shape[0]):
             i = force_body[j]
             px, py, ox, oy = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)

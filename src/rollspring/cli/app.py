@@ -419,8 +419,7 @@ def _leave_objects_to_the_exit() -> None:
     gc.freeze()
 
 
-#: Modules of further commands; each has ``register(app)``. (Work in progress: a module that
-#: is not written yet is skipped; the list becomes plain imports once all exist.)
+#: Modules of further commands; each has ``register(app)``.
 _COMMAND_MODULES = (
     "export",
     "derive",
@@ -440,13 +439,7 @@ def _register_subcommands() -> None:
     import importlib
 
     for name in _COMMAND_MODULES:
-        try:
-            module = importlib.import_module(f"rollspring.cli.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"rollspring.cli.{name}":
-                raise
-            continue
-        module.register(app)
+        importlib.import_module(f"rollspring.cli.{name}").register(app)
 
 
 _register_subcommands()

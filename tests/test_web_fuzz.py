@@ -6,9 +6,13 @@ fits its documented schema; and uvicorn's concurrency limit answers overload wit
 
 from __future__ import annotations
 
+import json
+import os
+import signal
 import socket
 import time
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 import requests
@@ -71,29 +75,52 @@ def test_the_api_keeps_its_schema_and_never_fails(server: Server, mode: Generati
     assert seen > 100
 
 
-def test_overload_is_answered_503_at_once() -> None:
-    """With room for two connections, a third gets 503 at once while the open one is still
-    served (a connection counts itself: a limit of 1 would refuse everything).
+def _descendants(pid: int) -> list[int]:
+    """Every process below ``pid`` (Linux's /proc: the server's forkserver and workers)."""
+    found: list[int] = []
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        for child in (task / "children").read_text().split():
+            found += [int(child), *_descendants(int(child))]
+    return found
 
-    Deterministic, whatever the machine's speed: the open connection is a raw socket holding
-    a request whose headers are not finished, so it stays open until the test finishes it."""
-    busy = Server("--limit-concurrency", "2", "--workers", "1", "--budget", "30")
+
+def test_overload_is_answered_503_at_once() -> None:
+    """With room for two connections, a third gets 503 at once while the one in service is
+    still served (a connection counts itself: a limit of 1 would refuse everything).
+
+    Deterministic, whatever the machine's speed: the server's worker processes are stopped
+    (SIGSTOP), so the request in service cannot finish until the test lets them go on
+    (SIGCONT); uvicorn counts its connection while the third one comes."""
+    busy = Server("--limit-concurrency", "2", "--workers", "1", "--budget", "60")
     try:
+        three = requests.get(busy.url + "api/presets", timeout=10).json()
+        chain = next(p["system"] for p in three if p["name"] == "three-bodies")
+        body = json.dumps({"system": chain}).encode()
         host, port = busy.url.split("//")[1].rstrip("/").split(":")
-        held = socket.create_connection((host, int(port)), timeout=30)
+        workers = _descendants(busy.process.pid)
+        assert workers
+        for pid in workers:
+            os.kill(pid, signal.SIGSTOP)
         try:
-            held.sendall(f"GET /api/presets HTTP/1.1\r\nHost: {host}\r\n".encode())
+            in_service = socket.create_connection((host, int(port)), timeout=60)
+            in_service.sendall(
+                f"POST /api/analyze HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n"
+                f"Content-Type: application/json\r\nContent-Length: {len(body)}\r\n\r\n".encode()
+                + body
+            )
             refused = requests.get(busy.url + "api/presets", timeout=10)
             assert refused.status_code == 503
-            # the held request, finished now, is served
-            held.sendall(b"Connection: close\r\n\r\n")
-            answer = b""
-            while chunk := held.recv(65536):
+        finally:
+            for pid in workers:
+                os.kill(pid, signal.SIGCONT)
+        answer = b""
+        try:
+            while chunk := in_service.recv(65536):
                 answer += chunk
         finally:
-            held.close()
+            in_service.close()
         assert answer.startswith(b"HTTP/1.1 200"), answer[:200]
-        assert b"hoop-cylinder" in answer
+        assert b'"modes"' in answer
         # and once the connections have closed, it serves again
         deadline = time.monotonic() + 10
         while requests.get(busy.url + "api/presets", timeout=10).status_code != 200:

@@ -177,11 +177,16 @@ def _spring_geometry(bodies, springs, ends, s, x, phi):
 def _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau):
     """Add spring ``s``'s tension ``t`` to its bodies: :math:`+T e` on end a, :math:`-T e` on
     end b, and their clockwise torques about the centres."""
+    per_length = t / dist
+    _add_load(ends, s, per_length * dx, per_length * dy, oax, oay, obx, oby, fx, fy, tau)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _add_load(ends, s, tx, ty, oax, oay, obx, oby, fx, fy, tau):
+    """Add the pull (tx, ty) of spring ``s`` on its end a (and its opposite on end b) to the
+    bodies' forces and clockwise torques about their centres."""
     ia = ends[s, 0]
     ib = ends[s, 1]
-    per_length = t / dist
-    tx = per_length * dx
-    ty = per_length * dy
     if ia >= 0:
         fx[ia] += tx
         fy[ia] += ty
@@ -274,14 +279,7 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
             per_length = springs[s, STIFF] * (dist - springs[s, REST]) / dist
             tx = per_length * dx
             ty = per_length * dy
-        if ia >= 0:
-            fx[ia] += tx
-            fy[ia] += ty
-            tau[ia] += oax * tx + oay * ty
-        if ib >= 0:
-            fx[ib] -= tx
-            fy[ib] -= ty
-            tau[ib] -= obx * tx + oby * ty
+        _add_load(ends, s, tx, ty, oax, oay, obx, oby, fx, fy, tau)
     for j in range(forces.shape[0]):
         i = force_body[j]
         _, _, ox, oy = _rolling_point(bodies, i, forces[j, FR], forces[j, FALPHA], q)

@@ -301,3 +301,34 @@ def test_animate_command_errors_name_the_option(tmp_path, monkeypatch, args, opt
 
 def test_module_lists_its_formats() -> None:
     assert set(animation_module.FORMATS.values()) == {"gif", "mp4", "html"}
+
+
+def test_a_long_chain_is_animated_with_its_friction_pattern(tmp_path) -> None:
+    """More than LONG_CHAIN bodies: a ChainAnimation. Each frame's points and strip show the
+    friction ratio f/(μs N) of that time, the energy centroid line sits at X_E(t), and the
+    pattern travels: the strongest friction moves by about v_g Δt."""
+    from rollspring.analysis.waves import travelling_wave
+    from rollspring.model.chains import chain
+    from rollspring.outputs.animation import ChainAnimation
+    from rollspring.outputs.figures import signed_friction_ratio
+
+    system = chain("hoop", 80, spacing=0.5, packet=(2.0, 3.0), walls="both")
+    run = simulate(system, 4.0, n_output=81)
+    waves = travelling_wave(system, run.t, run.x, run.v)
+    animation = ChainAnimation(run, waves=waves, fps=5, dpi=40)
+    assert len(animation) == 21
+    ratio = signed_friction_ratio(run)
+    last = len(animation) - 1
+    for i in (0, last):
+        animation.update(i)
+        row = int(np.searchsorted(run.t, animation.times[i]))
+        assert np.allclose(animation._points.get_array(), ratio[row])
+        assert animation._centroid is not None
+        assert animation._centroid.get_xdata()[0] == pytest.approx(waves.centroid[row])
+    moved = waves.centroid[-1] - waves.centroid[0]
+    assert moved == pytest.approx(waves.group_velocity * 4.0, rel=0.1)
+    frame = animation.render(last)
+    assert frame.shape == (*animation.size[::-1], 4)
+    target = write_animation(run, tmp_path / "chain.gif", waves=waves, fps=2, dpi=40)
+    with Image.open(target) as gif:
+        assert gif.n_frames == 9

@@ -355,3 +355,26 @@ def test_bad_placement_is_refused(paper) -> None:
     _, analysis, _ = paper
     with pytest.raises(ValueError, match="at: must be 'initial' or 'equilibrium'"):
         plot_system(analysis, at="middle")
+
+
+def test_a_long_chain_is_drawn_as_space_time_images() -> None:
+    """plot_space_time: three images over the rest positions and the run's times; the energy
+    panel carries the centroid path and the line X_E(0) + v_g t of the waves analysis."""
+    from rollspring.analysis.waves import travelling_wave
+    from rollspring.model.chains import chain
+    from rollspring.outputs.figures import plot_space_time
+
+    system = chain("hoop", 60, packet=(2.0, 3.0), walls="both")
+    run = simulate(system, 2.0, n_output=41)
+    waves = travelling_wave(system, run.t, run.x, run.v)
+    fig = plot_space_time(run, waves)
+    images = [ax.images[0] for ax in fig.axes if ax.images]
+    assert len(images) == 3
+    assert images[0].get_array().shape == (41, 60)
+    energy_axes = fig.axes[2]
+    centroid, predicted = energy_axes.lines[:2]
+    assert np.allclose(centroid.get_xdata(), waves.centroid)
+    x_line, t_line = predicted.get_xdata(), predicted.get_ydata()
+    slope = (x_line[-1] - x_line[0]) / (t_line[-1] - t_line[0])
+    assert slope == pytest.approx(waves.group_velocity, rel=1e-12)
+    assert figures.figure_rgba(fig).shape[2] == 4

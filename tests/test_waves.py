@@ -5,6 +5,7 @@ travels no faster than the largest group velocity."""
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -166,3 +167,41 @@ def test_bad_arrays_are_refused() -> None:
     arrays = system_arrays(chain("hoop", 5))
     with pytest.raises(AnalysisError, match="body_energies: x and v"):
         body_energies(arrays, np.zeros((2, 5)), np.zeros((2, 4)))
+
+
+def test_a_long_chain_gets_a_report_that_summarises_its_wave(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """More than LONG_CHAIN bodies: no per-body tables or modal analysis; space–time images,
+    the chain animation and the measured speed beside dω/dq, the numbers those of
+    travelling_wave on the report's own run."""
+    from rollspring.outputs.figures import LONG_CHAIN
+    from rollspring.outputs.report import _chain
+    from rollspring.service.documents import build_report
+
+    monkeypatch.setattr(_chain, "CHAIN_FRAMES", 4)
+    n = 3 * LONG_CHAIN
+    system = chain("hoop", n, spacing=SPACING, packet=(2.0, 3.0), walls="both")
+    report = build_report(system, duration=2.0, derivation=False)
+    assert report.analysis is None
+    for section in ("overview", "chain", "waves", "space-time", "animation", "energy", "data"):
+        assert section in report.sections
+    html = report.html
+    assert 'id="bodies"' not in html and 'id="modes"' not in html  # nothing per body
+    assert 'id="figure-space-time"' in html
+    assert html.count("<img") >= 2
+    waves = travelling_wave(system, report.trajectory.t, report.trajectory.x, report.trajectory.v)
+    start = html.index('id="wave-data">') + len('id="wave-data">')
+    data = json.loads(html[start : html.index("</script>", start)])
+    assert data["kind"] == "packet" == waves.kind
+    assert data["speed"] == pytest.approx(waves.speed, rel=1e-12)
+    assert data["group_velocity"] == pytest.approx(waves.group_velocity, rel=1e-12)
+    c = SPACING * math.sqrt(K / _rolling_mass("hoop")) * math.cos(2.0 * SPACING / 2)
+    assert data["group_velocity"] == pytest.approx(c, rel=5e-3)  # at the q found (FFT grid)
+    assert "Chain" in html and f"{n} bodies" in html
+
+
+def test_a_small_system_keeps_the_full_report() -> None:
+    from rollspring.service.documents import build_report
+
+    report = build_report(chain("hoop,cylinder", 3, pluck=1), duration=0.2, derivation=False)
+    assert report.analysis is not None
+    assert "modes" in report.sections and "space-time" not in report.sections

@@ -20,6 +20,13 @@ Public API
   ``pixel(x, y)`` to find a point of the scene in a frame).
 * :data:`FORMATS`, :class:`AnimationError` (a :class:`~rollspring.errors.RollspringError`).
 
+A long chain (more than :data:`~rollspring.outputs.figures.LONG_CHAIN` bodies) is drawn as a
+:class:`ChainAnimation` instead: every body a point at its rest position, raised by its
+displacement (or, without the waves analysis, its velocity) and coloured by the friction it
+needs against :math:`\mu_s N` (signed), with a strip of the same colours below (the friction
+pattern travelling with the wave) and, given a :class:`~rollspring.analysis.waves.Waves`
+(``waves=``), the energy centroid and the group-velocity prediction as vertical lines.
+
 ``duration`` is the stretch of simulated time shown (default: the whole trajectory), ``speed``
 the playback speed (0.5 = slow motion: one simulated second lasts two seconds), ``fps`` frames
 per second of playback. ``progress`` is called with the fraction of frames rendered (0 to 1).
@@ -41,8 +48,17 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from rollspring.analysis.waves import Waves
 from rollspring.errors import AnimationError
-from rollspring.outputs.figures import SystemScene, scene_for_trajectory, states_at, theme
+from rollspring.outputs.figures import (
+    LONG_CHAIN,
+    SystemScene,
+    new_figure,
+    scene_for_trajectory,
+    signed_friction_ratio,
+    states_at,
+    theme,
+)
 from rollspring.outputs.files import atomic_path, atomic_write, atomic_write_text
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import Trajectory
@@ -50,6 +66,7 @@ from rollspring.simulate import Trajectory
 __all__ = [
     "FORMATS",
     "AnimationError",
+    "ChainAnimation",
     "MotionAnimation",
     "animation_html",
     "frame_times",
@@ -171,6 +188,143 @@ class MotionAnimation:
         return float(column), float(self.size[1] - up)
 
 
+class ChainAnimation:
+    """The frames of a long chain's animation (module docstring), with the interface of
+    :class:`MotionAnimation` (``times``, ``render(i)``, ``frames()``, ``update(i)``, ``size``,
+    ``figure``). Values between output rows are interpolated linearly."""
+
+    def __init__(
+        self,
+        trajectory: Trajectory,
+        *,
+        duration: float | None = None,
+        speed: float = 1.0,
+        fps: int = 25,
+        dpi: float = 80,
+        waves: Waves | None = None,
+        width: float = 8.0,
+    ) -> None:
+        _check_positive("dpi", dpi, upper=1200)
+        self.trajectory = trajectory
+        self.fps = int(fps)
+        self.speed = float(speed)
+        self.dpi = float(dpi)
+        self.waves = waves
+        self.times = frame_times(trajectory, duration=duration, speed=speed, fps=fps)
+        x = np.asarray(trajectory.x, dtype=float)
+        if waves is not None:
+            self._rest = np.asarray(waves.reference, dtype=float)
+            self._height = x - self._rest
+            label = "displacement from rest (m)"
+        else:
+            self._rest = x[0]
+            self._height = np.asarray(trajectory.v, dtype=float)
+            label = "centre velocity (m/s)"
+        self._ratio = signed_friction_ratio(trajectory)
+        top = float(np.max(np.abs(self._height), initial=0.0)) or 1.0
+        ratio_top = float(np.max(np.abs(self._ratio), initial=0.0)) or 1.0
+        left, right = float(self._rest.min()), float(self._rest.max())
+        pad = 0.01 * (right - left) or 1.0
+        with theme():
+            figure = new_figure(width, 0.45 * width, dpi=dpi)
+            ax, strip = figure.subplots(
+                2, 1, sharex=True, gridspec_kw={"height_ratios": [4, 1], "hspace": 0.08}
+            )
+            figure.subplots_adjust(left=0.1, right=0.88, bottom=0.14, top=0.88)
+            self._points = ax.scatter(
+                self._rest,
+                self._height[0],
+                c=self._ratio[0],
+                s=max(2.0, min(20.0, 3000.0 / len(self._rest))),
+                cmap="PuOr_r",
+                vmin=-ratio_top,
+                vmax=ratio_top,
+                linewidths=0,
+            )
+            ax.set_xlim(left - pad, right + pad)
+            ax.set_ylim(-1.15 * top, 1.15 * top)
+            ax.set_ylabel(label, fontsize=7.5)
+            ax.axhline(0.0, color="#bbbbbb", lw=0.6, zorder=0)
+            order = np.argsort(self._rest, kind="stable")
+            self._order = order
+            self._strip = strip.imshow(
+                self._ratio[:1, order],
+                aspect="auto",
+                extent=(left, right, 0.0, 1.0),
+                cmap="PuOr_r",
+                vmin=-ratio_top,
+                vmax=ratio_top,
+                interpolation="nearest",
+            )
+            strip.set_yticks([])
+            strip.set_xlabel("rest position x (m)")
+            bar = figure.colorbar(self._points, ax=[ax, strip], fraction=0.03, pad=0.02)
+            bar.set_label("f / (μs N), signed", fontsize=7.5)
+            self._centroid = self._predicted = None
+            if waves is not None:
+                self._centroid = ax.axvline(left, color="#1b9e77", lw=1.4, label="energy centroid")
+                if waves.kind == "packet" and math.isfinite(waves.group_velocity):
+                    self._predicted = ax.axvline(
+                        left, color="#e7298a", lw=1.2, ls="--", label="X_E(0) + v_g t"
+                    )
+                ax.legend(loc="upper right", fontsize=7, framealpha=0.8)
+            self._clock = ax.set_title("", loc="left", fontsize=8.5)
+            ax.set_title(trajectory.system.name or "", loc="right", fontsize=7.5)
+        self.figure = figure
+
+    def __len__(self) -> int:
+        return int(self.times.size)
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """(width, height) of a frame in pixels."""
+        width, height = self.figure.canvas.get_width_height()
+        return int(width), int(height)
+
+    def _at(self, values: np.ndarray, time: float) -> np.ndarray:
+        t = self.trajectory.t
+        if t.size == 1:
+            return np.asarray(values[0])
+        k = int(np.clip(np.searchsorted(t, time, side="right") - 1, 0, t.size - 2))
+        w = float(np.clip((time - t[k]) / (t[k + 1] - t[k]), 0.0, 1.0))
+        result: np.ndarray = (1.0 - w) * values[k] + w * values[k + 1]
+        return result
+
+    def update(self, i: int) -> None:
+        """Move the drawing to frame ``i`` (without drawing)."""
+        time = float(self.times[i])
+        ratio = self._at(self._ratio, time)
+        self._points.set_offsets(np.column_stack([self._rest, self._at(self._height, time)]))
+        self._points.set_array(ratio)
+        self._strip.set_data(ratio[self._order][None, :])
+        waves = self.waves
+        if waves is not None and self._centroid is not None:
+            where = float(np.interp(time, waves.t, waves.centroid))
+            self._centroid.set_xdata([where, where])
+            if self._predicted is not None:
+                ahead = waves.centroid[0] + waves.group_velocity * (time - float(waves.t[0]))
+                self._predicted.set_xdata([ahead, ahead])
+        self._clock.set_text(f"t = {time:.2f} s")
+
+    def render(self, i: int) -> np.ndarray:
+        """Frame ``i`` as a (height, width, 4) uint8 array."""
+        self.update(i)
+        canvas = self.figure.canvas
+        assert isinstance(canvas, FigureCanvasAgg)
+        with theme():
+            canvas.draw()
+        return np.array(canvas.buffer_rgba())
+
+    def frames(self, progress: Progress | None = None) -> Iterator[np.ndarray]:
+        """Every frame in order, reporting the fraction done to ``progress``."""
+        total = len(self)
+        for i in range(total):
+            frame = self.render(i)
+            if progress is not None:
+                progress((i + 1) / total)
+            yield frame
+
+
 def write_animation(
     trajectory: Trajectory,
     path: str | os.PathLike[str],
@@ -181,9 +335,11 @@ def write_animation(
     dpi: float = 80,
     forces: bool = True,
     progress: Progress | None = None,
+    waves: Waves | None = None,
 ) -> Path:
     """Render the animation and write it to ``path`` (``.gif``, ``.mp4``, ``.html``), atomically:
-    a temporary file in the same directory renamed into place. Returns the path."""
+    a temporary file in the same directory renamed into place. Returns the path. A long chain
+    is a :class:`ChainAnimation` (with ``waves``, its energy centroid)."""
     target = Path(path)
     kind = FORMATS.get(target.suffix.lower())
     if kind is None:
@@ -191,9 +347,7 @@ def write_animation(
             f"{target}: unknown animation format '{target.suffix or '(no suffix)'}' "
             f"(use .gif, .mp4 or .html)"
         )
-    animation = MotionAnimation(
-        trajectory, duration=duration, speed=speed, fps=fps, dpi=dpi, forces=forces
-    )
+    animation = _animation(trajectory, duration, speed, fps, dpi, forces, waves)
     if kind == "gif":
         _write_gif(animation, target, progress)
     elif kind == "mp4":
@@ -218,20 +372,40 @@ def animation_html(
     dpi: float = 80,
     forces: bool = True,
     progress: Progress | None = None,
+    waves: Waves | None = None,
 ) -> str:
     """The animation as HTML markup (Matplotlib's JS player: play, pause, step, speed, loop),
     self-contained: frames embedded as base64 PNG, no network access, no icon font. The element
-    ids derive from the frames' hash, so equal inputs give equal markup."""
-    animation = MotionAnimation(
+    ids derive from the frames' hash, so equal inputs give equal markup. A long chain is a
+    :class:`ChainAnimation` (with ``waves``, its energy centroid)."""
+    animation = _animation(trajectory, duration, speed, fps, dpi, forces, waves)
+    return _html_markup(animation, progress)
+
+
+def _animation(
+    trajectory: Trajectory,
+    duration: float | None,
+    speed: float,
+    fps: int,
+    dpi: float,
+    forces: bool,
+    waves: Waves | None,
+) -> MotionAnimation | ChainAnimation:
+    if len(trajectory.ids) > LONG_CHAIN:
+        return ChainAnimation(
+            trajectory, duration=duration, speed=speed, fps=fps, dpi=dpi, waves=waves
+        )
+    return MotionAnimation(
         trajectory, duration=duration, speed=speed, fps=fps, dpi=dpi, forces=forces
     )
-    return _html_markup(animation, progress)
 
 
 # -- writers ---------------------------------------------------------------------------------
 
 
-def _write_gif(animation: MotionAnimation, target: Path, progress: Progress | None) -> None:
+def _write_gif(
+    animation: MotionAnimation | ChainAnimation, target: Path, progress: Progress | None
+) -> None:
     from PIL import Image
 
     images = []
@@ -263,7 +437,9 @@ def _padded(frame: np.ndarray, block: int) -> np.ndarray:
     return np.ascontiguousarray(rgb)
 
 
-def _write_mp4(animation: MotionAnimation, target: Path, progress: Progress | None) -> None:
+def _write_mp4(
+    animation: MotionAnimation | ChainAnimation, target: Path, progress: Progress | None
+) -> None:
     import imageio_ffmpeg
 
     with atomic_path(target, suffix=".part.mp4") as temporary:
@@ -301,7 +477,7 @@ _ICONS = {
 }
 
 
-def _html_markup(animation: MotionAnimation, progress: Progress | None) -> str:
+def _html_markup(animation: MotionAnimation | ChainAnimation, progress: Progress | None) -> str:
     """Matplotlib's HTMLWriter output for the frames, made offline: the Font Awesome link is
     dropped and its icons become Unicode symbols; the random element id becomes a hash."""
     from matplotlib.animation import HTMLWriter

@@ -17,7 +17,8 @@ this module gathers them for the command line.
   cube of the number of bodies (dense matrices of the modes and the friction each body needs),
   measured on chains: 1 s for 100 bodies, 6 min for 1000.
 * A derivation (:func:`derivation_cost`, SymPy) as n^1.5; a report (:func:`report_cost`) is an
-  analysis, a simulation of at most 20 s and, unless left out, a derivation.
+  analysis, a simulation of at most 20 s and, unless left out, a derivation; a long chain's
+  report is its simulation and about 15 s of drawing.
 
 The constants are measurements on a laptop core (``bench/``), rounded up: an estimate is meant
 to be right within a factor of a few, enough to tell seconds from days.
@@ -104,7 +105,13 @@ def report_cost(
     simulation (``duration``, default at most 20 s) and, with ``derivation``, the derivation.
     ``flag`` is how the run is confirmed (``--yes``, or ``confirm=True`` in Python): the words
     of the message that says how to make it smaller."""
+    from rollspring.outputs.figures import LONG_CHAIN
+
     run = simulation_cost(system, _REPORT_DURATION if duration is None else duration, what=what)
+    if len(system.bodies) > LONG_CHAIN:  # a long chain's summary: no analysis, no derivation
+        seconds = 15.0 + run.seconds
+        smaller = _REPORT_SMALLER.get(flag, _REPORT_SMALLER["--yes"])
+        return Cost(what, run.bodies, seconds, run.memory, smaller=smaller)
     seconds = 5.0 + analysis_cost(system).seconds + run.seconds
     if derivation:
         seconds += derivation_cost(system).seconds

@@ -35,8 +35,10 @@ from rollspring.analysis.paper_check import (
     paper_claims,
     paper_figure,
 )
+from rollspring.analysis.waves import travelling_wave
 from rollspring.errors import RollspringError
 from rollspring.model import System, as_system, system_from_dict
+from rollspring.outputs.figures import LONG_CHAIN
 from rollspring.outputs.report import (
     MathConversionError,
     Report,
@@ -45,6 +47,7 @@ from rollspring.outputs.report import (
     default_duration,
     derivation_sections,
     latex_to_mathml,
+    render_chain_report,
     render_report,
 )
 from rollspring.outputs.worksheet import LEVELS, Worksheet, WorksheetError
@@ -83,6 +86,13 @@ def build_report(
     part for large systems); ``progress`` is called with the fraction done (0..1) after each
     stage. ``Report.timings`` holds the seconds each stage took, and their ``total``.
 
+    A long chain (more than :data:`~rollspring.outputs.figures.LONG_CHAIN` bodies) gets a
+    summary instead (:func:`~rollspring.outputs.report.render_chain_report`): no modal
+    analysis or derivation; the run (``duration`` default :data:`CHAIN_DURATION` s,
+    :data:`CHAIN_ROWS` output rows) and its waves
+    (:func:`~rollspring.analysis.waves.travelling_wave`: the energy centroid's speed beside
+    the group velocity).
+
     ``system`` is a :class:`~rollspring.model.System`, its JSON form (a dict) or a file path or
     preset name. Every bad argument is a one-line :class:`~rollspring.errors.RollspringError`,
     raised before any work; a report estimated at more than 5 minutes or 2 GiB
@@ -118,6 +128,8 @@ def build_report(
         if progress is not None:
             progress(fraction)
 
+    if len(system.bodies) > LONG_CHAIN:
+        return _chain_report(system, duration, rtol, done, timings, started)
     analysis = analyze(system)
     if duration is None:
         duration = default_duration(analysis)
@@ -146,6 +158,33 @@ def build_report(
         derivation_error=error,
         paper=paper,
         stage=lambda name, f: done(name, computed + (1.0 - computed) * f),
+    )
+    timings["total"] = time.perf_counter() - started
+    report.timings = timings
+    return report
+
+
+#: A long chain's report: the simulated time (s) by default and the run's output rows.
+CHAIN_DURATION = 20.0
+CHAIN_ROWS = 801
+
+
+def _chain_report(
+    system: System,
+    duration: float | None,
+    rtol: float,
+    done: Callable[[str, float], None],
+    timings: dict[str, float],
+    started: float,
+) -> Report:
+    """A long chain's report: simulate, measure the waves, render the summary."""
+    duration = CHAIN_DURATION if duration is None else float(duration)
+    trajectory = simulate(system, duration, rtol=rtol, n_output=CHAIN_ROWS, confirm=True)
+    done("simulate", 0.6)
+    waves = travelling_wave(system, trajectory.t, trajectory.x, trajectory.v)
+    done("waves", 0.7)
+    report = render_chain_report(
+        system, trajectory, waves, stage=lambda name, f: done(name, 0.7 + 0.3 * f)
     )
     timings["total"] = time.perf_counter() - started
     report.timings = timings

@@ -15,6 +15,7 @@ Public API::
 
     report = render_report(system, analysis, trajectory, frames=frames,
                            derivation=derivation, paper=(label, checks))  # -> Report
+    render_chain_report(system, trajectory, waves)                # a long chain: a summary
     write_report(report, "report.html")                           # atomic
     write_report(report, "report.pdf", format="pdf")              # headless Chromium
     find_chromium()                                               # path, or ReportError
@@ -31,10 +32,12 @@ from rollspring.outputs.report._build import (
     render_report,
     write_report,
 )
+from rollspring.outputs.report._chain import CHAIN_FRAMES, render_chain_report
 from rollspring.outputs.report._html import MathConversionError, ReportError, latex_to_mathml
 from rollspring.outputs.report._pdf import CHROMIUM_ENV, find_chromium, html_to_pdf
 
 __all__ = [
+    "CHAIN_FRAMES",
     "CHROMIUM_ENV",
     "FORMATS",
     "MathConversionError",
@@ -47,6 +50,7 @@ __all__ = [
     "find_chromium",
     "html_to_pdf",
     "latex_to_mathml",
+    "render_chain_report",
     "render_report",
     "write_report",
 ]

@@ -74,7 +74,8 @@ class Report:
     latex2mathml could not convert them (empty when every formula is MathML)."""
 
     system: System
-    analysis: LinearAnalysis
+    #: None for a long chain's report (:func:`~rollspring.outputs.report.render_chain_report`)
+    analysis: LinearAnalysis | None
     trajectory: Trajectory
     html: str
     sections: list[str] = field(default_factory=list)
@@ -1033,30 +1034,33 @@ class _Page:
     # -- the document ------------------------------------------------------------------------
 
     def document(self, sections: list[Markup]) -> str:
-        from rollspring._version import version
+        return page_document(self.system, self.titles, sections)
 
-        __version__ = version()
 
-        system = self.system
-        title = system.name or "system"
-        toc = " ".join(f'<a href="#{sid}">{esc(t)}</a>' for sid, t in self.titles)
-        description = f"<p>{esc(system.description)}</p>" if system.description else ""
-        return (
-            '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
-            # nothing may be fetched: images and data are embedded, scripts and styles inline
-            '<meta http-equiv="Content-Security-Policy" content="default-src \'none\'; '
-            "img-src data:; style-src 'unsafe-inline'; script-src 'unsafe-inline'\">"
-            '<meta name="viewport" content="width=device-width, initial-scale=1">'
-            f'<meta name="generator" content="rollspring {esc(__version__)}">'
-            '<link rel="icon" href="data:,">'
-            f"<title>rollspring report: {esc(title)}</title><style>{CSS}</style></head><body>"
-            f'<main><header class="page"><h1>{esc(title)}</h1>{description}'
-            f'<nav class="toc">{toc}</nav></header>'
-            + "".join(sections)
-            + f"<footer>Made by rollspring {esc(__version__)}. One file, no network: every "
-            "image, formula (MathML) and data set is in it.</footer></main>"
-            f"<script>{PLAYER_JS}</script></body></html>\n"
-        )
+def page_document(system: System, titles: list[tuple[str, str]], sections: list[Markup]) -> str:
+    """The whole page: head (no request allowed), title, table of contents and ``sections``."""
+    from rollspring._version import version
+
+    __version__ = version()
+    title = system.name or "system"
+    toc = " ".join(f'<a href="#{sid}">{esc(t)}</a>' for sid, t in titles)
+    description = f"<p>{esc(system.description)}</p>" if system.description else ""
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        # nothing may be fetched: images and data are embedded, scripts and styles inline
+        '<meta http-equiv="Content-Security-Policy" content="default-src \'none\'; '
+        "img-src data:; style-src 'unsafe-inline'; script-src 'unsafe-inline'\">"
+        '<meta name="viewport" content="width=device-width, initial-scale=1">'
+        f'<meta name="generator" content="rollspring {esc(__version__)}">'
+        '<link rel="icon" href="data:,">'
+        f"<title>rollspring report: {esc(title)}</title><style>{CSS}</style></head><body>"
+        f'<main><header class="page"><h1>{esc(title)}</h1>{description}'
+        f'<nav class="toc">{toc}</nav></header>'
+        + "".join(sections)
+        + f"<footer>Made by rollspring {esc(__version__)}. One file, no network: every "
+        "image, formula (MathML) and data set is in it.</footer></main>"
+        f"<script>{PLAYER_JS}</script></body></html>\n"
+    )
 
 
 def animation_data(analysis: LinearAnalysis, trajectory: Trajectory, frames: int) -> dict:

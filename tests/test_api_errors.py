@@ -396,12 +396,15 @@ def test_worksheet_takes_numpy_integers_and_refuses_bools() -> None:
 def test_analyze_refuses_a_large_system_with_the_clis_estimate(tmp_path, monkeypatch) -> None:
     from rollspring.analysis import modal
 
-    data = chain(1000)
+    data = chain(6000)  # every mode of 6000 bodies: 6000 x 6000 shapes and forces
     monkeypatch.setattr(modal, "system_arrays", _never)
-    message = api_error(lambda: rollspring.analyze(data), CostTooHigh)
-    assert message == in_api_words(cli_error("analyze", write(tmp_path, "c.json", data)))
+    message = api_error(lambda: rollspring.analyze(data, modes=6000), CostTooHigh)
+    path = write(tmp_path, "c.json", data)
+    assert message == in_api_words(cli_error("analyze", path, "--modes", "6000"))
     with pytest.raises(Reached):
-        rollspring.analyze(data, confirm=True)
+        rollspring.analyze(data, confirm=True, modes=6000)
+    with pytest.raises(Reached):  # its lowest modes need no confirming
+        rollspring.analyze(data)
 
 
 # ------------------------------------------------- the command line's --yes still reaches the work

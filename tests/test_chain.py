@@ -136,8 +136,8 @@ def test_written_files_load_back_as_the_same_system() -> None:
     [
         ({"pattern": "hoop,cyl"}, "pattern: unknown shape 'cyl'"),
         ({"pattern": ""}, "pattern: give one or more shapes"),
-        ({"n": 1}, "n: must be from 2 to 1000"),
-        ({"n": 1001}, "n: must be from 2 to 1000"),
+        ({"n": 1}, "n: must be from 2 to 20000"),
+        ({"n": 20001}, "n: must be from 2 to 20000"),
         ({"n": 2.5}, "n: must be a whole number"),
         ({"mass": [1.0, 2.0, 3.0]}, "mass: give one value or one per element of the pattern (2)"),
         ({"radius": -0.1}, "radius: must be positive"),

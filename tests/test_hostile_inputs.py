@@ -434,21 +434,25 @@ CONTENTS: list[tuple[str, str | bytes, tuple[Expected, ...]]] = [
         ("bodies[0]", "mu_kinetic"),
     ),
     # too many
-    ("bodies-1001.json", chain(LIMITS["bodies"] + 1, springs=False), ("bodies", "at most 1000")),
     (
-        "springs-5001.json",
+        "bodies-too-many.json",
+        chain(LIMITS["bodies"] + 1, springs=False),
+        ("bodies", f"at most {LIMITS['bodies']}"),
+    ),
+    (
+        "springs-too-many.json",
         json.dumps(
             {
                 "bodies": [
                     {"id": "a", "shape": "hoop", "mass": 1, "radius": 0.1, "x": 0},
                     {"id": "b", "shape": "hoop", "mass": 1, "radius": 0.1, "x": 1},
                 ],
-                "springs": [{"ends": ["a", "b"], "stiffness": 1}] * 5001,
+                "springs": [{"ends": ["a", "b"], "stiffness": 1}] * (LIMITS["springs"] + 1),
             }
         ),
-        ("springs", "at most 5000"),
+        ("springs", f"at most {LIMITS['springs']}"),
     ),
-    ("bodies-10000.json", chain(10000, springs=False), ("bodies", "at most 1000", "10000")),
+    ("bodies-25000.json", chain(25000, springs=False), ("bodies", "at most 20000", "25000")),
 ]
 
 #: the content cases each of the other four commands is also given (the rest, through analyze
@@ -464,7 +468,7 @@ SAMPLED = (
     "name-escape.toml",
     "unknown-key-10k.toml",
     "spring-unknown-end.toml",
-    "bodies-10000.json",
+    "bodies-25000.json",
 )
 
 
@@ -643,19 +647,27 @@ OPTIONS: list[Hostile] = [
         "too long",
     ),
     _case(
+        "simulate-25000-bodies",
+        lambda f: ["simulate", _write(f, "c.json", chain(25000))],
+        "at most 20000",
+    ),
+    _case(
         "simulate-10000-bodies",
         lambda f: ["simulate", _write(f, "c.json", chain(10000))],
-        "at most 1000",
+        "this run",
+        "--yes",
     ),
     # analyze
     _case("analyze-unknown-option", lambda f: ["analyze", "--frob"], "--frob"),
     _case("analyze-extra-argument", lambda f: ["analyze", "hoop-cylinder", "extra"], "extra"),
     _case(
-        "analyze-1000-bodies",
-        lambda f: ["analyze", _write(f, "c.json", chain(1000))],
+        "analyze-6000-bodies-every-mode",
+        lambda f: ["analyze", _write(f, "c.json", chain(6000)), "--modes", "6000"],
         "the analysis",
         "--yes",
     ),
+    _case("analyze-modes-form", lambda f: ["analyze", "--modes", "a-b"], "--modes", "'a-b'"),
+    _case("analyze-modes-range", lambda f: ["analyze", "--modes", "3"], "modes", "1 to 2"),
     _case("no-such-command", lambda f: ["analyse"], "analyse"),
     # report
     _case(
@@ -687,8 +699,8 @@ OPTIONS: list[Hostile] = [
         "Chromium",
     ),
     _case(
-        "report-1000-bodies",
-        lambda f: ["report", _write(f, "c.json", chain(1000)), "-o", str(f / "r.html")],
+        "report-10000-bodies",
+        lambda f: ["report", _write(f, "c.json", chain(10000)), "-o", str(f / "r.html")],
         "--yes",
     ),
     # animate

@@ -20,12 +20,14 @@ from typing import Any
 
 import numpy as np
 
+from rollspring.analysis.banded import ALL_MODES_LIMIT, DENSE_LIMIT, sparse_equilibrium
 from rollspring.analysis.report import CONVENTIONS
 from rollspring.model import System
 from rollspring.physics import (
     SystemArrays,
     generalized_forces,
     mass_matrix,
+    spring_pair_matrix,
     springs_stay_level,
     stiffness_matrix,
 )
@@ -76,6 +78,7 @@ def find_equilibrium(
     tolerance: float = 1e-13,
     forces: Callable[[FloatArray], FloatArray] | None = None,
     stiffness: Callable[[FloatArray], FloatArray] | None = None,
+    sparse: bool | None = None,
 ) -> Equilibrium:
     r"""The equilibrium nearest the initial placement, with the zero modes held.
 
@@ -100,6 +103,11 @@ def find_equilibrium(
     ``forces`` may replace :func:`~rollspring.physics.generalized_forces` of ``system`` by an
     equal but faster function of q (the simulator passes its compiled kernel), ``stiffness``
     likewise :func:`~rollspring.physics.stiffness_matrix`.
+
+    Beyond :data:`~rollspring.analysis.banded.DENSE_LIMIT` bodies (or with ``sparse=True``)
+    no dense matrix is formed: :func:`_large_equilibrium` (the placement when it is an
+    equilibrium, else Newton with sparse factorisations); the returned ``stiffness`` and
+    ``modes`` are then None. ``sparse=False`` forces the dense search.
 
     ``system`` is the :class:`~rollspring.physics.SystemArrays` of a system, or the system
     itself as :func:`rollspring.analyze` takes it (a System, its JSON form, a file path or a
@@ -136,6 +144,10 @@ def find_equilibrium(
     scale = max(initial, _force_scale(system, lengths))
     target = tolerance * scale
 
+    if (n > DENSE_LIMIT if sparse is None else sparse) and stiffness is None:
+        large = _large_equilibrium(system, initial, target, scale)
+        if large is not None:
+            return large
     if _level_centre_springs(system, dx):
         level = _level_equilibrium(
             system.inertia,
@@ -233,6 +245,34 @@ def find_equilibrium(
     )
 
 
+def _large_equilibrium(
+    system: SystemArrays, initial: float, target: float, scale: float
+) -> Equilibrium | None:
+    r"""The equilibrium of a system of more than
+    :data:`~rollspring.analysis.banded.DENSE_LIMIT` bodies without dense matrices: the
+    placement itself when its residual is within ``target`` (a chain written with its springs
+    at rest length), else Newton with sparse factorisations
+    (:func:`~rollspring.analysis.banded.sparse_equilibrium`). None when that does not
+    converge (K singular: zero modes) and the dense search can still be afforded
+    (:data:`~rollspring.analysis.banded.ALL_MODES_LIMIT` bodies); beyond, not found."""
+    n = system.n_bodies
+    if initial <= target:
+        return Equilibrium(np.zeros(n), True, initial)
+    q, residual, converged = sparse_equilibrium(system, target)
+    if converged or residual <= 1e-9 * scale:
+        return Equilibrium(q, True, residual)
+    if n <= ALL_MODES_LIMIT:
+        return None
+    return Equilibrium(
+        np.zeros(n),
+        False,
+        initial,
+        f"no equilibrium found by sparse Newton from the initial placement ({n} bodies: the "
+        "dense search with held zero modes is for at most "
+        f"{ALL_MODES_LIMIT}); start the system at rest length, or tie it to a wall",
+    )
+
+
 def _level_centre_springs(
     system: SystemArrays, dx: FloatArray | None = None, dy: FloatArray | None = None
 ) -> bool:
@@ -248,20 +288,25 @@ def _level_centre_springs(
     return bool((dx != 0.0).all())
 
 
-def _level_stiffness(system: SystemArrays, dx: FloatArray, lengths: FloatArray) -> FloatArray:
+def _level_stiffness(
+    system: SystemArrays, dx: FloatArray, lengths: FloatArray, *, sparse: bool = False
+) -> Any:
     r""":func:`~rollspring.physics.stiffness_matrix` of a system of
     :func:`_level_centre_springs` (any q), :math:`K = \sum_s k_s b_s b_s^T` (M12) with the
     constant lever arms :math:`b_{si} = e_s \sigma_{si} s_i` (:math:`e_s = \pm 1` the spring's
     direction, :math:`\sigma_{si} = \pm 1` where end b / end a is on body i): the geometric
     stiffness :math:`T_sH_s` vanishes exactly on level centre springs. The same operations on
     the same numbers as ``stiffness_matrix`` (whose other terms are exact zeros there), so
-    the same bits."""
+    the same bits; SciPy CSR with ``sparse``."""
     direction = dx / lengths
-    sigma = system.incidence[:, 1, :] - system.incidence[:, 0, :]
-    lever = direction[:, None] * sigma * system.scale
-    k_matrix = np.einsum("s,si,sj->ij", system.stiffness, lever, lever)
-    result: FloatArray = 0.5 * (k_matrix + k_matrix.T)
-    return result
+    lever = direction[:, None] * (_END_SIGN * system.scale[system.end_index])
+    lever = lever * system.end_on_body
+    outer = lever[:, :, None] * lever[:, None, :]
+    return spring_pair_matrix(system, system.stiffness[:, None, None] * outer, sparse=sparse)
+
+
+#: d = P_b - P_a: end a counts -1, end b +1
+_END_SIGN = np.array([-1.0, 1.0])
 
 
 def _level_equilibrium(
@@ -668,23 +713,33 @@ class LinearAnalysis:
         ids = arrays.ids
         q = self.equilibrium.q
         rotation = arrays.rolls * q
+        sparse = hasattr(self.stiffness, "tocoo")  # a large system's SciPy sparse K
         modes = []
         for mode in self.modes:
-            modes.append(
-                {
-                    "kind": mode.kind,
-                    "omega": _num(mode.omega) if mode.kind != "unstable" else 0.0,
-                    "growth_rate": _num(mode.omega) if mode.kind == "unstable" else None,
-                    "frequency_hz": _num(mode.frequency),
-                    "period": _num(mode.period),
-                    "damping_ratio": _num(mode.damping_ratio),
-                    "shape": _by_id(ids, mode.shape_x),
-                    "shape_phi": _by_id(ids, arrays.rolls * mode.shape_q),
-                    "spring_extension": [_num(v) for v in mode.spring_extension],
-                    "friction": _by_id(ids, mode.friction),
-                    "normal_force": _by_id(ids, mode.normal_force),
-                }
-            )
+            entry: dict[str, Any] = {
+                "kind": mode.kind,
+                "omega": _num(mode.omega) if mode.kind != "unstable" else 0.0,
+                "growth_rate": _num(mode.omega) if mode.kind == "unstable" else None,
+                "frequency_hz": _num(mode.frequency),
+                "period": _num(mode.period),
+                "damping_ratio": _num(mode.damping_ratio),
+            }
+            if sparse:  # n numbers per mode and field: summarised, the shapes in Python
+                entry["peak_friction"] = _num(float(np.max(np.abs(mode.friction), initial=0)))
+                entry["peak_normal_force"] = _num(
+                    float(np.max(np.abs(mode.normal_force), initial=0))
+                )
+            else:
+                entry.update(
+                    {
+                        "shape": _by_id(ids, mode.shape_x),
+                        "shape_phi": _by_id(ids, arrays.rolls * mode.shape_q),
+                        "spring_extension": [_num(v) for v in mode.spring_extension],
+                        "friction": _by_id(ids, mode.friction),
+                        "normal_force": _by_id(ids, mode.normal_force),
+                    }
+                )
+            modes.append(entry)
         stationary = None
         if self.stationary_weights is not None:
             weights = self.stationary_weights
@@ -742,7 +797,9 @@ class LinearAnalysis:
                 i: ("rad" if r else "m") for i, r in zip(ids, arrays.rolls, strict=True)
             },
             "conventions": CONVENTIONS,
-            "matrices": {
+            "matrices": _sparse_matrices(self.mass, self.stiffness)
+            if sparse
+            else {
                 "M": [[_num(v) for v in row] for row in self.mass],
                 "K": [[_num(v) for v in row] for row in self.stiffness],
             },
@@ -760,6 +817,19 @@ class LinearAnalysis:
             "spring_split": split,
             "warnings": list(self.warnings),
         }
+
+
+def _sparse_matrices(mass: Any, stiffness: Any) -> dict[str, Any]:
+    """M and K of a large system in ``analyze --json``: M's diagonal and K's non-zero entries
+    (0-based row, column, value), O(n) numbers instead of n²."""
+    coo = stiffness.tocoo()
+    return {
+        "M_diagonal": [_num(v) for v in mass.diagonal()],
+        "K_entries": [
+            [int(i), int(j), _num(v)]
+            for i, j, v in zip(coo.row.tolist(), coo.col.tolist(), coo.data.tolist(), strict=True)
+        ],
+    }
 
 
 def _num(value: float) -> float | None:

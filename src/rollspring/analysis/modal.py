@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from rollspring.analysis.banded import ALL_MODES_LIMIT, DENSE_LIMIT, banded_modes
 from rollspring.analysis.checks import physics_warnings
 from rollspring.analysis.linear import (
     _SAME_FREQUENCY,
@@ -29,6 +30,7 @@ from rollspring.analysis.linear import (
 from rollspring.errors import AnalysisError
 from rollspring.model import System
 from rollspring.physics import (
+    SpringState,
     SystemArrays,
     contact_forces,
     contact_forces_jacobian,
@@ -44,7 +46,11 @@ __all__ = ["analyze"]
 
 
 def analyze(
-    system: System | dict[str, Any] | str | os.PathLike[str], *, confirm: bool = False
+    system: System | dict[str, Any] | str | os.PathLike[str],
+    *,
+    confirm: bool = False,
+    modes: int | tuple[int, int] | None = None,
+    sparse: bool | None = None,
 ) -> LinearAnalysis:
     r"""Linear analysis of a system about the equilibrium nearest its initial placement.
 
@@ -62,6 +68,15 @@ def analyze(
     about 950 bodies or more) is refused with its estimate
     (:class:`~rollspring.errors.CostTooHigh`) unless ``confirm=True`` (``--yes`` on the command
     line).
+
+    Beyond :data:`~rollspring.analysis.banded.DENSE_LIMIT` bodies the matrices stay sparse
+    (``mass`` and ``stiffness`` are SciPy CSR arrays) and the modes come from the banded
+    solvers of :mod:`rollspring.analysis.banded`: every mode up to
+    :data:`~rollspring.analysis.banded.ALL_MODES_LIMIT` bodies, beyond it the lowest 20 (the
+    linear response, which needs them all, is then not computed). ``modes`` chooses: a count
+    k (the lowest k modes) or a band ``(first, last)`` (1-based, ascending, inclusive), on
+    any system; a partial set of modes leaves the response out. ``sparse`` forces the sparse
+    path (True) or the dense one (False) whatever the size.
     """
     from rollspring.analysis.costs import CONFIRM, analysis_cost, check_cost
     from rollspring.model import as_system
@@ -69,31 +84,74 @@ def analyze(
     system = as_system(system)
     if not isinstance(confirm, bool):
         raise AnalysisError(f"confirm: must be True or False, got {confirm!r}")
-    check_cost(analysis_cost(system), confirmed=confirm, flag=CONFIRM)
+    select = _selection(modes, len(system.bodies))  # a bad request fails before any work
+    check_cost(analysis_cost(system, modes=modes), confirmed=confirm, flag=CONFIRM)
     arrays = system_arrays(system)
     warnings: list[str] = []
-    equilibrium = find_equilibrium(arrays)
+    n = arrays.n_bodies
+    large = n > DENSE_LIMIT if sparse is None else bool(sparse)
+    equilibrium = find_equilibrium(arrays, sparse=large)
     if not equilibrium.found:
         warnings.append(
             equilibrium.reason + "; modes are those at the initial placement, and no "
             "response is computed"
         )
     q_eq = equilibrium.q
-    mass = mass_matrix(arrays)
-    stiffness = stiffness_matrix(arrays, q_eq)
-    eigenvalues, vectors, kinds = normal_modes(mass, stiffness)
-    d_friction, d_normal = contact_forces_jacobian(arrays, q_eq)
+    mass: Any
+    stiffness: Any
+    if large:
+        import scipy.sparse
+
+        mass = scipy.sparse.diags_array(arrays.inertia).tocsr()
+        stiffness = stiffness_matrix(arrays, q_eq, sparse=True)
+        eigenvalues, found_vectors, kinds, _ = banded_modes(arrays, stiffness, select=select)
+        assert found_vectors is not None
+        vectors = found_vectors
+        d_friction, d_normal = contact_forces_jacobian(arrays, q_eq, sparse=True)
+    else:
+        mass = mass_matrix(arrays)
+        stiffness = stiffness_matrix(arrays, q_eq)
+        eigenvalues, vectors, kinds = normal_modes(mass, stiffness)
+        if select is not None:
+            lo, hi = select
+            eigenvalues, vectors, kinds = (
+                eigenvalues[lo : hi + 1],
+                vectors[:, lo : hi + 1],
+                kinds[lo : hi + 1],
+            )
+        d_friction, d_normal = contact_forces_jacobian(arrays, q_eq)
     friction_eq, normal_eq = contact_forces(arrays, q_eq)
     friction_eq = np.where(np.abs(friction_eq) < 1e-12 * _contact_scale(arrays), 0.0, friction_eq)
     springs = spring_state(arrays, q_eq)
+    levers = _Levers(springs, dense=not large)
+    sparse_mu = large
 
-    modes = []
-    for lam, vec, kind in zip(eigenvalues, vectors.T, kinds, strict=True):
-        modes.append(_mode(arrays, springs.lever, d_friction, d_normal, lam, vec, kind))
+    if large:
+        mode_list = _modes_at_once(
+            arrays, levers, d_friction, d_normal, eigenvalues, vectors, kinds
+        )
+    else:
+        mode_list = [
+            _mode(arrays, levers, d_friction, d_normal, lam, vec, kind)
+            for lam, vec, kind in zip(eigenvalues, vectors.T, kinds, strict=True)
+        ]
+    partial = select is not None and (select[0] > 0 or select[1] < n - 1)
+    if partial:
+        assert select is not None
+        warnings.append(
+            f"modes {select[0] + 1} to {select[1] + 1} of {n} computed"
+            + (
+                f" (all {n} are computed for at most {ALL_MODES_LIMIT} bodies, or on request)"
+                if modes is None
+                else ""
+            )
+            + ": the linear response, which needs every mode, is not computed"
+        )
 
     # zero modes and the stationary point (M14)
     zero = [k for k, kind in enumerate(kinds) if kind == "zero"]
     weights = stationary_weights(arrays, vectors, kinds)
+    modes_list = mode_list
     position = velocity = None
     if weights is not None:
         position = float(weights @ arrays.x0)
@@ -110,9 +168,9 @@ def analyze(
             f"{len(zero)} zero modes (parts of the system move freely): no single stationary point"
         )
 
-    unstable = [m for m in modes if m.kind == "unstable"]
+    unstable = [m for m in modes_list if m.kind == "unstable"]
     response: dict[str, Any] = {}
-    if not equilibrium.found:
+    if not equilibrium.found or partial:
         pass
     elif unstable:
         warnings.append(
@@ -130,19 +188,20 @@ def analyze(
             d_normal,
             friction_eq,
             normal_eq,
-            springs.lever,
+            levers,
             weights,
+            vectorised=sparse_mu,
         )
 
     tilt = _tilt_deg(springs.vector)
-    split = _spring_split(arrays, springs.lever) if equilibrium.found else None
-    damping = damping_matrix(arrays, q_eq)
+    split = _spring_split(arrays, springs.lever) if equilibrium.found and n == 2 else None
+    damping = damping_matrix(arrays, q_eq, sparse=large)
     if np.any(arrays.damping > 0):
         ratios = []
-        for k, mode in enumerate(modes):
+        for k, mode in enumerate(modes_list):
             if mode.kind == "oscillating":
-                ratio = float(vectors[:, k] @ damping @ vectors[:, k]) / (2 * mode.omega)
-                modes[k] = replace(mode, damping_ratio=ratio)
+                ratio = float(vectors[:, k] @ (damping @ vectors[:, k])) / (2 * mode.omega)
+                modes_list[k] = replace(mode, damping_ratio=ratio)
                 ratios.append(f"{ratio:.4g}")
         warnings.append(
             "springs have damping: the modes are the undamped ones, with modal damping ratios "
@@ -155,7 +214,7 @@ def analyze(
         equilibrium=equilibrium,
         mass=mass,
         stiffness=stiffness,
-        modes=modes,
+        modes=modes_list,
         equilibrium_friction=friction_eq,
         equilibrium_normal=normal_eq,
         spring_tilt_deg=tilt,
@@ -185,11 +244,69 @@ def _contact_scale(arrays: SystemArrays) -> float:
     return float(np.sum(arrays.mass) * max(arrays.gravity, 1.0) + np.sum(arrays.stiffness) * 1.0)
 
 
+def _selection(modes: int | tuple[int, int] | None, n: int) -> tuple[int, int] | None:
+    """The 0-based inclusive range of modes ``modes`` asks for (None: all), checked."""
+    if modes is None:
+        return None if n <= ALL_MODES_LIMIT else (0, min(n, _LOWEST) - 1)
+    if isinstance(modes, bool) or not isinstance(modes, (int, np.integer, tuple)):
+        raise AnalysisError(f"modes: a count or a (first, last) pair, got {modes!r}")
+    if isinstance(modes, tuple):
+        if len(modes) != 2 or not all(
+            isinstance(v, (int, np.integer)) and not isinstance(v, bool) for v in modes
+        ):
+            raise AnalysisError(f"modes: a (first, last) pair of whole numbers, got {modes!r}")
+        first, last = int(modes[0]), int(modes[1])
+        if not 1 <= first <= last <= n:
+            raise AnalysisError(f"modes: need 1 <= first <= last <= {n} (the bodies), got {modes}")
+        return first - 1, last - 1
+    count = int(modes)
+    if not 1 <= count <= n:
+        raise AnalysisError(f"modes: need 1 to {n} (the bodies), got {count}")
+    return 0, count - 1
+
+
+#: modes computed by default beyond ALL_MODES_LIMIT bodies
+_LOWEST = 20
+
+
+class _Levers:
+    r"""The springs' lever arms :math:`b_{si}` as a linear map from coordinates to spring
+    extensions, ``levers @ v`` (v of shape (n,) or (n, k)): a dense (S, n) product for small
+    systems (the reference), per spring end for large ones (O(S))."""
+
+    def __init__(self, springs: SpringState, *, dense: bool) -> None:
+        self._springs = springs
+        self._dense = springs.lever if dense else None
+        self.max_abs = float(np.max(np.abs(springs.end_lever), initial=0.0))
+
+    def __matmul__(self, vectors: FloatArray) -> FloatArray:
+        if self._dense is not None:
+            result: FloatArray = self._dense @ vectors
+            return result
+        end_lever, index = self._springs.end_lever, self._springs.end_index
+        values = np.asarray(vectors)[index]  # (S, 2) or (S, 2, k)
+        product: FloatArray = (
+            np.einsum("sj,sjk->sk", end_lever, values)
+            if values.ndim == 3
+            else np.einsum("sj,sj->s", end_lever, values)
+        )
+        return product
+
+
+def _max_abs(*matrices: Any) -> float:
+    """Largest |entry| of dense or SciPy sparse matrices."""
+    biggest = 0.0
+    for matrix in matrices:
+        data = matrix.data if hasattr(matrix, "tocsr") else matrix
+        biggest = max(biggest, float(np.max(np.abs(data), initial=0.0)))
+    return biggest
+
+
 def _mode(
     arrays: SystemArrays,
-    lever: FloatArray,
-    d_friction: FloatArray,
-    d_normal: FloatArray,
+    lever: _Levers,
+    d_friction: Any,
+    d_normal: Any,
     eigenvalue: float,
     vector: FloatArray,
     kind: str,
@@ -199,12 +316,11 @@ def _mode(
     norm = shape_x[biggest]
     shape_q = vector / norm
     shape_x = shape_x / norm
-    length_scale = float(np.max(np.abs(lever), initial=0.0)) * float(np.max(np.abs(shape_q)))
+    length_scale = lever.max_abs * float(np.max(np.abs(shape_q)))
     # rounding noise of an exact zero, relative to the largest force change along the mode: a
     # contact force's, or the springs' (k times the extension; frictionless geometries have
     # contact forces that vanish to first order, and then only the springs set the scale)
-    force_scale = float(np.max(np.abs(np.concatenate([d_friction, d_normal])), initial=0.0))
-    force_scale *= float(np.max(np.abs(shape_q)))
+    force_scale = _max_abs(d_friction, d_normal) * float(np.max(np.abs(shape_q)))
     force_scale = max(force_scale, float(np.max(arrays.stiffness, initial=0.0)) * length_scale)
     return Mode(
         eigenvalue=float(eigenvalue),
@@ -216,6 +332,53 @@ def _mode(
         friction=_clean(d_friction @ shape_q, force_scale),
         normal_force=_clean(d_normal @ shape_q, force_scale),
     )
+
+
+def _modes_at_once(
+    arrays: SystemArrays,
+    lever: _Levers,
+    d_friction: Any,
+    d_normal: Any,
+    eigenvalues: FloatArray,
+    vectors: FloatArray,
+    kinds: np.ndarray,
+) -> list[Mode]:
+    """:func:`_mode` of every column of ``vectors`` with matrix products (large systems)."""
+    if not eigenvalues.size:
+        return []
+    columns = np.arange(eigenvalues.size)
+    shape_x = arrays.scale[:, None] * vectors
+    biggest = np.argmax(np.abs(shape_x), axis=0)
+    norm = shape_x[biggest, columns]
+    shape_q = vectors / norm
+    shape_x = shape_x / norm
+    peak_q = np.max(np.abs(shape_q), axis=0)
+    length_scale = lever.max_abs * peak_q
+    force_scale = np.maximum(
+        _max_abs(d_friction, d_normal) * peak_q,
+        float(np.max(arrays.stiffness, initial=0.0)) * length_scale,
+    )
+    extension = lever @ shape_q
+    friction = np.asarray(d_friction @ shape_q)
+    normal = np.asarray(d_normal @ shape_q)
+    shape_q = np.where(np.abs(shape_q) <= 1e-12 * peak_q, 0.0, shape_q)
+    shape_x = np.where(np.abs(shape_x) <= 1e-12, 0.0, shape_x)
+    extension = np.where(np.abs(extension) <= 1e-12 * length_scale, 0.0, extension)
+    friction = np.where(np.abs(friction) <= 1e-12 * force_scale, 0.0, friction)
+    normal = np.where(np.abs(normal) <= 1e-12 * force_scale, 0.0, normal)
+    return [
+        Mode(
+            eigenvalue=float(eigenvalues[k]),
+            omega=math.sqrt(abs(float(eigenvalues[k]))),
+            kind=str(kinds[k]),
+            shape_q=shape_q[:, k],
+            shape_x=shape_x[:, k],
+            spring_extension=extension[:, k],
+            friction=friction[:, k],
+            normal_force=normal[:, k],
+        )
+        for k in columns.tolist()
+    ]
 
 
 def _clean(values: FloatArray, scale: float, relative: float = 1e-12) -> FloatArray:
@@ -246,12 +409,14 @@ def _response(
     eigenvalues: FloatArray,
     vectors: FloatArray,
     kinds: np.ndarray,
-    d_friction: FloatArray,
-    d_normal: FloatArray,
+    d_friction: Any,
+    d_normal: Any,
     friction_eq: FloatArray,
     normal_eq: FloatArray,
-    lever: FloatArray,
+    lever: _Levers,
     weights: FloatArray | None,
+    *,
+    vectorised: bool = False,
 ) -> dict[str, Any]:
     r"""Modal superposition of the free response from q(0) = 0, qdot(0) = v0/s.
 
@@ -270,17 +435,19 @@ def _response(
     complex_amp = eta0[oscillating] - 1j * etadot0[oscillating] / omegas
     groups = _frequency_groups(omegas)
 
-    def component(per_mode: FloatArray, centre_eq: FloatArray | float) -> _Component:
+    def component(per_mode: Any, centre_eq: FloatArray | float) -> _Component:
         """per_mode: (..., n_modes) coefficient of each M-normalised mode in the quantity."""
         per_mode = np.asarray(per_mode)
         centre = centre_eq + per_mode[..., zero] @ eta0[zero]
         drift = per_mode[..., zero] @ etadot0[zero]
         osc = per_mode[..., oscillating] * complex_amp
-        amps = (
-            np.array([osc[..., g].sum(axis=-1) for g in groups])
-            if groups
-            else np.zeros((0, *per_mode.shape[:-1]), dtype=complex)
-        )
+        if not groups:
+            amps = np.zeros((0, *per_mode.shape[:-1]), dtype=complex)
+        elif vectorised:  # groups are runs of consecutive modes: one reduceat
+            starts = np.array([g[0] for g in groups])
+            amps = np.moveaxis(np.add.reduceat(osc, starts, axis=-1), -1, 0)
+        else:
+            amps = np.array([osc[..., g].sum(axis=-1) for g in groups])
         return _Component(np.asarray(centre, dtype=float), amps, np.asarray(drift, dtype=float))
 
     x_modes = arrays.scale[:, None] * vectors
@@ -297,7 +464,7 @@ def _response(
     force_scale = float(np.max(arrays.stiffness * extension, initial=0.0))
     friction_amplitude = _clean(friction.amplitude, force_scale)
     friction = _Component(_clean(friction.centre, force_scale), friction.amplitudes, friction.drift)
-    required = _required_mu(arrays, friction, normal)
+    required = _required_mu(arrays, friction, normal, vectorised=vectorised)
     required[(friction_amplitude == 0.0) & (friction.centre == 0.0)] = 0.0
     result: dict[str, Any] = {
         "amplitude": position.amplitude,
@@ -332,7 +499,9 @@ def _frequency_groups(omegas: FloatArray) -> list[list[int]]:
     return groups
 
 
-def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component) -> FloatArray:
+def _required_mu(
+    arrays: SystemArrays, friction: _Component, normal: _Component, *, vectorised: bool = False
+) -> FloatArray:
     r"""max over the motion of :math:`|f_i|/N_i` per body (inf if :math:`N_i` can reach 0).
 
     With :math:`f = f_c + \mathrm{Re}\sum_g a_g e^{i\theta_g}` and
@@ -348,6 +517,8 @@ def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component)
       Nelder-Mead from the best sample; SciPy's optimizer, loaded on demand).
     """
     n = arrays.n_bodies
+    if vectorised:
+        return _required_mu_all(arrays, friction, normal)
     out = np.zeros(n)
     n_groups = friction.amplitudes.shape[0]
     rng = np.random.default_rng(12345)
@@ -393,6 +564,71 @@ def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component)
         )
         out[i] = max(float(values[best]), -float(res.fun))
     return out
+
+
+def _required_mu_all(
+    arrays: SystemArrays, friction: _Component, normal: _Component, sweeps: int = 3
+) -> FloatArray:
+    r""":func:`_required_mu` for every body at once (large systems, many frequency groups):
+    the same closed forms where N is constant or one group moves; otherwise coordinate ascent
+    over the phases, one group at a time by the one-phase closed form
+    (:func:`_one_phase_extremes`, vectorised over the bodies) from the phases that line up
+    the friction terms either way, ``sweeps`` times over the groups: O(groups x bodies) per
+    sweep, a local maximum of :math:`|f|/N` over the torus of phases (as the small systems'
+    search, a value the motion reaches arbitrarily closely)."""
+    f_c, n_c = friction.centre, normal.centre
+    a_f, a_n = friction.amplitudes, normal.amplitudes  # (G, n) complex
+    rolls = arrays.rolls > 0
+    lift = n_c - np.sum(np.abs(a_n), axis=0) <= 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = (np.abs(f_c) + np.sum(np.abs(a_f), axis=0)) / n_c  # N constant: terms line up
+    varying = rolls & ~lift & np.any(a_n != 0, axis=0)
+    if np.any(varying):
+        fc, nc = f_c[varying], n_c[varying]
+        af, an = a_f[:, varying], a_n[:, varying]
+        best = np.zeros(fc.size)
+        for sign in (1.0, -1.0):
+            phase = np.exp(-1j * np.angle(sign * af))  # each friction term at +|a| (or -|a|)
+            f_sum, n_sum = np.sum(af * phase, axis=0), np.sum(an * phase, axis=0)
+            for _ in range(sweeps):
+                for g in range(af.shape[0]):
+                    f_rest = fc + np.real(f_sum - af[g] * phase[g])
+                    n_rest = nc + np.real(n_sum - an[g] * phase[g])
+                    candidates = _one_phase_extremes_all(f_rest, af[g], n_rest, an[g])
+                    current = np.angle(phase[g])[None, :]
+                    thetas = np.concatenate([candidates, current])
+                    turned = np.exp(1j * thetas)
+                    ratio = np.abs(f_rest + np.real(af[g] * turned)) / (
+                        n_rest + np.real(an[g] * turned)
+                    )
+                    pick = np.argmax(ratio, axis=0)
+                    chosen = turned[pick, np.arange(fc.size)]
+                    f_sum += af[g] * (chosen - phase[g])
+                    n_sum += an[g] * (chosen - phase[g])
+                    phase[g] = chosen
+            best = np.maximum(best, np.abs(fc + np.real(f_sum)) / (nc + np.real(n_sum)))
+        out[varying] = best
+    out[lift & rolls] = math.inf
+    out[~rolls] = 0.0
+    result: FloatArray = out
+    return result
+
+
+def _one_phase_extremes_all(
+    f_c: FloatArray, a_f: np.ndarray, n_c: FloatArray, a_n: np.ndarray
+) -> FloatArray:
+    """:func:`_one_phase_extremes` for arrays of bodies: (2, bodies) phases."""
+    a, b = a_f.real, -a_f.imag
+    c, d = a_n.real, -a_n.imag
+    p = f_c * c - a * n_c
+    q = b * n_c - f_c * d
+    r = a * d - b * c
+    size = np.hypot(p, q)
+    centre = np.arctan2(p, q)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        half = np.arccos(np.clip(np.where(size > 0, r / size, 0.0), -1.0, 1.0))
+    half = np.where(size > 0, half, 0.0)
+    return np.stack([centre - half, centre + half])
 
 
 def _one_phase_extremes(f_c: float, a_f: complex, n_c: float, a_n: complex) -> FloatArray:

@@ -214,18 +214,29 @@ def analyze(
     system: SystemArg = DEFAULT_PRESET,
     as_json: JsonOpt = False,
     yes: YesOpt = False,
+    modes: Annotated[
+        str | None,
+        typer.Option(
+            "--modes",
+            help="Which normal modes: K (the lowest K) or FIRST-LAST (1-based, a band); "
+            "default every mode up to 2000 bodies, the lowest 20 beyond.",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Linear analysis: equilibrium, M and K, normal modes, stationary point, friction needed."""
+    from rollspring.errors import AnalysisError
     from rollspring.service.costs import analysis_cost, check_cost
     from rollspring.service.runs import analysis_payload
 
+    chosen = _mode_selection(modes, AnalysisError)
     model = load(system)
-    cost = analysis_cost(model)
+    cost = analysis_cost(model, modes=chosen)
     check_cost(cost, confirmed=yes)
     if cost.long:
         _say(f"note: the analysis will take {cost.describe()}")
     if as_json:
-        payload, warnings = analysis_payload(model)
+        payload, warnings = analysis_payload(model, chosen)
         for warning in warnings:
             _say(f"warning: {warning}")
         _print_json(payload)
@@ -233,7 +244,23 @@ def analyze(
     from rollspring.analysis import analyze as run_analysis
     from rollspring.cli.tables import print_analysis
 
-    print_analysis(_stdout(), run_analysis(model, confirm=True))  # checked above (--yes)
+    print_analysis(_stdout(), run_analysis(model, confirm=True, modes=chosen))  # --yes above
+
+
+def _mode_selection(text: str | None, error: type[Exception]) -> int | tuple[int, int] | None:
+    """``--modes``: "K" -> K, "FIRST-LAST" -> (FIRST, LAST); checked against the system by
+    :func:`rollspring.analyze` (the numbers' range), here their form."""
+    if text is None:
+        return None
+    first, dash, last = text.strip().partition("-")
+    try:
+        if dash:
+            return int(first), int(last)
+        return int(first)
+    except ValueError:
+        raise error(
+            f"--modes: a count K or a band FIRST-LAST of whole numbers, got {text!r}"
+        ) from None
 
 
 @app.command()

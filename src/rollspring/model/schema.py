@@ -79,10 +79,10 @@ RANGES: dict[str, tuple[float, float, str]] = {
 #: How many of each a system may hold, and how long its texts may be (characters): a system file
 #: is read whole and every command's cost grows with the number of bodies (the analysis' as n³).
 LIMITS: dict[str, int] = {
-    "bodies": 1000,
-    "anchors": 1000,
-    "springs": 5000,
-    "forces": 1000,
+    "bodies": 20000,
+    "anchors": 20000,
+    "springs": 60000,
+    "forces": 20000,
     "name": 200,
     "description": 5000,
 }

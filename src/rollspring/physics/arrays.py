@@ -14,7 +14,9 @@ with :math:`s_i = R_i, \rho_i = 1` for a rolling body (no slip, docs/physics.md 
 from __future__ import annotations
 
 import os
+from collections import Counter
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -54,13 +56,11 @@ class SystemArrays:
     end_r: FloatArray  # (S, 2) distance of the attachment from the centre
     end_alpha: FloatArray  # (S, 2) angle of the attachment, rad, clockwise from up (at q = 0)
     end_anchor: FloatArray  # (S, 2, 2) anchor position (zeros for a body end)
-    incidence: FloatArray  # (S, 2, n) 1 where end j of spring s is on body i
     # constant external forces
     force_body: IntArray  # (F,)
     force_r: FloatArray  # (F,)
     force_alpha: FloatArray  # (F,)
     force: FloatArray  # (F, 2) N
-    force_incidence: FloatArray  # (F, n)
 
     @property
     def n_bodies(self) -> int:
@@ -77,6 +77,41 @@ class SystemArrays:
         """True when a spring is tied to a fixed anchor."""
         return bool(np.any(self.end_body < 0))
 
+    @cached_property
+    def end_index(self) -> IntArray:
+        """(S, 2) body index of each spring end, an anchor end given body 0 (its
+        :attr:`end_on_body` is 0): an index that is always valid, for gathers and scatters."""
+        index: IntArray = np.where(self.end_body >= 0, self.end_body, 0)
+        index.setflags(write=False)
+        return index
+
+    @cached_property
+    def end_on_body(self) -> FloatArray:
+        """(S, 2) 1.0 where a spring end is on a body, 0.0 at an anchor."""
+        mask: FloatArray = (self.end_body >= 0).astype(np.float64)
+        mask.setflags(write=False)
+        return mask
+
+    @cached_property
+    def bandwidth(self) -> int:
+        """Largest :math:`|i - j|` over the springs joining bodies i and j (0 without such
+        springs): the stiffness matrix is banded with this half-bandwidth."""
+        both = (self.end_body >= 0).all(axis=1)
+        if not both.any():
+            return 0
+        ends = self.end_body[both]
+        return int(np.abs(ends[:, 1] - ends[:, 0]).max())
+
+    @cached_property
+    def incidence(self) -> FloatArray:
+        """(S, 2, n) dense incidence, 1 where end j of spring s is on body i: S x n numbers,
+        for small systems only (the physics gathers and scatters by :attr:`end_index`)."""
+        dense = np.zeros((self.n_springs, 2, self.n_bodies))
+        s, j = np.nonzero(self.end_body >= 0)
+        dense[s, j, self.end_body[s, j]] = 1.0
+        dense.setflags(write=False)
+        return dense
+
 
 def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> SystemArrays:
     """Flatten a validated :class:`~rollspring.model.System` into :class:`SystemArrays` (or
@@ -92,7 +127,6 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
         system = as_system(system)
     bodies = system.bodies
     index = {b.id: i for i, b in enumerate(bodies)}
-    n = len(bodies)
     per_body = np.array(
         [
             [
@@ -119,7 +153,6 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
     end_r = np.zeros((n_s, 2))
     end_alpha = np.zeros((n_s, 2))
     end_anchor = np.zeros((n_s, 2, 2))
-    incidence = np.zeros((n_s, 2, n))
     anchors = system.anchor_map if system.anchors else {}
     names = []
     for s, spring in enumerate(springs):
@@ -130,7 +163,6 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
                 end_body[s, j] = i
                 if not at.is_centre_form:  # a centre is (0, 0)
                     end_r[s, j], end_alpha[s, j] = at.polar(bodies[i])
-                incidence[s, j, i] = 1.0
             else:
                 end_anchor[s, j] = (anchors[end].x, anchors[end].y)
     per_spring = np.array(
@@ -146,8 +178,6 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
     n_f = len(forces)
     force_body = np.array([index[f.body] for f in forces], dtype=np.int64).reshape(n_f)
     force_polar = [f.at.polar(bodies[index[f.body]]) for f in forces]
-    force_incidence = np.zeros((n_f, n))
-    force_incidence[np.arange(n_f), force_body] = 1.0
     per_force = np.array(
         [[p[0] for p in force_polar], [p[1] for p in force_polar]], dtype=np.float64
     ).reshape(2, n_f)
@@ -157,9 +187,7 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
         end_r,
         end_alpha,
         end_anchor,
-        incidence,
         force_body,
-        force_incidence,
         per_force,
         force,
     ):
@@ -167,11 +195,12 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
     # disambiguate repeated spring names (two springs between the same ends)
     unique = names
     if len(set(names)) < len(names):
-        counts: dict[str, int] = {}
+        total = Counter(names)
+        counts: Counter[str] = Counter()
         unique = []
         for name in names:
-            counts[name] = counts.get(name, 0) + 1
-            unique.append(name if names.count(name) == 1 else f"{name}#{counts[name]}")
+            counts[name] += 1
+            unique.append(name if total[name] == 1 else f"{name}#{counts[name]}")
     mass, radius, gamma, track, x0, v0, scale, rolls, inertia, mu_static, mu_kinetic = per_body
     stiffness, rest_length, damping = per_spring
     return SystemArrays(
@@ -196,10 +225,8 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
         end_r=end_r,
         end_alpha=end_alpha,
         end_anchor=end_anchor,
-        incidence=incidence,
         force_body=force_body,
         force_r=per_force[0],
         force_alpha=per_force[1],
         force=force,
-        force_incidence=force_incidence,
     )

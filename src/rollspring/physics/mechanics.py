@@ -12,11 +12,15 @@ on a body is positive along +x; a spring's tension is positive when it is stretc
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from rollspring.physics.arrays import FloatArray, SystemArrays
+from rollspring.physics.arrays import FloatArray, IntArray, SystemArrays
+
+if TYPE_CHECKING:
+    from scipy.sparse import csr_array
 
 __all__ = [
     "SpringState",
@@ -34,8 +38,10 @@ __all__ = [
     "kinetic_energy",
     "mass_matrix",
     "potential_energy",
+    "spring_pair_matrix",
     "spring_state",
     "springs_stay_level",
+    "stiffness_entries",
     "stiffness_matrix",
     "total_energy",
 ]
@@ -84,8 +90,9 @@ def end_kinematics(
     Shapes: ``q`` (..., n) -> three arrays (..., S, 2 ends, 2 components).
     """
     q = _as_state(system, q)
-    body = np.where(system.end_body >= 0, system.end_body, 0)
-    position, first, second = _point_kinematics(system, body, system.end_r, system.end_alpha, q)
+    position, first, second = _point_kinematics(
+        system, system.end_index, system.end_r, system.end_alpha, q
+    )
     is_anchor = (system.end_body < 0)[..., None]
     position = np.where(is_anchor, system.end_anchor, position)
     first = np.where(is_anchor, 0.0, first)
@@ -104,27 +111,69 @@ def force_point_kinematics(
     return _point_kinematics(system, system.force_body, system.force_r, system.force_alpha, q)
 
 
+#: d = P_b - P_a: the sign of each end's contribution to the spring vector
+_SIGN = np.array([-1.0, 1.0])
+
+
+def _sum_to(index: IntArray, n: int, values: FloatArray) -> FloatArray:
+    """Sum ``values`` (..., E) into ``n`` bins by ``index`` (E,): (..., n). O(E) work and
+    memory, whatever the leading shape (one ``bincount`` over flattened bins)."""
+    lead = values.shape[:-1]
+    if values.shape[-1] == 0:
+        return np.zeros((*lead, n))
+    rows = values.reshape(-1, values.shape[-1])
+    if rows.shape[0] == 1:
+        total: Any = np.bincount(index, weights=rows[0], minlength=n)
+    else:
+        bins = (np.arange(rows.shape[0])[:, None] * n + index).reshape(-1)
+        total = np.bincount(bins, weights=rows.reshape(-1), minlength=rows.shape[0] * n)
+    result: FloatArray = total.reshape(*lead, n)
+    return result
+
+
+def _ends_to_bodies(system: SystemArrays, values: FloatArray) -> FloatArray:
+    """Sum per-end values (..., S, 2) onto the bodies the ends are on, (..., n); anchor ends
+    are dropped. The sparse form of a contraction with the (S, 2, n) incidence."""
+    on_body = values * system.end_on_body
+    return _sum_to(
+        system.end_index.reshape(-1), system.n_bodies, on_body.reshape(*values.shape[:-2], -1)
+    )
+
+
 @dataclass(frozen=True)
 class SpringState:
     r"""Every spring's geometry and force in one configuration (arrays of shape (..., S)).
 
     ``vector`` :math:`d = P_b - P_a`, ``length`` :math:`l = |d|`, ``direction``
     :math:`e = d/l`, ``tension`` :math:`T = k(l - L_0) + c\,\dot l` (positive when stretched),
-    ``lever`` :math:`b_i = \partial l/\partial q_i` (..., S, n).
+    ``end_lever`` (..., S, 2) the lever arm :math:`b_{si} = \partial l/\partial q_i` with
+    respect to the coordinate of the body each end is on (0 at an anchor); ``lever`` is the
+    same as a dense (..., S, n) array (S x n numbers: for small systems).
     """
 
     vector: FloatArray
     length: FloatArray
     direction: FloatArray
     tension: FloatArray
-    lever: FloatArray
+    end_lever: FloatArray
+    end_index: IntArray
+    n_bodies: int
 
-
-def _relative_derivatives(system: SystemArrays, first: FloatArray) -> FloatArray:
-    r""":math:`\Delta_i = \partial(P_b - P_a)/\partial q_i`, shape (..., S, n, 2)."""
-    sign = np.array([-1.0, 1.0])
-    result: FloatArray = np.einsum("j,sji,...sjc->...sic", sign, system.incidence, first)
-    return result
+    @property
+    def lever(self) -> FloatArray:
+        r""":math:`b_{si} = \partial l_s/\partial q_i`, dense (..., S, n)."""
+        lead = self.end_lever.shape[:-2]
+        n_springs = self.end_lever.shape[-2]
+        dense = np.zeros((*lead, n_springs, self.n_bodies))
+        if dense.size == 0:
+            return dense
+        view = dense.reshape(-1, n_springs, self.n_bodies)
+        per_end = self.end_lever.reshape(-1, n_springs, 2)
+        rows = np.arange(n_springs)
+        for j in (0, 1):
+            where: Any = (slice(None), rows, self.end_index[:, j])
+            np.add.at(view, where, per_end[:, :, j])
+        return dense
 
 
 def spring_state(
@@ -133,25 +182,29 @@ def spring_state(
     r"""Lengths, directions, tensions and lever arms of every spring.
 
     .. math:: T_s = k_s (l_s - L_{0s}) + c_s \dot l_s, \qquad
-              b_{si} = \frac{\partial l_s}{\partial q_i} = e_s\cdot\Delta_{si}
+              b_{si} = \frac{\partial l_s}{\partial q_i} = e_s\cdot\Delta_{si},\qquad
+              \Delta_{si} = \pm\frac{dP}{dq_i}
 
     docs/physics.md section 2 and (M7): :math:`b_{si}` is the signed lever arm of spring s about the
-    contact point of body i (for a slider, the x-component of ``e``). The damping term needs
-    ``qdot``; without it the tension is the elastic one.
+    contact point of body i (for a slider, the x-component of ``e``), non-zero only for the
+    (at most two) bodies the spring's ends are on, so it is kept per end: O(S) work and memory.
+    The damping term needs ``qdot``; without it the tension is the elastic one.
     """
     q = _as_state(system, q)
     position, first, _ = end_kinematics(system, q)
     vector = position[..., 1, :] - position[..., 0, :]
     length = np.sqrt(np.sum(vector**2, axis=-1))
     direction = vector / length[..., None]
-    delta = _relative_derivatives(system, first)
-    lever = np.einsum("...sc,...sic->...si", direction, delta)
+    delta = _SIGN[:, None] * first  # (..., S, 2, 2): d(d)/dq of each end's body
+    end_lever = np.einsum("...sc,...sjc->...sj", direction, delta)
     tension = system.stiffness * (length - system.rest_length)
     if qdot is not None:
         qdot = _as_state(system, qdot)
-        length_rate = np.einsum("...si,...i->...s", lever, qdot)
+        length_rate = np.sum(end_lever * qdot[..., system.end_index], axis=-1)
         tension = tension + system.damping * length_rate
-    return SpringState(vector, length, direction, tension, lever)
+    return SpringState(
+        vector, length, direction, tension, end_lever, system.end_index, system.n_bodies
+    )
 
 
 def generalized_forces(
@@ -167,12 +220,11 @@ def generalized_forces(
     """
     q = _as_state(system, q)
     springs = spring_state(system, q, qdot)
-    torque = -np.einsum("...s,...si->...i", springs.tension, springs.lever)
+    torque = -_ends_to_bodies(system, springs.tension[..., None] * springs.end_lever)
     if system.force.shape[0]:
         _, first, _ = force_point_kinematics(system, q)
-        torque = torque + np.einsum(
-            "fc,...fc,fi->...i", system.force, first, system.force_incidence
-        )
+        work = np.einsum("fc,...fc->...f", system.force, first)
+        torque = torque + _sum_to(system.force_body, system.n_bodies, work)
     result: FloatArray = torque
     return result
 
@@ -209,10 +261,10 @@ def body_forces(system: SystemArrays, q: FloatArray, qdot: FloatArray | None = N
     q = _as_state(system, q)
     springs = spring_state(system, q, qdot)
     pull = springs.tension[..., None] * springs.direction  # force on end a
-    end_force = np.stack([pull, -pull], axis=-2)  # (..., S, 2, 2)
-    total = np.einsum("...sjc,sji->...ic", end_force, system.incidence)
+    end_force = np.stack([pull, -pull], axis=-2)  # (..., S, 2 ends, 2 components)
+    total = np.moveaxis(_ends_to_bodies(system, np.moveaxis(end_force, -1, -3)), -2, -1)
     if system.force.shape[0]:
-        total = total + np.einsum("fc,fi->ic", system.force, system.force_incidence)
+        total = total + _sum_to(system.force_body, system.n_bodies, system.force.T).T
     result: FloatArray = total
     return result
 
@@ -239,8 +291,11 @@ def contact_forces(
     return friction, normal
 
 
-def stiffness_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
-    r"""Hessian of the potential, :math:`K = \partial^2 U/\partial q^2`, exact at ``q``.
+def stiffness_entries(system: SystemArrays, q: FloatArray) -> tuple[IntArray, IntArray, FloatArray]:
+    r"""The non-zero terms of the stiffness matrix :math:`K = \partial^2 U/\partial q^2` at
+    ``q``, as (rows, cols, values) triplets whose sums over repeated (row, col) are K's
+    entries: four per spring between two bodies (one per anchored spring) plus one per
+    spring end and per external force on the diagonal. O(S + F) work and memory.
 
     .. math::
         K = \sum_s \bigl[k_s b_s b_s^T + T_s H_s\bigr] - \sum_f \mathrm{diag}\bigl(F_f\cdot
@@ -248,32 +303,70 @@ def stiffness_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
         (H_s)_{ij} = \frac{\Delta_i\cdot\Delta_j - (e\cdot\Delta_i)(e\cdot\Delta_j)}{l}
                      + \delta_{ij}\, e\cdot DD_i
 
-    docs/physics.md (M12), (M13): :math:`T_s H_s` is the geometric stiffness of a pre-tensioned
-    spring. For the paper's Fig. 2 it is :math:`kR^2\begin{pmatrix}1&-1\\-1&1\end{pmatrix}`.
-    Shape: ``q`` (n,) -> (n, n), in N m/rad (rolling) or N/m (sliders).
+    docs/physics.md (M12), (M13), with :math:`\Delta_i = \pm dP/dq_i` and
+    :math:`DD_i = \pm d^2P/dq_i^2` at the spring's end on body i (+ at end b, - at end a).
     """
     q = _as_state(system, q)
     if q.ndim != 1:
-        raise ValueError("stiffness_matrix takes one state q of shape (n,)")
+        raise ValueError("stiffness_entries takes one state q of shape (n,)")
     _position, first, second = end_kinematics(system, q)
     springs = spring_state(system, q)
-    delta = _relative_derivatives(system, first)  # (S, n, 2)
-    sign = np.array([-1.0, 1.0])
-    curvature = np.einsum("j,sji,sjc->sic", sign, system.incidence, second)  # DD_i
-    e, length, b = springs.direction, springs.length, springs.lever
-    elastic_tension = system.stiffness * (length - system.rest_length)
-    transverse = np.einsum("sic,sjc->sij", delta, delta) - b[:, :, None] * b[:, None, :]
-    transverse /= length[:, None, None]
-    path = np.einsum("sc,sic->si", e, curvature)
-    hess_l = transverse + np.einsum("si,ij->sij", path, np.eye(system.n_bodies))
-    k_matrix = np.einsum("s,si,sj->ij", system.stiffness, b, b)
-    k_matrix += np.einsum("s,sij->ij", elastic_tension, hess_l)
+    delta = _SIGN[:, None] * first  # (S, 2 ends, 2 components)
+    e, length, b = springs.direction, springs.length, springs.end_lever
+    tension = system.stiffness * (length - system.rest_length)
+    dot = np.einsum("sjc,slc->sjl", delta, delta)
+    outer = b[:, :, None] * b[:, None, :]
+    pair = system.stiffness[:, None, None] * outer
+    pair += (tension / length)[:, None, None] * (dot - outer)
+    path = tension[:, None] * np.einsum("sc,sjc->sj", e, _SIGN[:, None] * second)
+    on_body = system.end_body >= 0
+    both = on_body[:, :, None] & on_body[:, None, :]
+    index = system.end_index
+    rows = [np.broadcast_to(index[:, :, None], both.shape)[both], index[on_body]]
+    cols = [np.broadcast_to(index[:, None, :], both.shape)[both], index[on_body]]
+    values = [pair[both], path[on_body]]
     if system.force.shape[0]:
         _, _, force_second = force_point_kinematics(system, q)
-        diag = -np.einsum("fc,fc,fi->i", system.force, force_second, system.force_incidence)
-        k_matrix += np.diag(diag)
-    result: FloatArray = 0.5 * (k_matrix + k_matrix.T)
-    return result
+        rows.append(system.force_body)
+        cols.append(system.force_body)
+        values.append(-np.einsum("fc,fc->f", system.force, force_second))
+    return np.concatenate(rows), np.concatenate(cols), np.concatenate(values)
+
+
+@overload
+def stiffness_matrix(
+    system: SystemArrays, q: FloatArray, *, sparse: Literal[False] = False
+) -> FloatArray: ...
+@overload
+def stiffness_matrix(
+    system: SystemArrays, q: FloatArray, *, sparse: Literal[True]
+) -> csr_array: ...
+def stiffness_matrix(system: SystemArrays, q: FloatArray, *, sparse: bool = False) -> Any:
+    r"""Hessian of the potential, :math:`K = \partial^2 U/\partial q^2`, exact at ``q``
+    (:func:`stiffness_entries` summed).
+
+    .. math::
+        K = \sum_s \bigl[k_s b_s b_s^T + T_s H_s\bigr] - \sum_f \mathrm{diag}\bigl(F_f\cdot
+        \tfrac{d^2P_f}{dq^2}\bigr)
+
+    docs/physics.md (M12), (M13): :math:`T_s H_s` is the geometric stiffness of a pre-tensioned
+    spring. For the paper's Fig. 2 it is :math:`kR^2\begin{pmatrix}1&-1\\-1&1\end{pmatrix}`.
+    Shape: ``q`` (n,) -> (n, n), in N m/rad (rolling) or N/m (sliders); with ``sparse=True`` a
+    SciPy CSR array (O(S) memory: each spring touches two bodies).
+    """
+    rows, cols, values = stiffness_entries(system, q)
+    return _assemble(system.n_bodies, rows, cols, values, sparse)
+
+
+def _assemble(n: int, rows: IntArray, cols: IntArray, values: FloatArray, sparse: bool) -> Any:
+    """Sum triplets into an (n, n) matrix: dense NumPy, or SciPy's CSR with ``sparse``."""
+    if sparse:
+        import scipy.sparse  # on demand: only the large-system path needs it
+
+        return scipy.sparse.coo_array((values, (rows, cols)), shape=(n, n)).tocsr()
+    dense = np.zeros((n, n))
+    np.add.at(dense, (rows, cols), values)
+    return dense
 
 
 def springs_stay_level(system: SystemArrays) -> bool:
@@ -296,20 +389,41 @@ def springs_stay_level(system: SystemArrays) -> bool:
     return True
 
 
-def damping_matrix(system: SystemArrays, q: FloatArray) -> FloatArray:
+def damping_matrix(system: SystemArrays, q: FloatArray, *, sparse: bool = False) -> Any:
     r"""Linear damping matrix of the spring dampers, :math:`C = \sum_s c_s b_s b_s^T`.
 
     The damping force :math:`c_s \dot l_s` along spring s, with :math:`\dot l_s = b_s\cdot\dot q`,
     gives the generalised force :math:`-C\dot q` (:func:`generalized_forces` with ``qdot``).
-    Shape: ``q`` (n,) -> (n, n).
+    Shape: ``q`` (n,) -> (n, n) (SciPy CSR with ``sparse=True``).
     """
-    springs = spring_state(system, q)
-    result: FloatArray = np.einsum("s,si,sj->ij", system.damping, springs.lever, springs.lever)
-    return result
+    b = spring_state(system, q).end_lever
+    outer = b[:, :, None] * b[:, None, :]
+    return spring_pair_matrix(system, system.damping[:, None, None] * outer, sparse=sparse)
 
 
-def body_forces_jacobian(system: SystemArrays, q: FloatArray) -> FloatArray:
-    r"""Derivative of the applied forces with respect to the coordinates, shape (n, 2, n).
+def spring_pair_matrix(system: SystemArrays, values: FloatArray, *, sparse: bool = False) -> Any:
+    r"""The (n, n) matrix :math:`A = \sum_s \sum_{j,l} a_{sjl}\, u_{i(s,j)} u_{i(s,l)}^T` of
+    per-spring end-pair terms ``values`` (S, 2, 2) (:math:`a_{sjl}` couples the bodies of ends
+    j and l of spring s; terms at anchor ends are dropped): e.g. :math:`\sum_s k_s b_s b_s^T`
+    from :math:`a_{sjl} = k_s b_{sj} b_{sl}`. Dense NumPy, or SciPy CSR with ``sparse``."""
+    rows, cols, pairs = _pair_entries(system)
+    return _assemble(system.n_bodies, rows, cols, np.asarray(values)[pairs], sparse)
+
+
+def _pair_entries(system: SystemArrays) -> tuple[IntArray, IntArray, np.ndarray]:
+    """Rows and columns of the (end j, end l) pairs of every spring with both on bodies, and
+    the (S, 2, 2) mask that picks them."""
+    on_body = system.end_body >= 0
+    pairs = on_body[:, :, None] & on_body[:, None, :]
+    index = system.end_index
+    rows = np.broadcast_to(index[:, :, None], pairs.shape)[pairs]
+    cols = np.broadcast_to(index[:, None, :], pairs.shape)[pairs]
+    return rows, cols, pairs
+
+
+def body_forces_jacobian(system: SystemArrays, q: FloatArray, *, sparse: bool = False) -> Any:
+    r"""Derivative of the applied forces with respect to the coordinates, shape (n, 2, n)
+    (with ``sparse=True`` two SciPy CSR arrays (n, n), of the x and the y components).
 
     For a displacement ``v``, the force on end a of a spring changes by
     :math:`\delta F_a = k\,\delta l\, e + T(\delta d - e(e\cdot\delta d))/l` with
@@ -320,19 +434,31 @@ def body_forces_jacobian(system: SystemArrays, q: FloatArray) -> FloatArray:
     q = _as_state(system, q)
     _, first, _ = end_kinematics(system, q)
     springs = spring_state(system, q)
-    delta = _relative_derivatives(system, first)  # (S, n, 2): d(d)/dq_i
-    e, length, b = springs.direction, springs.length, springs.lever
+    delta = _SIGN[:, None] * first  # (S, 2, 2): d(d)/dq of end l's body
+    e, length, b = springs.direction, springs.length, springs.end_lever
     tension = system.stiffness * (length - system.rest_length)
-    along = np.einsum("s,si,sc->sic", system.stiffness, b, e)
+    along = (system.stiffness[:, None] * b)[:, :, None] * e[:, None, :]
     across = (delta - b[:, :, None] * e[:, None, :]) * (tension / length)[:, None, None]
-    d_pull = along + across  # (S, n_coord, 2): d(force on end a)/dq
-    d_end = np.stack([d_pull, -d_pull], axis=1)  # (S, 2, n_coord, 2)
-    result: FloatArray = np.einsum("sjkc,sji->ick", d_end, system.incidence)
-    return result
+    d_pull = along + across  # (S, l, c): d(force on end a)/dq of end l's body
+    # force on end j (+ at a, - at b) by coordinate of end l: (S, j, l, c)
+    d_end = -_SIGN[None, :, None, None] * d_pull[:, None, :, :]
+    rows, cols, pairs = _pair_entries(system)
+    x_values, y_values = d_end[..., 0][pairs], d_end[..., 1][pairs]
+    n = system.n_bodies
+    if sparse:
+        return (_assemble(n, rows, cols, x_values, True), _assemble(n, rows, cols, y_values, True))
+    dense = np.zeros((n, 2, n))
+    for component, values in enumerate((x_values, y_values)):
+        where: Any = (rows, component, cols)
+        np.add.at(dense, where, values)
+    return dense
 
 
-def contact_forces_jacobian(system: SystemArrays, q: FloatArray) -> tuple[FloatArray, FloatArray]:
-    r"""Linear change of friction and normal forces with the coordinates, two (n, n) arrays.
+def contact_forces_jacobian(
+    system: SystemArrays, q: FloatArray, *, sparse: bool = False
+) -> tuple[Any, Any]:
+    r"""Linear change of friction and normal forces with the coordinates, two (n, n) arrays
+    (SciPy CSR arrays with ``sparse=True``).
 
     .. math:: \frac{\partial f_i}{\partial q_j} = -\frac{m_i s_i}{J_i} K_{ij}
               - \frac{\partial F_{ix}}{\partial q_j},\qquad
@@ -341,6 +467,15 @@ def contact_forces_jacobian(system: SystemArrays, q: FloatArray) -> tuple[FloatA
     Differentiates (M8), (M9) with :math:`\ddot q = -M^{-1}K\,\delta q` (docs/physics.md section 7,
     "linear forces along a displacement").
     """
+    factor = np.where(system.rolls > 0, system.mass * system.scale / system.inertia, 0.0)
+    if sparse:
+        import scipy.sparse
+
+        k_sparse = stiffness_matrix(system, q, sparse=True)
+        dx, dy = body_forces_jacobian(system, q, sparse=True)
+        keep = scipy.sparse.diags_array((system.rolls > 0).astype(float))
+        scale = scipy.sparse.diags_array(factor)
+        return (-(scale @ k_sparse) - keep @ dx).tocsr(), (-dy).tocsr()
     k_matrix = stiffness_matrix(system, q)
     d_force = body_forces_jacobian(system, q)
     d_friction = -(system.mass * system.scale / system.inertia)[:, None] * k_matrix

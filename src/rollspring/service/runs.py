@@ -32,9 +32,12 @@ __all__ = [
 ]
 
 
-def analysis_payload(system: System) -> tuple[dict[str, Any], list[str]]:
-    """The linear analysis of ``system`` as JSON (``analyze --json``) and its warnings."""
-    result = analyze(system, confirm=True)  # the interfaces check the cost themselves
+def analysis_payload(
+    system: System, modes: int | tuple[int, int] | None = None
+) -> tuple[dict[str, Any], list[str]]:
+    """The linear analysis of ``system`` (its ``modes``: :func:`rollspring.analyze`) as JSON
+    (``analyze --json``) and its warnings."""
+    result = analyze(system, confirm=True, modes=modes)  # the interfaces check the cost
     return result.to_dict(), list(result.warnings)
 
 

@@ -1,0 +1,187 @@
+r"""The linear model of a large system without dense matrices: every spring touches at most two
+bodies, so with the bodies numbered along the springs (a chain) the stiffness matrix is banded.
+
+* :func:`banded_stiffness` puts the mass-scaled stiffness
+  :math:`A = M^{-1/2} K M^{-1/2}` (docs/physics.md (M12)) into LAPACK's lower band storage;
+* :func:`banded_modes` solves :math:`K v = \lambda M v` from it: a tridiagonal :math:`A`
+  (springs between neighbours only: every chain) by LAPACK's ``stevd`` for the eigenvalues
+  (accurate to a few :math:`10^{-11}` of the largest at 2000 bodies) and ``stemr`` (MRRR, O(n)
+  per vector) for the vectors; wider bands by ``sbevd`` (SciPy's ``eig_banded``);
+  ``select=(lo, hi)`` computes only the modes lo..hi (0-based, ascending) by bisection and
+  inverse iteration (``stebz``/``stein``, O(n) per mode), without forming any n x n array;
+* :func:`sparse_equilibrium` is the equilibrium search of :func:`~rollspring.analysis.linear.
+  find_equilibrium` for systems beyond :data:`DENSE_LIMIT` bodies: Newton with a sparse LU
+  factorisation of :math:`K` (O(n) for a band).
+
+Zero modes (a chain without walls can roll as a whole when its springs join level centres)
+are told by the same rule as :func:`~rollspring.analysis.linear.normal_modes`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from rollspring.physics import SystemArrays, generalized_forces, stiffness_matrix
+from rollspring.physics.arrays import FloatArray
+
+__all__ = [
+    "ALL_MODES_LIMIT",
+    "DENSE_LIMIT",
+    "banded_modes",
+    "banded_stiffness",
+    "mode_kinds",
+    "sparse_equilibrium",
+]
+
+#: Up to this many bodies the analysis uses dense matrices (the reference path); beyond it the
+#: banded and sparse path of this module.
+DENSE_LIMIT = 64
+#: Up to this many bodies :func:`rollspring.analyze` computes every mode (and the exact linear
+#: response, which needs them all); beyond it the lowest modes (``modes=``).
+ALL_MODES_LIMIT = 2000
+#: An eigenvalue with |lambda| < this * max|lambda| is a zero mode (as in ``normal_modes``).
+_ZERO = 1e-10
+
+
+def banded_stiffness(arrays: SystemArrays, stiffness: Any) -> tuple[FloatArray, int]:
+    r"""The lower band of :math:`A = M^{-1/2} K M^{-1/2}` (``stiffness`` a SciPy sparse K):
+    ``band[d, i] = A[i + d, i]`` for d = 0..bandwidth (LAPACK's lower storage), and the
+    bandwidth (the largest :math:`|i - j|` with :math:`K_{ij} \ne 0`)."""
+    coo = stiffness.tocoo()
+    root = np.sqrt(arrays.inertia)
+    lower = coo.row >= coo.col
+    rows, cols = coo.row[lower], coo.col[lower]
+    values = coo.data[lower] / root[rows] / root[cols]
+    width = int((rows - cols).max(initial=0))
+    band = np.zeros((width + 1, arrays.n_bodies))
+    np.add.at(band, (rows - cols, cols), values)
+    return band, width
+
+
+def mode_kinds(eigenvalues: FloatArray, largest: float) -> np.ndarray:
+    """ "zero", "unstable" or "oscillating" for each eigenvalue (zero modes set to exactly 0 in
+    ``eigenvalues``), relative to the largest |eigenvalue| of the whole problem."""
+    kinds = np.full(eigenvalues.size, "oscillating", dtype=object)
+    zero = (np.abs(eigenvalues) < _ZERO * largest) | (largest == 0.0)
+    kinds[eigenvalues < 0] = "unstable"
+    kinds[zero] = "zero"
+    eigenvalues[zero] = 0.0
+    return kinds
+
+
+def banded_modes(
+    arrays: SystemArrays,
+    stiffness: Any,
+    *,
+    select: tuple[int, int] | None = None,
+    vectors: bool = True,
+) -> tuple[FloatArray, FloatArray | None, np.ndarray, float]:
+    r"""Normal modes :math:`K v = \lambda M v` of a sparse ``stiffness`` (the module's
+    methods): eigenvalues ascending, M-orthonormal vectors (columns; None without
+    ``vectors``), kinds, and the largest |eigenvalue| of the whole problem (the scale of the
+    zero-mode rule). ``select=(lo, hi)``: only modes lo..hi (0-based, inclusive)."""
+    import scipy.linalg
+
+    band, width = banded_stiffness(arrays, stiffness)
+    n = arrays.n_bodies
+    inverse_root = 1.0 / np.sqrt(arrays.inertia)
+    if width <= 1:
+        diagonal = band[0]
+        off = band[1, :-1] if width == 1 else np.zeros(n - 1)
+        ends = (
+            scipy.linalg.eigh_tridiagonal(
+                diagonal, off, eigvals_only=True, select="i", select_range=(0, 0)
+            ),
+            scipy.linalg.eigh_tridiagonal(
+                diagonal, off, eigvals_only=True, select="i", select_range=(n - 1, n - 1)
+            ),
+        )
+        largest = float(max(abs(ends[0][0]), abs(ends[1][0])))
+        if select is None:
+            values = scipy.linalg.eigh_tridiagonal(diagonal, off, eigvals_only=True)
+            standard = None
+            if vectors:
+                _, standard = scipy.linalg.eigh_tridiagonal(diagonal, off, lapack_driver="stemr")
+        else:
+            lo, hi = select
+            if vectors:
+                values, standard = scipy.linalg.eigh_tridiagonal(
+                    diagonal, off, select="i", select_range=(lo, hi)
+                )
+            else:
+                values = scipy.linalg.eigh_tridiagonal(
+                    diagonal, off, eigvals_only=True, select="i", select_range=(lo, hi)
+                )
+                standard = None
+    else:
+        if select is None:
+            if vectors:
+                values, standard = scipy.linalg.eig_banded(band, lower=True)
+            else:
+                values = scipy.linalg.eig_banded(band, lower=True, eigvals_only=True)
+                standard = None
+            largest = float(np.abs(values).max(initial=0.0))
+        else:
+            lo, hi = select
+            low = scipy.linalg.eig_banded(
+                band, lower=True, eigvals_only=True, select="i", select_range=(0, 0)
+            )
+            high = scipy.linalg.eig_banded(
+                band, lower=True, eigvals_only=True, select="i", select_range=(n - 1, n - 1)
+            )
+            largest = float(max(abs(low[0]), abs(high[0])))
+            result = scipy.linalg.eig_banded(
+                band, lower=True, eigvals_only=not vectors, select="i", select_range=(lo, hi)
+            )
+            values, standard = result if vectors else (result, None)
+    values = np.asarray(values, dtype=float).copy()
+    kinds = mode_kinds(values, largest)
+    modes = None if standard is None else standard * inverse_root[:, None]
+    return values, modes, kinds, largest
+
+
+def sparse_equilibrium(
+    arrays: SystemArrays, target: float, *, max_iterations: int = 50
+) -> tuple[FloatArray, float, bool]:
+    r"""Newton's method on :math:`Q(q) = 0` with sparse LU factorisations of :math:`K(q)`
+    (SciPy's ``splu``; O(n) for a banded K): :math:`\delta q = K^{-1} Q`, each step at most
+    0.5 rad (halved until the residual :math:`Q^T M^{-1} Q` falls), from the initial
+    placement until the residual is at most ``target``. Returns (q, residual, converged);
+    not converged where K is singular (zero modes: free parts of the system) or the
+    steps stall: the caller then tells why."""
+    import scipy.sparse.linalg
+
+    inv_mass = 1.0 / arrays.inertia
+
+    def residual_of(state: FloatArray) -> tuple[FloatArray, float]:
+        force = generalized_forces(arrays, state)
+        return force, math.sqrt(float((force**2 * inv_mass).sum()))
+
+    q = np.zeros(arrays.n_bodies)
+    force, residual = residual_of(q)
+    for _ in range(max_iterations):
+        if residual <= target:
+            return q, residual, True
+        k_matrix = stiffness_matrix(arrays, q, sparse=True).tocsc()
+        try:
+            step = scipy.sparse.linalg.splu(k_matrix).solve(force)
+        except RuntimeError:  # exactly singular
+            return q, residual, False
+        if not np.isfinite(step).all():
+            return q, residual, False
+        biggest = float(np.abs(step).max(initial=0.0))
+        if biggest > 0.5:
+            step *= 0.5 / biggest
+        for _ in range(30):
+            trial = q + step
+            trial_force, trial_residual = residual_of(trial)
+            if trial_residual < residual:
+                break
+            step *= 0.5
+        else:
+            return q, residual, False
+        q, force, residual = trial, trial_force, trial_residual
+    return q, residual, residual <= target

@@ -220,12 +220,12 @@ def test_normal_modes_are_scipys_generalised_eigh_without_scipy(inertia, seed) -
     st.floats(0.0, 0.999),
     st.floats(-4, 4),
 )
-def test_the_friction_ratio_of_one_frequency_is_found_in_closed_form(
+def test_the_friction_ratio_of_one_frequency_is_found_exactly(
     f_c, size_f, angle_f, n_c, reach, angle_n
 ):
-    """max over the phase of |f_c + Re(a_f e^it)| / (N_c + Re(a_n e^it)) at the two stationary
-    phases: the maximum of a fine grid, never exceeded by it (up to rounding)."""
-    from rollspring.analysis.modal import _one_phase_extremes
+    """max over the phase of |f_c + Re(a_f e^it)| / (N_c + Re(a_n e^it)): the maximum of a
+    fine grid zoomed in on, never exceeded by it (up to rounding)."""
+    from rollspring.analysis.modal import friction_ratio_sup
 
     a_f = size_f * complex(math.cos(angle_f), math.sin(angle_f))
     a_n = reach * n_c * complex(math.cos(angle_n), math.sin(angle_n))  # N > 0 throughout
@@ -235,14 +235,47 @@ def test_the_friction_ratio_of_one_frequency_is_found_in_closed_form(
             n_c + np.real(a_n * np.exp(1j * theta))
         )
 
-    closed = float(np.max(ratio(_one_phase_extremes(f_c, a_f, n_c, a_n))))
+    one = friction_ratio_sup(np.array([f_c]), np.array([[a_f]]), np.array([n_c]), np.array([[a_n]]))
+    exact = float(one[0])
     grid = np.linspace(0, 2 * np.pi, 20_001)
     for _ in range(4):  # zoom in on the best grid point: the maximum to rounding
         best = float(grid[np.argmax(ratio(grid))])
         spacing = grid[1] - grid[0]
         grid = np.linspace(best - spacing, best + spacing, 2001)
     searched = float(np.max(ratio(grid)))
-    assert closed == pytest.approx(searched, rel=1e-11, abs=1e-15)
+    assert exact == pytest.approx(searched, rel=1e-11, abs=1e-15)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_the_friction_ratio_of_several_frequencies_is_the_supremum_over_the_phases(seed) -> None:
+    """Independent phases (incommensurate groups): never exceeded by random phases, and
+    reached by coordinate ascent over the phases (each phase in turn set to its best on a
+    fine circle, from the best random start)."""
+    from rollspring.analysis.modal import friction_ratio_sup
+
+    rng = np.random.default_rng(seed)
+    groups = int(rng.integers(2, 6))
+    a_f = rng.normal(size=groups) + 1j * rng.normal(size=groups)
+    a_n = 0.8 * (rng.normal(size=groups) + 1j * rng.normal(size=groups))
+    f_c, n_c = float(rng.normal()), float(np.sum(np.abs(a_n)) * rng.uniform(1.05, 2.0))
+    several = friction_ratio_sup(np.array([f_c]), a_f[:, None], np.array([n_c]), a_n[:, None])
+    exact = float(several[0])
+
+    def ratio(phases):
+        turn = np.exp(1j * phases)
+        return np.abs(f_c + np.real(turn @ a_f)) / (n_c + np.real(turn @ a_n))
+
+    samples = rng.uniform(0, 2 * np.pi, (200_000, groups))
+    values = ratio(samples)
+    assert values.max() <= exact * (1 + 1e-12)
+    phases = samples[np.argmax(values)].copy()
+    circle = np.linspace(0, 2 * np.pi, 4001)
+    for _ in range(30):
+        for g in range(groups):
+            trial = np.repeat(phases[None, :], circle.size, axis=0)
+            trial[:, g] = circle
+            phases[g] = circle[np.argmax(ratio(trial))]
+    assert float(ratio(phases[None, :])[0]) == pytest.approx(exact, rel=1e-5)
 
 
 def test_level_centre_springs_take_the_one_step_equilibrium_with_one_set_of_modes() -> None:

@@ -197,7 +197,7 @@ def test_cli_prints_the_toml_file_and_writes_toml_or_json(tmp_path) -> None:
     [
         (["--pattern", "hoop,cyl"], "error: --pattern: unknown shape 'cyl'"),
         (["--mass", "1,x"], "error: --mass: '1,x' is not a comma-separated list of numbers"),
-        (["--n", "0"], "error: --n: must be from 2 to 1000"),
+        (["--n", "0"], "error: --n: must be from 2 to 20000"),
         (["--packet", "1"], "error: --packet: give q,width"),
         (["--pluck", "2", "--mode", "1"], "error: --mode: give at most one initial condition"),
         (["--walls", "up"], "error: --walls: must be one of none, left, both"),

@@ -5,10 +5,11 @@ bodies, so with the bodies numbered along the springs (a chain) the stiffness ma
   :math:`A = M^{-1/2} K M^{-1/2}` (docs/physics.md (M12)) into LAPACK's lower band storage;
 * :func:`banded_modes` solves :math:`K v = \lambda M v` from it: a tridiagonal :math:`A`
   (springs between neighbours only: every chain) by LAPACK's ``stevd`` for the eigenvalues
-  (accurate to a few :math:`10^{-11}` of the largest at 2000 bodies) and ``stemr`` (MRRR, O(n)
-  per vector) for the vectors; wider bands by ``sbevd`` (SciPy's ``eig_banded``);
-  ``select=(lo, hi)`` computes only the modes lo..hi (0-based, ascending) by bisection and
-  inverse iteration (``stebz``/``stein``, O(n) per mode), without forming any n x n array;
+  (the lattice's frequencies to a few :math:`10^{-11}`, relative, at 2000 bodies) and ``stemr``
+  (MRRR, O(n) per vector) for the vectors; wider bands by ``sbevd`` (SciPy's ``eig_banded``);
+  ``select=(lo, hi)`` computes only the modes lo..hi (0-based, ascending) by bisection to the
+  underflow threshold and inverse iteration (``stebz``/``stein``, O(n) per mode), without
+  forming any n x n array;
 * :func:`sparse_equilibrium` is the equilibrium search of :func:`~rollspring.analysis.linear.
   find_equilibrium` for systems beyond :data:`DENSE_LIMIT` bodies: Newton with a sparse LU
   factorisation of :math:`K` (O(n) for a band).
@@ -42,6 +43,8 @@ DENSE_LIMIT = 64
 #: Up to this many bodies :func:`rollspring.analyze` computes every mode (and the exact linear
 #: response, which needs them all); beyond it the lowest modes (``modes=``).
 ALL_MODES_LIMIT = 2000
+#: LAPACK ``stebz``'s absolute tolerance: twice the underflow threshold, its most accurate
+_BISECTION = 2.0 * float(np.finfo(float).tiny)
 #: An eigenvalue with |lambda| < this * max|lambda| is a zero mode (as in ``normal_modes``).
 _ZERO = 1e-10
 
@@ -107,13 +110,20 @@ def banded_modes(
                 _, standard = scipy.linalg.eigh_tridiagonal(diagonal, off, lapack_driver="stemr")
         else:
             lo, hi = select
+            # bisection to the underflow threshold: small eigenvalues to high relative
+            # accuracy (a few 1e-11 of the lowest of 5000 bodies; eps |A| by default)
             if vectors:
                 values, standard = scipy.linalg.eigh_tridiagonal(
-                    diagonal, off, select="i", select_range=(lo, hi)
+                    diagonal, off, select="i", select_range=(lo, hi), tol=_BISECTION
                 )
             else:
                 values = scipy.linalg.eigh_tridiagonal(
-                    diagonal, off, eigvals_only=True, select="i", select_range=(lo, hi)
+                    diagonal,
+                    off,
+                    eigvals_only=True,
+                    select="i",
+                    select_range=(lo, hi),
+                    tol=_BISECTION,
                 )
                 standard = None
     else:

@@ -20,7 +20,12 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.analysis.banded import ALL_MODES_LIMIT, DENSE_LIMIT, sparse_equilibrium
+from rollspring.analysis.banded import (
+    ALL_MODES_LIMIT,
+    DENSE_LIMIT,
+    banded_modes,
+    sparse_equilibrium,
+)
 from rollspring.analysis.report import CONVENTIONS
 from rollspring.model import System
 from rollspring.physics import (
@@ -860,9 +865,15 @@ def linear_motion(analysis: LinearAnalysis, t: FloatArray) -> FloatArray:
         raise ValueError("no equilibrium near the initial placement: no linear motion")
     arrays = analysis.arrays
     times = np.asarray(t, dtype=float)
-    eigenvalues, vectors, kinds = normal_modes(analysis.mass, analysis.stiffness)
+    if hasattr(analysis.stiffness, "tocoo"):  # a large system's sparse K: every mode, banded
+        eigenvalues, found, kinds, _ = banded_modes(arrays, analysis.stiffness)
+        assert found is not None
+        vectors = found
+        mass = arrays.inertia
+    else:
+        eigenvalues, vectors, kinds = normal_modes(analysis.mass, analysis.stiffness)
+        mass = np.diag(analysis.mass) if np.ndim(analysis.mass) == 2 else analysis.mass
     q_eq = analysis.equilibrium.q
-    mass = np.diag(analysis.mass) if np.ndim(analysis.mass) == 2 else analysis.mass
     eta0 = vectors.T @ (mass * -q_eq)
     etadot0 = vectors.T @ (mass * arrays.v0 / arrays.scale)
     eta = np.empty((times.size, eigenvalues.size))

@@ -124,7 +124,6 @@ def analyze(
     friction_eq = np.where(np.abs(friction_eq) < 1e-12 * _contact_scale(arrays), 0.0, friction_eq)
     springs = spring_state(arrays, q_eq)
     levers = _Levers(springs, dense=not large)
-    sparse_mu = large
 
     if large:
         mode_list = _modes_at_once(
@@ -190,7 +189,7 @@ def analyze(
             normal_eq,
             levers,
             weights,
-            vectorised=sparse_mu,
+            vectorised=large,
         )
 
     tilt = _tilt_deg(springs.vector)
@@ -464,7 +463,7 @@ def _response(
     force_scale = float(np.max(arrays.stiffness * extension, initial=0.0))
     friction_amplitude = _clean(friction.amplitude, force_scale)
     friction = _Component(_clean(friction.centre, force_scale), friction.amplitudes, friction.drift)
-    required = _required_mu(arrays, friction, normal, vectorised=vectorised)
+    required = _required_mu(arrays, friction, normal)
     required[(friction_amplitude == 0.0) & (friction.centre == 0.0)] = 0.0
     result: dict[str, Any] = {
         "amplitude": position.amplitude,
@@ -499,160 +498,68 @@ def _frequency_groups(omegas: FloatArray) -> list[list[int]]:
     return groups
 
 
-def _required_mu(
-    arrays: SystemArrays, friction: _Component, normal: _Component, *, vectorised: bool = False
-) -> FloatArray:
-    r"""max over the motion of :math:`|f_i|/N_i` per body (inf if :math:`N_i` can reach 0).
-
-    With :math:`f = f_c + \mathrm{Re}\sum_g a_g e^{i\theta_g}` and
-    :math:`N = N_c + \mathrm{Re}\sum_g b_g e^{i\theta_g}` over the phases :math:`\theta_g` of
-    the frequency groups (independent: the supremum is approached by incommensurate motion):
-
-    * N constant (every :math:`b_g = 0`, e.g. horizontal springs at the centres): the terms
-      line up, :math:`(|f_c| + \sum_g |a_g|)/N_c`;
-    * one group: :math:`f/N` is stationary where
-      :math:`P\sin\theta + Q\cos\theta = R` (:func:`_one_phase_extremes`), two phases in closed
-      form, and its largest and smallest values are there;
-    * otherwise the maximum is searched over the torus of phases (random sampling, then
-      Nelder-Mead from the best sample; SciPy's optimizer, loaded on demand).
-    """
-    n = arrays.n_bodies
-    if vectorised:
-        return _required_mu_all(arrays, friction, normal)
-    out = np.zeros(n)
-    n_groups = friction.amplitudes.shape[0]
-    rng = np.random.default_rng(12345)
-    for i in range(n):
-        if arrays.rolls[i] == 0:
-            out[i] = 0.0
-            continue
-        f_c, n_c = float(friction.centre[i]), float(normal.centre[i])
-        a_f = friction.amplitudes[:, i] if n_groups else np.zeros(0, complex)
-        a_n = normal.amplitudes[:, i] if n_groups else np.zeros(0, complex)
-        if n_c - np.sum(np.abs(a_n)) <= 0:
-            out[i] = math.inf
-            continue
-        if n_groups == 0:
-            out[i] = abs(f_c) / n_c
-            continue
-        if not np.any(a_n):
-            out[i] = (abs(f_c) + float(np.sum(np.abs(a_f)))) / n_c
-            continue
-
-        def ratio(theta: FloatArray) -> FloatArray:
-            phase = np.exp(1j * np.atleast_2d(theta))
-            # called only within this iteration: the loop's current values are the ones meant
-            f = f_c + np.real(phase @ a_f)  # noqa: B023
-            normal_force = n_c + np.real(phase @ a_n)  # noqa: B023
-            result: FloatArray = np.abs(f) / normal_force
-            return result
-
-        if n_groups == 1:
-            phases = _one_phase_extremes(f_c, complex(a_f[0]), n_c, complex(a_n[0]))
-            out[i] = float(np.max(ratio(phases[:, None])))
-            continue
-        grid = rng.uniform(0.0, 2 * math.pi, size=(20000, n_groups))
-        values = ratio(grid)
-        best = int(np.argmax(values))
-        import scipy.optimize  # loaded on demand (~0.1 s): several groups with a varying N only
-
-        res = scipy.optimize.minimize(
-            lambda th: -float(ratio(th[None, :])[0]),
-            grid[best],
-            method="Nelder-Mead",
-            options={"xatol": 1e-12, "fatol": 1e-15, "maxiter": 2000},
+def _required_mu(arrays: SystemArrays, friction: _Component, normal: _Component) -> FloatArray:
+    r"""max over the motion of :math:`|f_i|/N_i` per body (inf if :math:`N_i` can reach 0;
+    0 for a slider), exactly: :func:`friction_ratio_sup` of every body at once."""
+    a_f, a_n = friction.amplitudes, normal.amplitudes  # (groups, n) complex
+    reach = normal.centre - np.sum(np.abs(a_n), axis=0)  # the smallest N the motion reaches
+    rolls = arrays.rolls > 0
+    lift = rolls & (reach <= 0)
+    safe = rolls & ~lift
+    out = np.zeros(arrays.n_bodies)
+    out[lift] = math.inf
+    if np.any(safe):
+        out[safe] = friction_ratio_sup(
+            friction.centre[safe], a_f[:, safe], normal.centre[safe], a_n[:, safe]
         )
-        out[i] = max(float(values[best]), -float(res.fun))
     return out
 
 
-def _required_mu_all(
-    arrays: SystemArrays, friction: _Component, normal: _Component, sweeps: int = 3
-) -> FloatArray:
-    r""":func:`_required_mu` for every body at once (large systems, many frequency groups):
-    the same closed forms where N is constant or one group moves; otherwise coordinate ascent
-    over the phases, one group at a time by the one-phase closed form
-    (:func:`_one_phase_extremes`, vectorised over the bodies) from the phases that line up
-    the friction terms either way, ``sweeps`` times over the groups: O(groups x bodies) per
-    sweep, a local maximum of :math:`|f|/N` over the torus of phases (as the small systems'
-    search, a value the motion reaches arbitrarily closely)."""
-    f_c, n_c = friction.centre, normal.centre
-    a_f, a_n = friction.amplitudes, normal.amplitudes  # (G, n) complex
-    rolls = arrays.rolls > 0
-    lift = n_c - np.sum(np.abs(a_n), axis=0) <= 0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out = (np.abs(f_c) + np.sum(np.abs(a_f), axis=0)) / n_c  # N constant: terms line up
-    varying = rolls & ~lift & np.any(a_n != 0, axis=0)
-    if np.any(varying):
-        fc, nc = f_c[varying], n_c[varying]
-        af, an = a_f[:, varying], a_n[:, varying]
-        best = np.zeros(fc.size)
-        for sign in (1.0, -1.0):
-            phase = np.exp(-1j * np.angle(sign * af))  # each friction term at +|a| (or -|a|)
-            f_sum, n_sum = np.sum(af * phase, axis=0), np.sum(an * phase, axis=0)
-            for _ in range(sweeps):
-                for g in range(af.shape[0]):
-                    f_rest = fc + np.real(f_sum - af[g] * phase[g])
-                    n_rest = nc + np.real(n_sum - an[g] * phase[g])
-                    candidates = _one_phase_extremes_all(f_rest, af[g], n_rest, an[g])
-                    current = np.angle(phase[g])[None, :]
-                    thetas = np.concatenate([candidates, current])
-                    turned = np.exp(1j * thetas)
-                    ratio = np.abs(f_rest + np.real(af[g] * turned)) / (
-                        n_rest + np.real(an[g] * turned)
-                    )
-                    pick = np.argmax(ratio, axis=0)
-                    chosen = turned[pick, np.arange(fc.size)]
-                    f_sum += af[g] * (chosen - phase[g])
-                    n_sum += an[g] * (chosen - phase[g])
-                    phase[g] = chosen
-            best = np.maximum(best, np.abs(fc + np.real(f_sum)) / (nc + np.real(n_sum)))
-        out[varying] = best
-    out[lift & rolls] = math.inf
-    out[~rolls] = 0.0
-    result: FloatArray = out
-    return result
-
-
-def _one_phase_extremes_all(
+def friction_ratio_sup(
     f_c: FloatArray, a_f: np.ndarray, n_c: FloatArray, a_n: np.ndarray
 ) -> FloatArray:
-    """:func:`_one_phase_extremes` for arrays of bodies: (2, bodies) phases."""
-    a, b = a_f.real, -a_f.imag
-    c, d = a_n.real, -a_n.imag
-    p = f_c * c - a * n_c
-    q = b * n_c - f_c * d
-    r = a * d - b * c
-    size = np.hypot(p, q)
-    centre = np.arctan2(p, q)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        half = np.arccos(np.clip(np.where(size > 0, r / size, 0.0), -1.0, 1.0))
-    half = np.where(size > 0, half, 0.0)
-    return np.stack([centre - half, centre + half])
+    r"""The supremum over the phases :math:`	heta_g` of
 
+    .. math:: rac{|f|}{N},\qquad f = f_c + \mathrm{Re}\sum_g a_g e^{i	heta_g},\quad
+              N = N_c + \mathrm{Re}\sum_g b_g e^{i	heta_g} > 0,
 
-def _one_phase_extremes(f_c: float, a_f: complex, n_c: float, a_n: complex) -> FloatArray:
-    r"""The phases at which :math:`f/N` is stationary, for
-    :math:`f = f_c + A\cos\theta + B\sin\theta` and :math:`N = N_c + C\cos\theta + D\sin\theta`
-    (:math:`A + iB = \overline{a_f}`, :math:`C + iD = \overline{a_n}`; N > 0 throughout).
+    for arrays of bodies (``f_c``, ``n_c`` (m,); ``a_f``, ``a_n`` (groups, m) complex).
+    Independent phases are what incommensurate frequency groups sweep (the supremum is
+    approached arbitrarily closely); one group's one phase is the same problem. It is exact:
+    :math:`\sup f/N \ge r` iff some phases make :math:`f - rN \ge 0`, and the phases maximise
+    :math:`f - rN` term by term, so :math:`\sup f/N` is the largest root of the convex
 
-    :math:`(f/N)' = 0 \iff f'N - fN' = 0`, which expands (the squares of sine and cosine add up
-    to 1) to :math:`P\sin\theta + Q\cos\theta = R` with :math:`P = f_cC - AN_c`,
-    :math:`Q = BN_c - f_cD`, :math:`R = AD - BC`: :math:`\theta = \mathrm{atan2}(P, Q) \pm
-    \arccos(R/\sqrt{P^2 + Q^2})`. The largest and the smallest :math:`f/N` are among these two
-    (both when :math:`f/N` is constant, :math:`P = Q = 0`: any phase).
+    .. math:: h(r) = f_c - r N_c + \sum_g |a_g - r b_g|
+
+    (it goes to :math:`-\infty` because :math:`N_c > \sum_g |b_g|`, so, convex, it decreases
+    everywhere and has one root), and likewise :math:`\sup(-f)/N` with :math:`-f_c, -a_g`.
+    Newton's method from the bound :math:`r_0 = (|f_c| + \sum|a_g|)/(N_c - \sum|b_g|)`
+    (:math:`h(r_0) \le 0`): its first step lands left of the root (the tangent of a convex
+    function lies below it), and from there it climbs to the root monotonically. A few
+    vectorised steps; no search.
     """
-    a, b = a_f.real, -a_f.imag
-    c, d = a_n.real, -a_n.imag
-    p = f_c * c - a * n_c
-    q = b * n_c - f_c * d
-    r = a * d - b * c
-    size = math.hypot(p, q)
-    if size == 0.0:
-        return np.zeros(2)
-    centre = math.atan2(p, q)
-    half = math.acos(min(1.0, max(-1.0, r / size)))
-    return np.array([centre - half, centre + half])
+    f_c = np.asarray(f_c, dtype=float)
+    n_c = np.asarray(n_c, dtype=float)
+    reach = n_c - np.sum(np.abs(a_n), axis=0)
+    start = (np.abs(f_c) + np.sum(np.abs(a_f), axis=0)) / reach
+    best = np.zeros(f_c.shape)
+    for sign in (1.0, -1.0):
+        centre, terms = sign * f_c, sign * a_f
+        r = start.copy()
+        for _ in range(100):
+            d = terms - r * a_n
+            size = np.abs(d)
+            h = centre - r * n_c + np.sum(size, axis=0)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                slope_terms = np.where(size > 0, -np.real(np.conj(d) * a_n) / size, 0.0)
+            slope = -n_c + np.sum(slope_terms, axis=0)
+            step = np.where(slope < 0, h / slope, 0.0)
+            r = r - step
+            if not np.any(np.abs(step) > 4e-16 * np.abs(r)):
+                break
+        best = np.maximum(best, r)
+    result: FloatArray = best
+    return result
 
 
 def _tilt_deg(vector: FloatArray) -> FloatArray:

@@ -249,3 +249,37 @@ def test_the_analysis_cost_follows_the_path() -> None:
     assert analysis_cost(large).seconds < 10.0 and analysis_cost(large).memory < 1e8
     every = analysis_cost(large, modes=ALL_MODES_LIMIT + 1)
     assert every.memory > 1e8  # every mode's shapes: n² numbers
+
+
+def test_the_command_line_summarises_a_long_chain(tmp_path) -> None:
+    import json
+
+    from typer.testing import CliRunner
+
+    from rollspring.cli.app import app
+    from rollspring.service.chains import chain_file
+
+    path = chain_file(chain("hoop,cylinder", 100, walls="both", pluck=1), tmp_path / "c.toml")
+    runner = CliRunner()
+    shown = runner.invoke(app, ["analyze", str(path)])
+    assert shown.exit_code == 0, shown.output
+    assert "Bodies, by kind" in shown.output and "… 84 more" in shown.output
+    assert "hoop50" not in shown.output  # no row per body
+    printed = runner.invoke(app, ["analyze", str(path), "--json"])
+    assert printed.exit_code == 0, printed.output
+    payload = json.loads(printed.stdout)
+    analysis = rollspring.analyze(path)
+    assert len(payload["matrices"]["M_diagonal"]) == 100
+    entries = payload["matrices"]["K_entries"]
+    assert len(entries) == 100 + 2 * 99  # tridiagonal
+    for i, j, value in entries[:20]:
+        assert value == analysis.stiffness[i, j]
+    assert [m["omega"] for m in payload["modes"]] == [m.omega for m in analysis.modes]
+    assert "shape" not in payload["modes"][0] and payload["response"] is not None
+    band = runner.invoke(app, ["analyze", str(path), "--json", "--modes", "10-12"])
+    assert band.exit_code == 0, band.output
+    chosen = json.loads(band.stdout)
+    assert [m["omega"] for m in chosen["modes"]] == pytest.approx(
+        [m.omega for m in analysis.modes[9:12]], rel=1e-12
+    )
+    assert chosen["response"] is None and "modes 10 to 12 of 100" in band.stderr

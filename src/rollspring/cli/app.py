@@ -242,9 +242,16 @@ def analyze(
         _print_json(payload)
         return
     from rollspring.analysis import analyze as run_analysis
-    from rollspring.cli.tables import print_analysis
 
-    print_analysis(_stdout(), run_analysis(model, confirm=True, modes=chosen))  # --yes above
+    result = run_analysis(model, confirm=True, modes=chosen)  # checked above (--yes)
+    if len(model.bodies) > 20:  # cli.long_tables.LONG: summaries, not a row per body
+        from rollspring.cli.long_tables import print_long_analysis
+
+        print_long_analysis(_stdout(), result)
+    else:
+        from rollspring.cli.tables import print_analysis
+
+        print_analysis(_stdout(), result)
 
 
 def _mode_selection(text: str | None, error: type[Exception]) -> int | tuple[int, int] | None:

@@ -89,10 +89,12 @@ def test_every_preset_analyses(name: str) -> None:
     assert "Normal modes" in table.stdout
 
 
-def test_presets_lists_all_seven_and_marks_the_default() -> None:
+def test_presets_lists_all_nine_and_marks_the_default() -> None:
     result = run("presets", "--json")
     rows = json.loads(result.stdout)
     assert {r["name"] for r in rows} == {
+        "chain-monatomic",
+        "chain-diatomic",
         "two-masses",
         "hoop-cylinder",
         "frictionless",

@@ -14,6 +14,7 @@ from typing import Any
 import pytest
 import sympy as sp
 
+import rollspring
 from rollspring.analysis.derivation import Derivation, derive
 from rollspring.analysis.derivation.steps import OPERATIONS, Named, Step
 from rollspring.analysis.paper_check import paper_system
@@ -71,6 +72,12 @@ def pulled_cylinder():
     )
 
 
+def ten_body_chain():
+    """Ten bodies, hoop and cylinder alternating, between walls (``rollspring chain``): a
+    characteristic polynomial of degree 10, not expanded with the parameters as symbols."""
+    return rollspring.chain("hoop,cylinder", 10, walls="both", pluck=1)
+
+
 CASES: dict[str, Any] = {
     **{f"{name} (symbols)": (lambda n=name: load_system(n), True) for name in preset_names()},
     "hoop-cylinder (numbers)": (lambda: load_system("hoop-cylinder"), False),
@@ -81,10 +88,20 @@ CASES: dict[str, Any] = {
     "slider and cylinder (symbols)": (pulled_slider_pair, True),
     "one hoop on a wall spring (symbols)": (wall_hoop, True),
     "a pulled cylinder, no equilibrium (numbers)": (pulled_cylinder, False),
+    "ten-body chain (symbols)": (ten_body_chain, True),
+    "ten-body chain (numbers)": (ten_body_chain, False),
 }
+#: Cases whose step check takes more than a few seconds (determinants of 10 x 10 matrices).
+SLOW = {"ten-body chain (symbols)", "ten-body chain (numbers)"}
 
 
-@pytest.fixture(scope="module", params=sorted(CASES))
+@pytest.fixture(
+    scope="module",
+    params=[
+        pytest.param(name, marks=pytest.mark.slow) if name in SLOW else name
+        for name in sorted(CASES)
+    ],
+)
 def derivation(request: pytest.FixtureRequest) -> Derivation:
     build, symbols = CASES[request.param]
     return derive(build(), symbols=symbols)

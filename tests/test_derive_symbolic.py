@@ -12,8 +12,10 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import rollspring
 from rollspring.analysis import analyze
 from rollspring.analysis.derivation import (
+    OMEGA2,
     mechanics_lagrange_check,
     normal_frequencies,
     symbolic_system,
@@ -50,10 +52,27 @@ def test_mass_stiffness_and_frequencies_agree_with_analyze(name: str, symbols: b
     )
     frequencies = normal_frequencies(sym)
     expected = [m.eigenvalue for m in numeric.modes if m.kind != "zero"]
-    assert frequencies.complete  # every preset has closed-form frequencies
     assert frequencies.n_zero == sum(m.kind == "zero" for m in numeric.modes)
-    values = [sym.numeric(w) for w in frequencies.omega2]
+    if len(expected) <= 2:  # the paper's systems: closed forms (the quadratic formula at most)
+        assert frequencies.complete
+    else:  # the chains: degree 8 in Omega^2, no general formula; said so, numbers given
+        assert not frequencies.complete
+        assert any("no closed form" in note for note in frequencies.notes)
+    values = [
+        sym.numeric(w) if w is not None else number
+        for w, number in zip(frequencies.omega2, frequencies.numeric, strict=True)
+    ]
     np.testing.assert_allclose(values, expected, rtol=1e-11)
+    shown = frequencies.characteristic
+    if shown is None:  # symbols, no closed form: the polynomial at the parameters' values
+        assert symbols and frequencies.at_values is not None
+        shown = frequencies.at_values
+    else:
+        shown = sp.sympify(shown).xreplace(sym.values)
+    roots = sorted(complex(r).real for r in sp.Poly(shown, OMEGA2).nroots(n=30))
+    np.testing.assert_allclose(
+        [r for r in roots if abs(r) > 1e-9 * roots[-1]], expected, rtol=1e-11
+    )  # the displayed polynomial's own roots, not the eigenvalues it was matched with
     if symbols:  # the parameters really are symbols: nothing numeric is left in M
         assert all(entry.free_symbols for entry in sym.mass_matrix if entry != 0)
 
@@ -246,3 +265,94 @@ def test_the_frictionless_potential_is_general_tilted_springs_too(raised: bool) 
             assert potential(*q) == pytest.approx(
                 float(potential_energy(arrays, q)), rel=1e-9, abs=1e-12
             )
+
+
+# -- chains: the lattices' closed forms, and ten bodies --------------------------------------------
+
+
+def test_monatomic_chain_frequencies_are_the_standing_waves_of_the_lattice() -> None:
+    """N equal bodies between walls: Omega_n^2 = (4k/M) sin^2(n pi/(2(N + 1))), M = (1 + gamma) m
+    the rolling mass (the fixed-end monatomic chain, e.g. Kittel, Introduction to Solid State
+    Physics, ch. 4; docs/physics.md section 7.2). The exact numbers factor the polynomial: its
+    rational roots are found and equal the formula exactly."""
+    system = load_system("chain-monatomic")
+    n, k = len(system.bodies), system.springs[0].stiffness
+    (body_mass,) = {b.mass for b in system.bodies}
+    rolling = 2 * body_mass  # hoops: gamma = 1
+    assert {b.shape for b in system.bodies} == {"hoop"}
+    for symbols in (False, True):
+        frequencies = normal_frequencies(symbolic_system(system, symbols=symbols))
+        formula = [
+            4 * sp.nsimplify(k / rolling) * sp.sin(j * sp.pi / (2 * (n + 1))) ** 2
+            for j in range(1, n + 1)
+        ]
+        np.testing.assert_allclose(frequencies.numeric, [float(f) for f in formula], rtol=1e-12)
+        exact = [(w, f) for w, f in zip(frequencies.omega2, formula, strict=True) if w is not None]
+        if symbols:
+            assert exact == []  # no closed form in 17 symbols: degree 8
+        else:
+            assert len(exact) == 2  # sin^2(pi/6), sin^2(pi/3): 50 and 150 s^-2
+            assert all(sp.simplify(w - f) == 0 for w, f in exact)
+
+
+def test_diatomic_chain_frequencies_lie_on_the_two_branches() -> None:
+    """2N bodies of rolling masses M1, M2 alternating between walls: the two branches of the
+    diatomic lattice, Omega^2 = k (s -/+ sqrt(s^2 - 4 sin^2(q a0)/(M1 M2))), s = 1/M1 + 1/M2, at
+    q a0 = j pi/(2N + 1), j = 1..N (the fixed-end standing waves, a0 the spacing). The quadratic
+    factor the exact numbers give (j = 3: sin^2 = 3/4) is the formula exactly."""
+    system = load_system("chain-diatomic")
+    n, k = len(system.bodies), sp.nsimplify(system.springs[0].stiffness)
+    masses = [
+        sp.nsimplify((1 + {"hoop": 1.0, "cylinder": 0.5}[b.shape]) * b.mass) for b in system.bodies
+    ]
+    m1, m2 = masses[0], masses[1]
+    assert masses == [m1, m2] * (n // 2) and m1 != m2
+    s = 1 / m1 + 1 / m2
+    formula = []
+    for j in range(1, n // 2 + 1):
+        root = sp.sqrt(s**2 - 4 * sp.sin(j * sp.pi / (n + 1)) ** 2 / (m1 * m2))
+        formula += [k * (s - root), k * (s + root)]
+    formula.sort(key=float)
+    frequencies = normal_frequencies(symbolic_system(system))
+    np.testing.assert_allclose(frequencies.numeric, [float(f) for f in formula], rtol=1e-12)
+    exact = [(w, f) for w, f in zip(frequencies.omega2, formula, strict=True) if w is not None]
+    assert len(exact) == 2
+    assert all(sp.simplify(w - f) == 0 for w, f in exact)
+    gap = (2 * k / max(m1, m2), 2 * k / min(m1, m2))  # the lattice's band gap: no mode in it
+    assert not any(float(gap[0]) < w < float(gap[1]) for w in frequencies.numeric)
+
+
+@pytest.mark.slow
+def test_a_ten_body_chain_is_derived_in_seconds_and_says_why_it_gives_numbers() -> None:
+    """Degree 10 in Omega^2: with symbols the polynomial in 21 parameters is not expanded (it
+    took more than five minutes), the derivation shows M, K and the equations, the polynomial at
+    the parameters' values and its roots as numbers, and says why there is no closed form."""
+    import time
+
+    from rollspring.analysis.derivation import derive
+
+    system = rollspring.chain("hoop,cylinder", 10, walls="both", pluck=1)
+    expected = sorted(m.eigenvalue for m in analyze(system).modes)
+    for symbols in (True, False):
+        began = time.process_time()
+        derivation = derive(system, symbols=symbols)
+        assert time.process_time() - began < 30.0  # was minutes (unfinished) with symbols
+        assert derivation.cross_check.agree
+        sym = derivation.symbolic
+        np.testing.assert_allclose(
+            matrix_to_float(sym.stiffness_matrix, sym.values), analyze(system).stiffness
+        )
+        newton = derivation.methods["newton"].section
+        words = [step.words for step in newton.steps]
+        roots = next(step for step in newton.steps if step.words.startswith("The roots of"))
+        assert "degree 10 in Omega^2" in roots.words
+        assert "No closed form" in roots.words and "no general formula" in roots.words
+        numbers = [
+            float(e.rhs) for e in roots.equations if isinstance(e.rhs, sp.Float | sp.Integer)
+        ]
+        assert len(numbers) == 10
+        np.testing.assert_allclose(numbers, expected, rtol=1e-10)
+        assert any("as one matrix equation" in w for w in words)
+        assert any("at the parameters' values" in w for w in words) == symbols
+    text = derivation.render("text")
+    assert "10 coupled equations" in text

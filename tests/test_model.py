@@ -139,3 +139,33 @@ def test_every_preset_is_also_a_file_in_examples() -> None:
     for name in examples:
         assert (ROOT / "examples" / f"{name}.toml").read_text() == preset_path(name).read_text()
         assert load_system(ROOT / "examples" / f"{name}.toml") == load_system(name)
+
+
+@pytest.mark.parametrize("name", ["chain-monatomic", "chain-diatomic"])
+def test_chain_presets_are_what_their_command_writes(name: str) -> None:
+    """A chain preset is the output of the ``rollspring chain`` command its first line names,
+    with a description written by hand (run here in-process, its output compared line by line)."""
+    import shlex
+
+    from typer.testing import CliRunner
+
+    from rollspring.cli import app
+
+    text = preset_path(name).read_text()
+    first, second, *rest = text.splitlines(keepends=True)
+    assert first.startswith("# Written by `rollspring chain ") and second.startswith("# ")
+    command = shlex.split(first.removeprefix("# Written by `").rstrip().removesuffix("`"))
+    assert command[:2] == ["rollspring", "chain"]
+    result = CliRunner().invoke(app, command[1:])
+    assert result.exit_code == 0, result.output
+    written = result.stdout.splitlines(keepends=True)
+    assert len(written) == len(rest)
+    for mine, theirs in zip(rest, written, strict=True):
+        if theirs.startswith("description = "):
+            assert mine.startswith("description = ") and len(mine) > len(theirs)
+        else:
+            assert mine == theirs
+    system = load_system(name)
+    assert len(system.bodies) == 8 and [a.id for a in system.anchors] == ["wall-left", "wall-right"]
+    assert all(s.rest_length == pytest.approx(0.5) for s in system.springs)  # before the pluck
+    assert system.bodies[0].x == pytest.approx(0.01)  # the struck end body

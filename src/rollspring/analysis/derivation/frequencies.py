@@ -6,6 +6,15 @@ with a zero mode (rank-1 K): :math:`\Omega^2 = \operatorname{tr}A = K_{11}/J_1 +
 (the paper's sum rule (M15)); without one, the quadratic formula. More bodies: the polynomial
 (a three-term recurrence for chains), its zero roots taken out, and the roots of every factor of
 degree at most two, within a time budget.
+
+With the parameters as exact numbers the polynomial is factored over the rationals whatever its
+degree, and the roots of its factors of degree one or two are exact. With them as symbols,
+beyond degree :data:`MAX_FACTORED` in :math:`\Omega^2` (zero roots taken out) no closed form is
+offered (a polynomial of degree five or more has no general formula for its roots) and the
+polynomial is not expanded either (a polynomial in every parameter: for a chain of ten bodies,
+21 parameters, SymPy had not finished after five minutes); it is given at the parameters'
+values instead (:attr:`Frequencies.at_values`, exact numbers), whose roots are the numbers the
+derivation shows.
 """
 
 from __future__ import annotations
@@ -22,17 +31,25 @@ from typing import NoReturn
 
 import sympy as sp
 
-from rollspring.analysis.derivation.symbolic import SymbolicSystem, _is_tridiagonal
+from rollspring.analysis.derivation.symbolic import SymbolicSystem, _is_tridiagonal, exact_number
 from rollspring.errors import BudgetExceeded
 
-__all__ = ["OMEGA2", "BudgetExceeded", "Frequencies", "normal_frequencies", "time_budget"]
+__all__ = [
+    "OMEGA2",
+    "BudgetExceeded",
+    "Frequencies",
+    "exact_values",
+    "normal_frequencies",
+    "time_budget",
+]
 
 #: The symbol of a squared normal frequency.
 OMEGA2 = sp.Symbol("Omega^2")
 #: Largest number of bodies whose characteristic polynomial is expanded.
 MAX_POLYNOMIAL = 12
-#: Largest degree (in Omega^2, zero roots taken out) factored in search of quadratic factors:
-#: factoring a symbolic polynomial of higher degree costs seconds and finds none in general.
+#: Largest degree (in Omega^2, zero roots taken out) of a polynomial in symbolic parameters
+#: factored in search of quadratic factors: factoring one of higher degree costs seconds and
+#: finds none in general (with exact numbers every degree is factored: that is cheap).
 MAX_FACTORED = 4
 
 
@@ -69,7 +86,11 @@ class Frequencies:
     ``characteristic``: :math:`\det(\Omega^2 I - M^{-1}K)` (monic in :data:`OMEGA2`), or None
     when not expanded; ``omega2``: closed forms of the non-zero roots, ascending by value
     (None entries where no closed form was found); ``numeric``: their numbers; ``n_zero`` zero
-    modes; ``notes``: what was not done and why.
+    modes; ``notes``: what was not done and why; ``at_values``: where ``characteristic`` is
+    None, the same polynomial at the parameters' values (exact numbers; None if that was not
+    computed either); ``factors``: the degrees of its irreducible factors (zero roots taken
+    out, with multiplicity, ascending) where it was factored, else empty; ``degree``: its
+    degree in :data:`OMEGA2` after the zero roots.
     """
 
     characteristic: sp.Expr | None
@@ -77,6 +98,13 @@ class Frequencies:
     numeric: list[float]
     n_zero: int
     notes: list[str] = field(default_factory=list)
+    at_values: sp.Expr | None = None
+    factors: list[int] = field(default_factory=list)
+
+    @property
+    def degree(self) -> int:
+        """The degree of the characteristic polynomial in Omega^2, zero roots taken out."""
+        return len(self.numeric)
 
     @property
     def complete(self) -> bool:
@@ -104,6 +132,16 @@ def characteristic_polynomial(A: sp.Matrix, variable: sp.Symbol = OMEGA2) -> sp.
             )
         return sp.expand(current)
     return A.charpoly(variable).as_expr()
+
+
+def exact_values(sym: SymbolicSystem) -> dict[sp.Symbol, sp.Expr]:
+    """The parameters' values as the exact numbers ``symbols=False`` would use."""
+    return {symbol: exact_number(value) for symbol, value in sym.values.items()}
+
+
+def _at_values(sym: SymbolicSystem, A: sp.Matrix) -> sp.Expr:
+    r""":math:`\det(\Omega^2 I - A)` with the parameters' exact values (rational arithmetic)."""
+    return characteristic_polynomial(A.xreplace(exact_values(sym)))
 
 
 def _tridiagonal_determinant(sym: SymbolicSystem) -> sp.Poly:
@@ -161,6 +199,24 @@ def normal_frequencies(
         pair = [_tidy((trace - root) / 2), _tidy((trace + root) / 2)]
         pair.sort(key=lambda r: _value(sym, r))
         return Frequencies(poly, pair, numeric, n_zero)
+
+    def at_values() -> sp.Expr | None:
+        """The polynomial at the parameters' values, within what is left of the budget."""
+        if not sym.symbolic:
+            return None
+        try:
+            with time_budget(left()):
+                return _at_values(sym, A)
+        except BudgetExceeded:
+            notes.append(
+                f"the characteristic polynomial at the parameters' values took longer than the "
+                f"{budget:g} s budget"
+            )
+            return None
+
+    def numbers_only() -> Frequencies:
+        return Frequencies(None, [None] * len(numeric), numeric, n_zero, notes, at_values())
+
     if any(entry.has(sp.sin, sp.cos, sp.atan2) for entry in A):
         notes.append(
             "the stiffness holds transcendental constants (sines and cosines of the "
@@ -171,13 +227,21 @@ def normal_frequencies(
                 poly = characteristic_polynomial(A) if n <= 4 else None
         except BudgetExceeded:
             poly = None
+        if poly is None:
+            return numbers_only()
         return Frequencies(poly, [None] * len(numeric), numeric, n_zero, notes)
+    if sym.symbolic and len(numeric) > MAX_FACTORED:
+        notes.append(
+            f"{_no_closed_form(len(numeric))}; with the parameters as symbols it is not "
+            "expanded (a polynomial in every one of them), only at their values"
+        )
+        return numbers_only()
     if n > MAX_POLYNOMIAL and sym.symbolic:
         notes.append(
             f"{n} bodies: the characteristic polynomial (degree {n}) is left "
             "unexpanded; the frequencies are given numerically"
         )
-        return Frequencies(None, [None] * len(numeric), numeric, n_zero, notes)
+        return numbers_only()
     try:
         with time_budget(left()):
             if matrix is None and _is_tridiagonal(sym.stiffness_matrix):
@@ -192,35 +256,38 @@ def normal_frequencies(
                 reduced = sp.Poly(poly, OMEGA2)
     except BudgetExceeded:
         notes.append(f"the characteristic polynomial took longer than the {budget:g} s budget")
-        return Frequencies(None, [None] * len(numeric), numeric, n_zero, notes)
+        return numbers_only()
     removed = 0
     while removed < n_zero and reduced.degree() > 0 and sp.cancel(reduced.nth(0)) == 0:
         reduced = sp.Poly(sp.cancel(reduced.as_expr() / OMEGA2), OMEGA2)
         removed += 1
     roots: list[sp.Expr | None] = []
-    if reduced.degree() > MAX_FACTORED:
-        notes.append(
-            f"the characteristic polynomial has degree {reduced.degree()} in Omega^2 after its "
-            "zero roots: no closed form offered (its roots are given numerically)"
-        )
+    if reduced.degree() > MAX_FACTORED and sym.symbolic:
+        notes.append(_no_closed_form(reduced.degree()))
         return Frequencies(poly, [None] * len(numeric), numeric, n_zero, notes)
+    degrees: list[int] = []
     try:
         with time_budget(left()):
+            # with exact numbers the polynomial has rational coefficients: factoring it is
+            # cheap at any degree, and finds the exact roots it has (a uniform chain has some)
             factors = sp.factor_list(reduced.as_expr(), OMEGA2)[1] if reduced.degree() > 0 else []
             for factor, multiplicity in factors:
                 fpoly = sp.Poly(factor, OMEGA2)
                 if fpoly.degree() == 0:
                     continue
+                degrees.extend([fpoly.degree()] * multiplicity)
                 if fpoly.degree() <= 2:
                     found = [_tidy(r) for r in sp.roots(fpoly, OMEGA2, multiple=True)]
                 else:
                     found = [None] * fpoly.degree()
-                    notes.append(
-                        f"a factor of degree {fpoly.degree()} of the characteristic "
-                        "polynomial: no closed form offered (its roots are given "
-                        "numerically)"
-                    )
                 roots.extend(found * multiplicity)
+            higher = sorted(d for d in degrees if d > 2)
+            if higher:
+                notes.append(
+                    f"factors of degree {', '.join(map(str, higher))} of the characteristic "
+                    "polynomial: no closed form offered for their roots (none exists in "
+                    "general beyond degree four); they are given numerically"
+                )
     except BudgetExceeded:
         notes.append(
             f"factoring the characteristic polynomial took longer than the {budget:g} s "
@@ -241,7 +308,16 @@ def normal_frequencies(
         if match is not None:
             known.remove(match)
         ordered.append(match)
-    return Frequencies(poly, ordered, numeric, n_zero, notes)
+    return Frequencies(poly, ordered, numeric, n_zero, notes, factors=sorted(degrees))
+
+
+def _no_closed_form(degree: int) -> str:
+    """Why a characteristic polynomial of ``degree`` (in Omega^2) gets numbers, not formulas."""
+    return (
+        f"the characteristic polynomial has degree {degree} in Omega^2 (zero roots taken out): "
+        "no closed form for its roots (a polynomial of degree five or more has no general "
+        "formula); the frequencies are given numerically"
+    )
 
 
 def _value(sym: SymbolicSystem, expr: sp.Expr) -> float:

@@ -27,9 +27,11 @@ from typing import Any
 import sympy as sp
 
 from rollspring.analysis.derivation.frequencies import (
+    MAX_FACTORED,
     OMEGA2,
     BudgetExceeded,
     Frequencies,
+    exact_values,
     normal_frequencies,
     time_budget,
 )
@@ -425,11 +427,30 @@ def _whole_system(
     else:
         char = section.add(
             eq(sp.Function("det")(sp.Symbol("K") - OMEGA2 * sp.Symbol("M")), 0),
-            f"Normal modes: q = v cos(Omega t) in ({matrix.tag}) gives det(K - Omega^2 M) = 0 "
-            "(too large to expand here).",
+            f"Normal modes: q = v cos(Omega t) in ({matrix.tag}) gives det(K - Omega^2 M) = 0, "
+            f"a polynomial of degree {n} in Omega^2 "
+            + (
+                "(not expanded here: with the parameters as symbols it is a polynomial in "
+                "every one of them)."
+                if sym.symbolic
+                else "(not expanded here)."
+            ),
             "(M12)",
             how=How("characteristic equation", (matrix.tag,), args=(mass, K)),
         )
+        if frequencies.at_values is not None and "values" in tags:
+            values = exact_values(sym)
+            mass_at, K_at = mass.xreplace(values), K.xreplace(values)
+            scale = sp.Mul(*mass_at.diagonal()) * (-1) ** n
+            char = section.add(
+                eq(sp.expand(scale * frequencies.at_values), 0),
+                f"The characteristic equation ({char.tag}) at the parameters' values "
+                f"({tags['values']}): det(K - Omega^2 M) with the numbers in M and K.",
+                "(M12)",
+                how=How(
+                    "characteristic equation", (char.tag, tags["values"]), args=(mass_at, K_at)
+                ),
+            )
     closed = [w for w in frequencies.omega2 if w is not None]
     roots = [eq(_mode_omega2(0), 0)] * (frequencies.n_zero > 0) + [
         eq(
@@ -448,11 +469,48 @@ def _whole_system(
             + ("a zero mode" if frequencies.n_zero == 1 else f"{frequencies.n_zero} zero modes")
             + ") is a free, uniform rolling with no restoring force"
         )
-    if len(closed) != len(frequencies.omega2):
-        words += " (closed forms where SymPy finds them, else the numbers)"
+    words += _roots_words(frequencies, char.tag, len(closed))
     section.add(roots, words + ".", "", how=How("solve", (char.tag,), args=(OMEGA2,)))
     out["omega2"] = list(frequencies.omega2)
     return out
+
+
+def _roots_words(frequencies: Frequencies, tag: str, closed: int) -> str:
+    """What the roots step says about closed forms: none needed, why there are none, or which
+    roots are exact (the factors of degree one or two of the characteristic polynomial)."""
+    total = len(frequencies.omega2)
+    if closed == total:
+        return ""
+    numbers = "given as numbers (the eigenvalues of M^-1 K, to 12 digits)"
+    degree = frequencies.degree
+    if frequencies.characteristic is None and degree > MAX_FACTORED:
+        return (
+            f". No closed form in the parameters: det(K - Omega^2 M) has degree {degree} in "
+            "Omega^2 (zero roots taken out), and a polynomial of degree five or more has no "
+            f"general formula for its roots; they are {numbers}"
+        )
+    if frequencies.factors:
+        listed = ", ".join(map(str, frequencies.factors))
+        if closed:
+            return (
+                f". ({tag}) factors over the rationals into factors of degree {listed}: the "
+                "roots of those of degree one or two are exact, the others (no closed form "
+                f"offered beyond degree two) {numbers}"
+            )
+        shape = (
+            "is irreducible over the rationals"
+            if len(frequencies.factors) == 1
+            else f"factors over the rationals only into factors of degree {listed}"
+        )
+        general = (
+            "a polynomial of degree five or more has no general formula for its roots"
+            if max(frequencies.factors) > 4
+            else "no closed form is offered beyond degree two"
+        )
+        return f". No closed form: ({tag}) has degree {degree} in Omega^2 and {shape}; " + (
+            f"{general}, so its roots are {numbers}"
+        )
+    return " (closed forms where SymPy finds them, else the numbers)"
 
 
 def _whole_system_in_angles(

@@ -78,7 +78,7 @@ def kinetic_general(sym: SymbolicSystem) -> sp.Expr:
 def setup_tags(sym: SymbolicSystem) -> dict[str, str]:
     """The numbers of the setup's steps by what they hold: ``constraints``, ``rates``,
     ``inertia``, ``kinetic``, ``mass``, ``lengths``, ``potential``, ``stiffness``,
-    ``quadratic`` (those the system has)."""
+    ``quadratic``, ``values`` (the parameters' numbers; those the system has)."""
     setup_section(sym)
     tags: dict[str, str] = sym._cache["setup_tags"]
     return tags
@@ -108,11 +108,11 @@ def setup_section(sym: SymbolicSystem) -> Section:
         how=GIVEN,
     )
     if sym.symbolic and sym.values:
-        section.add(
+        tags["values"] = section.add(
             [eq(s, sp.Float(v, 6)) for s, v in sorted(sym.values.items(), key=lambda p: p[0].name)],
             "The numbers of this system (data, SI units).",
             how=GIVEN,
-        )
+        ).tag
     if sym.springs:
         section.add(
             [matrix_equation(f"d_{s.index + 1}", sp.Matrix(s.d0).T) for s in sym.springs],

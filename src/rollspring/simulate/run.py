@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rollspring.analysis import find_equilibrium, normal_modes, stationary_weights
+from rollspring.analysis.banded import DENSE_LIMIT
 from rollspring.errors import SimulationError
 from rollspring.model import System
 from rollspring.physics import (
@@ -216,6 +217,9 @@ class _Start(NamedTuple):
     coeffs: FloatArray
     h: float
     x0: FloatArray
+    #: the bodies (ascending) whose states ``q``, ``v`` hold, when not every body's: the ball
+    #: of an extreme's body in a large system (:func:`kernels.spring_balls`)
+    ball: np.ndarray | None = None
 
 
 @dataclass
@@ -274,6 +278,89 @@ def choose_scheme(
             best = (name, step, cost)
     assert best is not None  # names is never empty
     return best[0], best[1]
+
+
+class _Linear(NamedTuple):
+    """What a run takes from the linear model: the equilibrium, the fastest frequency (at the
+    equilibrium and at the placement: the step suits both), the modes at the equilibrium (all
+    of them for a small system; for a large one the lowest, up to the first oscillating one:
+    every zero and unstable mode), the oscillating modes' columns and the linear period of the
+    lowest (when the equilibrium was found)."""
+
+    equilibrium: Any
+    omega_max: float
+    vectors: FloatArray
+    kinds: np.ndarray
+    oscillating: list[int]
+    period: float | None
+
+
+def _linear_setup(arrays: SystemArrays, model: tuple[Any, ...], *, sparse: bool) -> _Linear:
+    """:class:`_Linear` of a system: with dense matrices (every mode, O(n³): the reference, up
+    to :data:`~rollspring.analysis.banded.DENSE_LIMIT` bodies) or, with ``sparse``, from the
+    sparse stiffness matrix by the banded eigensolvers of :mod:`rollspring.analysis.banded`
+    (the largest eigenvalue and the lowest modes, O(n) each for a chain), never forming an
+    n x n array."""
+    n = arrays.n_bodies
+    mass = arrays.inertia  # the diagonal of M
+    equilibrium = find_equilibrium(
+        arrays,
+        forces=lambda q: kernels.generalized_forces(model, np.asarray(q, float)),
+        sparse=sparse,
+    )
+    if sparse and equilibrium.modes is None:
+        omegas_eq, vectors_eq, kinds_eq, largest = _lowest_modes(arrays, equilibrium.q)
+        if np.any(equilibrium.q):  # the placement's largest eigenvalue too
+            from rollspring.analysis.banded import banded_modes
+
+            placement = stiffness_matrix(arrays, np.zeros(n), sparse=True)
+            largest = max(largest, banded_modes(arrays, placement, select=(0, 0), vectors=False)[3])
+        omega_max = math.sqrt(largest)
+    else:
+        # the modes at the equilibrium and at the placement (the step suits both): those the
+        # search computed, else computed here (without an equilibrium q is the placement)
+        modes_0 = equilibrium.placement_modes
+        if modes_0 is None:
+            modes_0 = normal_modes(mass, stiffness_matrix(arrays, np.zeros(n)))
+        modes_eq = equilibrium.modes
+        if modes_eq is None:
+            modes_eq = (
+                modes_0
+                if not np.any(equilibrium.q)
+                else normal_modes(mass, stiffness_matrix(arrays, equilibrium.q))
+            )
+        omegas_eq, vectors_eq, kinds_eq = modes_eq
+        # a few numbers: plain floats
+        omega_max = math.sqrt(max(map(abs, omegas_eq.tolist() + modes_0[0].tolist()), default=0.0))
+    oscillating = [k for k, kind in enumerate(kinds_eq.tolist()) if kind == "oscillating"]
+    period_linear = (
+        2 * math.pi / math.sqrt(omegas_eq[oscillating[0]])
+        if equilibrium.found and oscillating
+        else None
+    )
+    return _Linear(equilibrium, omega_max, vectors_eq, kinds_eq, oscillating, period_linear)
+
+
+def _lowest_modes(
+    arrays: SystemArrays, q: FloatArray
+) -> tuple[FloatArray, FloatArray, np.ndarray, float]:
+    """The lowest modes at ``q`` by the banded eigensolvers, enough of them to hold every
+    unstable and zero mode and the first oscillating one (4, then twice as many until the
+    last is oscillating), and the largest |eigenvalue|: (eigenvalues, M-orthonormal vectors,
+    kinds, largest)."""
+    from rollspring.analysis.banded import banded_modes
+
+    n = arrays.n_bodies
+    stiffness = stiffness_matrix(arrays, q, sparse=True)
+    count = min(n, 4)
+    while True:
+        values, vectors, kinds, largest = banded_modes(
+            arrays, stiffness, select=(0, count - 1), vectors=True
+        )
+        if count == n or kinds[-1] == "oscillating":
+            assert vectors is not None  # asked for
+            return values, vectors, kinds, largest
+        count = min(n, 2 * count)
 
 
 def simulate(
@@ -350,30 +437,10 @@ def simulate(
     n = arrays.n_bodies
     mass = arrays.inertia  # the diagonal of M
     model = kernels.kernel_model(arrays)  # the initial placement's: the run's reference
-    equilibrium = find_equilibrium(
-        arrays, forces=lambda q: kernels.generalized_forces(model, np.asarray(q, float))
-    )
-    # the modes at the equilibrium and at the placement (the step suits both): those the
-    # search computed, else computed here (without an equilibrium q is the placement)
-    modes_0 = equilibrium.placement_modes
-    if modes_0 is None:
-        modes_0 = normal_modes(mass, stiffness_matrix(arrays, np.zeros(n)))
-    modes_eq = equilibrium.modes
-    if modes_eq is None:
-        modes_eq = (
-            modes_0
-            if not np.any(equilibrium.q)
-            else normal_modes(mass, stiffness_matrix(arrays, equilibrium.q))
-        )
-    omegas_eq, vectors_eq, kinds_eq = modes_eq
-    # a few numbers: plain floats
-    omega_max = math.sqrt(max(map(abs, omegas_eq.tolist() + modes_0[0].tolist()), default=0.0))
-    oscillating = [k for k, kind in enumerate(kinds_eq.tolist()) if kind == "oscillating"]
-    period_linear = (
-        2 * math.pi / math.sqrt(omegas_eq[oscillating[0]])
-        if equilibrium.found and oscillating
-        else None
-    )
+    linear = _linear_setup(arrays, model, sparse=n > DENSE_LIMIT)
+    equilibrium, omega_max = linear.equilibrium, linear.omega_max
+    vectors_eq, kinds_eq, oscillating = linear.vectors, linear.kinds, linear.oscillating
+    period_linear = linear.period
     damped = bool((arrays.damping > 0).any())
     if damped or integrator == "dop853":
         name, step = "dop853", None
@@ -508,6 +575,33 @@ class _Run:
         self.all_rolling = (np.zeros(self.n, dtype=bool), np.zeros(self.n))
         #: the normal forces cannot change (level centre springs, forces at centres)
         self.constant_normal = springs_stay_level(arrays)
+        #: beyond DENSE_LIMIT bodies the kernel keeps, for each body's extreme, only the
+        #: states of its ball (the bodies a refinement of it can feel, :meth:`balls`)
+        self.windowed = n > DENSE_LIMIT
+        self._balls: tuple[np.ndarray, np.ndarray] | None = None
+        self._links: tuple[np.ndarray, ...] | None = None
+
+    def balls(self) -> tuple[np.ndarray, np.ndarray]:
+        """(ball_ptr, ball_idx): per body the bodies whose states are kept with its extremes,
+        CSR (:func:`kernels.run_fixed_step`): every body for a small system; for a large one
+        those within :func:`kernels.refinement_radius` springs (:func:`kernels.spring_balls`),
+        O(1) per body for a chain."""
+        if self._balls is None:
+            n = self.n
+            if self.windowed:
+                radius = kernels.refinement_radius(len(self.coeffs))
+                links = self.links()
+                self._balls = kernels.spring_balls(n, self.model[2], links[0], links[1], radius)
+            else:
+                ptr = np.arange(n + 1, dtype=np.int64) * n
+                self._balls = (ptr, np.tile(np.arange(n, dtype=np.int64), n))
+        return self._balls
+
+    def links(self) -> tuple[np.ndarray, ...]:
+        """:func:`kernels.body_links` of the model (each body's springs and forces)."""
+        if self._links is None:
+            self._links = tuple(kernels.body_links(self.n, self.model[2], self.model[4]))
+        return self._links
 
     # -- state conversions ---------------------------------------------------------------
     def general_state(self, q: FloatArray, v: FloatArray, x0: FloatArray) -> FloatArray:
@@ -791,9 +885,10 @@ class _Run:
             )
         ]
         extremes = np.array([ratio0, [t] * n, normal0, [t] * n])
-        extreme_states = np.empty((2, n, 2, n))
-        extreme_states[:, :, 0, :] = q
-        extreme_states[:, :, 1, :] = qdot
+        ball_ptr, ball_idx = self.balls()
+        extreme_states = np.empty((2, 2, ball_idx.size))
+        extreme_states[:, 0, :] = q[ball_idx]
+        extreme_states[:, 1, :] = qdot[ball_idx]
         crossing = np.array([0.0, 0.0, 0.0, float(self.mode_weights @ (q - self.q_ref))])
         crossing_states = np.zeros((2, 2, n))
         before = np.empty((2, n))
@@ -829,6 +924,8 @@ class _Run:
                 out_v,
                 extremes,
                 extreme_states,
+                ball_ptr,
+                ball_idx,
                 self.mode_weights,
                 self.q_ref,
                 crossing,
@@ -890,14 +987,22 @@ class _Run:
         q: FloatArray,
         v: FloatArray,
         h: float,
+        ball: np.ndarray | None = None,
     ) -> _Segment:
         """A segment of two steps from the state (q, v) at ``t_start``. Its interpolant is
-        built on first use: most are refined from their ``start`` in one compiled call."""
-        start = _Start(t_start, q.copy(), v.copy(), model, self.coeffs, h, x0)
+        built on first use: most are refined from their ``start`` in one compiled call. With
+        ``ball``, (q, v) are the states of those bodies alone (an extreme of a large system):
+        such a segment is refined from its start only (:func:`_refine_together`)."""
+        start = _Start(t_start, q.copy(), v.copy(), model, self.coeffs, h, x0, ball)
         built: list[_Segment] = []
         slipping, sign = self.all_rolling
 
         def evaluate(t: float | FloatArray) -> FloatArray:
+            if ball is not None:
+                raise SimulationError(
+                    "internal: a windowed extreme's segment has no interpolant (refine it "
+                    "from its start)"
+                )
             if not built:
                 built.append(
                     self._rolling_evaluator(
@@ -920,6 +1025,7 @@ class _Run:
     ) -> None:
         """Hand the kernel's extremes and crossings over, each with the state it starts from."""
         found = extremes.tolist()
+        ball_ptr, ball_idx = self.balls()
         for i in range(self.n):
             for kind, row in (("ratio", 0), ("normal", 2)):
                 value = found[row][i]
@@ -930,11 +1036,18 @@ class _Run:
                     k = 0 if kind == "ratio" else 1
                     t_start = found[row + 1][i]
                     # a normal force that cannot change is never refined: no segment for it
+                    lo, hi = ball_ptr[i], ball_ptr[i + 1]
                     local = (
                         None
                         if kind == "normal" and self.constant_normal
                         else self._local(
-                            model, x0, t_start, extreme_states[k, i, 0], extreme_states[k, i, 1], h
+                            model,
+                            x0,
+                            t_start,
+                            extreme_states[k, 0, lo:hi],
+                            extreme_states[k, 1, lo:hi],
+                            h,
+                            ball_idx[lo:hi] if self.windowed else None,
                         )
                     )
                     self.step_extremes[(kind, i)] = (value, t_start + h, h, local)
@@ -1430,7 +1543,7 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
         assert start is not None  # batched: only segments with the state they start from
         groups.setdefault(id(start.model), {})[key] = entry
     for group in groups.values():
-        for (kind, i), value in _refine_together(group).items():
+        for (kind, i), value in _refine_together(group, run).items():
             result[kind][i] = value
     for (kind, i), (value, t, width, local) in best.items():
         if (kind, i) in batched or (kind, i) in fixed:
@@ -1441,20 +1554,41 @@ def _continuous_extremes(run: _Run, trajectory: Trajectory) -> dict[str, list[fl
     return result
 
 
-def _refine_together(entries: dict[tuple[str, int], Any]) -> dict[tuple[str, int], float]:
+def _refine_together(
+    entries: dict[tuple[str, int], Any], run: _Run
+) -> dict[tuple[str, int], float]:
     """:func:`_refine` for many extremes at once, each on its own two-step segment from the
-    state the kernel kept (one compiled call per zoom level for all of them)."""
+    state the kernel kept (one compiled call for all of them; in a large system each on the
+    model of its body's ball, :func:`kernels.refine_windowed`)."""
     keys = list(entries)
     first = entries[keys[0]][3].start
-    q0 = np.array([entries[k][3].start.q for k in keys])
-    v0 = np.array([entries[k][3].start.v for k in keys])
     kinds = np.array([0 if kind == "ratio" else 1 for kind, _ in keys], dtype=np.int64)
     bodies = np.array([i for _, i in keys], dtype=np.int64)
     sign = [1.0 if kind == "ratio" else -1.0 for kind, _ in keys]
     best = np.array([entries[k][0] * sign[j] for j, k in enumerate(keys)])
-    refined = kernels.refine_extremes(
-        first.model, first.coeffs, first.h, q0, v0, kinds, bodies, best
-    ).tolist()
+    starts = [entries[k][3].start for k in keys]
+    if first.ball is None:
+        q0 = np.array([start.q for start in starts])
+        v0 = np.array([start.v for start in starts])
+        refined = kernels.refine_extremes(
+            first.model, first.coeffs, first.h, q0, v0, kinds, bodies, best
+        ).tolist()
+    else:
+        offsets = np.zeros(len(starts) + 1, dtype=np.int64)
+        np.cumsum([start.ball.size for start in starts], out=offsets[1:])
+        refined = kernels.refine_windowed(
+            first.model,
+            first.coeffs,
+            first.h,
+            np.concatenate([start.q for start in starts]),
+            np.concatenate([start.v for start in starts]),
+            offsets,
+            np.concatenate([start.ball for start in starts]),
+            kinds,
+            bodies,
+            best,
+            run.links(),
+        ).tolist()
     return {key: refined[j] * sign[j] for j, key in enumerate(keys)}
 
 
@@ -1536,9 +1670,7 @@ def _measured_period(
         ]
         result: float | None = (times[1] - times[0]) / (count - 1)
         return result
-    signal = signal_of(
-        np.concatenate([trajectory.x, trajectory.phi, trajectory.v, trajectory.omega], axis=1)
-    )
+    signal = signal_of(np.concatenate([trajectory.x, trajectory.phi], axis=1))  # q of them
     level = 0.5 * (float(np.max(signal)) + float(np.min(signal)))
     values = signal - level
     upward = np.flatnonzero((values[:-1] < 0) & (values[1:] >= 0))

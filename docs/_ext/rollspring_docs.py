@@ -107,7 +107,7 @@ def api_page() -> str:
         "=" * len(title),
         "",
         "Every public name of the package (``rollspring.__all__``), generated from the docstrings "
-        "at build time. Equation tags (M1)…(M19) refer to :doc:`the model <../physics>`; units "
+        "at build time. Equation tags (M1)…(M20) refer to :doc:`the model <../physics>`; units "
         "are SI, with x to the right, y up and φ clockwise positive.",
         "",
         ".. code-block:: python",

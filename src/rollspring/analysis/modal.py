@@ -523,7 +523,8 @@ def friction_ratio_sup(
     .. math:: rac{|f|}{N},\qquad f = f_c + \mathrm{Re}\sum_g a_g e^{i	heta_g},\quad
               N = N_c + \mathrm{Re}\sum_g b_g e^{i	heta_g} > 0,
 
-    for arrays of bodies (``f_c``, ``n_c`` (m,); ``a_f``, ``a_n`` (groups, m) complex).
+    for arrays of bodies (``f_c``, ``n_c`` (m,); ``a_f``, ``a_n`` (groups, m) complex);
+    docs/physics.md (M20).
     Independent phases are what incommensurate frequency groups sweep (the supremum is
     approached arbitrarily closely); one group's one phase is the same problem. It is exact:
     :math:`\sup f/N \ge r` iff some phases make :math:`f - rN \ge 0`, and the phases maximise

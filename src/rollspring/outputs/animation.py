@@ -114,7 +114,46 @@ def frame_times(
     return np.asarray(t0 + step * np.arange(count), dtype=np.float64)
 
 
-class MotionAnimation:
+class _Frames:
+    """What every animation shares: ``times`` (the frames' simulated times) and ``figure``,
+    set by the subclass with its :meth:`update`; the frames drawn on Agg."""
+
+    times: np.ndarray
+    figure: Figure
+
+    def __len__(self) -> int:
+        return int(self.times.size)
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """(width, height) of a frame in pixels."""
+        width, height = self.figure.canvas.get_width_height()
+        return int(width), int(height)
+
+    def update(self, i: int) -> None:
+        """Move the figure's artists to frame ``i`` (without drawing)."""
+        raise NotImplementedError
+
+    def render(self, i: int) -> np.ndarray:
+        """Frame ``i`` as a (height, width, 4) uint8 array."""
+        self.update(i)
+        canvas = self.figure.canvas
+        assert isinstance(canvas, FigureCanvasAgg)  # new_figure gives every figure an Agg canvas
+        with theme():
+            canvas.draw()
+        return np.array(canvas.buffer_rgba())
+
+    def frames(self, progress: Progress | None = None) -> Iterator[np.ndarray]:
+        """Every frame in order, reporting the fraction done to ``progress``."""
+        total = len(self)
+        for i in range(total):
+            frame = self.render(i)
+            if progress is not None:
+                progress((i + 1) / total)
+            yield frame
+
+
+class MotionAnimation(_Frames):
     """The frames of a trajectory's animation, drawn on one figure whose artists are moved from
     frame to frame (Agg, no display).
 
@@ -147,37 +186,10 @@ class MotionAnimation:
         self.figure = figure
         self._forces = forces
 
-    def __len__(self) -> int:
-        return int(self.times.size)
-
-    @property
-    def size(self) -> tuple[int, int]:
-        """(width, height) of a frame in pixels."""
-        width, height = self.figure.canvas.get_width_height()
-        return int(width), int(height)
-
     def update(self, i: int) -> None:
         """Move the scene to frame ``i`` (without drawing)."""
         state = states_at(self.trajectory, self.times[i : i + 1], forces=self._forces)[0]
         self.scene.update(state)
-
-    def render(self, i: int) -> np.ndarray:
-        """Frame ``i`` as a (height, width, 4) uint8 array."""
-        self.update(i)
-        canvas = self.figure.canvas
-        assert isinstance(canvas, FigureCanvasAgg)  # new_figure gives every figure an Agg canvas
-        with theme():
-            canvas.draw()
-        return np.array(canvas.buffer_rgba())
-
-    def frames(self, progress: Progress | None = None) -> Iterator[np.ndarray]:
-        """Every frame in order, reporting the fraction done to ``progress``."""
-        total = len(self)
-        for i in range(total):
-            frame = self.render(i)
-            if progress is not None:
-                progress((i + 1) / total)
-            yield frame
 
     def pixel(self, x: float, y: float) -> tuple[float, float]:
         """(column, row) of the scene point (x, y) in metres, in a rendered frame."""
@@ -188,7 +200,7 @@ class MotionAnimation:
         return float(column), float(self.size[1] - up)
 
 
-class ChainAnimation:
+class ChainAnimation(_Frames):
     """The frames of a long chain's animation (module docstring), with the interface of
     :class:`MotionAnimation` (``times``, ``render(i)``, ``frames()``, ``update(i)``, ``size``,
     ``figure``). Values between output rows are interpolated linearly."""
@@ -272,15 +284,6 @@ class ChainAnimation:
             ax.set_title(trajectory.system.name or "", loc="right", fontsize=7.5)
         self.figure = figure
 
-    def __len__(self) -> int:
-        return int(self.times.size)
-
-    @property
-    def size(self) -> tuple[int, int]:
-        """(width, height) of a frame in pixels."""
-        width, height = self.figure.canvas.get_width_height()
-        return int(width), int(height)
-
     def _at(self, values: np.ndarray, time: float) -> np.ndarray:
         t = self.trajectory.t
         if t.size == 1:
@@ -305,24 +308,6 @@ class ChainAnimation:
                 ahead = waves.centroid[0] + waves.group_velocity * (time - float(waves.t[0]))
                 self._predicted.set_xdata([ahead, ahead])
         self._clock.set_text(f"t = {time:.2f} s")
-
-    def render(self, i: int) -> np.ndarray:
-        """Frame ``i`` as a (height, width, 4) uint8 array."""
-        self.update(i)
-        canvas = self.figure.canvas
-        assert isinstance(canvas, FigureCanvasAgg)
-        with theme():
-            canvas.draw()
-        return np.array(canvas.buffer_rgba())
-
-    def frames(self, progress: Progress | None = None) -> Iterator[np.ndarray]:
-        """Every frame in order, reporting the fraction done to ``progress``."""
-        total = len(self)
-        for i in range(total):
-            frame = self.render(i)
-            if progress is not None:
-                progress((i + 1) / total)
-            yield frame
 
 
 def write_animation(

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from rich.console import Console
@@ -187,6 +188,22 @@ def print_simulation(console: Console, trajectory, written) -> None:
             "none" if event is None else f"'{event['body']}' at t = {_g(event['time'], 12)} s",
         )
     console.print(head)
+    if len(trajectory.ids) > MANY_BODIES:
+        console.print(_body_extremes(trajectory))
+    else:
+        console.print(_body_rows(trajectory))
+    for path in written:
+        console.print(f"wrote {plain(path)}", markup=False)
+
+
+#: more bodies than this (a long chain; the report's and the animation's LONG_CHAIN) get one
+#: row per quantity with its extremes over the bodies instead of one row per body
+MANY_BODIES = 20
+
+
+def _body_rows(trajectory: Any) -> Table:
+    """One row per body: max |f|/N, min N and the final state."""
+    summary = trajectory.summary
     bodies = Table(title="bodies", title_justify="left")
     for column in (
         "body",
@@ -208,6 +225,32 @@ def print_simulation(console: Console, trajectory, written) -> None:
             _g(final[name]["v"]),
             _g(final[name]["phi"]),
         )
-    console.print(bodies)
-    for path in written:
-        console.print(f"wrote {plain(path)}", markup=False)
+    return bodies
+
+
+def _body_extremes(trajectory: Any) -> Table:
+    """A long chain's bodies summarised: per quantity the smallest and the largest over the
+    bodies and which body has it (the per-body values are in ``--json`` and ``--out``)."""
+    summary = trajectory.summary
+    ids = list(trajectory.ids)
+    final = summary["final"]["bodies"]
+    start = {name: float(trajectory.x[0, i]) for i, name in enumerate(ids)}
+    quantities: list[tuple[str, dict[str, float]]] = [
+        ("max |f|/N over the run", dict(summary["max_friction_ratio"])),
+        ("min N over the run (N)", dict(summary["min_normal_force"])),
+        ("final x − initial x (m)", {b: final[b]["x"] - start[b] for b in ids}),
+        ("final v (m/s)", {b: final[b]["v"] for b in ids}),
+        ("final phi (rad)", {b: final[b]["phi"] for b in ids}),
+    ]
+    table = Table(title=f"bodies ({len(ids)}: the extremes over them)", title_justify="left")
+    for column in ("quantity", "smallest", "body", "largest", "body"):
+        table.add_column(column, justify="left" if column in ("quantity", "body") else "right")
+    for label, values in quantities:
+        finite = {b: v for b, v in values.items() if v == v}  # NaN is nobody's extreme
+        if not finite:
+            table.add_row(label, "-", "", "-", "")
+            continue
+        low = min(finite, key=finite.__getitem__)
+        high = max(finite, key=finite.__getitem__)
+        table.add_row(label, _g(finite[low]), markup(low), _g(finite[high]), markup(high))
+    return table

@@ -4,10 +4,14 @@
 placement and ``rtol``, exactly as :func:`rollspring.simulate.choose_scheme` chooses it (the
 compiled symplectic schemes), or is the ``step`` asked for; damped springs run DOP853, whose
 adaptive steps are estimated from the same frequency. Seconds follow from steps × (bodies +
-springs) at the measured cost of a body and step (docs/system-files.md), memory from the output
-arrays (and the CSV text when files are written). :func:`rollspring.simulate` refuses a run above
-the bound (:func:`rollspring.analysis.costs.check_cost`) unless called with ``confirm=True``;
-the command line with ``--yes`` (:mod:`rollspring.service.costs`).
+springs) at the measured cost of a body and step (docs/system-files.md), the output rows
+observed, the extremes refined (each over its body's ball in a large system) and the setup (the
+linear model: dense up to :data:`~rollspring.analysis.banded.DENSE_LIMIT` bodies, O(n) beyond);
+memory from the output arrays (and the CSV text when files are written). All of it O(bodies +
+springs): the estimate of a 1000-body chain is within a factor of a few of the run.
+:func:`rollspring.simulate` refuses a run above the bound
+(:func:`rollspring.analysis.costs.check_cost`) unless called with ``confirm=True``; the command
+line with ``--yes`` (:mod:`rollspring.service.costs`).
 """
 
 from __future__ import annotations
@@ -27,17 +31,25 @@ __all__ = ["API_SMALLER", "CLI_SMALLER", "simulation_cost"]
 CLI_SMALLER = "a shorter --duration, fewer --outputs"
 API_SMALLER = "a shorter duration, fewer n_output"
 
-#: seconds per body (or spring) and step of a compiled symplectic step, all its stages
-_SYMPLECTIC_BODY_STEP = 1.5e-6
+#: seconds per step of a compiled symplectic step (all the stages of Kahan-Li 8) apart from its
+#: bodies, and per body (or spring) of it: 1.5e-6 per body or spring for the paper's two bodies
+#: and their spring, about 2e-7 for a long chain (bench/bench_chains.py)
+_SYMPLECTIC_STEP, _SYMPLECTIC_BODY_STEP = 3.75e-6, 2.5e-7
+#: seconds per output row and body (or spring) observed (forces, energies, extremes)
+_OBSERVE_BODY_ROW = 1e-7
+#: steps of the scheme each refined extreme takes (three grids of 9 points over two steps)
+_REFINE_STEPS = 33
 #: seconds per DOP853 step (SciPy's Python loop), and per body of it
 _DOP853_STEP, _DOP853_BODY_STEP = 1e-3, 3e-5
 #: DOP853 steps per radian of the fastest mode at rtol 1e-8, and how they grow as rtol falls
 _DOP853_STEPS_PER_RADIAN, _DOP853_ORDER = 1.5, 7.0
 #: the largest step × decay rate DOP853 stays stable at (its stability region on the real axis)
 _DOP853_STABILITY = 3.0
-#: setup (equilibrium, stiffness matrices, eigensolvers) of a simulation of n bodies: this many
-#: seconds × (n/1000)² (the stiffness matrix is O(n²) Python work)
+#: setup (equilibrium, stiffness matrices, eigensolvers) of a simulation of n bodies: up to
+#: DENSE_LIMIT bodies (dense matrices) this many seconds × (n/1000)², beyond (sparse
+#: matrices, banded eigensolvers) this many per body
 _SETUP_PER_SQUARED_THOUSAND = 150.0
+_SETUP_PER_BODY = 5e-5
 #: bytes per output number: the arrays and their copies; with files, the CSV text and the table
 _BYTES_IN_MEMORY, _BYTES_WRITTEN = 16, 40
 
@@ -71,6 +83,7 @@ def simulation_cost(
         check_step,
     )
     from rollspring.simulate.integrators import INTEGRATORS as SCHEMES
+    from rollspring.simulate.integrators import refinement_radius
 
     duration = check_duration(duration)
     rtol = check_rtol_range(rtol)
@@ -81,7 +94,12 @@ def simulation_cost(
     springs = len(system.springs)
     omega, rate = _highest_rates(system)
     damped = any(spring.damping > 0 for spring in system.springs)
-    setup = 0.05 + _SETUP_PER_SQUARED_THOUSAND * (n / 1000.0) ** 2
+    from rollspring.analysis.banded import DENSE_LIMIT
+
+    if n <= DENSE_LIMIT:
+        setup = 0.05 + _SETUP_PER_SQUARED_THOUSAND * (n / 1000.0) ** 2
+    else:
+        setup = 0.05 + _SETUP_PER_BODY * n
     if damped or integrator == "dop853":
         name = "dop853"
         radians = max(omega * duration, 2 * math.pi)
@@ -96,7 +114,14 @@ def simulation_cost(
             name = "yoshida4" if integrator == "auto" else integrator
         steps = max(1.0, duration / step)
         stages = SCHEMES[name].stages / SCHEMES["kahanli8"].stages  # measured on kahanli8
-        seconds = setup + steps * stages * _SYMPLECTIC_BODY_STEP * (n + springs)
+        step_seconds = stages * (_SYMPLECTIC_STEP + _SYMPLECTIC_BODY_STEP * (n + springs))
+        # each body's extremes (|f|/N and N) refined over the bodies and springs of its ball:
+        # every one up to DENSE_LIMIT bodies, about 2 radius + 1 of each along a chain
+        radius = refinement_radius(SCHEMES[name].stages)
+        ball = n + springs if n <= DENSE_LIMIT else min(n + springs, 2 * (2 * radius + 1))
+        refine = 2 * n * _REFINE_STEPS * stages * _SYMPLECTIC_BODY_STEP * ball
+        observe = n_output * _OBSERVE_BODY_ROW * (n + springs)
+        seconds = setup + steps * step_seconds + observe + refine
     numbers = n_output * (8 * n + 2 * springs + 6)
     memory = numbers * (_BYTES_IN_MEMORY + (_BYTES_WRITTEN if written else 0))
     return Cost(what, n, seconds, float(memory), steps, name, smaller)

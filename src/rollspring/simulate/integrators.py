@@ -37,6 +37,7 @@ __all__ = [
     "OUTPUT_SAFETY",
     "Integrator",
     "output_omega_step",
+    "refinement_radius",
 ]
 
 #: Largest omega*h any scheme may use (well inside every scheme's stability interval, and at
@@ -163,3 +164,12 @@ INTEGRATORS: dict[str, Integrator] = {
 }
 
 assert all(math.isclose(sum(i.coefficients), 1.0) for i in INTEGRATORS.values())
+
+
+def refinement_radius(stages: int) -> int:
+    """The radius (in springs) of the ball a refinement of a scheme of ``stages`` stages needs
+    (:func:`~rollspring.simulate.kernels.refine_windowed`): every force evaluation carries a
+    change one spring further, and a refinement takes at most two steps of the scheme's stages
+    after the evaluation at its start; the ball reaches a spring further than that,
+    ``2 stages + 2``."""
+    return 2 * stages + 2

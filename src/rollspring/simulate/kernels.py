@@ -55,7 +55,6 @@ __all__ = [
     "observe_rolling",
     "refine_extremes",
     "refine_windowed",
-    "refinement_radius",
     "rolling_forces",
     "row_extremes",
     "run_fixed_step",
@@ -620,14 +619,6 @@ def _refine_one(model, coeffs, h, q0, v0, kind, b, best, work):
     return out
 
 
-def refinement_radius(stages: int) -> int:
-    """The radius (in springs) of the ball a refinement of a scheme of ``stages`` stages needs
-    (:func:`refine_windowed`): every force evaluation carries a change one spring further, and
-    a refinement takes at most two steps of the scheme's stages after the evaluation at its
-    start; the ball reaches a spring further than that, ``2 stages + 2``."""
-    return 2 * stages + 2
-
-
 @njit(cache=True, error_model="numpy")
 def body_links(n, ends, force_body):
     """Each body's springs and constant forces, ascending, as two CSR pairs
@@ -761,7 +752,8 @@ def _window_model(model, ball, local, spring_ptr, spring_ids, force_ptr, force_i
 @njit(cache=True, error_model="numpy")
 def refine_windowed(model, coeffs, h, q0, v0, offsets, balls, kinds, bodies, best, links):
     r""":func:`refine_extremes` of a large system, each extreme on the model of its body's ball
-    (:func:`spring_balls` of radius :func:`refinement_radius`, :func:`_window_model`): entry j's
+    (:func:`spring_balls` of radius
+    :func:`~rollspring.simulate.integrators.refinement_radius`, :func:`_window_model`): entry j's
     ball is ``balls[offsets[j]:offsets[j + 1]]`` (global body numbers, ascending) and its
     state ``q0``/``v0`` over the same slice. The refinement sees body ``bodies[j]`` after at
     most 2 stages + 1 force evaluations, so the ball's edge never reaches it: the same numbers

@@ -41,6 +41,7 @@ from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import arguments, kernels
 from rollspring.simulate.arguments import ON_SLIP
 from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
+from rollspring.simulate.integrators import refinement_radius
 from rollspring.simulate.kernels import SCHEMES
 from rollspring.simulate.status import Status
 
@@ -584,12 +585,12 @@ class _Run:
     def balls(self) -> tuple[np.ndarray, np.ndarray]:
         """(ball_ptr, ball_idx): per body the bodies whose states are kept with its extremes,
         CSR (:func:`kernels.run_fixed_step`): every body for a small system; for a large one
-        those within :func:`kernels.refinement_radius` springs (:func:`kernels.spring_balls`),
-        O(1) per body for a chain."""
+        those within :func:`~rollspring.simulate.integrators.refinement_radius` springs
+        (:func:`kernels.spring_balls`), O(1) per body for a chain."""
         if self._balls is None:
             n = self.n
             if self.windowed:
-                radius = kernels.refinement_radius(len(self.coeffs))
+                radius = refinement_radius(len(self.coeffs))
                 links = self.links()
                 self._balls = kernels.spring_balls(n, self.model[2], links[0], links[1], radius)
             else:
@@ -1254,9 +1255,16 @@ class _Run:
             kernels.slipping_derivatives(model, y, slipping, sign, self.damped, out)
             return out
 
+        # SciPy calls every event function with the same state array after a step: observed
+        # once for all of them (O(n) per step, not O(n) per body)
+        last: list[Any] = [None, None]
+
         def contacts(y: FloatArray) -> tuple[FloatArray, FloatArray]:
-            friction, normal, *_ = self._observe(y[None, :], slipping[None], sign[None])
-            return friction[0], normal[0]
+            if last[0] is not y:
+                friction, normal, *_ = self._observe(y[None, :], slipping[None], sign[None])
+                last[:] = [y, (friction[0], normal[0])]
+            result: tuple[FloatArray, FloatArray] = last[1]
+            return result
 
         def slip_margin(y: FloatArray, i: int) -> float:
             friction, normal = contacts(y)

@@ -61,14 +61,15 @@ def test_sparse_setup_agrees_with_the_dense_one(offcentre, monkeypatch) -> None:
     assert sparse.summary["energy_error"] <= 100 * 1e-8 + 1e-12
 
 
-def test_a_windowed_refinement_is_the_whole_models_to_the_bit(offcentre) -> None:
+@pytest.mark.parametrize("scheme", sorted(INTEGRATORS))
+def test_a_windowed_refinement_is_the_whole_models_to_the_bit(offcentre, scheme: str) -> None:
     """The light-cone argument of :func:`kernels.refine_windowed`: a body's ball reaches
     further than the refinement's force evaluations carry any change, so its extreme comes
     out of the ball's model exactly as out of the whole chain's."""
     arrays = system_arrays(offcentre)
     model = kernels.kernel_model(arrays)
     n = arrays.n_bodies
-    coeffs = INTEGRATORS["kahanli8"].weights
+    coeffs = INTEGRATORS[scheme].weights
     rng = np.random.default_rng(7)
     q0 = rng.normal(scale=0.05, size=(2 * n, n))
     v0 = rng.normal(scale=0.2, size=(2 * n, n))
@@ -160,3 +161,30 @@ def test_a_long_chains_memory_grows_as_its_length() -> None:
     (2, n, 2, n)): twice the bodies, about twice the memory (a dense array: four times)."""
     small, large = _peak_memory(1000), _peak_memory(2000)
     assert large < 2.5 * small
+
+
+def test_the_command_line_summarises_a_long_chains_bodies(tmp_path) -> None:
+    """More than 20 bodies: one row per quantity with its extremes over the bodies and which
+    body, the numbers of the run's summary (the same run as ``--json``'s)."""
+    from typer.testing import CliRunner
+
+    from rollspring.cli import app
+    from rollspring.model.files import system_to_toml
+
+    system = chain(pattern="hoop,cylinder", n=30, walls="both", pluck=1, height=0.15)
+    path = tmp_path / "chain.toml"
+    path.write_text(system_to_toml(system))
+    done = CliRunner().invoke(app, ["simulate", str(path), "-T", "1", "--outputs", "101"])
+    assert done.exit_code == 0, done.output
+    summary = rollspring.simulate(system, 1.0, n_output=101).summary
+    lines = done.output.splitlines()
+    assert any("bodies (30: the extremes over them)" in line for line in lines)
+    assert not any(line.startswith("│ hoop3 ") for line in lines)  # no row per body
+    ratios = summary["max_friction_ratio"]
+    top = max(ratios, key=ratios.__getitem__)
+    row = next(line for line in lines if "max |f|/N over the run" in line)
+    assert f"{ratios[top]:.6g}" in row and f" {top} " in row
+    normals = summary["min_normal_force"]
+    low = min(normals, key=normals.__getitem__)
+    row = next(line for line in lines if "min N over the run" in line)
+    assert f"{normals[low]:.6g}" in row and f" {low} " in row

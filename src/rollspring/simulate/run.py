@@ -294,6 +294,8 @@ class _Linear(NamedTuple):
     kinds: np.ndarray
     oscillating: list[int]
     period: float | None
+    #: every zero mode is among ``kinds`` (so their number is known: the stationary point)
+    complete: bool = True
 
 
 def _linear_setup(arrays: SystemArrays, model: tuple[Any, ...], *, sparse: bool) -> _Linear:
@@ -309,8 +311,10 @@ def _linear_setup(arrays: SystemArrays, model: tuple[Any, ...], *, sparse: bool)
         forces=lambda q: kernels.generalized_forces(model, np.asarray(q, float)),
         sparse=sparse,
     )
+    complete = True
     if sparse and equilibrium.modes is None:
         omegas_eq, vectors_eq, kinds_eq, largest = _lowest_modes(arrays, equilibrium.q)
+        complete = kinds_eq.size == n or kinds_eq[-1] == "oscillating"
         if np.any(equilibrium.q):  # the placement's largest eigenvalue too
             from rollspring.analysis.banded import banded_modes
 
@@ -339,7 +343,9 @@ def _linear_setup(arrays: SystemArrays, model: tuple[Any, ...], *, sparse: bool)
         if equilibrium.found and oscillating
         else None
     )
-    return _Linear(equilibrium, omega_max, vectors_eq, kinds_eq, oscillating, period_linear)
+    return _Linear(
+        equilibrium, omega_max, vectors_eq, kinds_eq, oscillating, period_linear, complete
+    )
 
 
 def _lowest_modes(
@@ -347,21 +353,22 @@ def _lowest_modes(
 ) -> tuple[FloatArray, FloatArray, np.ndarray, float]:
     """The lowest modes at ``q`` by the banded eigensolvers, enough of them to hold every
     unstable and zero mode and the first oscillating one (4, then twice as many until the
-    last is oscillating), and the largest |eigenvalue|: (eigenvalues, M-orthonormal vectors,
-    kinds, largest)."""
+    last is oscillating, at most :data:`DENSE_LIMIT` of them: never n vectors of n), and the
+    largest |eigenvalue|: (eigenvalues, M-orthonormal vectors, kinds, largest)."""
     from rollspring.analysis.banded import banded_modes
 
     n = arrays.n_bodies
     stiffness = stiffness_matrix(arrays, q, sparse=True)
-    count = min(n, 4)
+    most = min(n, DENSE_LIMIT)
+    count = min(most, 4)
     while True:
         values, vectors, kinds, largest = banded_modes(
             arrays, stiffness, select=(0, count - 1), vectors=True
         )
-        if count == n or kinds[-1] == "oscillating":
+        if count == most or kinds[-1] == "oscillating":
             assert vectors is not None  # asked for
             return values, vectors, kinds, largest
-        count = min(n, 2 * count)
+        count = min(most, 2 * count)
 
 
 def simulate(
@@ -478,7 +485,14 @@ def simulate(
         trajectory.message += _singular_springs(trajectory)
     lowest = vectors_eq[:, oscillating[0]] if oscillating else None
     trajectory.summary = _summary(
-        trajectory, run, arrays, equilibrium.q, lowest, mass, period_linear, (vectors_eq, kinds_eq)
+        trajectory,
+        run,
+        arrays,
+        equilibrium.q,
+        lowest,
+        mass,
+        period_linear,
+        (vectors_eq, kinds_eq) if linear.complete else None,
     )
     timings["total"] = time.perf_counter() - clock
     trajectory.timings = timings
@@ -1413,7 +1427,7 @@ def _summary(
     lowest: FloatArray | None,
     mass: FloatArray,
     period_linear: float | None,
-    modes: tuple[FloatArray, Any],
+    modes: tuple[FloatArray, Any] | None,
 ) -> dict[str, Any]:
     """The JSON summary (see the README): status, energies, periods, extremes, events."""
     n = arrays.n_bodies
@@ -1430,8 +1444,9 @@ def _summary(
         energy_error = (max(high - e0, e0 - low) if high == high else math.nan) / scale
     else:  # spurious growth above the running minimum
         energy_error = float(np.max(energy - np.minimum.accumulate(energy))) / scale
-    # weights of the stationary point (M14) at equilibrium
-    weights = stationary_weights(arrays, *modes)  # from the normal modes at equilibrium
+    # weights of the stationary point (M14) at equilibrium, from the normal modes there (None
+    # when the zero modes are not all known: more zero and unstable modes than were computed)
+    weights = stationary_weights(arrays, *modes) if modes is not None else None
     if weights is not None:
         trajectory.stationary_x = trajectory.x @ weights
     period = _measured_period(run, trajectory, lowest, mass, q_eq) if lowest is not None else None

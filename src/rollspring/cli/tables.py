@@ -158,10 +158,13 @@ def print_simulation(console: Console, trajectory, written) -> None:
     from rich.table import Table
 
     summary = trajectory.summary
+    title = f"{trajectory.system.name}: simulated {summary['duration']:g} s"
     head = Table(
-        title=f"{markup(trajectory.system.name)}: simulated {summary['duration']:g} s",
+        title=markup(title),
         title_justify="left",
         show_header=False,
+        # a long chain's name ("Chain of 1000 bodies (...)") on one line, not wrapped
+        min_width=len(title) if len(trajectory.ids) > MANY_BODIES else None,
     )
     head.add_column("quantity", style="bold")
     head.add_column("value")

@@ -78,8 +78,9 @@ def test_analyze_needs_numpy_pydantic_but_not_scipy_or_the_compiled_kernels() ->
 
 def test_analyze_loads_scipy_only_for_what_needs_it() -> None:
     """Three bodies, a tilted spring off the centres (one frequency group, a varying normal
-    force: closed form) need no SciPy; several frequencies with a varying normal force do (the
-    friction ratio's maximum over the torus of phases: SciPy's optimizer, loaded on demand)."""
+    force), and several frequencies with a varying normal force (the friction ratio's maximum
+    over the torus of phases: the root of a convex function, docs/physics.md (M20)) need no
+    SciPy; a long chain (its sparse matrices and banded eigensolvers) does."""
     assert "scipy" not in loaded(command("analyze", "three-bodies", "--json"))
     assert "scipy" not in loaded(command("analyze", "frictionless", "--json"))
     tilted_chain = (
@@ -93,7 +94,12 @@ def test_analyze_loads_scipy_only_for_what_needs_it() -> None:
         "assert len({round(m.omega, 6) for m in result.oscillating}) == 2\n"
         "assert result.required_mu is not None and all(result.required_mu >= 0)\n"
     )
-    assert "scipy" in loaded(tilted_chain)
+    assert "scipy" not in loaded(tilted_chain)
+    long_chain = (
+        "from rollspring import analyze, chain\n"
+        "assert hasattr(analyze(chain('hoop', 100, walls='both')).stiffness, 'tocoo')\n"
+    )
+    assert "scipy" in loaded(long_chain)
 
 
 def test_simulate_loads_the_kernels_but_no_plotting_or_symbolic_library() -> None:

@@ -155,8 +155,9 @@ def test_the_sparse_and_the_dense_path_agree_on_random_chains(seed: int) -> None
         np.testing.assert_array_equal(np.isfinite(x), finite)
         scale = np.max(np.abs(y[finite]), initial=0.0)
         np.testing.assert_allclose(x[finite], y[finite], rtol=1e-10, atol=1e-10 * scale)
+    ranges = dense.normal_force_range  # N_c -/+ amplitude: 1e-10 of their scale
     np.testing.assert_allclose(
-        sparse.normal_force_range, dense.normal_force_range, rtol=1e-10, atol=0
+        sparse.normal_force_range, ranges, rtol=1e-10, atol=1e-10 * np.max(np.abs(ranges))
     )
 
 
@@ -283,3 +284,23 @@ def test_the_command_line_summarises_a_long_chain(tmp_path) -> None:
         [m.omega for m in analysis.modes[9:12]], rel=1e-12
     )
     assert chosen["response"] is None and "modes 10 to 12 of 100" in band.stderr
+
+
+@pytest.mark.parametrize("n", [100, 3000])
+def test_a_free_chain_struck_finds_the_valley_point_sparsely(n: int) -> None:
+    """No walls, centre springs: K is singular (the chain rolls as a whole). The bordered
+    sparse Newton holds the zero-mode coordinate at the placement's, as the dense search does;
+    beyond the dense search's reach too."""
+    arrays = system_arrays(chain("hoop,cylinder", n, pluck=1, amplitude=0.05))
+    found = rollspring.find_equilibrium(arrays)
+    assert found.found and found.stiffness is None  # the sparse path
+    assert np.max(np.abs(generalized_forces(arrays, found.q))) <= 1e-10
+    # the zero mode of level centre springs, v_i = 1/s_i (every centre moved alike), held:
+    # V0^T M q = sum J_i q_i / s_i = 0, as in the placement
+    weights = arrays.inertia / arrays.scale
+    held = abs(float(weights @ found.q))
+    assert held <= 1e-12 * float(weights.sum()) * float(np.max(np.abs(found.q)))
+    assert np.max(np.abs(found.q)) > 0.1  # a real displacement (the struck body)
+    if n <= ALL_MODES_LIMIT:
+        dense = rollspring.find_equilibrium(arrays, sparse=False)
+        np.testing.assert_allclose(found.q, dense.q, rtol=0, atol=1e-12)

@@ -159,9 +159,20 @@ def sparse_equilibrium(
     r"""Newton's method on :math:`Q(q) = 0` with sparse LU factorisations of :math:`K(q)`
     (SciPy's ``splu``; O(n) for a banded K): :math:`\delta q = K^{-1} Q`, each step at most
     0.5 rad (halved until the residual :math:`Q^T M^{-1} Q` falls), from the initial
-    placement until the residual is at most ``target``. Returns (q, residual, converged);
-    not converged where K is singular (zero modes: free parts of the system) or the
-    steps stall: the caller then tells why."""
+    placement until the residual is at most ``target``. Returns (q, residual, converged).
+
+    Where K is singular — zero modes :math:`V_0` (a chain without walls rolling as a whole,
+    found by :func:`banded_modes` among the lowest modes) — the step solves the bordered system
+
+    .. math:: \begin{pmatrix} K & M V_0 \\ V_0^{\mathsf T} M & 0 \end{pmatrix}
+              \begin{pmatrix} \delta q \\ -\mu \end{pmatrix} =
+              \begin{pmatrix} Q \\ -V_0^{\mathsf T} M q \end{pmatrix}
+
+    (sparse too: the border is a few dense columns), which holds the zero-mode coordinates
+    :math:`V_0^{\mathsf T} M q` at the placement's, 0: the point of the valley of equilibria
+    the released motion oscillates about (docs/physics.md (M14); the dense search's
+    ``_hold_zero_modes``). Not converged where the steps stall: the caller then tells why."""
+    import scipy.sparse
     import scipy.sparse.linalg
 
     inv_mass = 1.0 / arrays.inertia
@@ -175,12 +186,9 @@ def sparse_equilibrium(
     for _ in range(max_iterations):
         if residual <= target:
             return q, residual, True
-        k_matrix = stiffness_matrix(arrays, q, sparse=True).tocsc()
-        try:
-            step = scipy.sparse.linalg.splu(k_matrix).solve(force)
-        except RuntimeError:  # exactly singular
-            return q, residual, False
-        if not np.isfinite(step).all():
+        k_matrix = stiffness_matrix(arrays, q, sparse=True)
+        step = _newton_step(arrays, k_matrix, force, q, scipy.sparse, scipy.sparse.linalg)
+        if step is None:
             return q, residual, False
         biggest = float(np.abs(step).max(initial=0.0))
         if biggest > 0.5:
@@ -195,3 +203,33 @@ def sparse_equilibrium(
             return q, residual, False
         q, force, residual = trial, trial_force, trial_residual
     return q, residual, residual <= target
+
+
+def _newton_step(
+    arrays: SystemArrays, k_matrix: Any, force: FloatArray, q: FloatArray, sparse: Any, linalg: Any
+) -> FloatArray | None:
+    """:math:`K^{-1}Q`, or the bordered step of :func:`sparse_equilibrium` when K is singular
+    (None when neither can be taken)."""
+    try:
+        step: FloatArray = linalg.splu(k_matrix.tocsc()).solve(force)
+        if np.isfinite(step).all():
+            return step
+    except RuntimeError:  # exactly singular
+        pass
+    lowest = min(arrays.n_bodies, 8)
+    _, vectors, kinds, _ = banded_modes(arrays, k_matrix, select=(0, lowest - 1))
+    zero = kinds == "zero"
+    if vectors is None or not zero.any():
+        return None
+    border = arrays.inertia[:, None] * vectors[:, zero]  # M V0
+    bordered = sparse.bmat(
+        [[k_matrix, sparse.csr_array(border)], [sparse.csr_array(border.T), None]],
+        format="csc",
+    )
+    right = np.concatenate([force, -(border.T @ q)])
+    try:
+        solution = linalg.splu(bordered).solve(right)
+    except RuntimeError:
+        return None
+    step = solution[: arrays.n_bodies]
+    return step if np.isfinite(step).all() else None

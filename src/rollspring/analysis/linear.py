@@ -256,9 +256,9 @@ def _large_equilibrium(
     r"""The equilibrium of a system of more than
     :data:`~rollspring.analysis.banded.DENSE_LIMIT` bodies without dense matrices: the
     placement itself when its residual is within ``target`` (a chain written with its springs
-    at rest length), else Newton with sparse factorisations
-    (:func:`~rollspring.analysis.banded.sparse_equilibrium`). None when that does not
-    converge (K singular: zero modes) and the dense search can still be afforded
+    at rest length), else Newton with sparse factorisations, bordered by the zero modes where
+    K is singular (:func:`~rollspring.analysis.banded.sparse_equilibrium`). None when that
+    does not converge and the dense search can still be afforded
     (:data:`~rollspring.analysis.banded.ALL_MODES_LIMIT` bodies); beyond, not found."""
     n = system.n_bodies
     if initial <= target:

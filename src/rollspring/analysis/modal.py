@@ -442,6 +442,8 @@ def _response(
         osc = per_mode[..., oscillating] * complex_amp
         if not groups:
             amps = np.zeros((0, *per_mode.shape[:-1]), dtype=complex)
+        elif vectorised and len(groups) == osc.shape[-1]:  # every frequency its own group
+            amps = np.moveaxis(osc, -1, 0)
         elif vectorised:  # groups are runs of consecutive modes: one reduceat
             starts = np.array([g[0] for g in groups])
             amps = np.moveaxis(np.add.reduceat(osc, starts, axis=-1), -1, 0)
@@ -542,23 +544,29 @@ def friction_ratio_sup(
     f_c = np.asarray(f_c, dtype=float)
     n_c = np.asarray(n_c, dtype=float)
     reach = n_c - np.sum(np.abs(a_n), axis=0)
-    start = (np.abs(f_c) + np.sum(np.abs(a_f), axis=0)) / reach
-    best = np.zeros(f_c.shape)
-    for sign in (1.0, -1.0):
-        centre, terms = sign * f_c, sign * a_f
-        r = start.copy()
-        for _ in range(100):
-            d = terms - r * a_n
-            size = np.abs(d)
-            h = centre - r * n_c + np.sum(size, axis=0)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                slope_terms = np.where(size > 0, -np.real(np.conj(d) * a_n) / size, 0.0)
-            slope = -n_c + np.sum(slope_terms, axis=0)
-            step = np.where(slope < 0, h / slope, 0.0)
-            r = r - step
-            if not np.any(np.abs(step) > 4e-16 * np.abs(r)):
-                break
-        best = np.maximum(best, r)
+    best = (np.abs(f_c) + np.sum(np.abs(a_f), axis=0)) / reach  # exact where N is constant
+    varying = np.flatnonzero(np.any(a_n != 0, axis=0))
+    if varying.size:
+        f_v, n_v, a_v, b_v = f_c[varying], n_c[varying], a_f[:, varying], a_n[:, varying]
+        start = best[varying]
+        found = np.zeros(varying.size)
+        for sign in (1.0, -1.0):
+            r = start.copy()
+            active = np.arange(varying.size)  # the bodies still moving
+            for _ in range(100):
+                d = sign * a_v[:, active] - r[active] * b_v[:, active]
+                size = np.abs(d)
+                h = sign * f_v[active] - r[active] * n_v[active] + np.sum(size, axis=0)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    turn = np.where(size > 0, -np.real(np.conj(d) * b_v[:, active]) / size, 0.0)
+                slope = -n_v[active] + np.sum(turn, axis=0)
+                step = np.where(slope < 0, h / slope, 0.0)
+                r[active] -= step
+                active = active[np.abs(step) > 4e-16 * np.abs(r[active])]
+                if not active.size:
+                    break
+            found = np.maximum(found, r)
+        best[varying] = found
     result: FloatArray = best
     return result
 

@@ -54,7 +54,7 @@ from rollspring.analysis.dispersion import dispersion
 from rollspring.analysis.linear import find_equilibrium
 from rollspring.errors import AnalysisError
 from rollspring.model import System, rolled
-from rollspring.physics import SystemArrays, end_kinematics, force_point_kinematics, system_arrays
+from rollspring.physics import SystemArrays, force_work, spring_energies, system_arrays
 from rollspring.physics.arrays import FloatArray
 
 __all__ = [
@@ -93,26 +93,17 @@ def body_energies(system: SystemArrays, x: FloatArray, v: FloatArray) -> FloatAr
     q = ((x - system.x0) / system.scale).reshape(-1, system.n_bodies)
     qdot = (v / system.scale).reshape(-1, system.n_bodies)
     energy = 0.5 * system.inertia * qdot**2
-    ends = system.end_body
-    both = np.all(ends >= 0, axis=1)
-    share = np.where(both[:, None], 0.5, 1.0) * (ends >= 0)  # (S, 2)
-    body = np.where(ends >= 0, ends, 0)
-    rest = None
-    if system.force.shape[0]:
-        rest, _, _ = force_point_kinematics(system, np.zeros(system.n_bodies))
+    both = np.all(system.end_body >= 0, axis=1)
+    share = np.where(both[:, None], 0.5, 1.0) * system.end_on_body  # (S, 2)
     for start in range(0, q.shape[0], _CHUNK):
         rows = slice(start, start + _CHUNK)
         if system.n_springs:
-            position, _, _ = end_kinematics(system, q[rows])
-            length = np.sqrt(np.sum((position[..., 1, :] - position[..., 0, :]) ** 2, axis=-1))
-            spring = 0.5 * system.stiffness * (length - system.rest_length) ** 2  # (rows, S)
+            spring = spring_energies(system, q[rows])  # (rows, S)
             block = energy[rows]
             for j in range(2):
-                np.add.at(block.T, body[:, j], (share[:, j] * spring).T)
-        if rest is not None:
-            points, _, _ = force_point_kinematics(system, q[rows])
-            work = np.einsum("fc,...fc->...f", system.force, points - rest)
-            np.add.at(energy[rows].T, system.force_body, -work.T)
+                np.add.at(block.T, system.end_index[:, j], (share[:, j] * spring).T)
+        if system.force.shape[0]:
+            np.add.at(energy[rows].T, system.force_body, -force_work(system, q[rows]).T)
     result: FloatArray = energy.reshape(*lead, system.n_bodies)
     return result
 

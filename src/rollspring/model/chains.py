@@ -24,7 +24,8 @@ bodies, rest lengths kept), by centre displacements :math:`u_i` of at most ``amp
   chain's middle :math:`x_c` on branch ``branch``:
   :math:`u_{c,r} = A\,g\,\mathrm{Re}(e_r e^{iqca})`,
   :math:`\dot u_{c,r} = A\,\omega\,g\,\mathrm{Im}(e_r e^{iqca})`,
-  :math:`g = \exp(-(x - x_c)^2/2w^2)`, with the branch's Bloch vector :math:`e` (centre
+  :math:`g = \exp(-(x - x_c)^2/2w^2)` (0 where it is below :math:`10^{-16}`: the bodies
+  further than 8.6 widths stay exactly at rest), with the branch's Bloch vector :math:`e` (centre
   displacements of the cell's bodies, largest 1) and frequency :math:`\omega(q)`: the packet
   :math:`\mathrm{Re}\,[A g e_r e^{i(qca - \omega t)}]` travels with the group velocity
   :math:`d\omega/dq`.
@@ -372,6 +373,8 @@ def _packet(
     index = np.arange(count)
     x = index * a0
     centre = 0.5 * x[-1]
-    envelope = amplitude * np.exp(-((x - centre) ** 2) / (2.0 * width**2))
+    gauss = np.exp(-((x - centre) ** 2) / (2.0 * width**2))
+    # beyond 8.6 widths g < 1e-16: below the rounding of the placement, so exactly at rest
+    envelope = amplitude * np.where(gauss < 1e-16, 0.0, gauss)
     wave = shape[index % p] * np.exp(1j * q * cell * (index // p))
     return envelope * wave.real, omega * envelope * wave.imag

@@ -34,10 +34,12 @@ __all__ = [
     "damping_matrix",
     "end_kinematics",
     "force_point_kinematics",
+    "force_work",
     "generalized_forces",
     "kinetic_energy",
     "mass_matrix",
     "potential_energy",
+    "spring_energies",
     "spring_pair_matrix",
     "spring_state",
     "springs_stay_level",
@@ -485,20 +487,39 @@ def contact_forces_jacobian(
     return d_friction, d_normal
 
 
+def spring_energies(system: SystemArrays, q: FloatArray) -> FloatArray:
+    r"""Each spring's elastic energy :math:`\tfrac12 k_s (l_s - L_{0s})^2` (J), shape (..., S),
+    from the end positions alone (M1), (M5)."""
+    q = _as_state(system, q)
+    position, _, _ = end_kinematics(system, q)
+    vector = position[..., 1, :] - position[..., 0, :]
+    length = np.sqrt(np.sum(vector**2, axis=-1))
+    result: FloatArray = 0.5 * (system.stiffness * (length - system.rest_length) ** 2)
+    return result
+
+
+def force_work(system: SystemArrays, q: FloatArray) -> FloatArray:
+    r"""The work each constant external force has done since the initial placement,
+    :math:`F_f\cdot(P_f(q) - P_f(0))` (J), shape (..., F): minus its potential energy (M5)."""
+    q = _as_state(system, q)
+    position, _, _ = force_point_kinematics(system, q)
+    rest, _, _ = force_point_kinematics(system, np.zeros(system.n_bodies))
+    result: FloatArray = np.einsum("fc,...fc->...f", system.force, position - rest)
+    return result
+
+
 def potential_energy(system: SystemArrays, q: FloatArray) -> FloatArray:
     r"""Potential energy, zero in the initial placement's external-force level (J), (M5):
 
     .. math:: U = \sum_s \tfrac12 k_s (l_s - L_{0s})^2 - \sum_f F_f\cdot(P_f(q) - P_f(0))
 
-    Gravity is a constant while the bodies roll (centre heights do not change) and is left out.
+    (:func:`spring_energies` and :func:`force_work` summed). Gravity is a constant while the
+    bodies roll (centre heights do not change) and is left out.
     """
     q = _as_state(system, q)
-    springs = spring_state(system, q)
-    energy = 0.5 * np.sum(system.stiffness * (springs.length - system.rest_length) ** 2, axis=-1)
+    energy = np.sum(spring_energies(system, q), axis=-1)
     if system.force.shape[0]:
-        position, _, _ = force_point_kinematics(system, q)
-        rest, _, _ = force_point_kinematics(system, np.zeros(system.n_bodies))
-        energy = energy - np.einsum("fc,...fc->...", system.force, position - rest)
+        energy = energy - np.sum(force_work(system, q), axis=-1)
     result: FloatArray = energy
     return result
 

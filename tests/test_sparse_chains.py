@@ -44,7 +44,9 @@ def _exact(root: float, n: int, which: np.ndarray) -> np.ndarray:
     return 2.0 * root * np.sin(which * math.pi / (2 * (n + 1)))
 
 
-@pytest.mark.parametrize(("shape", "n"), [("hoop", 100), ("cylinder", 500), ("slider", 2000)])
+@pytest.mark.parametrize(
+    ("shape", "n"), [("hoop", 100), ("slider", 500), ("sphere", 1000), ("cylinder", 2000)]
+)
 def test_equal_bodies_between_walls_have_the_lattice_frequencies_on_the_sparse_path(
     shape: str, n: int
 ) -> None:

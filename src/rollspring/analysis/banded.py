@@ -45,6 +45,8 @@ DENSE_LIMIT = 64
 ALL_MODES_LIMIT = 2000
 #: LAPACK ``stebz``'s absolute tolerance: twice the underflow threshold, its most accurate
 _BISECTION = 2.0 * float(np.finfo(float).tiny)
+#: eigenvalues below this fraction of the largest are refined by bisection (every-mode path)
+_REFINE = 1e-3
 #: An eigenvalue with |lambda| < this * max|lambda| is a zero mode (as in ``normal_modes``).
 _ZERO = 1e-10
 
@@ -105,6 +107,18 @@ def banded_modes(
         largest = float(max(abs(ends[0][0]), abs(ends[1][0])))
         if select is None:
             values = scipy.linalg.eigh_tridiagonal(diagonal, off, eigvals_only=True)
+            # stevd is accurate to about eps |A|: the eigenvalues far below the largest again
+            # by bisection to the underflow threshold, to their own relative accuracy
+            small = np.flatnonzero(np.abs(values) < _REFINE * largest)
+            if small.size:
+                values[small[0] : small[-1] + 1] = scipy.linalg.eigh_tridiagonal(
+                    diagonal,
+                    off,
+                    eigvals_only=True,
+                    select="i",
+                    select_range=(int(small[0]), int(small[-1])),
+                    tol=_BISECTION,
+                )
             standard = None
             if vectors:
                 _, standard = scipy.linalg.eigh_tridiagonal(diagonal, off, lapack_driver="stemr")

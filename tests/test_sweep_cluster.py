@@ -1,7 +1,8 @@
 """rollspring sweep on a real Dask cluster on loopback: a scheduler and two workers started
 from their command lines (one cluster for the module), compared bit for bit with the
-in-process sweep; a worker killed mid-sweep; the client killed mid-sweep and the command
-rerun (only the unfinished chunks run); another sweep's store refused."""
+in-process sweep; a worker killed mid-sweep; chunks' keys cancelled on the scheduler; the
+client killed mid-sweep and the command rerun (only the unfinished chunks run); another
+sweep's store refused."""
 
 from __future__ import annotations
 
@@ -219,6 +220,41 @@ def test_worker_killed_mid_sweep(cluster, reference, tmp_path):
     same(xr.open_zarr(store).load(), reference)
     assert markers(store) == set(range(50))
     cluster.wait_for_workers(2)
+
+
+def test_chunk_cancelled_on_the_cluster_is_computed_again(cluster, reference, tmp_path):
+    """A chunk's key cancelled under the sweep (what distributed does when a worker is lost
+    with a result in a race: "Couldn't gather ..., rescheduling", then the key cancelled) is
+    submitted again, and the store is the in-process sweep's, bit for bit."""
+    from distributed import Client
+
+    store = tmp_path / "cancel.zarr"
+    process = run_cli(store, cluster.address)
+    wait_for_markers(store, process, 2)
+
+    def unfinished(dask_scheduler):  # the chunks submitted and not yet computed
+        return sorted(
+            key
+            for key, task in dask_scheduler.tasks.items()
+            if str(key).startswith("rollspring-sweep-") and task.state != "memory"
+        )
+
+    with Client(cluster.address, timeout=30, set_as_default=False) as other:
+        keys = other.run_on_scheduler(unfinished)
+        assert len(keys) >= 2, keys
+        me = other.id
+        other.run_on_scheduler(
+            lambda dask_scheduler: dask_scheduler.stimulus_cancel(
+                keys, me, force=True, reason="test", msg="cancelled by the test"
+            )
+        )
+    _out, err = process.communicate(timeout=600)
+    assert process.returncode == 0, err
+    again = {int(i) for i in re.findall(r"chunk (\d+): cancelled on the cluster", err)}
+    assert again and again <= {int(k.rsplit("-", 1)[1]) for k in keys}, (again, keys)
+    assert "(attempt 2 of 4)" in err
+    assert markers(store) == set(range(50))
+    same(xr.open_zarr(store).load(), reference)
 
 
 def test_client_killed_mid_sweep_then_resumed(cluster, reference, tmp_path):

@@ -13,6 +13,7 @@ flight — writing each into its region as it arrives, then its marker.
 
 from __future__ import annotations
 
+import logging
 import math
 import os
 import time
@@ -56,10 +57,14 @@ DEFAULT_CHUNK = 4096
 #: In-process, consecutive chunks are computed together, up to this many runs a batch call
 #: (fewer calls; every run's numbers are those it has alone).
 IN_PROCESS_RUNS = 1 << 16
+#: On a cluster, a chunk whose key is cancelled under it (a worker lost with its result) is
+#: submitted again, up to this many submissions in all.
+CHUNK_ATTEMPTS = 4
 #: Metrics (variables) a sweep can store; ``energy_dissipated`` and ``time_slipping`` only
 #: with ``on_slip="continue"``.
 METRICS = tuple(VARIABLES)
 _CONTINUE_ONLY = ("energy_dissipated", "time_slipping")
+_log = logging.getLogger(__name__)
 
 
 @dataclass
@@ -418,7 +423,8 @@ def _results(
                 yield list(zip(group, compute_chunks(plan, group), strict=True))
                 group, size = [], 0
         return
-    from distributed import as_completed
+    from distributed import KilledWorker, as_completed
+    from distributed.client import FutureCancelledError
 
     if not todo:
         return
@@ -428,11 +434,12 @@ def _results(
     window = 2 * workers + 2
     pending = iter(todo)
     futures: dict[str, int] = {}
+    attempts: dict[int, int] = {}
 
-    def submit() -> Any:
-        index = next(pending, None)
+    def submit(index: int | None) -> Any:
         if index is None:
             return None
+        attempts[index] = attempts.get(index, 0) + 1
         future = client.submit(
             compute_chunk,
             shared,
@@ -443,13 +450,37 @@ def _results(
         futures[future.key] = index
         return future
 
-    first = [f for f in (submit() for _ in range(window)) if f is not None]
+    first = [f for f in (submit(next(pending, None)) for _ in range(window)) if f is not None]
     queue = as_completed(first, loop=client.loop)
     for future in queue:
-        arrays = future.result()
         index = futures.pop(future.key)
+        try:
+            arrays = future.result()
+        except FutureCancelledError as exc:
+            # A worker lost with the chunk's result can leave its key cancelled on the
+            # scheduler (distributed's "Couldn't gather ..., rescheduling" race): the chunk
+            # is computed again, under a new key. Chunks are pure, so this is safe.
+            if attempts[index] >= CHUNK_ATTEMPTS:
+                raise SweepError(
+                    f"chunk {index}: cancelled on the cluster {attempts[index]} times ({exc}); "
+                    "a store given by --out keeps the chunks finished, and a new run resumes it"
+                ) from None
+            _log.warning(
+                "chunk %d: cancelled on the cluster (a worker was lost); computing it again "
+                "(attempt %d of %d)",
+                index,
+                attempts[index] + 1,
+                CHUNK_ATTEMPTS,
+            )
+            queue.add(submit(index))
+            continue
+        except KilledWorker as exc:
+            raise SweepError(
+                f"chunk {index}: the workers computing it died ({exc}); "
+                "a store given by --out keeps the chunks finished, and a new run resumes it"
+            ) from None
         future.release()
-        following = submit()
+        following = submit(next(pending, None))
         if following is not None:
             queue.add(following)
         yield [(index, arrays)]

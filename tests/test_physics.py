@@ -356,3 +356,22 @@ def test_modes_do_not_depend_on_the_order_of_the_bodies(system, order) -> None:
     if first.required_mu is not None and second.required_mu is not None:
         by_id = dict(zip(second.ids, second.required_mu, strict=True))
         np.testing.assert_allclose(first.required_mu, [by_id[i] for i in first.ids], rtol=1e-6)
+
+
+def test_dense_assembly_sums_each_cell_in_order_as_add_at() -> None:
+    """The dense matrices (K, C, the force Jacobians) are assembled by ``np.bincount``: each
+    cell the sum of its entries in their order, bit for bit what ``np.add.at`` gives (the
+    reference the sparse path and the dense path's tests were pinned against)."""
+    from rollspring.physics.mechanics import _assemble
+
+    rng = np.random.default_rng(20261127)
+    for _ in range(200):
+        n = int(rng.integers(1, 8))
+        m = int(rng.integers(0, 40))
+        rows, cols = rng.integers(0, n, m), rng.integers(0, n, m)
+        values = rng.normal(size=m) * 10.0 ** rng.integers(-12, 12, m)
+        expected = np.zeros((n, n))
+        np.add.at(expected, (rows, cols), values)
+        got = _assemble(n, rows, cols, values, False)
+        assert got.shape == (n, n) and got.dtype == np.float64
+        assert np.array_equal(got.view(np.int64), expected.view(np.int64))

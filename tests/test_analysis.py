@@ -305,6 +305,50 @@ def test_level_centre_springs_take_the_one_step_equilibrium_with_one_set_of_mode
     assert find_equilibrium(tilted).placement_modes is not None  # the search's first K
 
 
+def test_level_stiffness_of_plain_floats_has_the_assemblys_bits() -> None:
+    """A few level centre springs: the stiffness summed in plain floats is the vectorised
+    assembly's and ``stiffness_matrix``'s, bit for bit, on seeded random level chains (mixed
+    shapes and radii, centres at one height, walls, springs skipping a body)."""
+    import rollspring.analysis.linear as linear
+
+    rng = np.random.default_rng(27)
+    shapes = ["hoop", "cylinder", "sphere", "shell", "slider"]
+    for _ in range(12):
+        n = int(rng.integers(1, 9))
+        radii = rng.uniform(0.02, 0.2, n)
+        bodies = [
+            body(
+                f"b{i}",
+                str(rng.choice(shapes)),
+                mass=float(rng.uniform(0.1, 5)),
+                radius=float(radii[i]),
+                x=0.6 * i,
+                track_height=float(0.3 - radii[i]),
+            )
+            for i in range(n)
+        ]
+        springs = [
+            spring(f"b{i}", f"b{i + 1}", stiffness=float(rng.uniform(1, 1e3)))
+            | {"rest_length": float(rng.uniform(0.3, 0.9))}
+            for i in range(n - 1)
+        ]
+        springs += [
+            spring(f"b{i}", f"b{i + 2}", stiffness=float(rng.uniform(1, 1e3)))
+            for i in range(n - 2)
+            if rng.random() < 0.5
+        ]
+        anchors = [{"id": "wall", "x": -0.7, "y": 0.3}]
+        springs.append(spring("wall", "b0", stiffness=float(rng.uniform(1, 1e3))))
+        arrays = system_arrays(make_system(bodies, springs, anchors=anchors))
+        dx, dy = linear._placement_vectors(arrays)
+        lengths = np.sqrt(dx**2 + dy**2)
+        assert linear._level_centre_springs(arrays, dx)
+        fast = linear._level_stiffness(arrays, dx, lengths)
+        assembled = linear._level_stiffness(arrays, dx, lengths, sparse=True).toarray()
+        for other in (assembled, stiffness_matrix(arrays, np.zeros(n))):
+            assert np.array_equal(fast.view(np.int64), (other + 0.0).view(np.int64))
+
+
 def test_paper_system_equilibrium_is_the_exact_stationary_split() -> None:
     """Fig. 2: q* puts the spring at rest with X-hat unmoved, to rounding."""
     from rollspring.model import load_system

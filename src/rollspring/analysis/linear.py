@@ -304,6 +304,25 @@ def _level_stiffness(
     the same numbers as ``stiffness_matrix`` (whose other terms are exact zeros there), so
     the same bits; SciPy CSR with ``sparse``."""
     direction = dx / lengths
+    if not sparse and system.n_springs <= _FEW_SPRINGS:
+        # a few springs: plain floats, the same products summed into each cell in the same
+        # order (spring, then end pair) as the assembly below, so the same bits, without its
+        # arrays (most of a small system's linear setup)
+        n = system.n_bodies
+        cells = [[0.0] * n for _ in range(n)]
+        scale = system.scale.tolist()
+        for d, k, ends in zip(
+            direction.tolist(), system.stiffness.tolist(), system.end_body.tolist(), strict=True
+        ):
+            levers = [
+                (i, d * (sign * scale[i]))
+                for i, sign in zip(ends, (-1.0, 1.0), strict=True)
+                if i >= 0
+            ]
+            for i, b_i in levers:
+                for j, b_j in levers:
+                    cells[i][j] += k * (b_i * b_j)
+        return np.array(cells, dtype=float).reshape(n, n)
     lever = direction[:, None] * (_END_SIGN * system.scale[system.end_index])
     lever = lever * system.end_on_body
     outer = lever[:, :, None] * lever[:, None, :]
@@ -312,6 +331,8 @@ def _level_stiffness(
 
 #: d = P_b - P_a: end a counts -1, end b +1
 _END_SIGN = np.array([-1.0, 1.0])
+#: up to this many springs, :func:`_level_stiffness` of a dense K sums plain floats
+_FEW_SPRINGS = 32
 
 
 def _level_equilibrium(

@@ -20,8 +20,6 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-import numpy as np
-
 from rollspring.analysis.costs import Cost
 from rollspring.model import System
 
@@ -140,10 +138,11 @@ def _highest_rates(system: System) -> tuple[float, float]:
     bodies = system.body_map
     anchors = system.anchor_map
     index = {body.id: i for i, body in enumerate(system.bodies)}
-    inertia = np.array([body.contact_inertia for body in system.bodies])
-    diagonal = np.zeros(len(system.bodies))
-    rows = np.zeros(len(system.bodies))
-    damping = np.zeros(len(system.bodies))
+    # a few numbers per body and spring: plain floats (NumPy's per-call cost dominates here)
+    inertia = [body.contact_inertia for body in system.bodies]
+    diagonal = [0.0] * len(inertia)
+    rows = [0.0] * len(inertia)
+    damping = [0.0] * len(inertia)
     for spring, rest in zip(system.springs, system.rest_lengths, strict=True):
         ends = []
         for end, at in zip(spring.ends, spring.attachments, strict=True):
@@ -173,7 +172,14 @@ def _highest_rates(system: System) -> tuple[float, float]:
     for force in system.forces:
         r, _ = force.at.polar(bodies[force.body])
         diagonal[index[force.body]] += math.hypot(force.fx, force.fy) * r
-    bound = float(np.max(diagonal / inertia + rows))
-    rate = float(np.max(damping))
+    bound = _largest([d / j + r for d, j, r in zip(diagonal, inertia, rows, strict=True)])
+    rate = _largest(damping)
     omega = math.sqrt(bound) if math.isfinite(bound) and bound > 0 else 0.0
     return omega, rate if math.isfinite(rate) else 0.0
+
+
+def _largest(values: list[float]) -> float:
+    """``np.max`` of a list of floats: NaN if any is (Python's ``max`` may skip a NaN)."""
+    if any(v != v for v in values):
+        return math.nan
+    return max(values)

@@ -609,7 +609,7 @@ class _Run:
                 self._balls = kernels.spring_balls(n, self.model[2], links[0], links[1], radius)
             else:
                 ptr = np.arange(n + 1, dtype=np.int64) * n
-                self._balls = (ptr, np.tile(np.arange(n, dtype=np.int64), n))
+                self._balls = (ptr, np.arange(n * n, dtype=np.int64) % n)  # n copies of 0..n-1
         return self._balls
 
     def links(self) -> tuple[np.ndarray, ...]:

@@ -103,6 +103,20 @@ class SystemArrays:
         return int(np.abs(ends[:, 1] - ends[:, 0]).max())
 
     @cached_property
+    def level_centre_springs(self) -> bool:
+        """True when every spring joins body centres (or anchors) at one height and every
+        external force acts at a centre: :func:`~rollspring.physics.springs_stay_level`."""
+        if not self.n_springs or self.end_r.any() or self.force_r.any():
+            return False
+        centre = (self.track + self.radius).tolist()  # a few numbers: plain Python
+        for (a, b), (ya, yb) in zip(
+            self.end_body.tolist(), self.end_anchor[..., 1].tolist(), strict=True
+        ):
+            if (centre[a] if a >= 0 else ya) != (centre[b] if b >= 0 else yb):
+                return False
+        return True
+
+    @cached_property
     def incidence(self) -> FloatArray:
         """(S, 2, n) dense incidence, 1 where end j of spring s is on body i: S x n numbers,
         for small systems only (the physics gathers and scatters by :attr:`end_index`)."""

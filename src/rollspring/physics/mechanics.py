@@ -383,15 +383,7 @@ def springs_stay_level(system: SystemArrays) -> bool:
     constant, the geometric stiffness :math:`T_sH_s` vanishes (K does not depend on q, Q is
     affine in q) and the normal forces :math:`N_i = m_i g - F_{iy}` are constant, exactly.
     """
-    if not system.n_springs or system.end_r.any() or system.force_r.any():
-        return False
-    centre = (system.track + system.radius).tolist()  # a few numbers: plain Python
-    for (a, b), (ya, yb) in zip(
-        system.end_body.tolist(), system.end_anchor[..., 1].tolist(), strict=True
-    ):
-        if (centre[a] if a >= 0 else ya) != (centre[b] if b >= 0 else yb):
-            return False
-    return True
+    return system.level_centre_springs  # computed once per SystemArrays
 
 
 def damping_matrix(system: SystemArrays, q: FloatArray, *, sparse: bool = False) -> Any:

@@ -74,29 +74,35 @@ YOSHIDA4 = (_W1, 1.0 - 2.0 * _W1, _W1)
 @njit(cache=True, inline="always")
 def _forces(q1, q2, p):
     """Q of both bodies: the spring between P_a on body 1 and P_b on body 2 (M1), force +T e
-    on end a and -T e on end b, Q_i = R_i F_ix + clockwise torque about the centre (M7)."""
-    (x01, x02, r1, r2, cy1, cy2, ra, alpha_a, rb, alpha_b, k, rest, _, _) = p
+    on end a and -T e on end b, Q_i = s_i F_ix + clockwise torque about the centre (M7).
+
+    The operations of rollspring's ``rolling_forces`` / ``_rolling_point`` for this system, in
+    their order, so that the two codes round alike: the centre x0 + s q, the attachment point
+    centre + (r sin, r cos), the lever arms (r cos, -r sin), T/l = k (l - L0) / l, each end's
+    torque o_x T_x + o_y T_y, and Q = s F_x + tau with F_x = +-T_x. rollspring's branch for a
+    level spring (dy exactly 0: no square root) is left out; this tilted spring's ends are
+    practically never at exactly one height."""
+    (x01, x02, s1, s2, cy1, cy2, ra, alpha_a, rb, alpha_b, k, rest, _, _) = p
     sa = math.sin(alpha_a + q1)
     ca = math.cos(alpha_a + q1)
     sb = math.sin(alpha_b + q2)
     cb = math.cos(alpha_b + q2)
-    dx = (x02 + r2 * q2 + rb * sb) - (x01 + r1 * q1 + ra * sa)
+    dx = ((x02 + s2 * q2) + rb * sb) - ((x01 + s1 * q1) + ra * sa)
     dy = (cy2 + rb * cb) - (cy1 + ra * ca)
     dist = math.sqrt(dx * dx + dy * dy)
     per_length = k * (dist - rest) / dist
     tx = per_length * dx
     ty = per_length * dy
-    # grouped as rollspring groups them (force on the centre, then the torque about it), so
-    # that the two codes round alike
-    g1 = r1 * tx + (ra * ca * tx - ra * sa * ty)
-    g2 = -(r2 * tx + (rb * cb * tx - rb * sb * ty))
+    g1 = s1 * tx + ((ra * ca) * tx + (-ra * sa) * ty)
+    g2 = s2 * -tx - ((rb * cb) * tx + (-rb * sb) * ty)
     return g1, g2
 
 
 @njit(cache=True)
 def yoshida4_steps(q1, q2, v1, v2, h, n_steps, p, w):
     """``n_steps`` Yoshida-4 steps of size ``h`` from (q, v); the closing half-kick of a stage
-    and the opening one of the next share one force evaluation (3 per step)."""
+    and the opening one of the next share one force evaluation (3 per step). The kicks are
+    rollspring's ``_stages``': the step's opening one (kick Q) / J, the others Q (kick / J)."""
     inv_j1 = p[12]
     inv_j2 = p[13]
     g1, g2 = _forces(q1, q2, p)
@@ -110,8 +116,8 @@ def yoshida4_steps(q1, q2, v1, v2, h, n_steps, p, w):
             q2 += hw * v2
             g1, g2 = _forces(q1, q2, p)
             kick = 0.5 * h * (w[s] + w[s + 1]) if s < 2 else 0.5 * hw
-            v1 += kick * g1 * inv_j1
-            v2 += kick * g2 * inv_j2
+            v1 += g1 * (kick * inv_j1)
+            v2 += g2 * (kick * inv_j2)
     return q1, q2, v1, v2
 
 
@@ -124,8 +130,8 @@ def kernel_parameters(system):
     return (
         float(a.x0[0]),
         float(a.x0[1]),
-        float(a.radius[0]),
-        float(a.radius[1]),
+        float(a.scale[0]),
+        float(a.scale[1]),
         float(cy[0]),
         float(cy[1]),
         float(a.end_r[0, 0]),

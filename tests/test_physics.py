@@ -359,9 +359,10 @@ def test_modes_do_not_depend_on_the_order_of_the_bodies(system, order) -> None:
 
 
 def test_dense_assembly_sums_each_cell_in_order_as_add_at() -> None:
-    """The dense matrices (K, C, the force Jacobians) are assembled by ``np.bincount``: each
-    cell the sum of its entries in their order, bit for bit what ``np.add.at`` gives (the
-    reference the sparse path and the dense path's tests were pinned against)."""
+    """The dense matrices summed from triplets (``stiffness_matrix``, ``spring_pair_matrix``:
+    K, C) are assembled by ``np.bincount``: each cell the sum of its entries in their order,
+    bit for bit what ``np.add.at`` gives (the reference the dense path's tests were pinned
+    against)."""
     from rollspring.physics.mechanics import _assemble
 
     rng = np.random.default_rng(20261127)

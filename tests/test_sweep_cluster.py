@@ -1,8 +1,8 @@
 """rollspring sweep on a real Dask cluster on loopback: a scheduler and two workers started
 from their command lines (one cluster for the module), compared bit for bit with the
-in-process sweep; a worker killed mid-sweep; chunks' keys cancelled on the scheduler; the
-client killed mid-sweep and the command rerun (only the unfinished chunks run); another
-sweep's store refused."""
+in-process sweep; a worker killed mid-sweep; every worker replaced mid-sweep (the scattered
+plan lost); chunks' keys cancelled on the scheduler; the client killed mid-sweep and the
+command rerun (only the unfinished chunks run); another sweep's store refused."""
 
 from __future__ import annotations
 
@@ -219,6 +219,27 @@ def test_worker_killed_mid_sweep(cluster, reference, tmp_path):
     cluster.workers.append(cluster.start_worker())
     same(xr.open_zarr(store).load(), reference)
     assert markers(store) == set(range(50))
+    cluster.wait_for_workers(2)
+
+
+def test_every_worker_replaced_mid_sweep(cluster, reference, tmp_path):
+    """Both workers SIGKILLed mid-sweep and two new ones started: the scattered plan died with
+    them (its dependents are cancelled, "lost dependencies"), so it is scattered again and the
+    chunks in flight computed again; the store is the in-process sweep's, bit for bit."""
+    store = tmp_path / "replaced.zarr"
+    process = run_cli(store, cluster.address)
+    wait_for_markers(store, process, 5)
+    victims, cluster.workers = cluster.workers, []
+    for victim in victims:
+        victim.send_signal(signal.SIGKILL)
+    for victim in victims:
+        victim.wait()
+    cluster.workers = [cluster.start_worker() for _ in range(2)]
+    _out, err = process.communicate(timeout=600)
+    assert process.returncode == 0, err
+    assert re.search(r"chunk \d+: cancelled on the cluster \(.+\); computing it again", err), err
+    assert markers(store) == set(range(50))
+    same(xr.open_zarr(store).load(), reference)
     cluster.wait_for_workers(2)
 
 

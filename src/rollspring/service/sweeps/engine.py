@@ -429,7 +429,7 @@ def _results(
     if not todo:
         return
     client.run(warm_up, plan)
-    shared = client.scatter(plan, broadcast=True, hash=False)
+    shared = [client.scatter(plan, broadcast=True, hash=False)]  # scattered again if lost
     workers = max(1, len(client.scheduler_info().get("workers", {})))
     window = 2 * workers + 2
     pending = iter(todo)
@@ -442,10 +442,10 @@ def _results(
         attempts[index] = attempts.get(index, 0) + 1
         future = client.submit(
             compute_chunk,
-            shared,
+            shared[0],
             index,
-            pure=False,
-            key=f"rollspring-sweep-{time.time_ns()}-{index}",
+            pure=False,  # a new key for every submission (the index last)
+            key=f"rollspring-sweep-{time.time_ns()}-a{attempts[index]}-{index}",
         )
         futures[future.key] = index
         return future
@@ -458,17 +458,34 @@ def _results(
             arrays = future.result()
         except FutureCancelledError as exc:
             # A worker lost with the chunk's result can leave its key cancelled on the
-            # scheduler (distributed's "Couldn't gather ..., rescheduling" race): the chunk
-            # is computed again, under a new key. Chunks are pure, so this is safe.
-            if attempts[index] >= CHUNK_ATTEMPTS:
+            # scheduler (distributed's "Couldn't gather ..., rescheduling" race), or the workers
+            # holding the scattered plan can all be gone ("lost dependencies"): the chunk is
+            # computed again under a new key (chunks are pure), the plan scattered again if it
+            # was lost. A client cut off from the scheduler cannot resubmit: an error.
+            if client.status != "running":
                 raise SweepError(
-                    f"chunk {index}: cancelled on the cluster {attempts[index]} times ({exc}); "
+                    f"--scheduler: the connection to the scheduler was lost ({exc.reason}); "
                     "a store given by --out keeps the chunks finished, and a new run resumes it"
                 ) from None
+            if attempts[index] >= CHUNK_ATTEMPTS:
+                raise SweepError(
+                    f"chunk {index}: cancelled on the cluster {attempts[index]} times (the last: "
+                    f"{exc.reason}); a store given by --out keeps the chunks finished, and a new "
+                    "run resumes it"
+                ) from None
+            if shared[0].status != "finished":
+                try:  # the client's timeout (30 s) for a worker to take it
+                    shared[0] = client.scatter(plan, broadcast=True, hash=False)
+                except (TimeoutError, OSError) as lost:
+                    raise SweepError(
+                        f"--scheduler: the workers holding the sweep's plan were lost and no "
+                        f"worker took it again ({lost}); a store given by --out keeps the "
+                        "chunks finished, and a new run resumes it"
+                    ) from None
             _log.warning(
-                "chunk %d: cancelled on the cluster (a worker was lost); computing it again "
-                "(attempt %d of %d)",
+                "chunk %d: cancelled on the cluster (%s); computing it again (attempt %d of %d)",
                 index,
+                exc.reason,
                 attempts[index] + 1,
                 CHUNK_ATTEMPTS,
             )

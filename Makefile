@@ -68,7 +68,7 @@ lint: $(STAMP)
 # the hygiene checks, every test, and the documentation site built with warnings as errors
 # (its examples run)
 test: $(STAMP) lint $(WEB_STAMP) system-packages docs
-	$(BIN)/python -m pytest
+	HYPOTHESIS_PROFILE=$${HYPOTHESIS_PROFILE:-ci} $(BIN)/python -m pytest
 
 # the web benchmark's load generator (Debian's wrk), installed only when missing
 bench-packages:

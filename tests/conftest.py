@@ -14,8 +14,9 @@ from rollspring.model import System, system_from_dict
 
 # Hypothesis: CI runs a fixed, derandomised profile (the same examples every run, no example
 # database); developers get random examples (HYPOTHESIS_PROFILE=dev, or any run outside CI).
-settings.register_profile("ci", derandomize=True, database=None, print_blob=True)
-settings.register_profile("dev", print_blob=True)
+# No deadline: tests are never timed (a loaded machine must not fail an example for its speed).
+settings.register_profile("ci", derandomize=True, database=None, print_blob=True, deadline=None)
+settings.register_profile("dev", print_blob=True, deadline=None)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") else "dev"))
 
 

@@ -13,6 +13,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -150,8 +151,23 @@ def markers(store: Path) -> set[int]:
     return {int(p.name) for p in folder.iterdir() if p.name.isdigit()} if folder.is_dir() else set()
 
 
+#: every sweep command started, so that a failed test leaves none running (nor its pipes
+#: open) into the next tests
+STARTED: list[subprocess.Popen] = []
+
+
+@pytest.fixture(autouse=True)
+def no_leftover_sweeps() -> Iterator[None]:
+    yield
+    while STARTED:
+        process = STARTED.pop()
+        if process.poll() is None:
+            process.kill()
+        process.communicate()
+
+
 def run_cli(store: Path, address: str, *extra: str) -> subprocess.Popen:
-    return subprocess.Popen(
+    process = subprocess.Popen(
         [
             *CLI,
             "sweep",
@@ -171,6 +187,8 @@ def run_cli(store: Path, address: str, *extra: str) -> subprocess.Popen:
         stderr=subprocess.PIPE,
         text=True,
     )
+    STARTED.append(process)
+    return process
 
 
 def wait_for_markers(store: Path, process: subprocess.Popen, at_least: int) -> None:
@@ -253,22 +271,22 @@ def test_chunk_cancelled_on_the_cluster_is_computed_again(cluster, reference, tm
     process = run_cli(store, cluster.address)
     wait_for_markers(store, process, 2)
 
-    def unfinished(dask_scheduler):  # the chunks submitted and not yet computed
-        return sorted(
+    def cancel_wanted(dask_scheduler, client_id):
+        """Cancel every chunk the sweep still wants (in flight, or computed but not yet taken
+        by it), in one go on the scheduler's loop: none can be taken in between."""
+        keys = sorted(
             key
             for key, task in dask_scheduler.tasks.items()
-            if str(key).startswith("rollspring-sweep-") and task.state != "memory"
+            if str(key).startswith("rollspring-sweep-") and task.who_wants
         )
+        dask_scheduler.stimulus_cancel(
+            keys, client_id, force=True, reason="test", msg="cancelled by the test"
+        )
+        return keys
 
     with Client(cluster.address, timeout=30, set_as_default=False) as other:
-        keys = other.run_on_scheduler(unfinished)
-        assert len(keys) >= 2, keys
-        me = other.id
-        other.run_on_scheduler(
-            lambda dask_scheduler: dask_scheduler.stimulus_cancel(
-                keys, me, force=True, reason="test", msg="cancelled by the test"
-            )
-        )
+        keys = other.run_on_scheduler(cancel_wanted, client_id=other.id)
+    assert keys  # up to 2 x workers + 2 chunks are wanted at any moment of the sweep
     _out, err = process.communicate(timeout=600)
     assert process.returncode == 0, err
     again = {int(i) for i in re.findall(r"chunk (\d+): cancelled on the cluster", err)}

@@ -25,9 +25,10 @@ from tests.serving import Server
 
 @pytest.fixture(scope="module")
 def server() -> Iterator[Server]:
-    # under the client's 30 s timeout, and far above what any request takes on a quiet
-    # machine: a loaded one must not turn a slow answer into a 503 "server error"
-    running = Server("--budget", "25")
+    # under the client's timeout, and far above what any request takes on a quiet machine
+    # (a cold Numba cache compiles inside it): a loaded one must not turn a slow answer into
+    # a 503 "server error"
+    running = Server("--budget", "120")
     yield running
     errors = running.stop()
     assert "Traceback" not in errors, errors
@@ -70,7 +71,7 @@ def test_the_api_keeps_its_schema_and_never_fails(server: Server, mode: Generati
         )
         def call(case) -> None:
             nonlocal seen
-            case.call_and_validate(base_url=server.url.rstrip("/"), checks=CHECKS, timeout=30)
+            case.call_and_validate(base_url=server.url.rstrip("/"), checks=CHECKS, timeout=150)
             seen += 1
 
         call()
@@ -86,13 +87,34 @@ def _descendants(pid: int) -> list[int]:
     return found
 
 
+def _wait_until_read(server_port: int, client_port: int) -> None:
+    """Until the server has read every byte the client at ``client_port`` sent it: the
+    receive queue of the server's end of that connection (Linux's /proc/net/tcp{,6}) is
+    empty. uvicorn parses what it reads in the same callback, so the request is counted."""
+    deadline = time.monotonic() + 60
+    while True:
+        for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+            for line in Path(table).read_text().splitlines()[1:]:
+                fields = line.split()
+                local, remote, queues = fields[1], fields[2], fields[4]
+                if (
+                    int(local.rsplit(":", 1)[1], 16) == server_port
+                    and int(remote.rsplit(":", 1)[1], 16) == client_port
+                    and int(queues.split(":")[1], 16) == 0
+                ):
+                    return
+        assert time.monotonic() < deadline, "the server did not read the request"
+        time.sleep(0.01)
+
+
 def test_overload_is_answered_503_at_once() -> None:
     """With room for two connections, a third gets 503 at once while the one in service is
     still served (a connection counts itself: a limit of 1 would refuse everything).
 
     Deterministic, whatever the machine's speed: the server's worker processes are stopped
     (SIGSTOP), so the request in service cannot finish until the test lets them go on
-    (SIGCONT); uvicorn counts its connection while the third one comes."""
+    (SIGCONT); uvicorn counts its connection while the third one comes, and the third
+    connects only once the server has read the request in service."""
     busy = Server("--limit-concurrency", "2", "--workers", "1", "--budget", "60")
     try:
         three = requests.get(busy.url + "api/presets", timeout=10).json()
@@ -110,6 +132,9 @@ def test_overload_is_answered_503_at_once() -> None:
                 f"Content-Type: application/json\r\nContent-Length: {len(body)}\r\n\r\n".encode()
                 + body
             )
+            # counted once the server has read it (else both connections could come in one
+            # batch of the event loop, and the one in service be the one refused)
+            _wait_until_read(int(port), in_service.getsockname()[1])
             refused = requests.get(busy.url + "api/presets", timeout=10)
             assert refused.status_code == 503
         finally:

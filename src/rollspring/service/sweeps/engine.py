@@ -474,8 +474,8 @@ def _results(
                     "run resumes it"
                 ) from None
             if shared[0].status != "finished":
-                try:  # the client's timeout (30 s) for a worker to take it
-                    shared[0] = client.scatter(plan, broadcast=True, hash=False)
+                try:  # workers replaced (restarted, scaled) may take a while to join
+                    shared[0] = client.scatter(plan, broadcast=True, hash=False, timeout=120)
                 except (TimeoutError, OSError) as lost:
                     raise SweepError(
                         f"--scheduler: the workers holding the sweep's plan were lost and no "

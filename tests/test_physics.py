@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 import scipy.integrate
 import scipy.linalg
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from rollspring.analysis import analyze
@@ -30,7 +30,7 @@ from rollspring.physics import (
     system_arrays,
     total_energy,
 )
-from tests.conftest import body, make_system, spring
+from tests.conftest import NO_EXACT_EQUILIBRIUM, body, make_system, spring
 
 SHAPES = ["hoop", "cylinder", "sphere", "shell", "slider"]
 
@@ -324,6 +324,8 @@ def test_linear_response_matches_the_exact_motion_of_the_paper_system() -> None:
 
 @settings(max_examples=25, deadline=None)
 @given(general_systems(), st.permutations(range(4)))
+@example(NO_EXACT_EQUILIBRIUM[0], [1, 0, 3, 2])
+@example(NO_EXACT_EQUILIBRIUM[1], [2, 0, 3, 1])  # hung a random-seed run (an hour's search)
 def test_modes_do_not_depend_on_the_order_of_the_bodies(system, order) -> None:
     order = [i for i in order if i < len(system.bodies)]
     shuffled = system.model_copy(update={"bodies": [system.bodies[i] for i in order]})

@@ -105,6 +105,11 @@ def find_equilibrium(
     K and one set of modes, and checked (residual at most ``tolerance`` of the force scale,
     zero-mode coordinates at rounding); otherwise the general search above runs.
 
+    Where Newton stalls, SciPy's trust-region least squares takes over, with at most
+    5 ``max_iterations`` force evaluations a descent and 50 ``max_iterations`` in the whole
+    search (1000 and 10 000 by default): a system with no exact root within reach (a small net
+    force along a zero mode) stops there, its residual deciding as above.
+
     ``forces`` may replace :func:`~rollspring.physics.generalized_forces` of ``system`` by an
     equal but faster function of q (the simulator passes its compiled kernel), ``stiffness``
     likewise :func:`~rollspring.physics.stiffness_matrix`.
@@ -179,6 +184,14 @@ def find_equilibrium(
             placement.append(result)
         return result
 
+    #: force evaluations left to SciPy's search, over every descent of this search: a system
+    #: with no equilibrium within reach (a small net force along a zero mode) otherwise sent
+    #: each descent to its cap and the zero-mode holding through 200 of them (an hour)
+    budget = [_SEARCH_EVALUATIONS_PER_ITERATION * max_iterations]
+
+    def exhausted() -> bool:
+        return budget[0] <= 0
+
     def descend(start: FloatArray) -> tuple[FloatArray, float]:
         """Trust-region Newton on :math:`M^{-1/2} Q = 0` in the mass-weighted coordinates
         :math:`p = M^{1/2} q`, starting with steps of 0.1 rad: small regularised steps reach
@@ -201,7 +214,7 @@ def find_equilibrium(
             if not trial_residual < residual:
                 break
             state, residual = trial, trial_residual
-        if residual <= target:
+        if residual <= target or exhausted():
             return state, residual
         import scipy.optimize  # only when Newton stalls: SciPy's optimizers load on demand
 
@@ -214,8 +227,9 @@ def find_equilibrium(
             xtol=1e-15,
             ftol=1e-15,
             gtol=1e-15,
-            max_nfev=100 * max_iterations,
+            max_nfev=min(_DESCENT_EVALUATIONS_PER_ITERATION * max_iterations, budget[0]),
         )
+        budget[0] -= int(solution.nfev)
         state = solution.x / root_mass
         return state, residual_of(state)
 
@@ -233,7 +247,9 @@ def find_equilibrium(
     stiffness_eq, modes = modes_at(q)
     n_zero = int(np.sum(modes[2] == "zero"))
     if n_zero:
-        held = _hold_zero_modes(q, n_zero, mass, system, descend, max_iterations, stiffness_eq)
+        held = _hold_zero_modes(
+            q, n_zero, mass, system, descend, max_iterations, stiffness_eq, exhausted
+        )
         if not np.array_equal(held, q):
             q = held
             stiffness_eq, modes = modes_at(q)
@@ -333,6 +349,11 @@ def _level_stiffness(
 _END_SIGN = np.array([-1.0, 1.0])
 #: up to this many springs, :func:`_level_stiffness` of a dense K sums plain floats
 _FEW_SPRINGS = 32
+#: the equilibrium search's force evaluations in SciPy's least squares, per ``max_iterations``:
+#: one descent at most 5 (1000 by default; a solvable system of the property tests took at
+#: most 331), the whole search at most 50 (10 000; the most such a system took was 5983)
+_DESCENT_EVALUATIONS_PER_ITERATION = 5
+_SEARCH_EVALUATIONS_PER_ITERATION = 50
 
 
 def _level_equilibrium(
@@ -397,6 +418,7 @@ def _hold_zero_modes(
     descend: Callable[[FloatArray], tuple[FloatArray, float]],
     max_iterations: int,
     stiffness: FloatArray | None = None,
+    exhausted: Callable[[], bool] = lambda: False,
 ) -> FloatArray:
     r"""Phase 2: the point of the valley of equilibria M-nearest to the initial placement.
 
@@ -405,7 +427,8 @@ def _hold_zero_modes(
     :math:`V_0^T M \dot q`, so it oscillates about this point). Newton in the valley's own
     coordinates: move along :math:`V_0` by :math:`\alpha`, re-descend onto the valley, with the
     Jacobian :math:`\partial g/\partial\alpha` from finite differences (a straight valley, e.g.
-    centre-attached springs on one floor, converges in one step).
+    centre-attached springs on one floor, converges in one step). It stops, where it is, once
+    the search's evaluations are ``exhausted()``.
     """
     basis = np.empty((q.size, n_zero))  # the valley directions of the current iterate
 
@@ -417,6 +440,8 @@ def _hold_zero_modes(
     size = max(1.0, float(np.max(np.abs(q))))
     known = stiffness  # K at the starting point, if the caller has it
     for _ in range(max_iterations):
+        if exhausted():
+            break
         basis = _valley_directions(system, mass, q, n_zero, known)
         known = None
         g = basis.T @ (mass @ q)

@@ -13,7 +13,7 @@ every output position and velocity within :math:`\mathrm{rtol}\,|\text{value}| +
 \mathrm{rtol}/10\cdot\text{scale}` (scale: that quantity's largest |value| over the run). Its
 step (:meth:`Integrator.contract_step`) is chosen for rtol/10: the phase error over the run
 (:meth:`Integrator.phase_omega_step`) and, where outputs fall inside steps, the error of the
-quintic Hermite interpolant that gives them (:func:`output_omega_step`), each shrunk by a safety
+septic Hermite interpolant that gives them (:func:`output_omega_step`), each shrunk by a safety
 factor measured on random nonlinear systems (``bench/bench_accuracy.py``; the motion's harmonics
 above the fastest linear frequency make both errors larger than on a harmonic oscillator): per
 scheme for the phase (:attr:`Integrator.safety`), :data:`OUTPUT_SAFETY` for the interpolant.
@@ -43,23 +43,26 @@ __all__ = [
 #: Largest omega*h any scheme may use (well inside every scheme's stability interval, and at
 #: least 12 steps per period of the fastest mode).
 MAX_OMEGA_STEP = 0.5
-#: The quintic Hermite interpolant of a step errs by at most (omega h)^6 / 46080 of the amplitude
-#: in position and (omega h)^5 / 13420 of the velocity amplitude in velocity (measured on sin t).
-HERMITE_POSITION, HERMITE_VELOCITY = 46080.0, 13420.0
+#: The septic Hermite interpolant of a step (positions, velocities, accelerations and jerks at
+#: both ends) errs by at most (omega h)^8 / 10321920 of the amplitude in position (8! 2^8) and
+#: (omega h)^7 / 2710000 of the velocity amplitude in velocity (8! / max|d/dθ θ⁴(1-θ)⁴|, as
+#: measured on sin t).
+HERMITE_POSITION, HERMITE_VELOCITY = 10321920.0, 2.71e6
 #: The contract's share of rtol the step is chosen for: its absolute term, rtol/10 of the scale.
 CONTRACT_SHARE = 0.1
 #: Factor on omega h of the interpolated outputs: the interpolant's error on the nonlinear test
-#: set (bench/bench_accuracy.py), at most 0.4 of the contract with this factor.
-OUTPUT_SAFETY = 0.56
+#: set (bench/bench_accuracy.py), at most 0.4 of the contract with this factor (0.545 needed:
+#: the motion's harmonics above omega make the error about 28 times the sine's at rtol 1e-10).
+OUTPUT_SAFETY = 0.54
 
 
 def output_omega_step(rtol: float) -> float:
     r""":math:`\omega h` at which the interpolated outputs between step ends keep the contract:
-    :data:`OUTPUT_SAFETY` times the largest :math:`\omega h` with :math:`(\omega h)^6/46080` and
-    :math:`(\omega h)^5/13420` at most rtol/10."""
+    :data:`OUTPUT_SAFETY` times the largest :math:`\omega h` with
+    :math:`(\omega h)^8/10321920` and :math:`(\omega h)^7/2710000` at most rtol/10."""
     target = CONTRACT_SHARE * rtol
     result: float = OUTPUT_SAFETY * min(
-        (HERMITE_POSITION * target) ** (1.0 / 6.0), (HERMITE_VELOCITY * target) ** (1.0 / 5.0)
+        (HERMITE_POSITION * target) ** (1.0 / 8.0), (HERMITE_VELOCITY * target) ** (1.0 / 7.0)
     )
     return result
 

@@ -405,7 +405,7 @@ def simulate(
     up to three times (``summary["retries"]``); one that still exceeds it, or goes
     non-finite, stops with that status (naming a spring that passes through zero length).
     ``n_output`` output times, evenly spaced (default 2001), on step ends or interpolated
-    inside the steps (quintic Hermite), whichever takes fewer steps within the contract;
+    inside the steps (septic Hermite), whichever takes fewer steps within the contract;
     ``step`` fixes the step of a symplectic scheme (``auto`` then means Yoshida-4; rounded down
     so that whole steps fill each rolling stretch); ``progress`` is called with the fraction
     done.

@@ -253,8 +253,9 @@ def references(n_output: int) -> list[Trajectory]:
     return [reference(system, duration, n_output) for system, duration, _ in systems]
 
 
-# the default rtol first; 301 outputs (most steps then put them on step ends) and the default
-# 2001 (most then interpolate them inside the steps): both ways of keeping the contract
+# the default rtol first; 301 and the default 2001 outputs (the phase sets the step and the
+# outputs are interpolated inside the steps; outputs on step ends where that takes fewer steps:
+# tests/test_simulate.py)
 @pytest.mark.parametrize("n_output", [N_OUTPUT, 2001])
 @pytest.mark.parametrize("rtol", RTOLS)
 def test_every_output_is_within_the_contract(rtol, n_output):

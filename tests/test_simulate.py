@@ -21,6 +21,7 @@ from rollspring.physics import (
     system_arrays,
 )
 from rollspring.simulate import kernels, simulate
+from rollspring.simulate.integrators import INTEGRATORS
 from tests.conftest import body, make_system, spring
 
 G = 9.81
@@ -89,6 +90,35 @@ def test_outputs_between_steps_are_interpolated_within_rtol(rtol):
         n_output=20_001,
     )
     assert trajectory.step > 3 * duration / 20_000  # every step holds several outputs
+    _x1, x2, _ = exact_pair(m1, m2, k, compression, trajectory.t)
+    amplitude = np.ptp(x2)
+    assert np.max(np.abs(trajectory.x[:, 1] - x2)) <= rtol * amplitude
+    speed = omega * compression * 1.5 * m2 / (2 * m1 + 1.5 * m2)  # the hoop's peak speed
+    hoop_speed = -speed * np.sin(omega * trajectory.t)
+    assert np.max(np.abs(trajectory.v[:, 0] - hoop_speed)) <= rtol * speed
+
+
+def test_outputs_on_step_ends_where_that_takes_fewer_steps_are_within_rtol():
+    """A tight rtol over one period: the interpolant would set the step, so the step divides
+    the output spacing instead and every output is a step end (no interpolant), within rtol of
+    the exact motion."""
+    m1, m2, k, compression = 1.0, 1.3, 100.0, 0.01
+    _, _, omega = exact_pair(m1, m2, k, compression, 0.0)
+    duration, rtol = 2 * math.pi / omega, 1e-11
+    kahanli8 = INTEGRATORS["kahanli8"]
+    interpolated = math.ceil(duration / kahanli8.contract_step(omega, duration, rtol))
+    # the most outputs whose spacing the phase step still spans: one step each, fewer steps
+    n_output = interpolated  # interpolated - 1 intervals
+    step = kahanli8.contract_step(omega, duration, rtol, n_output)
+    assert step == pytest.approx(duration / (n_output - 1), rel=1e-12)
+    trajectory = simulate(
+        centre_pair(m1, m2, k, compression, mu_static=math.inf),
+        duration,
+        rtol=rtol,
+        n_output=n_output,
+    )
+    assert trajectory.integrator == "kahanli8"
+    assert trajectory.n_steps == n_output - 1 < interpolated
     _x1, x2, _ = exact_pair(m1, m2, k, compression, trajectory.t)
     amplitude = np.ptp(x2)
     assert np.max(np.abs(trajectory.x[:, 1] - x2)) <= rtol * amplitude

@@ -651,7 +651,10 @@ def run_fixed_step(
         t_start = t0 + (step - 1) * h
         # outputs inside this step; the last step also takes any left by rounding
         t_end = t_start + h if step < n_steps else np.inf
-        if rows < n_out and out_times[rows] <= t_end:
+        # the interpolant, for a step holding an output before its end (outputs on step ends,
+        # the only ones of some runs, need none); theta grows with the sorted outputs, so the
+        # first output's tells
+        if rows < n_out and out_times[rows] <= t_end and (out_times[rows] - t_start) / h < 1.0:
             if not before_valid:
                 force_rates(model, before[0], before[1], rate_before)
             force_rates(model, q, v, rate)

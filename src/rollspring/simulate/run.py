@@ -268,13 +268,17 @@ def choose_scheme(
     rtol/10 after :math:`\omega T` radians and outputs interpolated inside the steps within
     rtol/10 (or, with ``n_output`` evenly spaced outputs, outputs on step ends when that takes
     fewer steps), each shrunk by its measured safety factor; :math:`\omega h` at most 0.5.
-    ``auto`` takes the scheme with the fewest force evaluations. Returns ``(name, h)``."""
+    ``auto`` takes the scheme with the fewest force evaluations, counting the force rates a step
+    holding interpolated outputs takes as one more (the septic interpolant's jerks). Returns
+    ``(name, h)``."""
     names = list(SCHEMES) if integrator == "auto" else [integrator]
     best: tuple[str, float, float] | None = None
     for name in names:
         scheme = SCHEME_REGISTRY[name]
         step = scheme.contract_step(omega, duration, rtol, n_output)
-        cost = scheme.stages * duration / step
+        per_output = duration / (n_output - 1) / step if n_output and n_output > 1 else 0.5
+        on_step_ends = abs(per_output - round(per_output)) <= 1e-9 * per_output
+        cost = (scheme.stages + (0 if on_step_ends else 1)) * duration / step
         if best is None or cost < best[2]:
             best = (name, step, cost)
     assert best is not None  # names is never empty

@@ -224,3 +224,22 @@ def test_a_missing_module_met_inside_a_guarded_block_names_its_extra() -> None:
 def test_the_console_script_starts_and_exits_cleanly() -> None:
     done = subprocess.run([ROLLSPRING, "--help"], capture_output=True, text=True, check=False)
     assert done.returncode == 0 and "analyze" in done.stdout
+
+
+def test_a_warm_run_loads_its_kernels_without_starting_numbas_compiler() -> None:
+    """With the kernels in Numba's cache a run loads their machine code alone: none of the
+    implementations a compilation would install (typed containers, NumPy's random generators:
+    0.1-0.2 s) is imported (rollspring.simulate._load_cached_kernels_lightly; the compiled
+    setup of level systems, simulate/small_setup.py, once skipped it)."""
+    probe = (
+        "import atexit, sys\n"
+        "atexit.register(lambda: sys.stderr.write('COMPILER ' + ' '.join(sorted(m for m in "
+        "sys.modules if m.startswith(('numba.typed.', 'numba.np.random'))))))\n"
+    )
+    warm = command("simulate", "wall-hoop-cylinder", "-T", "1", "--json")
+    subprocess.run([sys.executable, "-c", warm], capture_output=True, check=True)  # the cache
+    done = subprocess.run(
+        [sys.executable, "-c", probe + warm], capture_output=True, text=True, check=True
+    )
+    line = [x for x in done.stderr.splitlines() if x.startswith("COMPILER")]
+    assert line == ["COMPILER "], done.stderr[-2000:]

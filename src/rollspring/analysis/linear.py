@@ -51,6 +51,8 @@ __all__ = [
 
 #: An eigenvalue with |lambda| < ZERO_MODE_TOLERANCE * max|lambda| is a zero mode (omega = 0).
 ZERO_MODE_TOLERANCE = 1e-10
+#: :func:`find_equilibrium`'s tolerance: the largest residual, relative to the force scale
+EQUILIBRIUM_TOLERANCE = 1e-13
 #: Two frequencies closer than this (relative) are treated as one (degenerate modes).
 _SAME_FREQUENCY = 1e-9
 
@@ -80,7 +82,7 @@ def find_equilibrium(
     system: SystemArrays | System | dict[str, Any] | str,
     *,
     max_iterations: int = 200,
-    tolerance: float = 1e-13,
+    tolerance: float = EQUILIBRIUM_TOLERANCE,
     forces: Callable[[FloatArray], FloatArray] | None = None,
     stiffness: Callable[[FloatArray], FloatArray] | None = None,
     sparse: bool | None = None,
@@ -381,8 +383,23 @@ def _level_equilibrium(
         nonzero = ~zero
         if "zero" in listed and "oscillating" not in listed:
             return None
-        along = vectors[:, nonzero].T @ force_0
-        q = vectors[:, nonzero] @ (along / eigenvalues[nonzero])
+        if q.size <= 2:  # plain floats summed in order, as the simulator's compiled twin
+            # (rollspring.simulate.small_setup) sums them: the same bits (a BLAS product may
+            # fuse or reorder its operations)
+            rows, values = vectors.tolist(), eigenvalues.tolist()
+            force_list = force_0.tolist()
+            step = [0.0] * q.size
+            for m in np.flatnonzero(nonzero).tolist():
+                along_m = 0.0
+                for i, force_i in enumerate(force_list):
+                    along_m += rows[i][m] * force_i
+                weight = along_m / values[m]
+                for i in range(q.size):
+                    step[i] += rows[i][m] * weight
+            q = np.array(step)
+        else:
+            along = vectors[:, nonzero].T @ force_0
+            q = vectors[:, nonzero] @ (along / eigenvalues[nonzero])
         residual = residual_of(q)
         if not residual <= target:
             return None

@@ -29,6 +29,7 @@ from numpy.typing import NDArray
 
 from rollspring.analysis import find_equilibrium, normal_modes, stationary_weights
 from rollspring.analysis.banded import DENSE_LIMIT
+from rollspring.analysis.linear import EQUILIBRIUM_TOLERANCE, Equilibrium
 from rollspring.errors import SimulationError
 from rollspring.model import System
 from rollspring.physics import (
@@ -38,7 +39,7 @@ from rollspring.physics import (
     system_arrays,
 )
 from rollspring.physics.arrays import FloatArray
-from rollspring.simulate import arguments, kernels
+from rollspring.simulate import arguments, kernels, small_setup
 from rollspring.simulate.arguments import ON_SLIP
 from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
 from rollspring.simulate.integrators import refinement_radius
@@ -310,11 +311,13 @@ def _linear_setup(arrays: SystemArrays, model: tuple[Any, ...], *, sparse: bool)
     n x n array."""
     n = arrays.n_bodies
     mass = arrays.inertia  # the diagonal of M
-    equilibrium = find_equilibrium(
-        arrays,
-        forces=lambda q: kernels.generalized_forces(model, np.asarray(q, float)),
-        sparse=sparse,
-    )
+    equilibrium = _small_level_equilibrium(arrays, model) if not sparse else None
+    if equilibrium is None:
+        equilibrium = find_equilibrium(
+            arrays,
+            forces=lambda q: kernels.generalized_forces(model, np.asarray(q, float)),
+            sparse=sparse,
+        )
     complete = True
     if sparse and equilibrium.modes is None:
         omegas_eq, vectors_eq, kinds_eq, largest = _lowest_modes(arrays, equilibrium.q)
@@ -350,6 +353,23 @@ def _linear_setup(arrays: SystemArrays, model: tuple[Any, ...], *, sparse: bool)
     return _Linear(
         equilibrium, omega_max, vectors_eq, kinds_eq, oscillating, period_linear, complete
     )
+
+
+def _small_level_equilibrium(arrays: SystemArrays, model: tuple[Any, ...]) -> Equilibrium | None:
+    """:func:`~rollspring.analysis.find_equilibrium` of a system of level centre springs of at
+    most :data:`~rollspring.simulate.small_setup.MOST_BODIES` bodies, with its modes, in one
+    compiled call (:func:`~rollspring.simulate.small_setup.level_setup`: the same numbers);
+    None for any other system, or where the general search decides."""
+    if arrays.n_bodies > small_setup.MOST_BODIES or not arrays.level_centre_springs:
+        return None
+    verdict, q, residual, stiffness, values, vectors, codes = small_setup.level_setup(
+        model, EQUILIBRIUM_TOLERANCE
+    )
+    if verdict != small_setup.LEVEL:
+        return None
+    kinds = np.array([small_setup.KIND_NAMES[c] for c in codes.tolist()], dtype=object)
+    modes = (values, vectors, kinds)
+    return Equilibrium(q, True, residual, "", stiffness, modes, modes)
 
 
 def _lowest_modes(

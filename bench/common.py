@@ -28,7 +28,7 @@ def repeat(
 ) -> list[tuple[float, Any]]:
     """Run ``run()`` ``warmup`` times untimed (Numba compiles, caches fill), then ``repeats``
     times; returns ``[(wall time, result), ...]`` of the timed runs, or with ``keep``
-    ``[(wall time, keep(result)), ...]``, each result released before the next run starts.
+    ``[(wall time, keep(result)), ...]``, each result released before its timing ends.
 
     Keeping every large result alive makes each run page in fresh memory that a caller's loop
     would reuse: 30 kept trajectories of the paper's system cost each ``simulate()`` call about
@@ -38,10 +38,8 @@ def repeat(
     timed = []
     for _ in range(repeats):
         began = time.perf_counter()
-        result = run()
-        wall = time.perf_counter() - began
-        timed.append((wall, result if keep is None else keep(result)))
-        del result
+        result = run() if keep is None else keep(run())  # released within the timing
+        timed.append((time.perf_counter() - began, result))
     return timed
 
 

@@ -230,7 +230,7 @@ def test_a_warm_run_loads_its_kernels_without_starting_numbas_compiler() -> None
     """With the kernels in Numba's cache a run loads their machine code alone: none of the
     implementations a compilation would install (typed containers, NumPy's random generators:
     0.1-0.2 s) is imported (rollspring.simulate._load_cached_kernels_lightly; the compiled
-    setup of level systems, simulate/small_setup.py, once skipped it)."""
+    setup of level systems, kernels.level_setup, once loaded with the whole compiler)."""
     probe = (
         "import atexit, sys\n"
         "atexit.register(lambda: sys.stderr.write('COMPILER ' + ' '.join(sorted(m for m in "

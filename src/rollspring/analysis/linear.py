@@ -384,7 +384,7 @@ def _level_equilibrium(
         if "zero" in listed and "oscillating" not in listed:
             return None
         if q.size <= 2:  # plain floats summed in order, as the simulator's compiled twin
-            # (rollspring.simulate.small_setup) sums them: the same bits (a BLAS product may
+            # (rollspring.simulate.kernels.level_setup) sums them: the same bits (a BLAS product may
             # fuse or reorder its operations)
             rows, values = vectors.tolist(), eigenvalues.tolist()
             force_list = force_0.tolist()
@@ -648,10 +648,14 @@ def _laev2(a: float, b: float, c: float) -> tuple[float, float, float, float]:
     tb = b + b
     ab = abs(tb)
     acmx, acmn = (a, c) if abs(a) > abs(c) else (c, a)
+    # a square is a product, as compiled Fortran (and Numba) computes ``(AB/ADF)**2``: Python's
+    # ``** 2`` calls the C library's pow, off by an ulp for about 1 in 1000 arguments
     if adf > ab:
-        rt = adf * math.sqrt(1.0 + (ab / adf) ** 2)
+        ratio = ab / adf
+        rt = adf * math.sqrt(1.0 + ratio * ratio)
     elif adf < ab:
-        rt = ab * math.sqrt(1.0 + (adf / ab) ** 2)
+        ratio = adf / ab
+        rt = ab * math.sqrt(1.0 + ratio * ratio)
     else:
         rt = ab * math.sqrt(2.0)
     if sm < 0.0:

@@ -65,8 +65,8 @@ from rollspring.simulate.status import Status  # noqa: E402
 
 
 def _load_cached_kernels_lightly() -> None:
-    """Let the kernels of :mod:`.kernels` and :mod:`.small_setup` load from Numba's on-disk
-    cache without starting all of Numba's compiler.
+    """Let the kernels of :mod:`.kernels` load from Numba's on-disk cache without starting all
+    of Numba's compiler.
 
     Numba's cache, before it loads a compiled kernel, refreshes its CPU target: it imports and
     installs every implementation a *compilation* could use (about 40 modules: typed
@@ -96,12 +96,11 @@ def _load_cached_kernels_lightly() -> None:
                 return self._load_overload(sig, target_context)  # type: ignore[no-untyped-call]
             return None  # the guard swallowed an I/O error: compile, as Numba does
 
-    from rollspring.simulate import kernels, small_setup
+    from rollspring.simulate import kernels
 
-    for module in (kernels, small_setup):
-        for value in vars(module).values():
-            if type(getattr(value, "_cache", None)) is FunctionCache:
-                value._cache.__class__ = _CachedKernelCache
+    for value in vars(kernels).values():
+        if type(getattr(value, "_cache", None)) is FunctionCache:
+            value._cache.__class__ = _CachedKernelCache
 
 
 _load_cached_kernels_lightly()

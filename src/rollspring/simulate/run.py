@@ -29,7 +29,12 @@ from numpy.typing import NDArray
 
 from rollspring.analysis import find_equilibrium, normal_modes, stationary_weights
 from rollspring.analysis.banded import DENSE_LIMIT
-from rollspring.analysis.linear import EQUILIBRIUM_TOLERANCE, Equilibrium
+from rollspring.analysis.linear import (
+    _LAPACK_EPS,
+    EQUILIBRIUM_TOLERANCE,
+    ZERO_MODE_TOLERANCE,
+    Equilibrium,
+)
 from rollspring.errors import SimulationError
 from rollspring.model import System
 from rollspring.physics import (
@@ -39,7 +44,7 @@ from rollspring.physics import (
     system_arrays,
 )
 from rollspring.physics.arrays import FloatArray
-from rollspring.simulate import arguments, kernels, small_setup
+from rollspring.simulate import arguments, kernels
 from rollspring.simulate.arguments import ON_SLIP
 from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
 from rollspring.simulate.integrators import refinement_radius
@@ -357,17 +362,17 @@ def _linear_setup(arrays: SystemArrays, model: tuple[Any, ...], *, sparse: bool)
 
 def _small_level_equilibrium(arrays: SystemArrays, model: tuple[Any, ...]) -> Equilibrium | None:
     """:func:`~rollspring.analysis.find_equilibrium` of a system of level centre springs of at
-    most :data:`~rollspring.simulate.small_setup.MOST_BODIES` bodies, with its modes, in one
-    compiled call (:func:`~rollspring.simulate.small_setup.level_setup`: the same numbers);
-    None for any other system, or where the general search decides."""
-    if arrays.n_bodies > small_setup.MOST_BODIES or not arrays.level_centre_springs:
+    most :data:`~rollspring.simulate.kernels.MOST_BODIES` bodies, with its modes, in one
+    compiled call (:func:`~rollspring.simulate.kernels.level_setup`: the same numbers); None
+    for any other system, or where the general search decides."""
+    if arrays.n_bodies > kernels.MOST_BODIES or not arrays.level_centre_springs:
         return None
-    verdict, q, residual, stiffness, values, vectors, codes = small_setup.level_setup(
-        model, EQUILIBRIUM_TOLERANCE
+    verdict, q, residual, stiffness, values, vectors, codes = kernels.level_setup(
+        model, EQUILIBRIUM_TOLERANCE, ZERO_MODE_TOLERANCE, _LAPACK_EPS
     )
-    if verdict != small_setup.LEVEL:
+    if verdict != kernels.LEVEL:
         return None
-    kinds = np.array([small_setup.KIND_NAMES[c] for c in codes.tolist()], dtype=object)
+    kinds = np.array([kernels.KIND_NAMES[c] for c in codes.tolist()], dtype=object)
     modes = (values, vectors, kinds)
     return Equilibrium(q, True, residual, "", stiffness, modes, modes)
 

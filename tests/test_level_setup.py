@@ -1,5 +1,6 @@
-"""The compiled linear setup of small level systems (rollspring.simulate.small_setup) against
-the analysis it stands in for: find_equilibrium's numbers, bit for bit, or the general search."""
+"""The compiled linear setup of small level systems (rollspring.simulate.kernels.level_setup)
+against the analysis it stands in for: find_equilibrium's numbers, bit for bit, or the general
+search."""
 
 from __future__ import annotations
 
@@ -7,19 +8,26 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import event, given, settings
 from hypothesis import strategies as st
 
 from rollspring.analysis import find_equilibrium, linear
+from rollspring.analysis.linear import _LAPACK_EPS, EQUILIBRIUM_TOLERANCE, ZERO_MODE_TOLERANCE
 from rollspring.model import load_system
 from rollspring.physics import system_arrays
-from rollspring.simulate import kernels, simulate, small_setup
+from rollspring.simulate import kernels, simulate
 from rollspring.simulate.run import _small_level_equilibrium
 from tests.conftest import body, make_system, spring
 
 SHAPES = ("hoop", "cylinder", "sphere", "shell", "slider")
 #: the centres' common height, m (radii k/64 m: the track heights sum back to it exactly)
 HEIGHT = 0.5
+
+
+def verdict(model: Any) -> int:
+    """level_setup's verdict, LEVEL or GENERAL, with find_equilibrium's constants."""
+    result = kernels.level_setup(model, EQUILIBRIUM_TOLERANCE, ZERO_MODE_TOLERANCE, _LAPACK_EPS)
+    return int(result[0])
 
 
 def reference(arrays: Any, model: Any) -> Any:
@@ -33,16 +41,17 @@ def python_level_branch(arrays: Any, model: Any) -> Any:
     """find_equilibrium's level branch alone (linear._level_equilibrium, called as it calls
     it): its Equilibrium, or None where its general search goes on."""
     zeros = np.zeros(arrays.n_bodies)
+    inv_mass = 1.0 / arrays.inertia
 
     def residual_of(q: Any) -> float:
         force = kernels.generalized_forces(model, q)
-        return float(np.sqrt((force**2 / arrays.inertia).sum()))
+        return float(np.sqrt((force**2 * inv_mass).sum()))
 
     force_0 = kernels.generalized_forces(model, zeros)
     initial = residual_of(zeros)
     dx, dy = linear._placement_vectors(arrays)
     lengths = np.sqrt(dx**2 + dy**2)
-    target = 1e-13 * max(initial, linear._force_scale(arrays, lengths))
+    target = EQUILIBRIUM_TOLERANCE * max(initial, linear._force_scale(arrays, lengths))
     stiffness = linear._level_stiffness(arrays, dx, lengths)
     return linear._level_equilibrium(
         arrays.inertia, stiffness, force_0, initial, target, residual_of
@@ -64,9 +73,11 @@ def assert_same(fast: Any, ref: Any) -> None:
 
 @st.composite
 def level_systems(draw: Any) -> Any:
-    """One or two bodies whose centres are at one height, a spring between them or to walls at
-    that height (or both), and sometimes a force at a centre, tiny or not."""
+    """One or two bodies whose centres are at one height, springs between them and to walls at
+    that height (some at their placement's length: already in equilibrium), and forces at
+    centres, tiny or not: up to 7 springs and 3 forces, the most level_setup takes."""
     n = draw(st.integers(1, 2))
+    scale = 10.0 ** draw(st.integers(-2, 2))
     bodies = []
     for i in range(n):
         radius = draw(st.integers(2, 16)) / 64
@@ -74,36 +85,34 @@ def level_systems(draw: Any) -> Any:
             body(
                 f"b{i}",
                 draw(st.sampled_from(SHAPES)),
-                mass=draw(st.floats(0.1, 8.0)),
+                mass=scale * draw(st.floats(0.1, 8.0)),
                 radius=radius,
                 x=0.8 * i + draw(st.floats(-0.1, 0.1)),
                 track_height=HEIGHT - radius,
             )
         )
-    springs, anchors = [], []
-    stiffness = st.floats(0.5, 500.0)
-    rest = st.floats(0.1, 1.5)
-    if n == 2:
-        springs.append(spring("b0", "b1", stiffness=draw(stiffness), rest_length=draw(rest)))
-    if n == 1 or draw(st.booleans()):
-        anchors.append({"id": "left", "x": -0.7, "y": HEIGHT})
-        springs.append(spring("left", "b0", stiffness=draw(stiffness), rest_length=draw(rest)))
-    if draw(st.booleans()):
-        anchors.append({"id": "right", "x": 0.8 * n + 0.4, "y": HEIGHT})
-        springs.append(
-            spring(f"b{n - 1}", "right", stiffness=draw(stiffness), rest_length=draw(rest))
-        )
-    extra: dict[str, Any] = {"anchors": anchors} if anchors else {}
-    if draw(st.booleans()):
-        size = draw(st.sampled_from([1e-9, 1.0]))
-        extra["forces"] = [
+    anchors = [
+        {"id": "left", "x": -0.7, "y": HEIGHT},
+        {"id": "right", "x": 0.8 * n + 0.4, "y": HEIGHT},
+    ]
+    pairs = [("b0", "b1")] if n == 2 else []
+    pairs += [("left", "b0"), (f"b{n - 1}", "right")] + ([("left", "b1")] if n == 2 else [])
+    chosen = draw(st.lists(st.sampled_from(pairs), min_size=1, max_size=7))
+    springs = []
+    for ends in chosen:
+        extra = {} if draw(st.booleans()) else {"rest_length": draw(st.floats(0.1, 1.5))}
+        springs.append(spring(*ends, stiffness=scale * draw(st.floats(0.5, 500.0)), **extra))
+    forces = []
+    for _ in range(draw(st.integers(0, 3))):
+        size = draw(st.sampled_from([1e-10, 1e-3, 1.0, 100.0]))
+        forces.append(
             {
                 "body": f"b{draw(st.integers(0, n - 1))}",
                 "fx": size * draw(st.floats(-3.0, 3.0)),
                 "fy": draw(st.floats(-3.0, 3.0)),
             }
-        ]
-    return make_system(bodies, springs, **extra)
+        )
+    return make_system(bodies, springs, anchors=anchors, forces=forces)
 
 
 @settings(max_examples=60, deadline=None)
@@ -114,8 +123,9 @@ def test_the_compiled_setup_is_find_equilibrium_bit_for_bit(system) -> None:
     fast = _small_level_equilibrium(arrays, model)
     ref = reference(arrays, model)
     assert arrays.level_centre_springs
+    event("general search" if fast is None else "compiled setup")
     if fast is None:  # the general search decided: the level branch found nothing either
-        assert small_setup.level_setup(model, 1e-13)[0] == small_setup.GENERAL
+        assert verdict(model) == kernels.GENERAL
         assert python_level_branch(arrays, model) is None
         return
     assert_same(fast, ref)
@@ -143,7 +153,7 @@ def test_a_pull_along_the_free_motion_goes_to_the_general_search() -> None:
     )
     arrays = system_arrays(system)
     model = kernels.kernel_model(arrays)
-    assert small_setup.level_setup(model, 1e-13)[0] == small_setup.GENERAL
+    assert verdict(model) == kernels.GENERAL
     assert _small_level_equilibrium(arrays, model) is None
     assert not reference(arrays, model).found
 
@@ -157,10 +167,9 @@ def test_an_off_centre_spring_or_three_bodies_is_not_taken() -> None:
     arrays = system_arrays(tilted)
     assert _small_level_equilibrium(arrays, kernels.kernel_model(arrays)) is None
     three = system_arrays(load_system("three-bodies"))
-    assert three.n_bodies > small_setup.MOST_BODIES
+    assert three.n_bodies > kernels.MOST_BODIES
     assert _small_level_equilibrium(three, kernels.kernel_model(three)) is None
-    model = kernels.kernel_model(three)
-    assert small_setup.level_setup(model, 1e-13)[0] == small_setup.GENERAL
+    assert verdict(kernels.kernel_model(three)) == kernels.GENERAL
 
 
 def test_the_simulation_runs_on_the_compiled_setup_unchanged() -> None:
@@ -180,3 +189,59 @@ def test_the_simulation_runs_on_the_compiled_setup_unchanged() -> None:
     np.testing.assert_array_equal(fast.friction, slow.friction)
     for key in ("period_measured", "period_linear", "max_friction_ratio", "steps", "step"):
         assert fast.summary[key] == slow.summary[key]
+
+
+def test_an_ulp_of_the_eigenvalues_found_by_review_is_gone() -> None:
+    """A system where Python's ``x ** 2`` in linear._laev2 (the C library's pow) was an ulp
+    from the product Fortran and Numba compute: q and the eigenvalues differed in the last
+    bit. The analysis squares by a product now, so both agree, and agree with SciPy."""
+    import scipy.linalg
+
+    system = make_system(
+        [
+            body("a", "sphere", mass=3.485, radius=0.1, x=0.0),
+            body("b", "slider", mass=0.752, radius=0.1, x=0.6),
+        ],
+        [
+            spring("w", "a", stiffness=308.2, rest_length=0.45),
+            spring("a", "b", stiffness=473.5, rest_length=0.5),
+        ],
+        anchors=[{"id": "w", "x": -0.5, "y": 0.1}],
+    )
+    arrays = system_arrays(system)
+    model = kernels.kernel_model(arrays)
+    fast = _small_level_equilibrium(arrays, model)
+    assert fast is not None
+    ref = reference(arrays, model)
+    assert_same(fast, ref)
+    np.testing.assert_array_equal(
+        ref.modes[0], scipy.linalg.eigh(ref.stiffness, np.diag(arrays.inertia))[0]
+    )
+
+
+def test_more_numbers_than_numpy_sums_in_order_go_to_the_python_search() -> None:
+    """NumPy sums 8 numbers or more pairwise: the force scale of 4 forces (8 components), or of
+    8 springs, would differ from level_setup's sum in order by an ulp (a review found a system
+    whose residual fell between the two tolerances), so such systems take the Python search."""
+    forces = [{"body": "a", "fx": 3.1590880355047e-10, "fy": 918.2693449746259}] + [
+        {"body": "a", "fx": 0.0, "fy": fy}
+        for fy in (-32.550933474909925, 149.14249085989513, 733.0513356044446)
+    ]
+    system = make_system(
+        [body("a", "hoop", mass=1.0, radius=0.1, x=0.0)],
+        [spring("w", "a", stiffness=100.0)],
+        anchors=[{"id": "w", "x": -0.5, "y": 0.1}],
+        forces=forces,
+    )
+    arrays = system_arrays(system)
+    assert arrays.level_centre_springs
+    assert verdict(kernels.kernel_model(arrays)) == kernels.GENERAL
+    three_forces = system.model_copy(update={"forces": system.forces[:3]})
+    assert verdict(kernels.kernel_model(system_arrays(three_forces))) == kernels.LEVEL
+    walls = [{"id": f"w{k}", "x": -0.5 - 0.1 * k, "y": 0.1} for k in range(8)]
+    many = make_system(
+        [body("a", "hoop", mass=1.0, radius=0.1, x=0.0)],
+        [spring(f"w{k}", "a", stiffness=100.0 + k) for k in range(8)],
+        anchors=walls,
+    )
+    assert verdict(kernels.kernel_model(system_arrays(many))) == kernels.GENERAL

@@ -396,7 +396,22 @@ def dispersion(
     wavenumbers evenly over the Brillouin zone :math:`[-\\pi/a, \\pi/a]` (ends included), about
     the placement, which must be an equilibrium of the lattice (AnalysisError otherwise);
     ``wavenumbers`` (rad/m, finite) replaces the grid when given. ``system``: a System, its
-    JSON form, a file path or a preset name."""
+    JSON form, a file path or a preset name.
+
+    Parameters
+    ----------
+    system
+        A chain: a :class:`~rollspring.model.System`, its JSON form, a file or a preset name.
+    points
+        How many wavenumbers over the Brillouin zone (3 to :data:`MAX_POINTS`).
+    wavenumbers
+        Wavenumbers (rad/m) to use instead of the even grid.
+
+    Returns
+    -------
+    Dispersion
+        The branches ω(q), gaps, group velocities, friction and normal force per amplitude.
+    """
     system = as_system(system)
     if isinstance(points, bool) or not isinstance(points, int) or not 3 <= points <= MAX_POINTS:
         raise AnalysisError(

@@ -77,6 +77,22 @@ def analyze(
     k (the lowest k modes) or a band ``(first, last)`` (1-based, ascending, inclusive), on
     any system; a partial set of modes leaves the response out. ``sparse`` forces the sparse
     path (True) or the dense one (False) whatever the size.
+
+    Parameters
+    ----------
+    system
+        A :class:`~rollspring.model.System`, its JSON form, a file path or a preset name.
+    confirm
+        Start even when the estimated time is above the bound.
+    modes
+        The lowest k modes, or a band ``(first, last)`` (1-based); None: every mode.
+    sparse
+        Force the sparse (True) or dense (False) path; None: by size.
+
+    Returns
+    -------
+    LinearAnalysis
+        The equilibrium, M and K, the modes, X̂'s weights, the friction needed.
     """
     from rollspring.analysis.costs import CONFIRM, analysis_cost, check_cost
     from rollspring.model import as_system

@@ -85,7 +85,28 @@ def chain(
     at most one of ``pluck`` (a body, 1-based), ``mode`` (the n-th oscillating mode) and
     ``packet`` (q in rad/m, width in m; on branch ``branch``, 1 the lowest), of ``amplitude``
     metres. Raises :class:`~rollspring.errors.ModelError` with a one-line message naming the
-    argument."""
+    argument.
+
+    Parameters
+    ----------
+    pattern
+        The repeating unit: shapes, as a sequence or separated by commas.
+    n
+        The number of bodies.
+    mass, radius, height, stiffness
+        kg, m, m above the track, N/m: one value or one per element of ``pattern``.
+    spacing, walls
+        The distance between neighbouring centres (m); ``"none"``, ``"left"`` or ``"both"``.
+    pluck, mode, packet, branch, amplitude
+        At most one initial condition, and its largest displacement (m).
+    mu_static, name
+        The static friction coefficient of every contact; the system's name.
+
+    Returns
+    -------
+    System
+        The chain, ready for :func:`~rollspring.analyze` or :func:`~rollspring.simulate`.
+    """
     shapes = _pattern(pattern)
     p = len(shapes)
     count = _count(n, walls)

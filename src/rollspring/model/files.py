@@ -49,6 +49,16 @@ def load_system(source: str | os.PathLike[str]) -> System:
     field and the reason for a missing file, a syntax error or an invalid value. Only a regular
     file of at most :data:`MAX_FILE_BYTES` is read (not a folder, a device, a FIFO or a socket;
     checked before it is opened, and opened without blocking).
+
+    Parameters
+    ----------
+    source
+        A ``.toml`` or ``.json`` file path, or a preset name (:func:`preset_names`).
+
+    Returns
+    -------
+    System
+        The validated system (SI units).
     """
     if not isinstance(source, str | os.PathLike):
         raise ModelError(

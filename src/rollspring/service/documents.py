@@ -99,6 +99,24 @@ def build_report(
     (:func:`rollspring.service.costs.report_cost`) is refused with its estimate
     (:class:`~rollspring.errors.CostTooHigh`) unless ``confirm=True`` (``--yes`` on the command
     line).
+
+    Parameters
+    ----------
+    system
+        A :class:`~rollspring.model.System`, its JSON form, a file path or a preset name.
+    duration, rtol
+        The simulated time (s; None: the default) and the run's relative accuracy.
+    derivation
+        Include the derivations and the paper's claims (SymPy).
+    progress
+        Called with the fraction done (0..1) after each stage.
+    confirm
+        Start even when the estimated time or memory is above the bound.
+
+    Returns
+    -------
+    Report
+        The page (``html``), its parts and ``timings``; ``write_report`` saves it.
     """
     from rollspring.service.costs import CONFIRM, check_cost, report_cost
     from rollspring.simulate.arguments import check_rtol_range

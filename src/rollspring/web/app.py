@@ -220,7 +220,22 @@ def create_app(
 ) -> FastAPI:
     """The ASGI app: the page at ``/`` (opening on ``system``, default the default preset),
     the JSON API under ``/api``, with ``workers`` worker processes (default: one per core)
-    and ``budget`` seconds for each computation."""
+    and ``budget`` seconds for each computation.
+
+    Parameters
+    ----------
+    system, preset
+        The system the page opens on (default: the preset ``preset``, or the default preset).
+    budget
+        Seconds each computation may take before it is answered with 503.
+    workers
+        Worker processes (default: one per core).
+
+    Returns
+    -------
+    fastapi.FastAPI
+        The app, for ``uvicorn.run(app)`` (``rollspring serve`` does that).
+    """
     from rollspring.model import DEFAULT_PRESET, load_system
 
     if system is None:

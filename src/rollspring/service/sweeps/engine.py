@@ -168,6 +168,28 @@ def sweep(
     ``refine_slip`` (default True) root-finds each first slip / lift-off instant with a single
     :func:`rollspring.simulate` run instead of the batch's linear interpolation between steps.
     ``progress`` is called with a :class:`SweepProgress` after each chunk.
+
+    Parameters
+    ----------
+    system
+        A :class:`~rollspring.model.System`, a file path or a preset name.
+    vary
+        ``{PATH: values}``: the grid, e.g. ``{"springs.0.stiffness": [50, 100]}``.
+    duration
+        The simulated time of every run (s).
+    metrics, on_slip, rtol, step, integrator, refine_slip
+        What is measured, and how each run is integrated.
+    out, overwrite, chunk
+        The Zarr store (resumable), whether another sweep's store may be replaced, runs a chunk.
+    scheduler
+        None (this process), a Dask scheduler address or a ``distributed.Client``.
+    progress
+        Called with a :class:`SweepProgress` after each chunk.
+
+    Returns
+    -------
+    xarray.Dataset
+        The metrics over the grid.
     """
     system = as_system(system)
     _check_arguments(duration, rtol, on_slip, chunk, step)

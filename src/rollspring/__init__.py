@@ -78,18 +78,37 @@ _DISPLAYS = (
     ("text/html", "rollspring.model.schema", "System", "system_html"),
     ("text/html", "rollspring.analysis.linear", "LinearAnalysis", "analysis_html"),
     ("text/html", "rollspring.analysis.linear", "Mode", "mode_html"),
-    ("text/html", "rollspring.simulate.run", "Trajectory", "trajectory_html"),
+    ("text/html", "rollspring.simulate.trajectory", "Trajectory", "trajectory_html"),
     ("text/latex", "rollspring.analysis.linear", "LinearAnalysis", "analysis_latex"),
 )
 
 
 def _shown_by(function: str):
-    def show(obj):
+    """A call of ``rollspring.outputs.jupyter.<function>`` that imports it only when called."""
+
+    def show(*args, **kwargs):
         from rollspring.outputs import jupyter
 
-        return getattr(jupyter, function)(obj)
+        return getattr(jupyter, function)(*args, **kwargs)
 
     return show
+
+
+def _register_presenters() -> None:
+    """``Trajectory.to_pandas``/``to_xarray``/``animate``: the Jupyter views of
+    :mod:`rollspring.outputs.jupyter`, registered here (this package is the composition root,
+    above every layer: the simulation never imports the outputs layer) and imported on first
+    use (Matplotlib and pandas stay out of ``import rollspring``)."""
+    from rollspring.presenters import PRESENTERS
+
+    PRESENTERS.update(
+        to_pandas=_shown_by("trajectory_to_pandas"),
+        to_xarray=_shown_by("trajectory_to_xarray"),
+        animate=_shown_by("animate_inline"),
+    )
+
+
+_register_presenters()
 
 
 def _register_notebook_display() -> None:

@@ -99,23 +99,22 @@ def run_simulation(
     """Simulate ``system`` for ``duration`` s (:func:`rollspring.simulate`), from its file's
     placement or from a :class:`ModeStart`; with ``linear``, also the linear motion from the
     same start (:func:`rollspring.analysis.linear_motion`; None where the system has no
-    equilibrium)."""
-    from rollspring.simulate import simulate
+    equilibrium). The arguments are checked once, as :func:`rollspring.simulate` checks them
+    (:func:`~rollspring.simulate.request.simulation_request`); the cost is not estimated: the
+    interfaces check it themselves (``--yes``, the web's bounds)."""
+    from rollspring.simulate.request import simulation_request
+    from rollspring.simulate.run import run_request
 
+    # checked once, before any work; the cost is the interface's to check (--yes, the web's
+    # budget), so none is estimated here
+    request = simulation_request(
+        duration, rtol=rtol, integrator=integrator, on_slip=on_slip, n_output=outputs
+    )
     analysis = analyze(system, confirm=True) if start is not None or linear else None
     if start is not None:
         system = mode_start(system, start, analysis)
         analysis = analyze(system, confirm=True) if linear else None
-    trajectory = simulate(
-        system,
-        duration,
-        rtol=rtol,
-        integrator=integrator,
-        n_output=outputs,
-        on_slip=on_slip,
-        progress=progress,
-        confirm=True,  # the interfaces check the cost themselves (--yes, the web's budget)
-    )
+    trajectory = run_request(system, request, progress)
     line = None
     if linear and analysis is not None and analysis.equilibrium.found:
         line = linear_motion(analysis, trajectory.t)

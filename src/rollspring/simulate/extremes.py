@@ -218,7 +218,13 @@ def measured_period(
         times = [
             start.t
             + kernels.signal_zero(
-                start.model, start.coeffs, start.h, start.q, start.v, run.mode_weights, run.q_ref
+                start.model,
+                start.coeffs,
+                start.h,
+                start.q,
+                start.v,
+                run.plan.mode_weights,
+                run.plan.q_ref,
             )
             for start in starts
         ]

@@ -29,14 +29,17 @@ class GeneralSegments(RunState):
     def _general_segment(
         self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
     ) -> Handover:
-        n, a, model = self.n, self.arrays, self.packed
+        """Integrate from the general ``state`` at ``t`` with DOP853 to the end or the next
+        event, recording the output rows; ``slipping`` bodies feel kinetic friction of sign
+        ``sign``."""
+        n, a, model, damped = self.n, self.arrays, self.packed, self.plan.damped
         slipping = slipping.copy()
         sign = sign.copy()
         mu_s = a.mu_static
 
         def rhs(_t: float, y: FloatArray) -> FloatArray:
             out = np.empty(4 * n)
-            kernels.slipping_derivatives(model, y, slipping, sign, self.damped, out)
+            kernels.slipping_derivatives(model, y, slipping, sign, damped, out)
             return out
 
         # SciPy calls every event function with the same state array after a step: observed
@@ -79,8 +82,8 @@ class GeneralSegments(RunState):
             state,
             method="DOP853",
             t_eval=t_eval,
-            rtol=max(self.rtol, 1e-13),
-            atol=max(self.rtol, 1e-13) * scale * 1e-2,
+            rtol=max(self.plan.rtol, 1e-13),
+            atol=max(self.plan.rtol, 1e-13) * scale * 1e-2,
             events=events,
             dense_output=True,
         )

@@ -90,7 +90,7 @@ class RollingSegments(RunState):
         extreme_states = np.empty((2, 2, ball_idx.size))
         extreme_states[:, 0, :] = q[ball_idx]
         extreme_states[:, 1, :] = qdot[ball_idx]
-        crossing = np.array([0.0, 0.0, 0.0, float(self.mode_weights @ (q - self.q_ref))])
+        crossing = np.array([0.0, 0.0, 0.0, float(self.plan.mode_weights @ (q - self.plan.q_ref))])
         crossing_states = np.zeros((2, 2, n))
         before = np.empty((2, n))
         q, qdot = q.copy(), qdot.copy()
@@ -127,14 +127,14 @@ class RollingSegments(RunState):
                 extreme_states,
                 ball_ptr,
                 ball_idx,
-                self.mode_weights,
-                self.q_ref,
+                self.plan.mode_weights,
+                self.plan.q_ref,
                 crossing,
                 crossing_states,
                 before,
             )
             self.integrate_time += time.perf_counter() - began
-            self._count_steps(self.scheme, taken)
+            self._count_steps(self.plan.scheme, taken)
             row_times.append(out_times[:filled])
             row_q.append(out_q[:filled])
             row_v.append(out_v[:filled])
@@ -292,7 +292,7 @@ class RollingSegments(RunState):
                             extreme_states[k, 0, lo:hi],
                             extreme_states[k, 1, lo:hi],
                             h,
-                            ball_idx[lo:hi] if self.windowed else None,
+                            ball_idx[lo:hi] if self.plan.windowed else None,
                         )
                     )
                     self.step_extremes[(kind, i)] = (value, t_start + h, h, local)

@@ -178,7 +178,7 @@ class _Run(RollingSegments, GeneralSegments):
             if done:
                 return
         while t < self.grid[-1] and self.status == RunStatus.FINISHED:
-            if not slipping.any() and not self.damped and self.scheme != "dop853":
+            if not slipping.any() and not self.plan.damped and self.plan.scheme != "dop853":
                 if self.pending is not None:  # from the release: its state and energy known
                     t, state, slipping, sign = self._rolling_segment(t, state, self.e0, initial)
                 else:

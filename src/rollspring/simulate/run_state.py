@@ -128,21 +128,12 @@ class RunState:
     def __init__(self, plan: Plan) -> None:
         self.plan = plan
         arrays = plan.arrays
-        # the plan's fields the run reads most, by their short names
+        # the plan's fields read at every turn, by their short names
         self.arrays = arrays
         #: the kernel model of the initial placement: by name, and as the kernels take it
         self.model = plan.model
         self.packed = plan.packed
         self.grid = plan.grid
-        self.scheme = plan.scheme
-        self.rtol = plan.rtol
-        self.on_slip = plan.on_slip
-        self.damped = plan.damped
-        self.tolerance = plan.tolerance
-        self.progress = plan.progress
-        #: the lowest mode's coordinate (its period): M v and the equilibrium it is measured from
-        self.mode_weights = plan.mode_weights
-        self.q_ref = plan.q_ref
         n = arrays.n_bodies
         self.n = n
         #: the nominal step; ``h`` is the step actually taken (each rolling segment rounds the
@@ -150,13 +141,16 @@ class RunState:
         self.step = plan.step
         self.h = plan.step
         scheme = plan.scheme
+        #: the stage weights of the symplectic scheme (Kahan-Li 8's in a DOP853 run)
         self.coeffs = SCHEMES[scheme][1] if scheme in SCHEMES else SCHEMES["kahanli8"][1]
         self.rows: list[FloatArray] = []  # general states at output times
         self.observed: list[Observed] = []  # forces, energies, ... at those rows
-        #: every row recorded so far is a row of the grid, in order (:meth:`_record_rolling`)
+        #: every row recorded so far is a row of the grid, in order
+        #: (:meth:`~rollspring.simulate.rolling.RollingSegments._record_rolling`)
         self.grid_rows = True
-        #: :func:`kernels.row_extremes` of the last block :meth:`_record_rolling` recorded, as
-        #: rows (ratio, its row, normal, its row)
+        #: :func:`kernels.row_extremes` of the last block
+        #: :meth:`~rollspring.simulate.rolling.RollingSegments._record_rolling` recorded, as rows
+        #: (ratio, its row, normal, its row)
         self.block_extremes: FloatArray | None = None
         self.central = np.ascontiguousarray(arrays.gamma * arrays.mass * arrays.radius**2)
         self.row_slipping: list[np.ndarray] = []
@@ -171,7 +165,7 @@ class RunState:
         self.integrate_time = 0.0
         self.started = time.perf_counter()
         self.rolls = arrays.rolls > 0
-        self.e0 = 0.0  # the energy at release (set by execute)
+        self.e0 = 0.0  # the energy at release (set when the run starts)
         self.energy_error = 0.0  # the relative energy error that ended the run, if one did
         self.e_segment = 0.0  # the energy at the start of the current rolling segment
         #: (kind, body) -> (value, time, width, segment): the kernel's extremes over its steps,
@@ -186,8 +180,6 @@ class RunState:
         self.all_rolling = (np.zeros(self.n, dtype=bool), np.zeros(self.n))
         #: the normal forces cannot change (level centre springs, forces at centres)
         self.constant_normal = springs_stay_level(arrays)
-        #: each extreme keeps the states of its body's ball only (a large system)
-        self.windowed = plan.windowed
         self._balls: tuple[np.ndarray, np.ndarray] | None = None
         self._links: tuple[np.ndarray, ...] | None = None
 
@@ -198,7 +190,7 @@ class RunState:
         (:func:`kernels.spring_balls`), O(1) per body for a chain."""
         if self._balls is None:
             n = self.n
-            if self.windowed:
+            if self.plan.windowed:
                 radius = refinement_radius(len(self.coeffs))
                 links = self.links()
                 self._balls = kernels.spring_balls(
@@ -278,7 +270,7 @@ class RunState:
             np.ascontiguousarray(states),
             np.asarray(slipping),
             np.asarray(sign, dtype=float),
-            self.damped,
+            self.plan.damped,
             out.friction,
             out.normal,
             out.length,
@@ -331,7 +323,7 @@ class RunState:
                 f"not modelled, the run ends here"
             )
             return True
-        if kind == "slip" and self.on_slip == "stop":
+        if kind == "slip" and self.plan.on_slip == "stop":
             self.status = RunStatus.SLIP
             self.message = (
                 f"'{name}' starts to slip at t = {t:.12g} s (|f| = mu_s N); "
@@ -347,8 +339,8 @@ class RunState:
         return False
 
     def _report(self, t: float) -> None:
-        if self.progress is not None:
-            self.progress(min(1.0, t / self.grid[-1]))
+        if self.plan.progress is not None:
+            self.plan.progress(min(1.0, t / self.grid[-1]))
 
     def _count_steps(self, integrator: str, taken: int) -> None:
         if taken > 0:
@@ -365,7 +357,7 @@ class RunState:
     def integrators_used(self) -> str:
         """The integrators that took steps, joined by "+" in order of first use (the chosen
         scheme when none took a step)."""
-        return "+".join(self.steps_by_integrator) or self.scheme
+        return "+".join(self.steps_by_integrator) or self.plan.scheme
 
     @property
     def symplectic_step(self) -> float | None:
@@ -391,12 +383,12 @@ class RunState:
             self.status = RunStatus.NONFINITE
             self.message = "the energy became non-finite; the step cannot resolve the motion"
             return False
-        if error > self.tolerance and abs(self.e0) > 0:
+        if error > self.plan.tolerance and abs(self.e0) > 0:
             self.energy_error = error
             self.status = RunStatus.ENERGY_ERROR
             self.message = (
                 f"the energy error {error:.3g} exceeds its tolerance "
-                f"{self.tolerance:.3g} (at t = {float(self.times[-1][-1]):.6g} s): "
+                f"{self.plan.tolerance:.3g} (at t = {float(self.times[-1][-1]):.6g} s): "
                 f"the step "
                 f"does not resolve the motion; lower rtol or use a higher-order "
                 f"integrator"

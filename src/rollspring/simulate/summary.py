@@ -37,7 +37,7 @@ def summary(trajectory: Trajectory, run: RunState) -> dict[str, Any]:
     n = arrays.n_bodies
     ids = arrays.ids
     extremes = continuous_extremes(run, trajectory)
-    conservative = not run.damped and not any(e["kind"] == "slip" for e in run.events)
+    conservative = not run.plan.damped and not any(e["kind"] == "slip" for e in run.events)
     energy = trajectory.energy
     e0 = float(energy[0])
     high, low = float(energy.max()), float(energy.min())  # NaN if any is

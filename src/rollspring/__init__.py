@@ -18,6 +18,11 @@ simulation, SymPy and Matplotlib for derivations and reports), so ``import rolls
 light. The core needs NumPy, SciPy, Numba and pydantic; derivations, reports, the web page and
 sweeps need the extras ``symbolic``, ``report``, ``web`` and ``sweep`` (``pip install
 'rollspring[report]'``).
+
+This package is also the composition root, above every layer: it registers the views of a
+trajectory that a higher layer draws (``Trajectory.to_pandas``, ``to_xarray``, ``animate``,
+:mod:`rollspring.outputs.jupyter`) in :data:`rollspring.presenters.PRESENTERS`, and the notebook
+displays, each as a callable that loads its module only when it is called.
 """
 
 from rollspring.errors import AnalysisError, ModelError, RollspringError, SimulationError

@@ -156,6 +156,10 @@ class _Run(RollingSegments, GeneralSegments):
     until the end, a lift-off or a slip that stops it."""
 
     def execute(self) -> None:
+        """Run from the release to the end: a body beyond its friction limit at release slips
+        from the start; then a rolling segment while every body rolls undamped, a general one
+        otherwise, each handing its end state to the next, until the end or an event that
+        ends the run."""
         a = self.arrays
         initial = (np.zeros(self.n), a.v0 / a.scale, a.x0)  # (q, qdot, x0) at release
         state = self.general_state(*initial)

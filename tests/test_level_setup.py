@@ -16,7 +16,7 @@ from rollspring.analysis.linear import _LAPACK_EPS, EQUILIBRIUM_TOLERANCE, ZERO_
 from rollspring.model import load_system
 from rollspring.physics import system_arrays
 from rollspring.simulate import kernels, simulate
-from rollspring.simulate.run import _small_level_equilibrium
+from rollspring.simulate.setup import _small_level_equilibrium
 from tests.conftest import body, make_system, spring
 
 SHAPES = ("hoop", "cylinder", "sphere", "shell", "slider")
@@ -177,7 +177,7 @@ def test_the_simulation_runs_on_the_compiled_setup_unchanged() -> None:
     compiled or the Python search's (the numbers are the same bits)."""
     system = load_system("wall-hoop-cylinder")
     fast = simulate(system, 2.0)
-    import rollspring.simulate.run as run
+    import rollspring.simulate.setup as run
 
     original = run._small_level_equilibrium
     run._small_level_equilibrium = lambda arrays, model: None  # the Python search instead

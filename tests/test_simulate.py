@@ -564,13 +564,13 @@ def test_trajectory_tables_and_views_come_from_the_outputs_layer():
     np.testing.assert_array_equal(data["tension"].values, trajectory.spring_tension)
     player = trajectory.animate(fps=4, dpi=20).data  # Matplotlib's JS player, self-contained
     assert player.count("data:image/png;base64,") == 3 and "http" not in player
-    assert callable(rollspring.simulate.run.PRESENTERS["animate"])
+    assert callable(rollspring.presenters.PRESENTERS["animate"])
 
 
 def test_a_view_without_the_outputs_layer_is_a_clear_error(monkeypatch):
-    from rollspring.simulate import run
+    from rollspring import presenters
 
-    monkeypatch.setattr(run, "PRESENTERS", {})
+    monkeypatch.setattr(presenters, "PRESENTERS", {})
     trajectory = simulate(centre_pair(1.0, 1.3, 100.0), 0.1, n_output=3)
     with pytest.raises(SimulationError, match=r"to_pandas is provided by rollspring\.outputs"):
         trajectory.to_pandas()
@@ -578,22 +578,21 @@ def test_a_view_without_the_outputs_layer_is_a_clear_error(monkeypatch):
 
 def test_general_states_of_rows_are_the_formula() -> None:
     """[x0 + s q, rho q, s v, rho v] per row (computed transposed for speed), and per state."""
-    from rollspring.simulate.run import _Run
+    from rollspring.simulate.run_state import general_state
 
     system = make_system(
         [body("h", "hoop", x=0.0), body("m", "slider", radius=0.05, x=0.5)],
         [spring("h", "m", rest_length=0.5)],
     )
     arrays = system_arrays(system)
-    run = _Run(arrays, np.linspace(0, 1, 3), "kahanli8", 0.1, 1e-8, "stop", False, 1e-6, None)
     rng = np.random.default_rng(3)
     q, v, x0 = rng.normal(size=(7, 2)), rng.normal(size=(7, 2)), rng.normal(size=2)
     expected = np.concatenate(
         [x0 + arrays.scale * q, arrays.rolls * q, arrays.scale * v, arrays.rolls * v], axis=-1
     )
-    states = run.general_state(q, v, x0)
+    states = general_state(arrays, q, v, x0)
     assert np.array_equal(states, expected) and states.flags.c_contiguous
-    assert np.array_equal(run.general_state(q[3], v[3], x0), expected[3])
+    assert np.array_equal(general_state(arrays, q[3], v[3], x0), expected[3])
 
 
 def test_level_springs_keep_the_normal_forces_constant_and_nothing_is_refined() -> None:

@@ -23,7 +23,8 @@ import pytest
 import rollspring
 from rollspring.model.chains import chain
 from rollspring.physics import system_arrays
-from rollspring.simulate import kernels, run
+from rollspring.simulate import kernels
+from rollspring.simulate import setup as run
 from rollspring.simulate.integrators import INTEGRATORS, refinement_radius
 
 

@@ -18,6 +18,11 @@ simulation, SymPy and Matplotlib for derivations and reports), so ``import rolls
 light. The core needs NumPy, SciPy, Numba and pydantic; derivations, reports, the web page and
 sweeps need the extras ``symbolic``, ``report``, ``web`` and ``sweep`` (``pip install
 'rollspring[report]'``).
+
+This package is also the composition root, above every layer: it registers the views of a
+trajectory that a higher layer draws (``Trajectory.to_pandas``, ``to_xarray``, ``animate``,
+:mod:`rollspring.outputs.jupyter`) in :data:`rollspring.presenters.PRESENTERS`, and the notebook
+displays, each as a callable that loads its module only when it is called.
 """
 
 from rollspring.errors import AnalysisError, ModelError, RollspringError, SimulationError
@@ -78,18 +83,37 @@ _DISPLAYS = (
     ("text/html", "rollspring.model.schema", "System", "system_html"),
     ("text/html", "rollspring.analysis.linear", "LinearAnalysis", "analysis_html"),
     ("text/html", "rollspring.analysis.linear", "Mode", "mode_html"),
-    ("text/html", "rollspring.simulate.run", "Trajectory", "trajectory_html"),
+    ("text/html", "rollspring.simulate.trajectory", "Trajectory", "trajectory_html"),
     ("text/latex", "rollspring.analysis.linear", "LinearAnalysis", "analysis_latex"),
 )
 
 
 def _shown_by(function: str):
-    def show(obj):
+    """A call of ``rollspring.outputs.jupyter.<function>`` that imports it only when called."""
+
+    def show(*args, **kwargs):
         from rollspring.outputs import jupyter
 
-        return getattr(jupyter, function)(obj)
+        return getattr(jupyter, function)(*args, **kwargs)
 
     return show
+
+
+def _register_presenters() -> None:
+    """``Trajectory.to_pandas``/``to_xarray``/``animate``: the Jupyter views of
+    :mod:`rollspring.outputs.jupyter`, registered here (this package is the composition root,
+    above every layer: the simulation never imports the outputs layer) and imported on first
+    use (Matplotlib and pandas stay out of ``import rollspring``)."""
+    from rollspring.presenters import PRESENTERS
+
+    PRESENTERS.update(
+        to_pandas=_shown_by("trajectory_to_pandas"),
+        to_xarray=_shown_by("trajectory_to_xarray"),
+        animate=_shown_by("animate_inline"),
+    )
+
+
+_register_presenters()
 
 
 def _register_notebook_display() -> None:

@@ -9,29 +9,6 @@ from rollspring.outputs.trajectory import (
     write_trajectory,
 )
 
-
-def _register_presenters() -> None:
-    """``Trajectory.to_pandas``/``to_xarray``/``animate`` (the Jupyter views, imported on first
-    use: Matplotlib and pandas stay out of ``import rollspring``)."""
-    from rollspring.simulate.run import PRESENTERS
-
-    def view(name: str):
-        def call(*args, **kwargs):
-            from rollspring.outputs import jupyter
-
-            return getattr(jupyter, name)(*args, **kwargs)
-
-        return call
-
-    PRESENTERS.update(
-        to_pandas=view("trajectory_to_pandas"),
-        to_xarray=view("trajectory_to_xarray"),
-        animate=view("animate_inline"),
-    )
-
-
-_register_presenters()
-
 __all__ = [
     "atomic_write",
     "atomic_write_bytes",

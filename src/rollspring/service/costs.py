@@ -78,7 +78,6 @@ def simulation_cost(
     kernels are not for ``rollspring analyze``). The arguments are checked first, with the
     messages of :func:`rollspring.simulate` (:class:`~rollspring.errors.SimulationError` naming
     the argument); ``rtol`` must also be within :data:`RTOL_RANGE`."""
-    from rollspring.simulate import choose_scheme
     from rollspring.simulate.costs import simulation_cost as estimate
 
     return estimate(
@@ -89,7 +88,6 @@ def simulation_cost(
         outputs=outputs,
         written=written,
         what=what,
-        choose=choose_scheme,
     )
 
 

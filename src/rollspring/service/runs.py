@@ -2,9 +2,9 @@
 
 :func:`analysis_payload` is the object ``rollspring analyze --json`` prints and
 ``POST /api/analyze`` answers; :func:`run_simulation` starts a run the way an interface asks
-for it (from the file's placement, or displaced along a normal mode) and
-:func:`simulation_payload` is the web API's form of the result: the summary
-``rollspring simulate --json`` prints plus every output array.
+for it (from the file's placement, or displaced along a normal mode; :func:`run_request` from
+arguments checked already) and :func:`simulation_payload` is the web API's form of the result:
+the summary ``rollspring simulate --json`` prints plus every output array.
 """
 
 from __future__ import annotations
@@ -21,12 +21,14 @@ from rollspring.model import System, rolled
 
 if TYPE_CHECKING:  # the simulation (compiled kernels) loads only when a run is asked for
     from rollspring.simulate import Trajectory
+    from rollspring.simulate.request import SimulationRequest
 
 __all__ = [
     "ModeStart",
     "SimulationRun",
     "analysis_payload",
     "mode_start",
+    "run_request",
     "run_simulation",
     "simulation_payload",
 ]
@@ -99,23 +101,37 @@ def run_simulation(
     """Simulate ``system`` for ``duration`` s (:func:`rollspring.simulate`), from its file's
     placement or from a :class:`ModeStart`; with ``linear``, also the linear motion from the
     same start (:func:`rollspring.analysis.linear_motion`; None where the system has no
-    equilibrium)."""
-    from rollspring.simulate import simulate
+    equilibrium). The arguments are checked as :func:`rollspring.simulate` checks them
+    (:func:`~rollspring.simulate.request.simulation_request`), then :func:`run_request` runs
+    them: the cost is not estimated (the interfaces check it themselves: ``--yes``, the web's
+    bounds)."""
+    from rollspring.simulate.request import simulation_request
+
+    request = simulation_request(
+        duration, rtol=rtol, integrator=integrator, on_slip=on_slip, n_output=outputs
+    )
+    return run_request(system, request, start=start, linear=linear, progress=progress)
+
+
+def run_request(
+    system: System,
+    request: SimulationRequest,
+    *,
+    start: ModeStart | None = None,
+    linear: bool = False,
+    progress: Callable[[float], None] | None = None,
+) -> SimulationRun:
+    """:func:`run_simulation` of a request whose arguments are checked already (an interface
+    that checked them and estimated the cost once:
+    :func:`~rollspring.simulate.request.simulation_request`,
+    :func:`~rollspring.simulate.costs.request_cost`): nothing is checked or estimated again."""
+    from rollspring.simulate.run import run_request as run
 
     analysis = analyze(system, confirm=True) if start is not None or linear else None
     if start is not None:
         system = mode_start(system, start, analysis)
         analysis = analyze(system, confirm=True) if linear else None
-    trajectory = simulate(
-        system,
-        duration,
-        rtol=rtol,
-        integrator=integrator,
-        n_output=outputs,
-        on_slip=on_slip,
-        progress=progress,
-        confirm=True,  # the interfaces check the cost themselves (--yes, the web's budget)
-    )
+    trajectory = run(system, request, progress)
     line = None
     if linear and analysis is not None and analysis.equilibrium.found:
         line = linear_motion(analysis, trajectory.t)

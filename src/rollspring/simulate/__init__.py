@@ -2,9 +2,10 @@
 instant, stick-slip with kinetic friction, and batches of runs.
 
 The package itself is callable: ``rollspring.simulate(system, duration, ...)`` is
-:func:`rollspring.simulate.run.simulate`, while ``rollspring.simulate.kernels`` and friends stay
-importable as usual. :mod:`.batch` (``simulate_batch``, ``BatchResult``) loads on first use: a
-single run does not need its planner and code generator.
+:func:`rollspring.simulate.run.simulate` (its result a
+:class:`~rollspring.simulate.trajectory.Trajectory`), while ``rollspring.simulate.kernels`` and
+friends stay importable as usual. :mod:`.batch` (``simulate_batch``, ``BatchResult``) loads on
+first use: a single run does not need its planner and code generator.
 """
 
 import sys
@@ -54,14 +55,11 @@ def _load_blas_check_module() -> None:
 
 _load_blas_check_module()
 
-from rollspring.simulate.integrators import Integrator  # noqa: E402 - after the BLAS module
-from rollspring.simulate.run import (  # noqa: E402
-    INTEGRATORS,
-    Trajectory,
-    choose_scheme,
-    simulate,
-)
-from rollspring.simulate.status import Status  # noqa: E402
+from rollspring.simulate.integrators import Integrator, choose_scheme  # noqa: E402 - after BLAS
+from rollspring.simulate.request import INTEGRATORS  # noqa: E402
+from rollspring.simulate.run import simulate  # noqa: E402
+from rollspring.simulate.status import RunStatus, Status  # noqa: E402
+from rollspring.simulate.trajectory import Trajectory  # noqa: E402
 
 
 def _load_cached_kernels_lightly() -> None:
@@ -114,6 +112,7 @@ __all__ = [
     "INTEGRATORS",
     "BatchResult",
     "Integrator",
+    "RunStatus",
     "Status",
     "Trajectory",
     "choose_scheme",
@@ -127,9 +126,10 @@ _BATCH = frozenset({"BatchResult", "simulate_batch"})
 
 def __getattr__(name: str) -> Any:
     if name in _BATCH or name == "batch":  # ``rollspring.simulate.batch`` as an attribute too
-        import importlib
+        # the submodule itself (``from rollspring.simulate import batch`` would ask this
+        # function for it again before importing it)
+        import rollspring.simulate.batch as batch
 
-        batch = importlib.import_module("rollspring.simulate.batch")
         return batch if name == "batch" else getattr(batch, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 

@@ -1,7 +1,7 @@
 """What a simulation will cost, known before it starts: steps × bodies, seconds, memory.
 
 :func:`simulation_cost`: the step comes from the highest linear frequency at the initial
-placement and ``rtol``, exactly as :func:`rollspring.simulate.choose_scheme` chooses it (the
+placement and ``rtol``, as :func:`~rollspring.simulate.integrators.choose_scheme` picks it (the
 compiled symplectic schemes), or is the ``step`` asked for; damped springs run DOP853, whose
 adaptive steps are estimated from the same frequency. Seconds follow from steps × (bodies +
 springs) at the measured cost of a body and step (docs/system-files.md), the output rows
@@ -11,19 +11,22 @@ memory from the output arrays (and the CSV text when files are written). All of 
 springs): the estimate of a 1000-body chain is within a factor of a few of the run.
 :func:`rollspring.simulate` refuses a run above the bound
 (:func:`rollspring.analysis.costs.check_cost`) unless called with ``confirm=True``; the command
-line with ``--yes`` (:mod:`rollspring.service.costs`).
+line with ``--yes`` (:mod:`rollspring.service.costs`). :func:`request_cost` estimates a
+:class:`~rollspring.simulate.request.SimulationRequest` whose arguments are checked already.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from typing import Any
 
 from rollspring.analysis.costs import Cost
 from rollspring.model import System
+from rollspring.simulate.integrators import INTEGRATORS as SCHEMES
+from rollspring.simulate.integrators import choose_scheme, refinement_radius
+from rollspring.simulate.request import SimulationRequest, simulation_request
 
-__all__ = ["API_SMALLER", "CLI_SMALLER", "simulation_cost"]
+__all__ = ["API_SMALLER", "CLI_SMALLER", "request_cost", "simulation_cost"]
 
 #: how to make a simulation smaller, in the command line's words and in Python's
 CLI_SMALLER = "a shorter --duration, fewer --outputs"
@@ -63,37 +66,37 @@ def simulation_cost(
     written: bool = False,
     what: str = "this run",
     smaller: str = CLI_SMALLER,
-    choose: Callable[[float, float, float, str], tuple[str, float]],
 ) -> Cost:
     """The estimated cost of ``simulate(system, duration, rtol=..., integrator=...,
     n_output=outputs, step=...)``, its files too when ``written``. The arguments are checked
     first, with the messages of :func:`rollspring.simulate`
-    (:class:`~rollspring.errors.SimulationError` naming the argument); ``rtol`` must also be
+    (:func:`~rollspring.simulate.request.simulation_request`:
+    :class:`~rollspring.errors.SimulationError` naming the argument); ``rtol`` must also be
     within :data:`~rollspring.analysis.costs.RTOL_RANGE`. ``smaller`` says how to make the run
-    smaller, for the message (:data:`CLI_SMALLER`, :data:`API_SMALLER`). ``choose`` is
-    :func:`rollspring.simulate.choose_scheme` (given, not imported: the simulation imports this
-    module)."""
-    from rollspring.simulate.arguments import (
-        check_choice,
-        check_count,
-        check_duration,
-        check_rtol_range,
-        check_step,
+    smaller, for the message (:data:`CLI_SMALLER`, :data:`API_SMALLER`)."""
+    request = simulation_request(
+        duration, rtol=rtol, integrator=integrator, n_output=outputs, step=step
     )
-    from rollspring.simulate.integrators import INTEGRATORS as SCHEMES
-    from rollspring.simulate.integrators import refinement_radius
+    return request_cost(system, request, written=written, what=what, smaller=smaller)
 
-    duration = check_duration(duration)
-    rtol = check_rtol_range(rtol)
-    check_choice("integrator", integrator, ("auto", *SCHEMES, "dop853"), "integrator")
-    n_output = check_count("n_output", outputs, 2)
-    step = check_step(step, duration)
+
+def request_cost(
+    system: System,
+    request: SimulationRequest,
+    *,
+    written: bool = False,
+    what: str = "this run",
+    smaller: str = CLI_SMALLER,
+) -> Cost:
+    """:func:`simulation_cost` of a request checked already (nothing is checked again)."""
+    from rollspring.analysis.banded import DENSE_LIMIT
+
+    duration, rtol, integrator = request.duration, request.rtol, request.integrator
+    n_output, step = request.outputs, request.step
     n = len(system.bodies)
     springs = len(system.springs)
     omega, rate = _highest_rates(system)
     damped = any(spring.damping > 0 for spring in system.springs)
-    from rollspring.analysis.banded import DENSE_LIMIT
-
     if n <= DENSE_LIMIT:
         setup = 0.05 + _SETUP_PER_SQUARED_THOUSAND * (n / 1000.0) ** 2
     else:
@@ -107,7 +110,7 @@ def simulation_cost(
         seconds = setup + steps * (_DOP853_STEP + _DOP853_BODY_STEP * n)
     else:
         if step is None:
-            name, step = choose(omega, duration, rtol, integrator)
+            name, step = choose_scheme(omega, duration, rtol, integrator)
         else:  # a fixed step: "auto" means Yoshida-4
             name = "yoshida4" if integrator == "auto" else integrator
         steps = max(1.0, duration / step)

@@ -19,6 +19,8 @@ above the fastest linear frequency make both errors larger than on a harmonic os
 scheme for the phase (:attr:`Integrator.safety`), :data:`OUTPUT_SAFETY` for the interpolant.
 When it takes fewer steps, the step is instead rounded down to a whole fraction of the output
 spacing, so that every output lands on a step end and only the phase bound applies.
+:func:`choose_scheme` picks the scheme and step of a single run (and of its cost estimate,
+:mod:`rollspring.simulate.costs`).
 """
 
 from __future__ import annotations
@@ -36,6 +38,7 @@ __all__ = [
     "MAX_OMEGA_STEP",
     "OUTPUT_SAFETY",
     "Integrator",
+    "choose_scheme",
     "output_omega_step",
     "refinement_radius",
 ]
@@ -176,3 +179,32 @@ def refinement_radius(stages: int) -> int:
     after the evaluation at its start; the ball reaches a spring further than that,
     ``2 stages + 2``."""
     return 2 * stages + 2
+
+
+def choose_scheme(
+    omega: float,
+    duration: float,
+    rtol: float,
+    integrator: str = "auto",
+    n_output: int | None = None,
+) -> tuple[str, float]:
+    r"""The scheme and step for a run, within the accuracy contract (README, "Accuracy"):
+    :meth:`~rollspring.simulate.integrators.Integrator.contract_step` -- a phase error of
+    rtol/10 after :math:`\omega T` radians and outputs interpolated inside the steps within
+    rtol/10 (or, with ``n_output`` evenly spaced outputs, outputs on step ends when that takes
+    fewer steps), each shrunk by its measured safety factor; :math:`\omega h` at most 0.5.
+    ``auto`` takes the scheme with the fewest force evaluations, counting the force rates a step
+    holding interpolated outputs takes as one more (the septic interpolant's jerks). Returns
+    ``(name, h)``."""
+    names = list(INTEGRATORS) if integrator == "auto" else [integrator]
+    best: tuple[str, float, float] | None = None
+    for name in names:
+        scheme = INTEGRATORS[name]
+        step = scheme.contract_step(omega, duration, rtol, n_output)
+        per_output = duration / (n_output - 1) / step if n_output and n_output > 1 else 0.5
+        on_step_ends = abs(per_output - round(per_output)) <= 1e-9 * per_output
+        cost = (scheme.stages + (0 if on_step_ends else 1)) * duration / step
+        if best is None or cost < best[2]:
+            best = (name, step, cost)
+    assert best is not None  # names is never empty
+    return best[0], best[1]

@@ -1,16 +1,18 @@
 """The status of a run: one enum, with a message, for single runs, batches and sweep stores.
 
-``Trajectory.status`` is the status's :attr:`Status.label` (a string, ``"finished"`` …),
-``BatchResult.status`` an int8 array of its values and a sweep store's ``status`` variable the same
-codes with the CF attributes ``flag_values`` / ``flag_meanings`` (:data:`FLAG_VALUES`,
-:data:`FLAG_MEANINGS`).
+:class:`Status` holds the stable codes: ``BatchResult.status`` is an int8 array of its values
+and a sweep store's ``status`` variable the same codes with the CF attributes ``flag_values`` /
+``flag_meanings`` (:data:`FLAG_VALUES`, :data:`FLAG_MEANINGS`). ``Trajectory.status`` is a
+:class:`RunStatus`, the same statuses valued by their labels (a ``str`` enum: it compares with
+``"finished"`` … and goes into JSON as the label); its :attr:`~RunStatus.code` is the
+:class:`Status`.
 """
 
 from __future__ import annotations
 
-from enum import IntEnum
+from enum import IntEnum, StrEnum
 
-__all__ = ["FLAG_MEANINGS", "FLAG_VALUES", "Status"]
+__all__ = ["FLAG_MEANINGS", "FLAG_VALUES", "RunStatus", "Status"]
 
 
 class Status(IntEnum):
@@ -66,6 +68,34 @@ _MESSAGES = {
     Status.UNRESOLVED: "the run's linear frequency is beyond what the step can resolve; it was "
     "not integrated",
 }
+
+
+class RunStatus(StrEnum):
+    """How a single run ended (``Trajectory.status``): :class:`Status` valued by its
+    :attr:`~Status.label`. A ``str``: ``trajectory.status == "slip"`` holds and JSON writes
+    ``"slip"``; :attr:`code` is the stable :class:`Status` (what a store keeps)."""
+
+    FINISHED = "finished"
+    NONFINITE = "nonfinite"
+    SLIP = "slip"
+    LIFTOFF = "liftoff"
+    ENERGY_ERROR = "energy_error"
+    INVALID = "invalid"
+    UNRESOLVED = "unresolved"
+
+    @property
+    def code(self) -> Status:
+        """The :class:`Status` of the same name (its stable integer value)."""
+        return Status[self.name]
+
+    @property
+    def message(self) -> str:
+        """What the status means, in one sentence (:attr:`Status.message`)."""
+        return _MESSAGES[self.code]
+
+
+# one status, two spellings: the same names, in the same order
+assert [(s.name, s.value) for s in RunStatus] == [(s.name, s.label) for s in Status]
 
 #: CF ``flag_values`` of a stored status variable (every code, in order).
 FLAG_VALUES: tuple[int, ...] = tuple(int(s) for s in Status)

@@ -1,0 +1,141 @@
+r"""The general segment of a run: SciPy's adaptive DOP853 on :math:`[x, \varphi, u, \omega]`.
+
+Used while a spring is damped, a body slips (kinetic friction, docs/physics.md (M19), with
+``on_slip="continue"``) or ``integrator="dop853"`` is asked for. The events are SciPy's
+terminal events, located to the instant on the step: a rolling body's needed friction reaching
+:math:`\mu_s N` (slip), a slipping body's contact speed reaching zero (stick, or reverse when
+static friction cannot hold it), a normal force falling to zero (lift-off). The segment's
+dense output is its interpolant (extremes and period, :mod:`rollspring.simulate.extremes`).
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+
+from rollspring.physics.arrays import FloatArray
+from rollspring.simulate import kernels
+from rollspring.simulate.run_state import BoolArray, Handover, RunState, Segment
+from rollspring.simulate.status import RunStatus
+
+__all__ = ["GeneralSegments"]
+
+
+class GeneralSegments(RunState):
+    """A run's general segments (DOP853): damping, slipping, stick and reverse events."""
+
+    def _general_segment(
+        self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> Handover:
+        """Integrate from the general ``state`` at ``t`` with DOP853 to the end or the next
+        event, recording the output rows; ``slipping`` bodies feel kinetic friction of sign
+        ``sign``."""
+        n, a, model, damped = self.n, self.arrays, self.packed, self.plan.damped
+        slipping = slipping.copy()
+        sign = sign.copy()
+        mu_s = a.mu_static
+
+        def rhs(_t: float, y: FloatArray) -> FloatArray:
+            out = np.empty(4 * n)
+            kernels.slipping_derivatives(model, y, slipping, sign, damped, out)
+            return out
+
+        # SciPy calls every event function with the same state array after a step: observed
+        # once for all of them (O(n) per step, not O(n) per body)
+        last: list[Any] = [None, None]
+
+        def contacts(y: FloatArray) -> tuple[FloatArray, FloatArray]:
+            if last[0] is not y:
+                friction, normal, *_ = self.observe(y[None, :], slipping[None], sign[None])
+                last[:] = [y, (friction[0], normal[0])]
+            result: tuple[FloatArray, FloatArray] = last[1]
+            return result
+
+        def slip_margin(y: FloatArray, i: int) -> float:
+            friction, normal = contacts(y)
+            return float(mu_s[i] * normal[i] - abs(friction[i]))
+
+        events: list[Any] = []  # solve_ivp's events: functions with .terminal, .direction
+        labels = []
+        for i in range(n):
+            if self.rolls[i] and not slipping[i] and np.isfinite(mu_s[i]):
+                events.append(lambda _t, y, i=i: slip_margin(y, i))
+                labels.append(("slip", i))
+            if self.rolls[i] and slipping[i]:
+                events.append(lambda _t, y, i=i: y[2 * n + i] - a.radius[i] * y[3 * n + i])
+                labels.append(("stick", i))
+            events.append(lambda _t, y, i=i: contacts(y)[1][i])
+            labels.append(("liftoff", i))
+        for event, (kind, i) in zip(events, labels, strict=True):
+            event.terminal = True
+            event.direction = (sign[i] * -1.0) if kind == "stick" else -1.0
+        t_eval = self.grid[(self.grid > t + 1e-12 * self.grid[-1])]
+        scale = max(float(np.max(np.abs(state))), float(np.max(a.radius)))
+        import scipy.integrate  # on demand: only the general (DOP853) segments need it
+
+        began = time.perf_counter()
+        solution = scipy.integrate.solve_ivp(
+            rhs,
+            (t, self.grid[-1]),
+            state,
+            method="DOP853",
+            t_eval=t_eval,
+            rtol=max(self.plan.rtol, 1e-13),
+            atol=max(self.plan.rtol, 1e-13) * scale * 1e-2,
+            events=events,
+            dense_output=True,
+        )
+        self.integrate_time += time.perf_counter() - began
+        if solution.sol is not None:  # the adaptive steps taken
+            self._count_steps("dop853", len(solution.sol.ts) - 1)
+        if solution.status == -1:
+            self.status = RunStatus.NONFINITE
+            self.message = f"the adaptive integrator failed: {solution.message}"
+            return self.grid[-1], state, slipping, sign
+        if solution.t.size:
+            self._record_block(solution.t, solution.y.T, slipping, sign)
+        dense = solution.sol
+        t_end = float(
+            solution.t_events
+            and max((float(te[0]) for te in solution.t_events if len(te)), default=self.grid[-1])
+            if solution.status == 1
+            else self.grid[-1]
+        )
+
+        def dense_state(tt: float | FloatArray, d: Any = dense) -> FloatArray:
+            return np.asarray(d(tt)).T
+
+        self.segments.append(
+            Segment(
+                t,
+                t_end,
+                slipping.copy(),
+                sign.copy(),
+                dense_state,
+                np.asarray(dense.ts),
+            )
+        )
+        self._report(t_end)
+        if solution.status != 1:
+            return self.grid[-1], solution.y[:, -1] if solution.y.size else state, slipping, sign
+        which = next(j for j, te in enumerate(solution.t_events) if len(te))
+        kind, body = labels[which]
+        y_event = np.asarray(solution.y_events[which][0], dtype=float)
+        if kind == "stick":
+            y_event[2 * n + body] = a.radius[body] * y_event[3 * n + body]  # v_s = 0 exactly
+            trial = slipping.copy()
+            trial[body] = False
+            friction, normal, *_ = self.observe(y_event[None, :], trial[None], sign[None])
+            if abs(friction[0, body]) <= mu_s[body] * normal[0, body]:
+                slipping[body] = False
+                sign[body] = 0.0
+                self.events.append({"kind": "stick", "time": t_end, "body": a.ids[body]})
+            else:
+                sign[body] = -sign[body]
+                self.events.append({"kind": "reverse", "time": t_end, "body": a.ids[body]})
+            return t_end, y_event, slipping, sign
+        if self._event(kind, body, t_end, y_event, slipping, sign):
+            self._record(t_end, y_event, slipping, sign)
+        return t_end, y_event, slipping, sign

@@ -1,0 +1,428 @@
+r"""The rolling segment of a run: every body rolls and no spring is damped.
+
+The motion is :math:`J_i\ddot\varphi_i = Q_i(\varphi)` (docs/physics.md (M7)), integrated by
+the compiled explicit symplectic scheme of the plan (:data:`~rollspring.simulate.kernels.SCHEMES`)
+with equal steps that land on the segment's end, in chunks of about 2e5 steps (progress
+reports and energy checks). The kernel interpolates the outputs inside the steps, keeps the
+extremes of :math:`|f|/N` and :math:`N` over every step with the state before each (refined
+later, :mod:`rollspring.simulate.extremes`) and counts the crossings of the lowest mode's
+coordinate (the period). A slip or a lift-off is located to the instant by root-finding on the
+step itself (:meth:`RollingSegments._locate`: the scheme run with a shorter step is the step's
+interpolant).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from rollspring.errors import SimulationError
+from rollspring.physics.arrays import FloatArray
+from rollspring.simulate import kernels
+from rollspring.simulate.run_state import NO_SAMPLES, Handover, Observed, RunState, Segment, Start
+from rollspring.simulate.status import RunStatus
+
+__all__ = ["RollingSegments"]
+
+
+class RollingSegments(RunState):
+    """A run's rolling segments (symplectic, compiled): :meth:`_rolling_segment` and what it
+    hands over (recorded rows, extremes with their states, crossings, located events)."""
+
+    def _rolling_segment(
+        self,
+        t: float,
+        state: FloatArray,
+        energy: float | None = None,
+        rolling: tuple[FloatArray, FloatArray, FloatArray] | None = None,
+    ) -> Handover:
+        """Integrate from the all-rolling ``state`` at ``t`` to the end or the next event.
+        From the release, ``energy`` is its energy and ``rolling`` its (q, qdot, x0), and the
+        release's row is recorded with the segment's first rows (:attr:`pending`)."""
+        q, qdot, x0 = self.rolling_state(state) if rolling is None else rolling
+        # energy is conserved from here on: the reference is its value now (slip lost some)
+        if energy is None:
+            energy = self._energy(
+                state[None, :], np.zeros((1, self.n), dtype=bool), np.zeros((1, self.n))
+            )[0]
+        self.e_segment = energy
+        # the reference positions move only when a body slipped: the same model as the run's
+        same = rolling is not None or np.array_equal(x0, self.arrays.x0)
+        model = self.packed if same else kernels.kernel_model(self.arrays, x0)
+        slipping = np.zeros(self.n, dtype=bool)
+        sign = np.zeros(self.n)
+        grid = self.grid
+        span = float(grid[-1]) - t
+        if span <= 1e-12 * grid[-1]:
+            self._flush_pending()
+            return float(grid[-1]), self.general_state(q, qdot, x0), slipping, sign
+        # equal steps that land on the end; outputs are interpolated inside the steps
+        assert self.step is not None  # rolling segments run with a fixed-step scheme only
+        n_total = max(1, math.ceil(span / self.step * (1 - 1e-12)))
+        h = self.h = span / n_total
+        first = int(np.searchsorted(grid, t + 1e-12 * grid[-1], side="right"))
+        # the release's row goes first in the first block (its row of the grid is t = 0)
+        lead = 1 if self.pending is not None and first == 1 and grid[0] == t else 0
+        if not lead:
+            self._flush_pending()
+        # chunks of about 2e5 steps: progress reports and energy checks a few times a second
+        chunk = 200_000
+        row_times = [np.array([t])]
+        row_q = [q[None, :].copy()]
+        row_v = [qdot[None, :].copy()]
+        n = self.n
+        # seeded with the segment's first state: the extremes include its start
+        if rolling is not None:  # observed at release already (no Numba kernel to load)
+            friction0, normal0 = self.release_forces
+        else:
+            _, _, friction0, normal0 = kernels.advance(model, self.coeffs, q, qdot, 0.0, 0)
+        ratio0 = [  # |f|/N of rolling bodies (inf where N <= 0), a few plain floats
+            (abs(f) / nn if nn > 0 else math.inf) if rolls else -math.inf
+            for f, nn, rolls in zip(
+                friction0.tolist(), normal0.tolist(), self.rolls.tolist(), strict=True
+            )
+        ]
+        extremes = np.array([ratio0, [t] * n, normal0, [t] * n])
+        ball_ptr, ball_idx = self.balls()
+        extreme_states = np.empty((2, 2, ball_idx.size))
+        extreme_states[:, 0, :] = q[ball_idx]
+        extreme_states[:, 1, :] = qdot[ball_idx]
+        crossing = np.array([0.0, 0.0, 0.0, float(self.plan.mode_weights @ (q - self.plan.q_ref))])
+        crossing_states = np.zeros((2, 2, n))
+        before = np.empty((2, n))
+        q, qdot = q.copy(), qdot.copy()
+        done = 0
+        while done < n_total:
+            steps = min(chunk, n_total - done)
+            t_chunk = t + done * h
+            if done + steps == n_total:
+                last = grid.size
+            else:
+                last = int(np.searchsorted(grid, t + (done + steps) * h, side="right"))
+            out_times = grid[first:last]
+            # rows [lead:] for the kernel; row 0 the release's when it leads
+            block_q = np.empty((out_times.size + lead, n))
+            block_v = np.empty((out_times.size + lead, n))
+            if lead:
+                block_q[0] = q
+                block_v[0] = qdot
+            out_q, out_v = block_q[lead:], block_v[lead:]
+            began = time.perf_counter()
+            status, taken, body, filled = kernels.run_fixed_step(
+                model,
+                self.coeffs,
+                q,
+                qdot,
+                t_chunk,
+                h,
+                steps,
+                True,
+                out_times,
+                out_q,
+                out_v,
+                extremes,
+                extreme_states,
+                ball_ptr,
+                ball_idx,
+                self.plan.mode_weights,
+                self.plan.q_ref,
+                crossing,
+                crossing_states,
+                before,
+            )
+            self.integrate_time += time.perf_counter() - began
+            self._count_steps(self.plan.scheme, taken)
+            row_times.append(out_times[:filled])
+            row_q.append(out_q[:filled])
+            row_v.append(out_v[:filled])
+            if lead:
+                self.pending = None
+                block_times = grid[first - 1 : first + filled]
+            else:
+                block_times = out_times[:filled]
+            if lead + filled and not self._energy_within(
+                self._record_rolling(
+                    block_times.copy(), block_q[: lead + filled], block_v[: lead + filled], x0
+                )
+            ):
+                self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
+                self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
+                return float(self.times[-1][-1]), self.rows[-1][-1], slipping, sign
+            if status != kernels.STATUS_FINISHED:
+                t_before = t_chunk + (taken - 1) * h
+                row_times.append(np.array([t_before]))
+                row_q.append(before[0][None, :].copy())
+                row_v.append(before[1][None, :].copy())
+                self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
+                self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
+                if status == kernels.STATUS_NONFINITE:
+                    self.status = RunStatus.NONFINITE
+                    self.message = (
+                        f"the state became non-finite at t = {t_before + h:.6g} s "
+                        f"('{self.arrays.ids[body]}'); the step cannot resolve the "
+                        f"motion"
+                    )
+                    return t_before, self.general_state(before[0], before[1], x0), slipping, sign
+                return self._locate(model, t_before, before[0].copy(), before[1].copy(), h, 1, x0)
+            first += filled
+            done += steps
+            lead = 0
+            self._report(t + done * h)
+        self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
+        self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
+        end = float(grid[-1])
+        if self.grid_rows and self.times and float(self.times[-1][-1]) == end:
+            # the run is over (nothing steps on from the handover): the last row, the state
+            # at the end to rounding, instead of building it again
+            return end, self.rows[-1][-1].copy(), slipping, sign
+        return end, self.general_state(q, qdot, x0), slipping, sign
+
+    def _record_rolling(
+        self, times: FloatArray, q: FloatArray, v: FloatArray, x0: FloatArray
+    ) -> float:
+        """:meth:`_record_block` of all-rolling rows (q, qdot) with reference positions x0,
+        states and observations by one compiled pass (:func:`kernels.observe_rolling`);
+        returns the largest |E - E_segment| over the rows."""
+        rows, n = q.shape
+        ns = self.arrays.n_springs
+        states = np.empty((rows, 4 * n))
+        out = Observed(
+            np.empty((rows, n)),
+            np.empty((rows, n)),
+            np.empty((rows, n)),
+            np.empty((rows, ns)),
+            np.empty((rows, ns)),
+            np.empty(rows),
+            np.empty(rows),
+        )
+        extremes = np.empty((4, n))
+        deviation = kernels.observe_rolling(
+            self.packed,
+            x0,
+            q,
+            v,
+            self.central,
+            self.e_segment,
+            states,
+            out.friction,
+            out.normal,
+            out.length,
+            out.tension,
+            out.potential,
+            out.kinetic,
+            out.ratio,
+            extremes,
+        )
+        self.block_extremes = extremes
+        self.times.append(times)
+        self.rows.append(states)
+        self.row_slipping.append(np.zeros((rows, n), dtype=bool))
+        self.row_sign.append(np.zeros((rows, n)))
+        self.observed.append(out)
+        return float(deviation)
+
+    def _local(
+        self,
+        model: tuple[Any, ...],
+        x0: FloatArray,
+        t_start: float,
+        q: FloatArray,
+        v: FloatArray,
+        h: float,
+        ball: np.ndarray | None = None,
+    ) -> Segment:
+        """A segment of two steps from the state (q, v) at ``t_start``. Its interpolant is
+        built on first use: most are refined from their ``start`` in one compiled call. With
+        ``ball``, (q, v) are the states of those bodies alone (an extreme of a large system):
+        such a segment is refined from its start only (:func:`_refine_together`)."""
+        start = Start(t_start, q.copy(), v.copy(), model, self.coeffs, h, x0, ball)
+        built: list[Segment] = []
+        slipping, sign = self.all_rolling
+
+        def evaluate(t: float | FloatArray) -> FloatArray:
+            if ball is not None:
+                raise SimulationError(
+                    "internal: a windowed extreme's segment has no interpolant (refine it "
+                    "from its start)"
+                )
+            if not built:
+                built.append(
+                    self._rolling_evaluator(
+                        model, [t_start], [start.q], [start.v], h, x0, t_end=t_start + 2 * h
+                    )
+                )
+            return built[0].evaluate(t)
+
+        return Segment(t_start, t_start + 2 * h, slipping, sign, evaluate, NO_SAMPLES, start)
+
+    def _offer_steps(
+        self,
+        model: tuple[Any, ...],
+        x0: FloatArray,
+        extremes: FloatArray,
+        extreme_states: FloatArray,
+        crossing: FloatArray,
+        crossing_states: FloatArray,
+        h: float,
+    ) -> None:
+        """Hand the kernel's extremes and crossings over, each with the state it starts from."""
+        found = extremes.tolist()
+        ball_ptr, ball_idx = self.balls()
+        for i in range(self.n):
+            for kind, row in (("ratio", 0), ("normal", 2)):
+                value = found[row][i]
+                if not math.isfinite(value) or (kind == "ratio" and not self.rolls[i]):
+                    continue
+                old = self.step_extremes.get((kind, i))
+                if old is None or (value > old[0] if kind == "ratio" else value < old[0]):
+                    k = 0 if kind == "ratio" else 1
+                    t_start = found[row + 1][i]
+                    # a normal force that cannot change is never refined: no segment for it
+                    lo, hi = ball_ptr[i], ball_ptr[i + 1]
+                    local = (
+                        None
+                        if kind == "normal" and self.constant_normal
+                        else self._local(
+                            model,
+                            x0,
+                            t_start,
+                            extreme_states[k, 0, lo:hi],
+                            extreme_states[k, 1, lo:hi],
+                            h,
+                            ball_idx[lo:hi] if self.plan.windowed else None,
+                        )
+                    )
+                    self.step_extremes[(kind, i)] = (value, t_start + h, h, local)
+        self.crossings.append(
+            (
+                int(crossing[0]),
+                [
+                    self._local(
+                        model,
+                        x0,
+                        float(crossing[1 + j]),
+                        crossing_states[j, 0],
+                        crossing_states[j, 1],
+                        h,
+                    )
+                    for j in range(2)
+                ],
+            )
+        )
+
+    def _rolling_evaluator(
+        self,
+        model: tuple[Any, ...],
+        times: list[Any],
+        qs: list[Any],
+        vs: list[Any],
+        h: float,
+        x0: FloatArray,
+        t_end: float | None = None,
+    ) -> Segment:
+        """A segment whose state at any t is the integrator run on from the row before t.
+        ``times``/``qs``/``vs`` are lists of rows or of blocks of rows (joined on first use:
+        most segments are never evaluated)."""
+        first = float(np.atleast_1d(np.asarray(times[0], dtype=float))[0])
+        last = float(np.atleast_1d(np.asarray(times[-1], dtype=float))[-1])
+        coeffs = self.coeffs
+        rows_of: list[tuple[FloatArray, FloatArray, FloatArray]] = []
+
+        def evaluate(t: float | FloatArray) -> FloatArray:
+            """The state at time(s) ``t``: (4n,) for a number, (m, 4n) for an array."""
+            if not rows_of:
+                rows_of.append(
+                    (
+                        np.concatenate([np.atleast_1d(np.asarray(x, dtype=float)) for x in times]),
+                        np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in qs]),
+                        np.concatenate([np.atleast_2d(np.asarray(x, dtype=float)) for x in vs]),
+                    )
+                )
+            row_t, row_q, row_v = rows_of[0]
+            at = np.atleast_1d(np.asarray(t, dtype=float))
+            if len(row_t) == 1:
+                rows = np.zeros(at.size, dtype=np.int64)
+            else:
+                rows = np.clip(np.searchsorted(row_t, at, side="right") - 1, 0, len(row_t) - 1)
+            spans = at - row_t[rows]
+            pieces = np.where(spans > 0, np.maximum(1, np.ceil(spans / h * (1 - 1e-12))), 0)
+            q, v = kernels.advance_many(
+                model, coeffs, row_q[rows], row_v[rows], spans, pieces.astype(np.int64)
+            )
+            states = self.general_state(q, v, x0)
+            return states if np.ndim(t) else states[0]
+
+        # extremes: the output rows and the kernel's extremes over every step cover it
+        slipping, sign = self.all_rolling
+        end = last if t_end is None else float(t_end)
+        return Segment(first, end, slipping, sign, evaluate, NO_SAMPLES)
+
+    def _locate(
+        self,
+        model: tuple[Any, ...],
+        t_before: float,
+        q: FloatArray,
+        v: FloatArray,
+        span: float,
+        pieces: int,
+        x0: FloatArray,
+    ) -> Handover:
+        """An event happened within ``span`` after ``t_before``: find its instant."""
+        slipping = np.zeros(self.n, dtype=bool)
+        sign = np.zeros(self.n)
+        h = span / pieces
+        # find the piece, then the instant inside it
+        for _ in range(pieces):
+            q1, v1, f1, n1 = kernels.advance(model, self.coeffs, q, v, h, 1)
+            if self._violation(f1, n1) is not None or not np.all(np.isfinite(q1)):
+                break
+            q, v, t_before = q1, v1, t_before + h
+        mu = self.arrays.mu_static
+        checked = self.rolls & np.isfinite(mu)  # mu_s = inf: never slips (no inf * N)
+        mu_finite = np.where(checked, mu, 0.0)
+
+        def margins(tau: float) -> FloatArray:
+            _, _, f, nn = kernels.advance(model, self.coeffs, q, v, tau, 1 if tau > 0 else 0)
+            slip = np.where(checked, mu_finite * nn - np.abs(f), np.inf)
+            return np.concatenate([slip, nn])
+
+        end = margins(h)
+        start = margins(0.0)
+        best = None
+        import scipy.optimize  # on demand: an event to locate (SciPy's optimizers take ~0.1 s)
+
+        for j in np.flatnonzero((end < 0) | ((end == 0) & (start > 0))):
+            if not np.isfinite(start[j]) or start[j] <= 0:
+                root = 0.0
+            else:
+                root = scipy.optimize.brentq(
+                    lambda tau, j=j: margins(tau)[j],
+                    0.0,
+                    h,
+                    xtol=1e-15,
+                    rtol=4 * np.finfo(float).eps,
+                )
+            if best is None or root < best[0]:
+                best = (root, j)
+        if best is None:  # non-finite state
+            self.status = RunStatus.NONFINITE
+            self.message = f"the state became non-finite near t = {t_before:.6g} s"
+            return t_before, self.general_state(q, v, x0), slipping, sign
+        root, j = best
+        kind = "slip" if j < self.n else "liftoff"
+        body = j % self.n
+        q_e, v_e, _, _ = kernels.advance(model, self.coeffs, q, v, root, 1 if root > 0 else 0)
+        t_event = t_before + root
+        state = self.general_state(q_e, v_e, x0)
+        self.segments.append(
+            self._rolling_evaluator(
+                model, [t_before, t_event], [q, q_e], [v, v_e], max(root, 1e-300), x0
+            )
+        )
+        if self._event(kind, body, t_event, state, slipping, sign):
+            self._record(t_event, state, slipping, sign)
+            return t_event, state, slipping, sign
+        return t_event, state, slipping, sign

@@ -29,9 +29,7 @@ from rollspring.outputs.report._check_sections import (
     section_paper_check,
     section_warnings,
 )
-from rollspring.outputs.report._html import (
-    ReportError,
-)
+from rollspring.outputs.report._html import ReportError
 from rollspring.outputs.report._mode_sections import (
     section_friction,
     section_modes,

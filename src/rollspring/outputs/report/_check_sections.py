@@ -20,11 +20,7 @@ from rollspring.analysis.paper_check import (
     ClaimCheck,
 )
 from rollspring.analysis.report import CONVENTIONS
-from rollspring.outputs.report._html import (
-    Markup,
-    esc,
-    table,
-)
+from rollspring.outputs.report._html import Markup, esc, table
 from rollspring.outputs.report._page import Page, _json_script, _verdict
 from rollspring.outputs.trajectory import summary_json, trajectory_csv
 

@@ -7,13 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from rollspring.outputs import figures
-from rollspring.outputs.report._html import (
-    Markup,
-    Num,
-    esc,
-    fmt,
-    table,
-)
+from rollspring.outputs.report._html import Markup, Num, esc, fmt, table
 from rollspring.outputs.report._page import Page, _figure, _tex_id, _tex_number, _verdict
 
 

@@ -11,12 +11,7 @@ import numpy as np
 from rollspring.analysis import LinearAnalysis
 from rollspring.outputs import figures
 from rollspring.outputs.numbers import integrator_words
-from rollspring.outputs.report._html import (
-    Markup,
-    esc,
-    fmt,
-    table,
-)
+from rollspring.outputs.report._html import Markup, esc, fmt, table
 from rollspring.outputs.report._page import Page, _figure, _json_script, _round
 from rollspring.simulate import Trajectory
 

@@ -1,7 +1,7 @@
 """The frame of the report page: :class:`Page` (what every section reads: the system, its
 analysis and run, the MathML failures, the table of contents), the helpers the sections share
 (numbers in LaTeX, embedded JSON, figures as SVG images, verdict marks) and
-:func:`page_document`, the whole HTML document with the inline style sheet and player
+:func:`page_document`, the whole HTML document with the style sheet and the player inlined
 (:mod:`~rollspring.outputs.report._assets`).
 """
 
@@ -17,7 +17,7 @@ import numpy as np
 from rollspring.analysis import LinearAnalysis
 from rollspring.model import System
 from rollspring.outputs import figures
-from rollspring.outputs.report._assets import CSS, PLAYER_JS
+from rollspring.outputs.report._assets import player_script, style_sheet
 from rollspring.outputs.report._html import Markup, esc, math_or_source
 from rollspring.outputs.trajectory import json_ready
 from rollspring.simulate import Trajectory
@@ -124,11 +124,11 @@ def page_document(system: System, titles: list[tuple[str, str]], sections: list[
         '<meta name="viewport" content="width=device-width, initial-scale=1">'
         f'<meta name="generator" content="rollspring {esc(__version__)}">'
         '<link rel="icon" href="data:,">'
-        f"<title>rollspring report: {esc(title)}</title><style>{CSS}</style></head><body>"
+        f"<title>rollspring report: {esc(title)}</title><style>{style_sheet()}</style></head><body>"
         f'<main><header class="page"><h1>{esc(title)}</h1>{description}'
         f'<nav class="toc">{toc}</nav></header>'
         + "".join(sections)
         + f"<footer>Made by rollspring {esc(__version__)}. One file, no network: every "
         "image, formula (MathML) and data set is in it.</footer></main>"
-        f"<script>{PLAYER_JS}</script></body></html>\n"
+        f"<script>{player_script()}</script></body></html>\n"
     )

@@ -8,13 +8,7 @@ import numpy as np
 
 from rollspring.outputs import figures
 from rollspring.outputs.numbers import attachment_words
-from rollspring.outputs.report._html import (
-    Markup,
-    Num,
-    esc,
-    fmt,
-    table,
-)
+from rollspring.outputs.report._html import Markup, Num, esc, fmt, table
 from rollspring.outputs.report._page import Page, _figure, _tex_id, _tex_matrix
 
 

@@ -59,7 +59,8 @@ test("spring ends: anchors where they are, body points by geometry.js (M1)", () 
   close(rim.y, 0.2);
 });
 
-/** The zigzag the player drew before it used geometry.js (rollspring 0.x's _assets.py). */
+/** The zigzag the player drew before it used geometry.js (its own copy, kept in a Python string
+ * in outputs/report/_assets.py). */
 function formerZigzag(p, q, rMax) {
   const dx = q[0] - p[0], dy = q[1] - p[1], L = Math.sqrt(dx * dx + dy * dy);
   const ux = dx / L, uy = dy / L, nx = -uy, ny = ux, coils = 14, lead = 0.12 * L;

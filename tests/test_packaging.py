@@ -1,8 +1,8 @@
 """The package as a user gets it (issue 12, point 1): ``python -m build`` makes an sdist and a
-wheel; the wheel holds the presets, the page and the two uPlot files it loads, and no tests; it
-installs into a fresh virtual environment with only the core (no extra; versions from
-constraints.txt, from PyPI or pip's cache), where ``analyze --json`` and ``simulate --json`` run
-and ``rollspring report`` says in one line which extra to install.
+wheel; the wheel holds the presets, the page and the two uPlot files it loads, the report's style
+sheet and player, and no tests; it installs into a fresh virtual environment with only the core
+(no extra; versions from constraints.txt, from PyPI or pip's cache), where ``analyze --json`` and
+``simulate --json`` run and ``rollspring report`` says in one line which extra to install.
 
 Slow (a build and an install, about a minute; most of it pip and Numba's first compilation).
 """
@@ -121,6 +121,11 @@ def test_the_wheel_holds_presets_page_and_uplot_and_no_tests(wheel) -> None:
         f"rollspring/web/static/{p}" for p in (*UPLOT, "node_modules/uplot/LICENSE")
     }
     assert "rollspring/py.typed" in names
+    # the report's style sheet and player, inlined into every report (with the page's geometry.js)
+    assets = {p.name for p in (ROOT / "src/rollspring/outputs/report/assets").iterdir()}
+    assert {"player.js", "report.css"} <= assets
+    assert {f"rollspring/outputs/report/assets/{a}" for a in assets} <= names
+    assert "rollspring/web/static/js/geometry.js" in names
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     assert not [
         n

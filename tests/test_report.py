@@ -13,6 +13,8 @@ import json
 import math
 import os
 import re
+import shutil
+import subprocess
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -36,6 +38,7 @@ from rollspring.outputs.report import (
     latex_to_mathml,
     write_report,
 )
+from rollspring.outputs.report import _assets as report_assets
 from rollspring.service.documents import build_report
 from tests.conftest import body, make_system, spring
 
@@ -335,6 +338,36 @@ def test_the_page_fetches_nothing(report: Report, page: Page) -> None:
     assert "@import" not in report.html and "url(" not in report.html
     policy = [m for m in page.meta if m.get("http-equiv") == "Content-Security-Policy"]
     assert policy and "default-src 'none'" in (policy[0].get("content") or "")
+
+
+def test_style_and_player_are_the_front_end_files_inlined(report: Report) -> None:
+    """The style sheet and the player live in ``outputs/report/assets`` (the player draws its
+    springs with the page's geometry.js); the page carries them as one inline style and one
+    classic script, without a module's import or export (a module script could not fetch its
+    import)."""
+    package = Path(report_assets.__file__).parent
+    css = (package / "assets" / "report.css").read_text(encoding="utf-8")
+    assert f"<style>{css}</style>" in report.html
+    script = report_assets.player_script()
+    assert f"<script>{script}</script>" in report.html
+    assert not re.search(r"^\s*(import|export)\b", script, re.M)
+    assert "function zigzag(" in script and "function startPlayer(" in script
+    assert script.rstrip().endswith("startPlayer(document, window);\n})();")
+    geometry = package.parents[1] / "web" / "static" / "js" / "geometry.js"
+    assert "export function zigzag(" in geometry.read_text(encoding="utf-8")
+    node = shutil.which("node")
+    if node is not None:  # its syntax as a classic script (test_report_browser runs it)
+        checked = subprocess.run(
+            [node, "--check"], input=script, capture_output=True, text=True, timeout=60
+        )
+        assert checked.returncode == 0, checked.stderr
+
+
+def test_an_asset_that_cannot_be_inlined_is_refused() -> None:
+    with pytest.raises(ValueError, match="cannot inline"):
+        report_assets._inline('import x from "./other.js";\nexport default 1;\n', "x.js")
+    with pytest.raises(ValueError, match="would end the inline script"):
+        report_assets._inline('const s = "</script>";\n', "x.js")
 
 
 def test_names_are_text_not_markup() -> None:

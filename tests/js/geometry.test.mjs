@@ -50,6 +50,17 @@ test("zigzag: leads at both ends, teeth alternate at a fixed width and stretch w
   assert.deepEqual(zigzag({ x: 0, y: 0 }, { x: 15, y: 0 }, { lead: 10 }), [{ x: 0, y: 0 }, { x: 15, y: 0 }]);
 });
 
+test("zigzag at the joints (the report's player): 2·coils − 1 teeth between equal pieces", () => {
+  const pts = zigzag({ x: 0, y: 0 }, { x: 100, y: 0 }, { coils: 4, width: 5, lead: 10, placement: "joints" });
+  assert.equal(pts.length, 2 + 7 + 2);
+  assert.deepEqual(pts.slice(2, -2).map((p) => p.y), [5, -5, 5, -5, 5, -5, 5]);
+  assert.deepEqual(pts.slice(2, -2).map((p) => p.x), [20, 30, 40, 50, 60, 70, 80]);
+  assert.deepEqual(pts[1], { x: 10, y: 0 });
+  assert.deepEqual(pts.at(-2), { x: 90, y: 0 });
+  const middles = zigzag({ x: 0, y: 0 }, { x: 100, y: 0 }, { coils: 4, width: 5, lead: 10 });
+  assert.deepEqual(middles.slice(2, -2).map((p) => p.x), [15, 25, 35, 45, 55, 65, 75, 85]);
+});
+
 test("the view keeps equal scales and round-trips world ↔ canvas", () => {
   const view = makeView({ xmin: -1, xmax: 1, ymin: 0, ymax: 0.5 }, 400, 200);
   close(view.pxPerM, 200);

@@ -25,15 +25,15 @@ Public API::
 from rollspring.outputs.report._build import (
     FORMATS,
     Report,
-    animation_data,
     animation_frames,
     default_duration,
-    derivation_sections,
     render_report,
     write_report,
 )
 from rollspring.outputs.report._chain import CHAIN_FRAMES, render_chain_report
+from rollspring.outputs.report._check_sections import derivation_sections
 from rollspring.outputs.report._html import MathConversionError, ReportError, latex_to_mathml
+from rollspring.outputs.report._motion_sections import animation_data
 from rollspring.outputs.report._pdf import CHROMIUM_ENV, find_chromium, html_to_pdf
 
 __all__ = [

@@ -23,8 +23,9 @@ from typing import Any
 from rollspring.analysis.waves import Waves
 from rollspring.model import System
 from rollspring.outputs import figures
-from rollspring.outputs.report._build import Report, _figure, _json_script, page_document
+from rollspring.outputs.report._build import Report
 from rollspring.outputs.report._html import Markup, Num, esc, fmt, table
+from rollspring.outputs.report._page import _figure, _json_script, page_document
 from rollspring.outputs.trajectory import summary_json
 from rollspring.simulate import Trajectory
 

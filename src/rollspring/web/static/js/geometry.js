@@ -1,6 +1,8 @@
 // Pure geometry of the drawn scene (no DOM): attachment points, spring zigzags and the
 // world-to-canvas view. World: x right, y up, metres; angles clockwise from straight up
-// (docs/physics.md (M1)); canvas: x right, y down, CSS pixels.
+// (docs/physics.md (M1)); canvas: x right, y down, CSS pixels. Shared with the report's player
+// (rollspring/outputs/report/assets/player.js), which inlines this module into the report page:
+// keep it free of imports and of anything but top-level `export function` / `export const`.
 
 const DEG = Math.PI / 180;
 
@@ -52,9 +54,13 @@ export function springEnds(system, spring, pose) {
 }
 
 /** Points of a zigzag spring from a to b (canvas or world units alike): straight leads of
- * `lead` at both ends and `coils` zigzag teeth of half-width `width` between them, so the teeth
- * stretch and squeeze with the length while the width stays. Shorter than both leads: a line. */
-export function zigzag(a, b, { coils = 8, width = 6, lead = 8 } = {}) {
+ * `lead` at both ends and zigzag teeth of half-width `width` between them, so the teeth
+ * stretch and squeeze with the length while the width stays. The part between the leads is cut
+ * into 2·`coils` equal pieces; `placement` "middles" (the page) puts a tooth at the middle of
+ * each piece, "joints" (the report's player) one at each of the 2·`coils` − 1 joints between
+ * them; the first tooth is on the left of a → b. Shorter than both leads: a line. One drawing
+ * for the page (scene.js) and the report (its player inlines this module). */
+export function zigzag(a, b, { coils = 8, width = 6, lead = 8, placement = "middles" } = {}) {
   const dx = b.x - a.x;
   const dy = b.y - a.y;
   const length = Math.hypot(dx, dy);
@@ -65,10 +71,11 @@ export function zigzag(a, b, { coils = 8, width = 6, lead = 8 } = {}) {
   const ny = ux;
   const body = length - 2 * lead;
   const points = [a, { x: a.x + ux * lead, y: a.y + uy * lead }];
-  const teeth = 2 * coils;
-  for (let i = 0; i < teeth; i++) {
-    const s = lead + body * (i + 0.5) / teeth;
-    const side = i % 2 === 0 ? width : -width;
+  const pieces = 2 * coils;
+  const joints = placement === "joints";
+  for (let i = joints ? 1 : 0; i < pieces; i++) {
+    const s = lead + (joints ? body * i / pieces : body * (i + 0.5) / pieces);
+    const side = i % 2 === (joints ? 1 : 0) ? width : -width;
     points.push({ x: a.x + ux * s + nx * side, y: a.y + uy * s + ny * side });
   }
   points.push({ x: b.x - ux * lead, y: b.y - uy * lead }, b);

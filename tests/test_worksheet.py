@@ -19,19 +19,13 @@ import pytest
 from typer.testing import CliRunner
 
 from rollspring.analysis import LinearAnalysis, analyze
+from rollspring.analysis.exercises import LEVELS, Worksheet
 from rollspring.cli import app
 from rollspring.cli import worksheet as cli_worksheet
 from rollspring.cli.worksheet import SEPARATORS, solutions_path
 from rollspring.errors import RollspringError
 from rollspring.model import system_from_dict
-from rollspring.outputs.worksheet import (
-    FORMATS,
-    LEVELS,
-    Worksheet,
-    format_number,
-    render_sheet,
-    render_solutions,
-)
+from rollspring.outputs.worksheet import FORMATS, format_number, render_sheet, render_solutions
 from rollspring.service.documents import worksheet
 
 #: (level, seed) covering every level and variant: level 3 chain, two walls, one wall; level 4

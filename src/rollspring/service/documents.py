@@ -28,6 +28,7 @@ from typing import Any
 
 from rollspring.analysis import analyze
 from rollspring.analysis.derivation import ALL, CrossCheck, derive
+from rollspring.analysis.exercises import LEVELS, Worksheet
 from rollspring.analysis.paper_check import (
     ClaimCheck,
     check_claims,
@@ -36,7 +37,7 @@ from rollspring.analysis.paper_check import (
     paper_figure,
 )
 from rollspring.analysis.waves import travelling_wave
-from rollspring.errors import RollspringError
+from rollspring.errors import RollspringError, WorksheetError
 from rollspring.model import System, as_system, system_from_dict
 from rollspring.outputs.figures import LONG_CHAIN
 from rollspring.outputs.report import (
@@ -50,7 +51,6 @@ from rollspring.outputs.report import (
     render_chain_report,
     render_report,
 )
-from rollspring.outputs.worksheet import LEVELS, Worksheet, WorksheetError
 from rollspring.service import exercises
 from rollspring.simulate import simulate
 

@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from rollspring.analysis import LinearAnalysis
-from rollspring.outputs.worksheet import SHAPE_WORDS, Answer, end_words
+from rollspring.analysis.exercises import SHAPE_WORDS, Answer, end_words
 
 __all__ = ["draw", "questions_and_answers"]
 
@@ -246,7 +246,7 @@ def _by_body(analysis: LinearAnalysis) -> tuple[str, ...]:
 
 
 #: Answers whose numbers come from the derivation (filled in by
-#: :attr:`rollspring.outputs.worksheet.Worksheet.answers`).
+#: :attr:`rollspring.analysis.exercises.Worksheet.answers`).
 _DERIVED = ("omega2_exact", "percussion")
 
 

@@ -127,9 +127,9 @@ _BATCH = frozenset({"BatchResult", "simulate_batch"})
 
 def __getattr__(name: str) -> Any:
     if name in _BATCH or name == "batch":  # ``rollspring.simulate.batch`` as an attribute too
-        import importlib
+        # not ``from rollspring.simulate import batch``: that asks this function for ``batch``
+        import rollspring.simulate.batch as batch
 
-        batch = importlib.import_module("rollspring.simulate.batch")
         return batch if name == "batch" else getattr(batch, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 

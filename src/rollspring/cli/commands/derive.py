@@ -62,7 +62,7 @@ def derive_command(
     """Derive the equations of motion step by step by Newton, conservation laws, Lagrange,
     subsystem frequencies and Hamilton; check that they agree (symbolically)."""
     # the derivation engine itself, not rollspring.service.documents: that module brings the
-    # report, the simulation (Numba) and Matplotlib, a second of start-up this command never uses
+    # paper's claims and the worksheets, start-up this command never uses
     from rollspring.analysis.derivation import ALL, FORMATS, METHODS, DerivationError, derive
 
     if format not in FORMATS:

@@ -16,6 +16,10 @@ Cases and targets (seconds):
 * ``rollspring --help``                                ≤ 0.3
 * ``rollspring analyze hoop-cylinder --json``          ≤ 0.6
 * ``rollspring simulate hoop-cylinder -T 10``          ≤ 1.0 (kernel cache warm)
+* ``rollspring chain --n 3 --pattern hoop --out c.toml`` ≤ 0.6 (writes a file: no Numba, SciPy)
+* ``rollspring export hoop-cylinder --format mjcf -o x.xml`` ≤ 0.6 (the same)
+
+The files the commands write go to a temporary folder, removed at the end.
 
 Run: ``python bench/bench_startup.py`` (about 30 s). ``--runs N`` changes the number of runs.
 Exit status 0 when it ran (a missed target is a ✘), as the other benchmarks.
@@ -31,6 +35,7 @@ import resource
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -38,7 +43,8 @@ ROOT = Path(__file__).resolve().parent.parent
 PYTHON = sys.executable
 EXECUTABLE = str(Path(sys.executable).with_name("rollspring"))
 
-#: (label, command line, target in seconds or None)
+#: (label, command line, target in seconds or None); ``{out}`` in an argument stands for the
+#: temporary folder the written files go to
 CASES: list[tuple[str, list[str], float | None]] = [
     ("python -c pass", [PYTHON, "-c", "pass"], None),
     ("import rollspring", [PYTHON, "-c", "import rollspring"], 0.3),
@@ -52,6 +58,16 @@ CASES: list[tuple[str, list[str], float | None]] = [
         "rollspring simulate hoop-cylinder -T 10",
         [EXECUTABLE, "simulate", "hoop-cylinder", "-T", "10"],
         1.0,
+    ),
+    (
+        "rollspring chain --n 3 --pattern hoop --out c.toml",
+        [EXECUTABLE, "chain", "--n", "3", "--pattern", "hoop", "--out", "{out}/c.toml"],
+        0.6,
+    ),
+    (
+        "rollspring export hoop-cylinder --format mjcf -o x.xml",
+        [EXECUTABLE, "export", "hoop-cylinder", "--format", "mjcf", "-o", "{out}/x.xml"],
+        0.6,
     ),
 ]
 
@@ -102,7 +118,9 @@ def main() -> None:
         f"median of {args.runs} runs after one warm-up"
     )
     results = []
-    for label, argv, target in CASES:
+    folder = tempfile.TemporaryDirectory(prefix="rollspring-bench-startup-")
+    for label, template, target in CASES:
+        argv = [part.replace("{out}", folder.name) for part in template]
         run_once(argv)  # warm-up: byte-code and Numba caches
         measured = [run_once(argv) for _ in range(args.runs)]
         times = [wall for wall, _ in measured]
@@ -110,7 +128,7 @@ def main() -> None:
         results.append(
             {
                 "case": label,
-                "argv": [Path(argv[0]).name, *argv[1:]],
+                "argv": [Path(template[0]).name, *template[1:]],
                 "median_s": statistics.median(times),
                 "best_s": min(times),
                 "times_s": times,
@@ -119,6 +137,7 @@ def main() -> None:
                 "target_s": target,
             }
         )
+    folder.cleanup()
     load_end = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     bare = results[0]["median_s"]
     for row in results:

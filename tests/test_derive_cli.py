@@ -20,7 +20,7 @@ from rollspring.analysis.derivation import (
     DerivationError,
     derive,
 )
-from rollspring.cli.derive import register
+from rollspring.cli.commands.derive import register
 from tests.conftest import body, make_system, spring
 
 runner = CliRunner()
@@ -225,7 +225,7 @@ def test_the_rollspring_app_has_the_derive_command() -> None:
 
 def test_the_help_names_the_engines_methods_and_formats():
     from rollspring.analysis.derivation import ALL, FORMATS, METHODS
-    from rollspring.cli.derive import FORMAT_NAMES, METHOD_NAMES
+    from rollspring.cli.commands.derive import FORMAT_NAMES, METHOD_NAMES
 
     assert METHOD_NAMES == (*METHODS, ALL)
     assert FORMAT_NAMES == FORMATS

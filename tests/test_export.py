@@ -14,7 +14,7 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from rollspring.cli.export import register
+from rollspring.cli.commands.export import register
 from rollspring.model import System, load_system, preset_names
 from rollspring.outputs.mjcf import (
     DEFAULT_TIMESTEP,

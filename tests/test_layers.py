@@ -1,5 +1,8 @@
 """No import cycles: every import counts, at module level, inside a function or under
-``TYPE_CHECKING``, so a cycle cannot hide behind a deferred import.
+``TYPE_CHECKING``, and so does an import by name (``importlib.import_module("rollspring.x")``,
+``__import__``; an f-string counts as every module its literal prefix names), so a cycle cannot
+hide behind a deferred or a string import. Only the composition root (``rollspring/__init__.py``)
+imports rollspring's modules by name at all.
 
 import-linter (tests/test_architecture.py) checks the layers between subpackages; this checks
 the modules within them, e.g. inside :mod:`rollspring.analysis`: ``report`` (the sign
@@ -17,8 +20,41 @@ import pytest
 SRC = Path(__file__).resolve().parents[1] / "src"
 
 
+#: The functions that import a module named by a string.
+_BY_NAME = ("import_module", "__import__")
+
+
+def imported_by_name(call: ast.Call) -> tuple[str, bool] | None:
+    """What a call of ``importlib.import_module``/``import_module``/``__import__`` imports:
+    (the name, False) for a literal; (the literal prefix, True) for an f-string that starts
+    with one; None for any other call (or a name made otherwise: a variable)."""
+    function = call.func
+    name = (
+        function.id
+        if isinstance(function, ast.Name)
+        else function.attr
+        if isinstance(function, ast.Attribute)
+        else None
+    )
+    if name not in _BY_NAME or not call.args:
+        return None
+    argument = call.args[0]
+    if isinstance(argument, ast.Constant) and isinstance(argument.value, str):
+        return argument.value, False
+    if isinstance(argument, ast.JoinedStr):
+        prefix = ""
+        for part in argument.values:
+            if not (isinstance(part, ast.Constant) and isinstance(part.value, str)):
+                break
+            prefix += part.value
+        return prefix, True
+    return None
+
+
 def import_graph(root: Path, package: str) -> dict[str, set[str]]:
-    """Module -> the modules of ``package`` it imports (anywhere in its source)."""
+    """Module -> the modules of ``package`` it imports (anywhere in its source): by import
+    statements and by name (:func:`imported_by_name`: a literal is the module it names, an
+    f-string every module whose name starts with its literal prefix)."""
     modules: dict[str, Path] = {}
     for path in (root / package.replace(".", "/")).rglob("*.py"):
         parts = list(path.relative_to(root).with_suffix("").parts)
@@ -49,6 +85,11 @@ def import_graph(root: Path, package: str) -> dict[str, set[str]]:
                     f"{source}.{alias.name}" if f"{source}.{alias.name}" in modules else source
                     for alias in node.names
                 ]
+            elif isinstance(node, ast.Call) and (by_name := imported_by_name(node)):
+                text, is_prefix = by_name
+                targets = (
+                    [m for m in modules if text and m.startswith(text)] if is_prefix else [text]
+                )
             else:
                 continue
             imported |= {target for t in targets if (target := resolve(t)) not in (None, name)}
@@ -134,3 +175,83 @@ def test_deferred_imports_count(tmp_path: Path) -> None:
     assert graph["pkg.a"] == {"pkg.b"}
     assert graph["pkg.sub.d"] == {"pkg.c"}
     assert import_cycles(graph) == [["pkg.a", "pkg.b"], ["pkg.c", "pkg.sub.d"]]
+
+
+def test_string_imports_count(tmp_path: Path) -> None:
+    """A cycle through ``importlib.import_module`` or ``__import__`` of a literal name, or of an
+    f-string (every module under its literal prefix), is found: planted here, one of each."""
+    package = tmp_path / "pkg"
+    (package / "plugins").mkdir(parents=True)
+    (package / "__init__.py").write_text("")
+    (package / "plugins" / "__init__.py").write_text("")
+    # a literal, through importlib
+    (package / "a.py").write_text(
+        "import importlib\n\ndef f():\n    return importlib.import_module('pkg.b')\n"
+    )
+    (package / "b.py").write_text("from pkg import a\n")
+    # an f-string: every module under pkg.plugins.
+    (package / "c.py").write_text(
+        "from importlib import import_module\n\n"
+        "def load(name):\n    return import_module(f'pkg.plugins.{name}')\n"
+    )
+    (package / "plugins" / "d.py").write_text("def g():\n    from pkg.c import load\n")
+    (package / "plugins" / "e.py").write_text("X = 1\n")
+    # __import__ of a literal
+    (package / "f.py").write_text("def h():\n    return __import__('pkg.g')\n")
+    (package / "g.py").write_text("import pkg.f\n")
+    # a name that is not known before run time: no edge (the test below forbids these)
+    (package / "h.py").write_text("import importlib\n\ndef k(x):\n    importlib.import_module(x)\n")
+    graph = import_graph(tmp_path, "pkg")
+    assert graph["pkg.a"] == {"pkg.b"}
+    assert graph["pkg.c"] == {"pkg.plugins.d", "pkg.plugins.e"}
+    assert graph["pkg.f"] == {"pkg.g"}
+    assert graph["pkg.h"] == set()
+    assert import_cycles(graph) == [
+        ["pkg.a", "pkg.b"],
+        ["pkg.c", "pkg.plugins.d"],
+        ["pkg.f", "pkg.g"],
+    ]
+
+
+#: The composition root: the one module that imports rollspring's modules by name (the public
+#: names, loaded on first use).
+COMPOSITION_ROOT = SRC / "rollspring" / "__init__.py"
+
+
+def test_only_the_composition_root_imports_rollspring_modules_by_name() -> None:
+    """No ``importlib.import_module``/``__import__`` of a rollspring module (a literal or
+    f-string naming one, or a name made at run time, which could be one) anywhere in src but
+    the package root: a module another imports is imported by an import statement, which the
+    layers contract and the cycle test above see."""
+    found = []
+    modules = sorted((SRC / "rollspring").rglob("*.py"))
+    assert len(modules) > 50
+    for path in modules:
+        if path == COMPOSITION_ROOT:
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+            if not isinstance(node, ast.Call):
+                continue
+            by_name = imported_by_name(node)
+            function = node.func
+            called = (
+                function.id if isinstance(function, ast.Name) else getattr(function, "attr", "")
+            )
+            if by_name is None and called not in _BY_NAME:
+                continue
+            text = by_name[0] if by_name is not None else None
+            if text is None or text.startswith(("rollspring", ".")) or text == "":
+                found.append(f"{path.relative_to(SRC)}:{node.lineno}: {ast.unparse(node)}")
+    assert not found, "import these with an import statement:\n" + "\n".join(found)
+
+
+def test_the_checks_see_the_commands_import_only_the_shared_cli_modules() -> None:
+    """The command modules import what the commands share (rollspring.cli.common) and the
+    terminal helpers, never rollspring.cli.app, which imports them all."""
+    graph = import_graph(SRC, "rollspring")
+    commands = {m for m in graph if m.startswith("rollspring.cli.commands.")}
+    assert len(commands) >= 15
+    assert graph["rollspring.cli.app"] >= commands
+    for module in sorted(commands):
+        assert "rollspring.cli.app" not in graph[module], module
+        assert "rollspring.cli" not in graph[module], module  # its __init__ imports the app

@@ -43,7 +43,7 @@ from rollspring.analysis.paper_check import (
     quote_key,
 )
 from rollspring.cli import app
-from rollspring.cli import paper_check as cli_paper_check
+from rollspring.cli.commands import paper_check as cli_paper_check
 
 V, S, H, W = VERIFIED, HOLDS_STATED, HOLDS_ONLY_IF, WRONG
 

@@ -158,6 +158,46 @@ def test_every_public_name_still_loads_and_the_version_comes_from_the_metadata()
     assert set(rollspring.__all__) <= set(dir(rollspring))
 
 
+#: What a command that computes no motion leaves out: Numba, SciPy and the compiled kernels.
+MOTION = ("numba", "scipy", "rollspring.simulate.kernels")
+
+
+@pytest.mark.parametrize(
+    ("args", "written"),
+    [
+        (["chain", "--n", "3", "--pattern", "hoop", "--out", "c.toml"], ["c.toml"]),
+        (["export", "hoop-cylinder", "--format", "mjcf", "-o", "x.xml"], ["x.xml"]),
+        (["derive", "hoop-cylinder", "-o", "d.txt"], ["d.txt"]),
+        (["worksheet", "--level", "4", "--seed", "3", "-o", "w.md"], ["w.md", "w-solutions.md"]),
+        (["presets"], []),
+    ],
+    ids=["chain --out", "export", "derive -o", "worksheet", "presets"],
+)
+def test_a_command_that_computes_no_motion_loads_no_numba_scipy_or_kernels(
+    args: list[str], written: list[str], tmp_path: Path
+) -> None:
+    """Writing a chain's file, a MuJoCo model, a derivation or a worksheet, or listing the
+    presets, simulates nothing: none of Numba, SciPy or rollspring's compiled kernels is
+    imported (issue 23: ``chain --out`` and ``export`` took 1.6-2.6 s, loading them to write a
+    file)."""
+    report = (
+        "import atexit, sys, json; atexit.register(lambda: sys.stderr.write('LOADED ' + "
+        f"json.dumps([m for m in {MOTION!r} if m in sys.modules])))"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", f"{report}\n{command(*args)}"],
+        capture_output=True,
+        text=True,
+        check=False,
+        cwd=tmp_path,
+    )
+    line = [x for x in done.stderr.splitlines() if x.startswith("LOADED ")]
+    assert line, done.stderr
+    for name in written:  # the command did its work
+        assert (tmp_path / name).stat().st_size > 0, done.stderr
+    assert json.loads(line[-1].removeprefix("LOADED ")) == []
+
+
 def test_a_trajectory_view_loads_the_outputs_layer_on_first_use() -> None:
     assert loaded(
         "import rollspring\n"

@@ -22,7 +22,7 @@ def cli_app():
     """The rollspring app with the sweep command (registered here until cli/app.py lists it)."""
     module = importlib.import_module("rollspring.cli.app")
     if not any(c.name == "sweep" for c in module.app.registered_commands):
-        importlib.import_module("rollspring.cli.sweep").register(module.app)
+        importlib.import_module("rollspring.cli.commands.sweep").register(module.app)
     return module.app
 
 

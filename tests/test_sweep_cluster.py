@@ -48,7 +48,7 @@ CLI = [
     sys.executable,
     "-c",
     "import importlib, sys; m = importlib.import_module('rollspring.cli.app'); "
-    "s = importlib.import_module('rollspring.cli.sweep'); "
+    "s = importlib.import_module('rollspring.cli.commands.sweep'); "
     "any(c.name == 'sweep' for c in m.app.registered_commands) or s.register(m.app); "
     "m.app(args=sys.argv[1:])",
 ]

@@ -27,7 +27,7 @@ import xarray as xr
 from matplotlib.contour import ContourSet
 from typer.testing import CliRunner
 
-from rollspring.cli.sweep_plot import register
+from rollspring.cli.commands.sweep_plot import register
 from rollspring.model import load_system, system_to_toml
 from rollspring.outputs.maps import (
     MapError,

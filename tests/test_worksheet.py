@@ -21,8 +21,8 @@ from typer.testing import CliRunner
 from rollspring.analysis import LinearAnalysis, analyze
 from rollspring.analysis.exercises import LEVELS, Worksheet
 from rollspring.cli import app
-from rollspring.cli import worksheet as cli_worksheet
-from rollspring.cli.worksheet import SEPARATORS, solutions_path
+from rollspring.cli.commands import worksheet as cli_worksheet
+from rollspring.cli.commands.worksheet import SEPARATORS, solutions_path
 from rollspring.errors import RollspringError
 from rollspring.model import system_from_dict
 from rollspring.outputs.worksheet import FORMATS, format_number, render_sheet, render_solutions

@@ -36,9 +36,9 @@ if TYPE_CHECKING:
         System,
     )
 
-#: name -> the module that defines it, imported on first use
+#: name -> the module of this package that defines it, imported on first use
 _LAZY = {
-    "chain": "rollspring.model.chains",
+    "chain": "chains",
     **dict.fromkeys(
         (
             "MAX_FILE_BYTES",
@@ -51,9 +51,9 @@ _LAZY = {
             "system_to_toml",
             "validation_errors",
         ),
-        "rollspring.model.files",
+        "files",
     ),
-    "rolled": "rollspring.model.placement",
+    "rolled": "placement",
     **dict.fromkeys(
         (
             "INERTIA_FACTORS",
@@ -66,17 +66,33 @@ _LAZY = {
             "Spring",
             "System",
         ),
-        "rollspring.model.schema",
+        "schema",
     ),
 }
 
 
 def __getattr__(name: str) -> Any:
-    if name not in _LAZY:
-        raise AttributeError(f"module 'rollspring.model' has no attribute {name!r}")
-    import importlib
+    """A name of :data:`_LAZY`, from its module (imported now: plain imports, so the import
+    graph and its checks see them), kept in this module's namespace for the next use."""
+    where = _LAZY.get(name)
+    if where == "chains":
+        from rollspring.model import chains
 
-    value = getattr(importlib.import_module(_LAZY[name]), name)
+        value = getattr(chains, name)
+    elif where == "files":
+        from rollspring.model import files
+
+        value = getattr(files, name)
+    elif where == "placement":
+        from rollspring.model import placement
+
+        value = getattr(placement, name)
+    elif where == "schema":
+        from rollspring.model import schema
+
+        value = getattr(schema, name)
+    else:
+        raise AttributeError(f"module 'rollspring.model' has no attribute {name!r}")
     globals()[name] = value
     return value
 

@@ -24,7 +24,7 @@ import numbers
 import os
 import time
 from collections.abc import Callable, Iterable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from rollspring.analysis import analyze
 from rollspring.analysis.derivation import ALL, CrossCheck, derive
@@ -39,20 +39,13 @@ from rollspring.analysis.paper_check import (
 from rollspring.analysis.waves import travelling_wave
 from rollspring.errors import RollspringError, WorksheetError
 from rollspring.model import System, as_system, system_from_dict
-from rollspring.outputs.figures import LONG_CHAIN
-from rollspring.outputs.report import (
-    MathConversionError,
-    Report,
-    ReportError,
-    animation_frames,
-    default_duration,
-    derivation_sections,
-    latex_to_mathml,
-    render_chain_report,
-    render_report,
-)
 from rollspring.service import exercises
-from rollspring.simulate import simulate
+
+if TYPE_CHECKING:
+    from rollspring.outputs.report import Report
+
+# The report's renderer (Matplotlib) and the simulation (Numba, SciPy) are imported by the
+# functions that use them: the worksheets and the paper's claims need neither.
 
 __all__ = [
     "build_report",
@@ -118,7 +111,15 @@ def build_report(
     Report
         The page (``html``), its parts and ``timings``; ``write_report`` saves it.
     """
+    from rollspring.outputs.figures import LONG_CHAIN
+    from rollspring.outputs.report import (
+        ReportError,
+        animation_frames,
+        default_duration,
+        render_report,
+    )
     from rollspring.service.costs import CONFIRM, check_cost, report_cost
+    from rollspring.simulate import simulate
     from rollspring.simulate.arguments import check_rtol_range
 
     system = as_system(system)
@@ -196,6 +197,9 @@ def _chain_report(
     started: float,
 ) -> Report:
     """A long chain's report: simulate, measure the waves, render the summary."""
+    from rollspring.outputs.report import render_chain_report
+    from rollspring.simulate import simulate
+
     duration = CHAIN_DURATION if duration is None else float(duration)
     trajectory = simulate(system, duration, rtol=rtol, n_output=CHAIN_ROWS, confirm=True)
     done("simulate", 0.6)
@@ -245,6 +249,8 @@ def derivation_payload(
     ``rollspring paper-check --json`` gives them, when the system is one of the paper's
     (:func:`figure_claims`); otherwise None.
     """
+    from rollspring.outputs.report import derivation_sections
+
     system = as_system(system)
     derivation = derive(system, method, symbols=symbols)
     check = derivation.cross_check
@@ -283,6 +289,8 @@ def derivation_payload(
 
 def _mathml(latex: str) -> str | None:
     """The MathML of ``latex`` as the report shows it, or None where it cannot be converted."""
+    from rollspring.outputs.report import MathConversionError, latex_to_mathml
+
     try:
         return str(latex_to_mathml(latex))
     except MathConversionError:

@@ -3,8 +3,7 @@
 ``--method newton|conservation|lagrange|natural-frequencies|hamilton|all`` (repeatable),
 ``--format text|markdown|latex``, ``--symbols`` (masses, radii, stiffnesses as symbols),
 ``-o FILE`` (written atomically; default stdout). The command is added to an app by
-:func:`register` (the app module calls it at its bottom, so this module never imports
-``rollspring.cli.app`` at import time).
+:func:`register`.
 """
 
 from __future__ import annotations
@@ -14,8 +13,15 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.text import say
-from rollspring.model import preset_names
+from rollspring.cli.common import (
+    SystemArg,
+    add_command,
+    format_option,
+    load,
+    out_option,
+    say,
+    yes_option,
+)
 
 # The derivation engine (SymPy) is imported when the command runs, not when the CLI starts.
 #: The names of the methods and formats, for the help text (a test checks them against the
@@ -27,13 +33,7 @@ __all__ = ["derive_command", "register"]
 
 
 def derive_command(
-    system: Annotated[
-        str,
-        typer.Argument(
-            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-            show_default=False,
-        ),
-    ],
+    system: SystemArg,
     method: Annotated[
         list[str] | None,
         typer.Option(
@@ -44,12 +44,7 @@ def derive_command(
         ),
     ] = None,
     format: Annotated[  # noqa: A002 - the option is called --format
-        str,
-        typer.Option(
-            "--format",
-            "-f",
-            help=f"Output format: {', '.join(FORMAT_NAMES)} (latex: a full document).",
-        ),
+        str, format_option(f"Output format: {', '.join(FORMAT_NAMES)} (latex: a full document).")
     ] = "text",
     symbols: Annotated[
         bool,
@@ -60,27 +55,14 @@ def derive_command(
         ),
     ] = False,
     out: Annotated[
-        str | None,
-        typer.Option(
-            "--out",
-            "-o",
-            help="Write to this file (atomically) instead of stdout.",
-            show_default=False,
-        ),
+        str | None, out_option("Write to this file (atomically) instead of stdout.")
     ] = None,
-    yes: Annotated[
-        bool,
-        typer.Option(
-            "--yes",
-            "-y",
-            help="Start even when the estimated time is above the bound (many bodies).",
-        ),
-    ] = False,
+    yes: Annotated[bool, yes_option("time", " (many bodies)")] = False,
 ) -> None:
     """Derive the equations of motion step by step by Newton, conservation laws, Lagrange,
     subsystem frequencies and Hamilton; check that they agree (symbolically)."""
     # the derivation engine itself, not rollspring.service.documents: that module brings the
-    # report, the simulation (Numba) and Matplotlib, a second of start-up this command never uses
+    # paper's claims and the worksheets, start-up this command never uses
     from rollspring.analysis.derivation import ALL, FORMATS, METHODS, DerivationError, derive
 
     if format not in FORMATS:
@@ -97,14 +79,13 @@ def derive_command(
         from rollspring.outputs.files import writable_file
 
         writable_file(out)  # an unwritable --out fails now, not after the derivation
-    from rollspring.cli.app import load  # pydantic: not for --help
     from rollspring.service.costs import check_cost, derivation_cost
 
     model = load(system)
     cost = derivation_cost(model)
     check_cost(cost, confirmed=yes)
     if cost.long:
-        _say(f"note: the derivation will take {cost.describe()}; Ctrl-C stops it")
+        say(f"note: the derivation will take {cost.describe()}; Ctrl-C stops it")
     derivation = derive(model, methods, symbols=symbols, confirm=True)  # checked above (--yes)
     rendered, check = derivation.render(format), derivation.cross_check
     if out is None:
@@ -117,9 +98,9 @@ def derive_command(
             atomic_write_text(out, rendered)
         except OSError as exc:
             raise DerivationError(f"--out: {out}: cannot write ({exc.strerror or exc})") from None
-        _say(f"wrote {out}")
+        say(f"wrote {out}")
     if not check.agree:
-        _say(
+        say(
             "warning: the methods do not all agree: "
             + "; ".join(f"{c.method}: {c.what}" for c in check.failures)
         )
@@ -127,11 +108,4 @@ def derive_command(
 
 def register(app: typer.Typer) -> None:
     """Add the ``derive`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
-
-    app.command(name="derive")(friendly_errors(needs_extra("report", "derive")(derive_command)))
-
-
-def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
-    say(line)
+    add_command(app, derive_command, "derive", extras="report")

@@ -2,8 +2,7 @@
 
 Simulates the system (as ``rollspring simulate``) for ``--duration`` seconds and renders it with
 :mod:`rollspring.outputs.animation`, with a progress bar on stderr. The command is added to an
-app by :func:`register` (the app module calls it; no import of ``rollspring.cli.app`` at import
-time).
+app by :func:`register`.
 """
 
 from __future__ import annotations
@@ -14,11 +13,18 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.cli.text import say
-from rollspring.model import preset_names
+from rollspring.cli.common import (
+    ProgressBar,
+    SystemArg,
+    add_command,
+    load,
+    out_option,
+    say,
+    yes_option,
+)
 
 if TYPE_CHECKING:
-    from rich.progress import TaskID
+    from rich.progress import ProgressColumn
 
 # rollspring.outputs.animation (Matplotlib) is imported when the command runs, not when the CLI
 # starts: every other command would pay for it.
@@ -27,21 +33,9 @@ __all__ = ["animate", "register"]
 
 
 def animate(
-    system: Annotated[
-        str,
-        typer.Argument(
-            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-            show_default=False,
-        ),
-    ],
+    system: SystemArg,
     out: Annotated[
-        str | None,
-        typer.Option(
-            "--out",
-            "-o",
-            help="Output file: .gif (Pillow), .mp4 (H.264) or .html (JS player).",
-            show_default=False,
-        ),
+        str | None, out_option("Output file: .gif (Pillow), .mp4 (H.264) or .html (JS player).")
     ] = None,
     duration: Annotated[
         float, typer.Option("--duration", "-T", help="Simulated time to show, s.")
@@ -57,19 +51,11 @@ def animate(
     on_slip: Annotated[
         str, typer.Option("--on-slip", help="stop: end at the first slip; continue: stick-slip.")
     ] = "stop",
-    yes: Annotated[
-        bool,
-        typer.Option(
-            "--yes",
-            "-y",
-            help="Start even when the estimated time or memory is above the bound.",
-        ),
-    ] = False,
+    yes: Annotated[bool, yes_option()] = False,
 ) -> None:
     """Animate the exact motion: the bodies roll, the springs stretch, force arrows to scale,
     the CM and X-hat on the floor, and a clock."""
     target = _check(out, duration, speed, fps, dpi, on_slip)
-    from rollspring.cli.app import load
     from rollspring.outputs.animation import AnimationError, frame_times, write_animation
     from rollspring.service.costs import check_cost, simulation_cost
     from rollspring.simulate import simulate
@@ -79,15 +65,15 @@ def animate(
     cost = simulation_cost(model, duration, outputs=max(2001, 2 * frames), what="the simulation")
     check_cost(cost, confirmed=yes)
     if cost.long:
-        _say(f"note: the simulation will take {cost.describe()}; Ctrl-C stops it")
-    with _Bar() as bar:
+        say(f"note: the simulation will take {cost.describe()}; Ctrl-C stops it")
+    with ProgressBar(delay=0.0, columns=_columns) as bar:  # shown at once
         bar.start("simulating")
         trajectory = simulate(
             model,
             duration,
             n_output=max(2001, 2 * frames),
             on_slip=on_slip,
-            progress=bar.update,
+            progress=bar,
             confirm=True,  # checked above (--yes)
         )
         bar.start(f"rendering {target.name}")
@@ -99,15 +85,15 @@ def animate(
                 fps=fps,
                 dpi=dpi,
                 forces=forces,
-                progress=bar.update,
+                progress=bar,
             )
         except OSError as exc:
             raise AnimationError(f"{target}: cannot write ({exc.strerror or exc})") from None
     if trajectory.status != "finished":
-        _say(f"note: {trajectory.message}")
+        say(f"note: {trajectory.message}")
     shown = float(trajectory.t[-1] - trajectory.t[0])
     count = frame_times(trajectory, speed=speed, fps=fps).size
-    _say(f"wrote {target} ({count} frames, {shown:g} s of motion at speed {speed:g})")
+    say(f"wrote {target} ({count} frames, {shown:g} s of motion at speed {speed:g})")
 
 
 def _check(
@@ -144,47 +130,19 @@ def _check(
     return writable_file(target)  # an unwritable --out fails now, not after the work
 
 
-class _Bar:
-    """A Rich progress bar on stderr (shown on a terminal only), one task at a time."""
+def _columns() -> tuple[ProgressColumn, ...]:
+    """The progress bar's columns: the stage (simulating, rendering), the bar, the percentage
+    and the time left."""
+    from rich.progress import BarColumn, TextColumn, TimeRemainingColumn
 
-    def __init__(self) -> None:
-        from rich.console import Console
-        from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
-
-        self.progress = Progress(
-            TextColumn("{task.description}"),
-            BarColumn(),
-            TextColumn("{task.percentage:>3.0f}%"),
-            TimeRemainingColumn(),
-            console=Console(stderr=True),
-            transient=True,
-        )
-        self.task: TaskID | None = None
-
-    def __enter__(self) -> _Bar:
-        self.progress.start()
-        return self
-
-    def start(self, label: str) -> None:
-        if self.task is not None:
-            self.progress.remove_task(self.task)
-        self.task = self.progress.add_task(label, total=1.0)
-
-    def update(self, fraction: float) -> None:
-        if self.task is not None:
-            self.progress.update(self.task, completed=fraction)
-
-    def __exit__(self, *exc_info: object) -> None:
-        self.progress.stop()
+    return (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.percentage:>3.0f}%"),
+        TimeRemainingColumn(),
+    )
 
 
 def register(app: typer.Typer) -> None:
     """Add the ``animate`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
-
-    app.command(name="animate")(friendly_errors(needs_extra("plot", "animate")(animate)))
-
-
-def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
-    say(line)
+    add_command(app, animate, "animate", extras="plot")

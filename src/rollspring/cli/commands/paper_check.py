@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
+from rollspring.cli.common import add_command, format_option, json_option, stdout_console
 from rollspring.errors import PaperCheckError
 
 if TYPE_CHECKING:
@@ -55,10 +56,9 @@ _STYLE = {VERIFIED: "green", HOLDS_STATED: "cyan", HOLDS_ONLY_IF: "yellow", WRON
 
 
 def paper_check(
-    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON list on stdout.")] = False,
+    as_json: Annotated[bool, json_option("Print one JSON list on stdout.")] = False,
     format: Annotated[  # noqa: A002 - the option is called --format
-        str,
-        typer.Option("--format", "-f", help=f"Output format: {', '.join(FORMATS)}."),
+        str, format_option(f"Output format: {', '.join(FORMATS)}.")
     ] = "text",
 ) -> None:
     """Check every quantitative statement of the paper against the symbolic derivation: ✔
@@ -135,8 +135,6 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
     from rich.table import Table
     from rich.text import Text
 
-    from rollspring.cli.app import _stdout
-
     table = Table(
         title="The paper's statements, checked by the derivation engine",
         title_justify="left",
@@ -164,7 +162,7 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
             Text(f"{plain(check.claim.latex)}\n“{quote_text(check.claim.quote)}”"),
             Text(verdict, style=_STYLE[check.verdict] if check.verdict != VERIFIED else ""),
         )
-    console = _stdout()
+    console = stdout_console()
     console.print(table)
     console.print(summary(checks), markup=False)
 
@@ -325,7 +323,4 @@ def _wrap(text: str) -> str:
 
 def register(app: typer.Typer) -> None:
     """Add the ``paper-check`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
-
-    command = needs_extra("report", "paper-check")(paper_check)
-    app.command(name="paper-check")(friendly_errors(command))
+    add_command(app, paper_check, "paper-check", extras="report")

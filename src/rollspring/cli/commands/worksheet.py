@@ -16,7 +16,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.text import say
+from rollspring.cli.common import add_command, format_option, out_option, say
 from rollspring.errors import WorksheetOptionError
 
 __all__ = [
@@ -81,21 +81,13 @@ def worksheet_command(
         ),
     ] = None,
     format: Annotated[  # noqa: A002 - the option is called --format
-        str,
-        typer.Option(
-            "--format",
-            "-f",
-            help=f"Output format: {', '.join(FORMATS)} (latex: documents for pdflatex).",
-        ),
+        str, format_option(f"Output format: {', '.join(FORMATS)} (latex: documents for pdflatex).")
     ] = "markdown",
     out: Annotated[
         str | None,
-        typer.Option(
-            "--out",
-            "-o",
-            help="Write the sheet here and the solutions to FILE-solutions "
-            "(atomically); default: print both.",
-            show_default=False,
+        out_option(
+            "Write the sheet here and the solutions to FILE-solutions (atomically); default: "
+            "print both."
         ),
     ] = None,
 ) -> None:
@@ -131,17 +123,9 @@ def worksheet_command(
             raise WorksheetOptionError(
                 f"--out: {path}: cannot write ({exc.strerror or exc})"
             ) from None
-        _say(f"wrote {path}")
+        say(f"wrote {path}")
 
 
 def register(app: typer.Typer) -> None:
     """Add the ``worksheet`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
-
-    command = needs_extra("report", "worksheet")(worksheet_command)
-    app.command(name="worksheet")(friendly_errors(command))
-
-
-def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
-    say(line)
+    add_command(app, worksheet_command, "worksheet", extras="report")

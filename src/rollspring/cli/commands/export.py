@@ -1,8 +1,7 @@
 """``rollspring export SYSTEM --format mjcf -o PATH``: a system in another simulator's format.
 
 Only MuJoCo's MJCF for now (:mod:`rollspring.outputs.mjcf`). The command is added to an app by
-:func:`register`; the app module calls it at its bottom, so this module never imports
-``rollspring.cli.app`` at import time (no circular import).
+:func:`register`.
 """
 
 from __future__ import annotations
@@ -13,8 +12,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.text import say
-from rollspring.model import preset_names
+from rollspring.cli.common import SystemArg, add_command, format_option, load, out_option, say
 
 __all__ = ["FORMATS", "export", "register"]
 
@@ -25,23 +23,11 @@ MAX_TIMESTEP = 0.1
 
 
 def export(
-    system: Annotated[
-        str,
-        typer.Argument(
-            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-            show_default=False,
-        ),
-    ],
+    system: SystemArg,
     format: Annotated[  # noqa: A002 - the option is called --format
-        str,
-        typer.Option("--format", "-f", help=f"Output format: {', '.join(FORMATS)} (MuJoCo XML)."),
+        str, format_option(f"Output format: {', '.join(FORMATS)} (MuJoCo XML).")
     ] = "mjcf",
-    out: Annotated[
-        str | None,
-        typer.Option(
-            "--out", "-o", help="Output file (required); '-' prints to stdout.", show_default=False
-        ),
-    ] = None,
+    out: Annotated[str | None, out_option("Output file (required); '-' prints to stdout.")] = None,
     timestep: Annotated[
         float | None,
         typer.Option(
@@ -68,8 +54,6 @@ def export(
         from rollspring.outputs.files import writable_file
 
         writable_file(out)  # an unwritable --out fails now, before the system is read
-    from rollspring.cli.app import load  # pydantic: not for --help
-
     model = load(system)
     if out == "-":
         text = system_to_mjcf(model, timestep=timestep)
@@ -81,18 +65,11 @@ def export(
         except OSError as exc:
             raise ExportError(f"{out}: cannot write ({exc.strerror or exc})") from None
     for warning in mjcf_warnings(model):
-        _say(f"warning: {warning}")
+        say(f"warning: {warning}")
     if out != "-":
-        _say(f"wrote {out}")
+        say(f"wrote {out}")
 
 
 def register(app: typer.Typer) -> None:
     """Add the ``export`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
-
-    app.command(name="export")(friendly_errors(export))
-
-
-def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
-    say(line)
+    add_command(app, export, "export")

@@ -7,14 +7,21 @@ by :func:`register`.
 
 from __future__ import annotations
 
-import json
 import math
-import sys
 from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from rollspring.cli.text import markup, say
+from rollspring.cli.common import (
+    JsonOpt,
+    add_command,
+    load,
+    print_json,
+    say,
+    stdout_console,
+    system_argument,
+)
+from rollspring.cli.text import markup
 from rollspring.model import preset_names
 
 if TYPE_CHECKING:
@@ -26,15 +33,12 @@ __all__ = ["dispersion", "register"]
 def dispersion(
     system: Annotated[
         str,
-        typer.Argument(
-            help=f"A chain's system file (.toml or .json) or a preset name "
-            f"({', '.join(name for name in preset_names() if name.startswith('chain'))}, ...).",
-            show_default=False,
+        system_argument(
+            f"A chain's system file (.toml or .json) or a preset name "
+            f"({', '.join(name for name in preset_names() if name.startswith('chain'))}, ...)."
         ),
     ],
-    as_json: Annotated[
-        bool, typer.Option("--json", help="Print one JSON object on stdout.")
-    ] = False,
+    as_json: JsonOpt = False,
     points: Annotated[
         int, typer.Option("--points", help="Wavenumbers over the Brillouin zone (ends included).")
     ] = 201,
@@ -47,7 +51,6 @@ def dispersion(
 ) -> None:
     """Dispersion of a chain read as a periodic lattice: branches, gaps, group velocities,
     friction and normal force per unit wave amplitude."""
-    from rollspring.cli.app import load  # pydantic: not for --help
     from rollspring.service.chains import chain_dispersion
 
     if figure is not None:
@@ -70,8 +73,7 @@ def dispersion(
 
         say(f"wrote {dispersion_figure(result, figure)}")
     if as_json:
-        sys.stdout.write(json.dumps(payload, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
-        sys.stdout.flush()
+        print_json(payload)
         return
     _print_table(result)
 
@@ -83,10 +85,9 @@ def _g(value: float, digits: int = 6) -> str:
 
 
 def _print_table(result: Dispersion) -> None:
-    from rich.console import Console
     from rich.table import Table
 
-    console = Console(highlight=False, soft_wrap=False, width=None if sys.stdout.isatty() else 110)
+    console = stdout_console()
     cell = result.cell
     console.print(f"[bold]{markup(result.system.name or 'chain')}[/bold]")
     console.print(
@@ -135,6 +136,4 @@ def _print_table(result: Dispersion) -> None:
 
 def register(app: typer.Typer) -> None:
     """Add the ``dispersion`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
-
-    app.command(name="dispersion")(friendly_errors(dispersion))
+    add_command(app, dispersion, "dispersion")

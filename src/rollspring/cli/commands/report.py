@@ -4,7 +4,7 @@ The page (made by :func:`rollspring.service.documents.build_report`, rendered by
 :mod:`rollspring.outputs.report`) holds the parameters, the modal table, X̂, the friction needed
 against μs, the derivations and paper checks, the plots and an animation; with ``--format pdf``
 headless Chromium prints the same page. The command is added to an app by
-:func:`register` (called by ``rollspring.cli.app`` at its bottom).
+:func:`register`.
 """
 
 from __future__ import annotations
@@ -15,8 +15,17 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.text import say
-from rollspring.model import DEFAULT_PRESET, preset_names
+from rollspring.cli.common import (
+    ProgressBar,
+    SystemArg,
+    add_command,
+    format_option,
+    load,
+    out_option,
+    say,
+    yes_option,
+)
+from rollspring.model import DEFAULT_PRESET
 
 __all__ = ["FORMATS", "register", "report"]
 
@@ -26,29 +35,15 @@ FORMATS = ("html", "pdf")
 
 
 def report(
-    system: Annotated[
-        str,
-        typer.Argument(
-            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-            show_default=False,
-        ),
-    ] = DEFAULT_PRESET,
+    system: SystemArg = DEFAULT_PRESET,
     out: Annotated[
         str | None,
-        typer.Option(
-            "--out",
-            "-o",
-            help="Output file (default report.html, or report.pdf with --format pdf).",
-            show_default=False,
-        ),
+        out_option("Output file (default report.html, or report.pdf with --format pdf)."),
     ] = None,
     format: Annotated[  # noqa: A002 - the option is called --format
         str | None,
-        typer.Option(
-            "--format",
-            "-f",
-            help="html (default; pdf when --out ends in .pdf) or pdf (printed by "
-            "headless Chromium).",
+        format_option(
+            "html (default; pdf when --out ends in .pdf) or pdf (printed by headless Chromium).",
             show_default=False,
         ),
     ] = None,
@@ -77,14 +72,7 @@ def report(
             show_default=False,
         ),
     ] = None,
-    yes: Annotated[
-        bool,
-        typer.Option(
-            "--yes",
-            "-y",
-            help="Start even when the estimated time or memory is above the bound.",
-        ),
-    ] = False,
+    yes: Annotated[bool, yes_option()] = False,
 ) -> None:
     """Write a self-contained report (HTML, or PDF through headless Chromium): diagram,
     parameters, modes, X̂, friction needed vs μs, derivations, paper checks, plots, animation."""
@@ -103,32 +91,24 @@ def report(
     writable_file(target)  # an unwritable --out fails now, not after the work
     if format == "pdf":
         find_chromium(chromium)  # fail before the work when Chromium is missing
-    from rollspring.cli.app import _progress_after_a_second, load  # pydantic: not for --help
     from rollspring.service.costs import check_cost, report_cost
 
     model = load(system)
     cost = report_cost(model, duration=duration, derivation=derivation)
     check_cost(cost, confirmed=yes)
     if cost.long:
-        _say(f"note: the report will take {cost.describe()}; Ctrl-C stops it")
+        say(f"note: the report will take {cost.describe()}; Ctrl-C stops it")
 
-    with _progress_after_a_second("building the report") as progress:
+    with ProgressBar("building the report") as progress:
         built = build_report(
             model, duration=duration, derivation=derivation, progress=progress, confirm=True
         )  # checked above (--yes)
         written = write_report(built, target, format=format, chromium=chromium)
     for failure in built.math_failures:
-        _say(f"warning: shown as LaTeX source: {failure}")
-    _say(f"wrote {written}")
+        say(f"warning: shown as LaTeX source: {failure}")
+    say(f"wrote {written}")
 
 
 def register(app: typer.Typer) -> None:
     """Add the ``report`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
-
-    app.command(name="report")(friendly_errors(needs_extra("report", "report")(report)))
-
-
-def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
-    say(line)
+    add_command(app, report, "report", extras="report")

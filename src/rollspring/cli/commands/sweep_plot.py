@@ -12,7 +12,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.text import say
+from rollspring.cli.common import add_command, out_option, say
 from rollspring.errors import SweepPlotError
 
 __all__ = ["SweepPlotError", "register", "sweep_plot"]
@@ -94,7 +94,7 @@ def sweep_plot(
         ),
     ] = True,
     out: Annotated[
-        str, typer.Option("--out", "-o", help="Image file: .png, .svg or .pdf.")
+        str, out_option("Image file: .png, .svg or .pdf.", show_default=True)
     ] = "map.png",
     dpi: Annotated[float, typer.Option(help="Resolution of a PNG, dots per inch.")] = 150.0,
 ) -> None:
@@ -110,19 +110,11 @@ def sweep_plot(
     dataset = open_sweep(store)
     data = prepare_map(dataset, x, y, metric, sel=chosen, body=body, mode=mode, linear=linear)
     for note in data.notes:
-        _say(f"note: {note}")
+        say(f"note: {note}")
     written = write_map(plot_map(data), out, dpi=dpi)
-    _say(f"wrote {written}")
+    say(f"wrote {written}")
 
 
 def register(app: typer.Typer) -> None:
     """Add the ``sweep-plot`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
-
-    command = needs_extra(("sweep", "plot"), "sweep-plot")(sweep_plot)
-    app.command(name="sweep-plot")(friendly_errors(command))
-
-
-def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
-    say(line)
+    add_command(app, sweep_plot, "sweep-plot", extras=("sweep", "plot"))

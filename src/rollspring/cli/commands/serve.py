@@ -13,6 +13,7 @@ from typing import Annotated
 
 import typer
 
+from rollspring.cli.common import add_command, say, system_argument
 from rollspring.errors import ServeError
 from rollspring.model import DEFAULT_PRESET, preset_names
 
@@ -22,10 +23,9 @@ __all__ = ["ServeError", "register", "serve"]
 def serve(
     system: Annotated[
         str,
-        typer.Argument(
-            help=f"The system the page opens with: a file (.toml or .json) or a preset name "
-            f"({', '.join(preset_names())}).",
-            show_default=False,
+        system_argument(
+            f"The system the page opens with: a file (.toml or .json) or a preset name "
+            f"({', '.join(preset_names())})."
         ),
     ] = DEFAULT_PRESET,
     host: Annotated[
@@ -49,8 +49,6 @@ def serve(
     ] = 64,
 ) -> None:
     """Serve the interactive page: drag the bodies, move the sliders, watch every force."""
-    from rollspring.cli.app import _say
-
     if not 0 <= port <= 65535:
         raise ServeError(f"--port: must be 0 to 65535, got {port}")
     if not budget > 0:
@@ -64,7 +62,7 @@ def serve(
     model = load_system(system)
     listener = _listen(host, port)
     if not _is_loopback(host):
-        _say(
+        say(
             f"warning: serving on {host}, reachable from other machines; the page has no "
             "log-in, anyone who reaches it can use it"
         )
@@ -124,6 +122,4 @@ def _listen(host: str, port: int) -> socket.socket:
 
 def register(app: typer.Typer) -> None:
     """Add the ``serve`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors, needs_extra
-
-    app.command(name="serve")(friendly_errors(needs_extra("web", "serve")(serve)))
+    add_command(app, serve, "serve", extras="web")

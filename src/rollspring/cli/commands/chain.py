@@ -15,7 +15,7 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.text import say
+from rollspring.cli.common import add_command, json_option, out_option, say
 from rollspring.errors import ModelError
 
 __all__ = ["chain", "register"]
@@ -91,15 +91,10 @@ def chain(
     name: Annotated[str | None, typer.Option(help="The system's name.", show_default=False)] = None,
     out: Annotated[
         str | None,
-        typer.Option(
-            "--out",
-            "-o",
-            help="Write the file here (.toml or .json); default: print TOML on stdout.",
-            show_default=False,
-        ),
+        out_option("Write the file here (.toml or .json); default: print TOML on stdout."),
     ] = None,
     as_json: Annotated[
-        bool, typer.Option("--json", help="Print the JSON form instead of TOML (no --out).")
+        bool, json_option("Print the JSON form instead of TOML (no --out).")
     ] = False,
 ) -> None:
     """Write a chain: a repeating unit of bodies joined by springs, with walls and an initial
@@ -161,6 +156,4 @@ def chain(
 
 def register(app: typer.Typer) -> None:
     """Add the ``chain`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors  # here, not at the top: app.py imports us
-
-    app.command(name="chain")(friendly_errors(chain))
+    add_command(app, chain, "chain")

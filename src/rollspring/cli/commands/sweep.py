@@ -3,21 +3,20 @@
 The grid is the outer product of the ``--vary`` values; the metrics go to a Zarr v3 store
 (docs/sweeps.md), chunk by chunk, in this process or on a Dask cluster (``--scheduler``), and a
 rerun of the same command resumes. The work is :func:`rollspring.service.sweeps.sweep`; the
-command is added to an app by :func:`register` (called by ``rollspring.cli.app``).
+command is added to an app by :func:`register`.
 """
 
 from __future__ import annotations
 
-import time
 from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.cli.text import say
-from rollspring.model import DEFAULT_PRESET, preset_names
+from rollspring.cli.common import ProgressBar, SystemArg, add_command, out_option, say
+from rollspring.model import DEFAULT_PRESET
 
 if TYPE_CHECKING:
-    from rich.progress import Progress, TaskID
+    from rich.progress import ProgressColumn
 
     from rollspring.service.sweeps import SweepProgress
 
@@ -25,13 +24,7 @@ __all__ = ["register", "sweep"]
 
 
 def sweep(
-    system: Annotated[
-        str,
-        typer.Argument(
-            help=f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())}).",
-            show_default=False,
-        ),
-    ] = DEFAULT_PRESET,
+    system: SystemArg = DEFAULT_PRESET,
     vary: Annotated[
         list[str] | None,
         typer.Option(
@@ -65,12 +58,7 @@ def sweep(
             "kinetic friction (single runs, slower).",
         ),
     ] = "stop",
-    out: Annotated[
-        str | None,
-        typer.Option(
-            "--out", "-o", help="The Zarr store to write (a rerun resumes it).", show_default=False
-        ),
-    ] = None,
+    out: Annotated[str | None, out_option("The Zarr store to write (a rerun resumes it).")] = None,
     scheduler: Annotated[
         str | None,
         typer.Option(
@@ -128,7 +116,8 @@ def sweep(
     from rollspring.model import load_system  # pydantic: not for --help
 
     model = load_system(system)
-    with _Bar() as bar:
+    with ProgressBar(columns=_columns) as bar:
+        reports = _Reports(bar)
         dataset = run_sweep(
             model,
             grid,
@@ -140,79 +129,52 @@ def sweep(
             chunk=chunk,
             overwrite=overwrite,
             rtol=rtol,
-            progress=bar,
+            progress=reports,
             step=step,
             integrator=integrator,
             refine_slip=refine_slip,
         )
-    first = bar.first
+    first = reports.first
     total = int(dataset.attrs["n_chunks"])
-    ran = bar.last.chunks_run if bar.last is not None else 0
+    ran = reports.last.chunks_run if reports.last is not None else 0
     skipped = first.chunks_skipped if first is not None else total
     runs = first.total_runs if first is not None else 0
-    _say(f"ran {ran} of {total} chunks ({skipped} already done; {runs} runs); wrote {out}")
+    say(f"ran {ran} of {total} chunks ({skipped} already done; {runs} runs); wrote {out}")
 
 
-class _Bar:
-    """A Rich progress bar on stderr: runs done, runs/s, time left (shown after a second)."""
+class _Reports:
+    """The sweep's progress reports on a progress bar (runs done, runs/s, time left); the first
+    and the last are kept for the closing line."""
 
-    def __init__(self) -> None:
-        self.bar: Progress | None = None
-        self.task: TaskID | None = None
+    def __init__(self, bar: ProgressBar) -> None:
+        self.bar = bar
         self.first: SweepProgress | None = None
         self.last: SweepProgress | None = None
-        self.started = 0.0
 
-    def __enter__(self) -> _Bar:
-        self.started = time.perf_counter()
-        return self
-
-    def __call__(self, progress) -> None:
+    def __call__(self, progress: SweepProgress) -> None:
         if self.first is None:
             self.first = progress
+            self.bar.start(
+                "sweep", total=progress.total_runs, completed=progress.done_runs, rate=""
+            )
         self.last = progress
-        if self.bar is None:
-            if time.perf_counter() - self.started < 1.0:
-                return
-            from rich.console import Console
-            from rich.progress import (
-                BarColumn,
-                MofNCompleteColumn,
-                Progress,
-                TextColumn,
-                TimeRemainingColumn,
-            )
+        rate = (progress.done_runs - self.first.done_runs) / max(self.bar.elapsed, 1e-9)
+        self.bar(progress.done_runs, rate=f"{rate:,.0f} runs/s")
 
-            self.bar = Progress(
-                TextColumn("sweep"),
-                BarColumn(),
-                MofNCompleteColumn(),
-                TextColumn("runs {task.fields[rate]}"),
-                TimeRemainingColumn(),
-                console=Console(stderr=True),
-                transient=True,
-            )
-            self.bar.start()
-            self.task = self.bar.add_task(
-                "sweep", total=progress.total_runs, rate="", completed=self.first.done_runs
-            )
-        elapsed = max(time.perf_counter() - self.started, 1e-9)
-        rate = (progress.done_runs - self.first.done_runs) / elapsed
-        if self.task is not None:  # set with the bar
-            self.bar.update(self.task, completed=progress.done_runs, rate=f"{rate:,.0f} runs/s")
 
-    def __exit__(self, *exc_info) -> None:
-        if self.bar is not None:
-            self.bar.stop()
+def _columns() -> tuple[ProgressColumn, ...]:
+    """The sweep's progress bar: runs done of all, runs per second and the time left."""
+    from rich.progress import BarColumn, MofNCompleteColumn, TextColumn, TimeRemainingColumn
+
+    return (
+        TextColumn("sweep"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("runs {task.fields[rate]}"),
+        TimeRemainingColumn(),
+    )
 
 
 def register(app: typer.Typer) -> None:
     """Add the ``sweep`` command to ``app`` (with rollspring's one-line error handling)."""
-    from rollspring.cli.app import friendly_errors, needs_extra  # not at the top: app imports us
-
-    app.command(name="sweep")(friendly_errors(needs_extra("sweep", "sweep")(sweep)))
-
-
-def _say(line: str) -> None:
-    """One unwrapped line on stderr, never mixed into stdout (:func:`rollspring.cli.text.say`)."""
-    say(line)
+    add_command(app, sweep, "sweep", extras="sweep")

@@ -1,0 +1,271 @@
+"""What every ``rollspring`` command shares, written once: the SYSTEM argument and the common
+options (``--json``, ``--yes``, ``--out``, ``--format``), the one-line error handling and the
+check for an optional extra, the progress bar on stderr, and the console helpers.
+
+The command modules (:mod:`rollspring.cli.commands`) import from here, never from
+:mod:`rollspring.cli.app`, which builds the application and registers them: the imports run one
+way (app -> commands -> common). Only Typer and the presets' names are imported at the top;
+everything heavier (pydantic, Rich, the computations) when a command runs, so ``--help`` and the
+light commands start fast.
+
+Every error rollspring raises on purpose is printed as one line on stderr, with exit code 2;
+with ``--json``, stdout holds exactly one JSON object and everything else goes to stderr.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import os
+import sys
+import time
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Annotated, Any, TypeVar
+
+import typer
+
+from rollspring.cli.text import say
+from rollspring.errors import RollspringError, require_extra
+from rollspring.model import preset_names
+
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.progress import Progress, ProgressColumn, TaskID
+
+    from rollspring.model import System
+
+__all__ = [
+    "SYSTEM_HELP",
+    "JsonOpt",
+    "ProgressBar",
+    "SystemArg",
+    "YesOpt",
+    "add_command",
+    "format_option",
+    "friendly_errors",
+    "json_option",
+    "load",
+    "needs_extra",
+    "out_option",
+    "print_json",
+    "say",
+    "stdout_console",
+    "system_argument",
+    "yes_option",
+]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+# -- arguments and options --------------------------------------------------------------------
+
+#: The help of the SYSTEM argument: a file, or one of the presets (named).
+SYSTEM_HELP = f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())})."
+
+
+def system_argument(text: str = SYSTEM_HELP) -> Any:
+    """The SYSTEM argument (a system file or a preset name; ``text`` its help)."""
+    return typer.Argument(help=text, show_default=False)
+
+
+def json_option(text: str = "Print one JSON object on stdout.") -> Any:
+    """``--json``: the result as JSON on stdout (``text`` its help)."""
+    return typer.Option("--json", help=text)
+
+
+def yes_option(bound: str = "time or memory", note: str = "") -> Any:
+    """``--yes``/``-y`` of a command with a cost guard (:func:`rollspring.service.costs.check_cost`
+    refuses a run whose estimated ``bound`` is above the bound, unless confirmed)."""
+    return typer.Option(
+        "--yes", "-y", help=f"Start even when the estimated {bound} is above the bound{note}."
+    )
+
+
+def out_option(text: str, *, show_default: bool = False) -> Any:
+    """``--out``/``-o``: where a command writes (``text`` its help)."""
+    return typer.Option("--out", "-o", help=text, show_default=show_default)
+
+
+def format_option(text: str, *, show_default: bool = True) -> Any:
+    """``--format``/``-f``: the output format (``text`` its help, naming the formats)."""
+    return typer.Option("--format", "-f", help=text, show_default=show_default)
+
+
+#: A system file or a preset name.
+SystemArg = Annotated[str, system_argument()]
+#: ``--json`` (one JSON object on stdout).
+JsonOpt = Annotated[bool, json_option()]
+#: ``--yes`` of the runs a cost estimate can refuse (analyze, simulate).
+YesOpt = Annotated[bool, yes_option(note=" (a larger run is refused with its estimate)")]
+
+
+# -- errors -------------------------------------------------------------------------------------
+
+
+def friendly_errors(command: F) -> F:
+    """Turn rollspring's errors into one line on stderr and exit code 2 (never a traceback).
+
+    An unexpected exception (a bug) is reported in one line with exit code 1; set
+    ``ROLLSPRING_DEBUG=1`` to see its traceback. Running out of memory is one line and exit
+    code 2 too (the request was too large); Ctrl-C ends the command with exit code 130, every
+    temporary file removed (the writers clean up on any exception).
+    """
+
+    @functools.wraps(command)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return command(*args, **kwargs)
+        except RollspringError as exc:
+            say(f"error: {exc}")
+            raise typer.Exit(2) from None
+        except (typer.Exit, typer.Abort):
+            raise
+        except KeyboardInterrupt:
+            say("interrupted: nothing more was written")
+            raise typer.Exit(130) from None
+        except MemoryError:
+            say(
+                "error: out of memory: ask for less (fewer --outputs, a shorter --duration, "
+                "fewer bodies)"
+            )
+            raise typer.Exit(2) from None
+        except Exception as exc:
+            if os.environ.get("ROLLSPRING_DEBUG"):
+                raise
+            say(
+                f"internal error: {type(exc).__name__}: {exc} (please report it; "
+                "ROLLSPRING_DEBUG=1 shows the traceback)"
+            )
+            raise typer.Exit(1) from None
+
+    return wrapper  # type: ignore[return-value]
+
+
+def needs_extra(extras: str | tuple[str, ...], name: str) -> Callable[[F], F]:
+    """A command that needs an optional extra: before anything else it checks that the extra is
+    installed, else ``error: rollspring NAME needs the 'EXTRA' extra: pip install
+    'rollspring[EXTRA]'`` and exit code 2 (with :func:`friendly_errors`)."""
+
+    def decorate(command: F) -> F:
+        @functools.wraps(command)
+        def wrapper(*args: Any, **kwargs: Any) -> Any:
+            with require_extra(extras, f"rollspring {name}"):
+                return command(*args, **kwargs)
+
+        return wrapper  # type: ignore[return-value]
+
+    return decorate
+
+
+def add_command(
+    app: typer.Typer,
+    command: Callable[..., Any],
+    name: str,
+    *,
+    extras: str | tuple[str, ...] | None = None,
+) -> None:
+    """Add ``command`` to ``app`` as ``rollspring NAME``, with the one-line errors of
+    :func:`friendly_errors` and, for a command that needs optional ``extras``, their check
+    (:func:`needs_extra`)."""
+    if extras is not None:
+        command = needs_extra(extras, name)(command)
+    app.command(name=name)(friendly_errors(command))
+
+
+# -- the console --------------------------------------------------------------------------------
+
+
+def stdout_console() -> Console:
+    """A Rich console on stdout: a terminal's own width; 110 columns when piped to a file or a
+    pager."""
+    from rich.console import Console
+
+    width = None if sys.stdout.isatty() else 110
+    return Console(highlight=False, soft_wrap=False, width=width)
+
+
+def print_json(data: Any) -> None:
+    """``data`` as one JSON document on stdout (indented; NaN and infinity refused)."""
+    sys.stdout.write(json.dumps(data, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
+    sys.stdout.flush()
+
+
+def load(system: str) -> System:
+    """The system a command was given (a file or a preset), with a warning on stderr for each
+    pair of bodies that overlap in its initial placement."""
+    from rollspring.model import load_system  # pydantic: not for --help
+
+    model = load_system(system)
+    for warning in model.overlaps:
+        say(f"warning: {warning}")
+    return model
+
+
+class ProgressBar:
+    """A transient Rich progress bar on stderr, one task at a time, that appears only once the
+    work has taken ``delay`` seconds (a short run shows none; ``delay=0``: at once).
+
+    Used as a context manager; the bar is the ``progress`` callback of the library's long
+    computations: ``bar(completed, **fields)`` moves the current task (of ``total`` 1 unless
+    :meth:`start` says otherwise). ``label`` starts a first task on entry; ``columns`` makes the
+    bar's Rich columns (Rich's default: description, bar, percentage, time left).
+    """
+
+    def __init__(
+        self,
+        label: str | None = None,
+        *,
+        delay: float = 1.0,
+        columns: Callable[[], Sequence[ProgressColumn]] | None = None,
+    ) -> None:
+        self.label = label
+        self.delay = delay
+        self.columns = columns
+        self.bar: Progress | None = None
+        self.task: TaskID | None = None
+        self.pending: dict[str, Any] | None = None  # the current task's description, total, ...
+        self.started = 0.0
+
+    def __enter__(self) -> ProgressBar:
+        self.started = time.perf_counter()
+        if self.delay <= 0:
+            self._show()
+        if self.label is not None:
+            self.start(self.label)
+        return self
+
+    @property
+    def elapsed(self) -> float:
+        """Seconds since the bar was entered."""
+        return time.perf_counter() - self.started
+
+    def start(self, label: str, total: float = 1.0, completed: float = 0.0, **fields: Any) -> None:
+        """A new task (it replaces the previous one): ``label``, ``total``, ``completed`` so far
+        and the columns' ``fields``."""
+        self.pending = {"description": label, "total": total, "completed": completed, **fields}
+        if self.bar is not None:
+            if self.task is not None:
+                self.bar.remove_task(self.task)
+            self.task = self.bar.add_task(**self.pending)
+
+    def __call__(self, completed: float, **fields: Any) -> None:
+        if self.bar is None:
+            if self.elapsed < self.delay:
+                return
+            bar = self._show()
+            if self.pending is not None:
+                self.task = bar.add_task(**self.pending)
+        if self.task is not None and self.bar is not None:  # set with the bar
+            self.bar.update(self.task, completed=completed, **fields)
+
+    def _show(self) -> Progress:
+        from rich.console import Console
+        from rich.progress import Progress
+
+        columns = self.columns() if self.columns is not None else ()
+        self.bar = Progress(*columns, console=Console(stderr=True), transient=True)
+        self.bar.start()
+        return self.bar
+
+    def __exit__(self, *exc_info: object) -> None:
+        if self.bar is not None:
+            self.bar.stop()

@@ -8,12 +8,14 @@ import io
 import json
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from rollspring.outputs.files import write_file_set
-from rollspring.simulate import Trajectory
+
+if TYPE_CHECKING:  # in annotations only: writing a file loads no simulator (Numba, SciPy)
+    from rollspring.simulate import Trajectory
 
 __all__ = ["json_ready", "summary_json", "trajectory_csv", "write_trajectory"]
 

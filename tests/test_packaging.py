@@ -121,6 +121,7 @@ def test_the_wheel_holds_presets_page_and_uplot_and_no_tests(wheel) -> None:
         f"rollspring/web/static/{p}" for p in (*UPLOT, "node_modules/uplot/LICENSE")
     }
     assert "rollspring/py.typed" in names
+    assert "rollspring/analysis/paper/claims.toml" in names  # the paper check's words
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     assert not [
         n

@@ -21,8 +21,8 @@ import pytest
 from typer.testing import CliRunner
 
 from rollspring import analyze, load_system, system_from_dict
-from rollspring.analysis import paper_check
-from rollspring.analysis.paper_check import paper_figure
+from rollspring.analysis import paper as paper_check
+from rollspring.analysis.paper import paper_figure
 from rollspring.cli import app
 from rollspring.model import preset_names
 from rollspring.outputs import files

@@ -23,7 +23,7 @@ import typer
 from rollspring.errors import PaperCheckError
 
 if TYPE_CHECKING:
-    from rollspring.analysis.paper_check import ClaimCheck
+    from rollspring.analysis.paper import ClaimCheck
 
 __all__ = [
     "FORMATS",

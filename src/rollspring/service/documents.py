@@ -28,7 +28,7 @@ from typing import Any
 
 from rollspring.analysis import analyze
 from rollspring.analysis.derivation import ALL, CrossCheck, derive
-from rollspring.analysis.paper_check import (
+from rollspring.analysis.paper import (
     ClaimCheck,
     check_claims,
     check_paper,

@@ -20,7 +20,7 @@ import numpy as np
 
 from rollspring.analysis import LinearAnalysis
 from rollspring.analysis.derivation import Derivation, Section
-from rollspring.analysis.paper_check import (
+from rollspring.analysis.paper import (
     HOLDS_ONLY_IF,
     HOLDS_STATED,
     VERDICTS,

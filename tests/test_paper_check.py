@@ -12,12 +12,15 @@ what was verified against it (with the source's sha256), so no quote changes unv
 
 from __future__ import annotations
 
+import enum
 import hashlib
 import json
 import os
 import random
 import re
+import tomllib
 from collections.abc import Callable
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -37,11 +40,14 @@ from rollspring.analysis.paper import (
     Assumption,
     Claim,
     Derived,
+    Verdict,
     check_claim,
     check_paper,
     paper_claims,
     quote_key,
 )
+from rollspring.analysis.paper.catalogue import entries
+from rollspring.analysis.paper.catalogue.entry import restates
 from rollspring.cli import app
 from rollspring.cli import paper_check as cli_paper_check
 
@@ -815,7 +821,7 @@ INDEPENDENT: dict[str, Check] = {
     "sec4.fig3-equal-spring-forces": _plain(lambda: sp.Abs(sp.simplify(-Fig3.pull / Fig3.pull))),
     "sec4.fig3-torques-differ": _fig3_torques,
     "sec4.fig3-angular-momentum": _fig3_angular_momentum,
-    "sec5.1.qq2": _qq2,
+    "sec5.qq2": _qq2,
     "sec5.1.phi-relation": _phi_relation,
     "sec5.1.phi-substituted": _plain(lambda: Fig2.in_mode(Fig2.Q[0])),
     "sec5.1.qq1": _plain(lambda: Fig2.omega2),
@@ -1023,7 +1029,7 @@ def test_corrections_are_in_the_papers_own_terms(checks) -> None:
     # Fig. 3: the total angular momentum is conserved
     assert checks["sec4.fig3-angular-momentum"].correction == r"\dot L_O=0"
     # (QQ2): about the equilibrium value, the paper's q itself does not oscillate about zero
-    assert "q_e" in checks["sec5.1.qq2"].correction and "P_0" not in checks["sec5.1.qq2"].correction
+    assert "q_e" in checks["sec5.qq2"].correction and "P_0" not in checks["sec5.qq2"].correction
 
 
 def test_the_subsystem_frequencies_are_named_clamped(checks) -> None:
@@ -1301,3 +1307,74 @@ def test_the_second_review_findings(checks) -> None:
     assert "not equal for the same masses" in checks["sec5.3.k-equal-masses"].claim.quote
     assert checks["sec3.contact-axis"].verdict == VERIFIED
     assert checks["sec5.5.frequencies-detect-errors"].verdict == VERIFIED
+
+
+# -- the catalogue: code plus the paper's words (claims.toml), joined by key ----------------------
+
+
+def test_every_claim_has_a_short_stable_key_and_the_json_carries_it(checks) -> None:
+    keys = [claim.key for claim in paper_claims()]
+    assert len(set(keys)) == len(keys) == len(INDEPENDENT)
+    for key in keys:  # the section as the paper numbers it, then what the claim says
+        assert re.fullmatch(r"(abstract|sec[1-7](\.[1-6])?|app-[abc])\.[a-z0-9]+(-[a-z0-9]+)*", key)
+        assert len(key) <= 40, key
+    section = {"abstract": "Abstract", "app-a": "App. A", "app-b": "App. B", "app-c": "App. C"}
+    for claim in paper_claims():
+        where = claim.key.rsplit(".", 1)[0]
+        expected = section.get(where, f"Sec. {where[3:]}")
+        assert claim.location.startswith((expected, "Fig.")), claim.key
+    data = [check.to_dict() for check in check_paper()]
+    assert [record["key"] for record in data] == keys
+    assert all(next(iter(record)) == "key" for record in data)
+
+
+def test_verdicts_are_an_enum_written_as_their_words() -> None:
+    assert issubclass(Verdict, enum.StrEnum)
+    assert (
+        VERDICTS
+        == tuple(Verdict)
+        == ("verified", "holds-under-stated-assumption", "holds-only-if", "wrong")
+    )
+    assert all(isinstance(check.verdict, Verdict) for check in check_paper())
+    assert json.dumps([Verdict.HOLDS_ONLY_IF]) == '["holds-only-if"]'
+
+
+def test_the_words_file_and_the_catalogue_join_by_key() -> None:
+    words = tomllib.loads(
+        (resources.files("rollspring.analysis.paper") / "claims.toml").read_text(encoding="utf-8")
+    )
+    found = entries()
+    assert [entry.key for entry in found] == [claim.key for claim in paper_claims()]
+    assert set(words) == {entry.key for entry in found}
+    claims = {claim.key: claim for claim in paper_claims()}
+    seen: set[str] = set()
+    restated = 0
+    for entry in found:
+        table = words[entry.key]
+        if entry.restates is None:  # a claim of its own says everything
+            assert set(table) == {"location", "quote", "statement", "latex"}, entry.key
+            assert None not in (entry.quantity, entry.paper, entry.system, entry.derive)
+        else:  # a restatement gives only what differs from the claim it repeats, an earlier one
+            restated += 1
+            assert entry.restates in seen, entry.key
+            original = claims[entry.restates]
+            assert all(table[name] != getattr(original, name) for name in table), entry.key
+            for name in ("quantity", "paper", "system", "derive", "assumptions"):
+                value = getattr(entry, name)
+                assert value is None or value != getattr(original, name), (entry.key, name)
+        seen.add(entry.key)
+    assert restated >= 20  # the abstract's claims again in Sec. 7, the equations again in App. A-C
+
+
+def test_a_restatement_takes_what_it_does_not_give_from_the_claim_it_repeats() -> None:
+    claims = {claim.key: claim for claim in paper_claims()}
+    again, first = claims["sec7.fig3"], claims["abstract.fig3"]
+    assert (again.quantity, again.system, again.derive, again.assumptions, again.latex) == (
+        first.quantity,
+        first.system,
+        first.derive,
+        first.assumptions,
+        first.latex,
+    )
+    assert again.location == "Sec. 7, sentence 3" and again.quote != first.quote
+    assert restates("abstract.fig3", key="x").restates == "abstract.fig3"

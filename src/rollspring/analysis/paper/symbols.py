@@ -40,5 +40,4 @@ t = sp.Symbol("t", real=True)
 a = sp.Symbol("a", real=True)  # amplitude along a mode shape
 # the isotonic oscillator (Sec. 5.2, "unique to harmonic oscillation")
 xi, xid, omega0, beta0, energy = sp.symbols("x xdot omega beta E", positive=True)
-
 half = sp.Rational(1, 2)

@@ -25,7 +25,7 @@ from rollspring.analysis.paper.catalogue import (
 from rollspring.analysis.paper.catalogue.entry import Entry
 from rollspring.analysis.paper.types import Claim
 
-__all__ = ["paper_claims"]
+__all__ = ["entries", "paper_claims"]
 
 _SECTIONS = (intro, sec3, sec4, sec5_1_2, sec5_3_5, sec5_6_7, appendices)
 _WORDS = ("location", "quote", "statement", "latex")
@@ -72,19 +72,25 @@ def _claim(entry: Entry, words: dict[str, str], original: Claim | None) -> Claim
     )
 
 
+def entries() -> list[Entry]:
+    """The catalogue's entries (the claims' code halves), in the paper's order."""
+    return [entry for section in _SECTIONS for entry in section.claims()]
+
+
 def paper_claims() -> list[Claim]:
     """Every quantitative statement of the paper, in the paper's order."""
     words = _words()
     claims: dict[str, Claim] = {}
-    for section in _SECTIONS:
-        for entry in section.claims():
-            if entry.key in claims:
-                raise RuntimeError(f"{entry.key}: two claims of one key")
-            unknown = set(words.get(entry.key, {})) - set(_WORDS)
-            if entry.key not in words or unknown:
-                raise RuntimeError(f"{entry.key}: claims.toml has no such table, or {unknown}")
-            original = claims[entry.restates] if entry.restates is not None else None
-            claims[entry.key] = _claim(entry, words[entry.key], original)
+    for entry in entries():
+        if entry.key in claims:
+            raise RuntimeError(f"{entry.key}: two claims of one key")
+        unknown = set(words.get(entry.key, {})) - set(_WORDS)
+        if entry.key not in words or unknown:
+            raise RuntimeError(f"{entry.key}: claims.toml has no such table, or {unknown}")
+        if entry.restates is not None and entry.restates not in claims:
+            raise RuntimeError(f"{entry.key} restates {entry.restates}, no earlier claim")
+        original = claims[entry.restates] if entry.restates is not None else None
+        claims[entry.key] = _claim(entry, words[entry.key], original)
     if set(words) != set(claims):
         raise RuntimeError(f"claims.toml: no claim has the keys {sorted(set(words) - set(claims))}")
     return list(claims.values())

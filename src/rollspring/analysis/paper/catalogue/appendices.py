@@ -1,11 +1,8 @@
-"""The catalogue's claims of the appendices.
+"""The claims of App. A (static friction), App. B (frequencies) and App. C (the Hamiltonian).
 
-The claims of App. A (static friction), App. B (natural frequencies) and App. C (the Hamiltonian).
-
-Each entry is the code half of a claim (its quantity, the paper's expression in SymPy, the
-systems, the recipe, the stated assumptions), written with keyword arguments; a claim the paper
-repeats is written as ``restates(key_of_the_first, key=..., <only what differs>)``. The paper's
-words (location, quote, statement, the claim as LaTeX) are in ``claims.toml`` under the same key.
+App. A: each body's rotation and friction, the pulled body of Fig. 5 and where its friction
+reverses; App. B: the two subsystems and their frequencies; App. C: the potential's coefficients
+and the frequencies Omega_1 to Omega_4. Their words are in ``claims.toml``.
 """
 
 from __future__ import annotations
@@ -64,8 +61,6 @@ from rollspring.analysis.paper.symbols import (
 )
 
 _Omega1, _Omega2 = sp.sqrt(k / (2 * m1)), sp.sqrt(2 * k / (3 * m2))
-
-
 _Omega3, _Omega4 = sp.sqrt(2 * k / m1), sp.sqrt(3 * k / (2 * m2))
 
 

@@ -53,26 +53,8 @@ def claim(
     )
 
 
-def restates(
-    original: str,
-    /,
-    *,
-    key: str,
-    quantity: str | None = None,
-    paper: Any = None,
-    system: str | None = None,
-    derive: Callable[[Bench], Derived] | None = None,
-    assumptions: tuple[Assumption, ...] | None = None,
-) -> Entry:
+def restates(original: str, /, *, key: str, **changes: Any) -> Entry:
     """A claim the paper makes again (``original``: the key of the claim it repeats, earlier in
     the catalogue): the original's quantity, expression, systems, recipe and assumptions, but for
-    those given here."""
-    return Entry(
-        key=key,
-        quantity=quantity,
-        paper=paper,
-        system=system,
-        derive=derive,
-        assumptions=assumptions,
-        restates=original,
-    )
+    those given in ``changes`` (by those names, as :func:`claim` takes them)."""
+    return Entry(key=key, restates=original, **changes)

@@ -1,12 +1,10 @@
-"""The catalogue's claims of the abstract, Sec. 1 and Sec. 2.
+"""The claims of the abstract, Sec. 1 and Sec. 2 (two point masses, Fig. 1).
 
-The claims of the abstract, Sec. 1 (the centre-of-mass theorem) and Sec. 2 (two point masses, Fig.
-1).
-
-Each entry is the code half of a claim (its quantity, the paper's expression in SymPy, the
-systems, the recipe, the stated assumptions), written with keyword arguments; a claim the paper
-repeats is written as ``restates(key_of_the_first, key=..., <only what differs>)``. The paper's
-words (location, quote, statement, the claim as LaTeX) are in ``claims.toml`` under the same key.
+The abstract's four sentences (in a normal mode the centre of mass moves, because of the static
+friction, which vanishes for equal moments of inertia; the spring at the right heights keeps it at
+rest; four methods give one equation of motion), the centre-of-mass theorem of Sec. 1, and Sec. 2's
+equations, potential and forces of two masses joined by a spring. Their words are in
+``claims.toml``.
 """
 
 from __future__ import annotations

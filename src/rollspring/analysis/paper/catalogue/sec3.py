@@ -1,11 +1,9 @@
-"""The catalogue's claims of Sec. 3.
+"""The claims of Sec. 3: the hoop and the cylinder joined at their centres (Fig. 2).
 
-The claims of Sec. 3: the hoop and the cylinder joined at their centres (Fig. 2).
-
-Each entry is the code half of a claim (its quantity, the paper's expression in SymPy, the
-systems, the recipe, the stated assumptions), written with keyword arguments; a claim the paper
-repeats is written as ``restates(key_of_the_first, key=..., <only what differs>)``. The paper's
-words (location, quote, statement, the claim as LaTeX) are in ``claims.toml`` under the same key.
+Rolling constraints, Steiner's theorem, the rotations about the contact lines, the conserved
+angular momentum and phase opposition, the stationary point X-hat with its weights, the static
+frictions in the ratio 3/2, and the variants with two hoops and two cylinders. Their words are in
+``claims.toml``.
 """
 
 from __future__ import annotations

@@ -1,11 +1,8 @@
-"""The catalogue's claims of Sec. 4.
+"""The claims of Sec. 4: the spring at the percussion heights, no static friction (Fig. 3).
 
-The claims of Sec. 4: the frictionless system, the spring at the percussion heights (Fig. 3).
-
-Each entry is the code half of a claim (its quantity, the paper's expression in SymPy, the
-systems, the recipe, the stated assumptions), written with keyword arguments; a claim the paper
-repeats is written as ``restates(key_of_the_first, key=..., <only what differs>)``. The paper's
-words (location, quote, statement, the claim as LaTeX) are in ``claims.toml`` under the same key.
+Eq. (fric) and the heights that cancel the friction, Fig. 3's geometry (R1 = R2/2, the centres
+level), its equations of motion divided by the lever arms, the centre of mass at rest, and the
+torques and angular momenta of the two bodies. Their words are in ``claims.toml``.
 """
 
 from __future__ import annotations
@@ -48,7 +45,6 @@ from rollspring.analysis.paper.symbols import (
 )
 
 _F3 = k * (sp.Rational(3, 2) * R2 * phi2 - 2 * R1 * phi1)  # the spring force of Fig. 3
-
 
 _J31, _J32 = 2 * m1 * R1**2, sp.Rational(3, 2) * m2 * R2**2  # I'_1, I'_2 of Fig. 3
 

@@ -1,12 +1,9 @@
-"""The catalogue's claims of Sec. 5.1 and 5.2.
+"""The claims of Sec. 5.1 (dynamic equations) and Sec. 5.2 (conservation of E and L).
 
-The claims of Sec. 5.1 (Newton's equations) and Sec. 5.2 (conservation of energy and angular
-momentum).
-
-Each entry is the code half of a claim (its quantity, the paper's expression in SymPy, the
-systems, the recipe, the stated assumptions), written with keyword arguments; a claim the paper
-repeats is written as ``restates(key_of_the_first, key=..., <only what differs>)``. The paper's
-words (location, quote, statement, the claim as LaTeX) are in ``claims.toml`` under the same key.
+Eqs. (QQ2), (QQ1), (QQQ1): the angle relation and Omega^2 from Newton's equations; then the
+amplitudes, speeds, energies and Omega^2 again from the conservation of energy and angular
+momentum, with isochronism and the centre of mass for equal masses. Their words are in
+``claims.toml``.
 """
 
 from __future__ import annotations
@@ -47,7 +44,7 @@ def claims() -> list[Entry]:
     """The claims of Sec. 5, Sec. 5.2, in the paper's order."""
     return [
         claim(
-            key="sec5.1.qq2",
+            key="sec5.qq2",
             quantity=r"\ddot\varphi_1+\Omega^2\varphi_1",
             paper=sp.Integer(0),
             system="fig2",

@@ -1,12 +1,8 @@
-"""The catalogue's claims of Sec. 5.3 to 5.5.
+"""The claims of Sec. 5.3 (Euler-Lagrange), 5.4 (natural frequencies) and 5.5.
 
-The claims of Sec. 5.3 (Euler-Lagrange), Sec. 5.4 (natural frequencies) and Sec. 5.5 (what they are
-for).
-
-Each entry is the code half of a claim (its quantity, the paper's expression in SymPy, the
-systems, the recipe, the stated assumptions), written with keyword arguments; a claim the paper
-repeats is written as ``restates(key_of_the_first, key=..., <only what differs>)``. The paper's
-words (location, quote, statement, the claim as LaTeX) are in ``claims.toml`` under the same key.
+The Lagrangian (l), the spring cut at X-hat into two parts (k1, k2 and their sum rule), eqs. (ga),
+(de), (ep), (pe); the sum rule of the natural frequencies and its "consequently"; and what the
+frequencies are for (Sec. 5.5). Their words are in ``claims.toml``.
 """
 
 from __future__ import annotations

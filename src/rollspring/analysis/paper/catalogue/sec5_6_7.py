@@ -1,11 +1,8 @@
-"""The catalogue's claims of Sec. 5.6 and 7.
+"""The claims of Sec. 5.6 (Hamilton's equations) and Sec. 7 (the conclusion).
 
-The claims of Sec. 5.6 (Hamilton's equations) and Sec. 7 (the conclusion).
-
-Each entry is the code half of a claim (its quantity, the paper's expression in SymPy, the
-systems, the recipe, the stated assumptions), written with keyword arguments; a claim the paper
-repeats is written as ``restates(key_of_the_first, key=..., <only what differs>)``. The paper's
-words (location, quote, statement, the claim as LaTeX) are in ``claims.toml`` under the same key.
+The Hamiltonian in canonical coordinates q_i = sqrt(J_i/m_i) phi_i, its equations and the factor
+2/sqrt(3); then the conclusion, which restates the abstract's claims (``restates(...)``). Their
+words are in ``claims.toml``.
 """
 
 from __future__ import annotations

@@ -1,11 +1,8 @@
-"""The recipes for the appendices.
+"""Recipes for App. A (static friction), App. B (frequencies) and App. C (the Hamiltonian).
 
-The claims of App. A (static friction), App. B (natural frequencies) and App. C (the Hamiltonian).
-
-Each recipe takes the bench (:class:`~rollspring.analysis.paper.bench.Bench`) and derives, from
-the engine's SymPy objects, the quantity a claim of the catalogue states
-(:class:`~rollspring.analysis.paper.types.Derived`): in general, under the assumptions the paper
-states, and under a condition the paper does not state where the claim needs one.
+From the engine's friction (M8) on each body of Fig. 2 and on a body pulled at a height (Fig. 5),
+the subsystems' energies and frequencies (App. B), and the clamped frequencies of Fig. 2 and
+Fig. 3 (App. C).
 """
 
 from __future__ import annotations
@@ -19,6 +16,7 @@ from rollspring.analysis.paper.algebra import tidy
 from rollspring.analysis.paper.bench import Bench
 from rollspring.analysis.paper.recipes.common import (
     CANONICAL_ORIENTATION,
+    clamped_sum,
     fig3_geometry,
     flip_first,
     mode_ratio,
@@ -221,11 +219,16 @@ def app_a_friction(index: int, *, middle: bool = False) -> Callable[[Bench], Der
     return derive
 
 
-def pull_equations(b: Bench) -> Derived:
+def _pulled_acceleration(b: Bench) -> tuple[Any, Any]:
+    """The pulled body (I = gamma m R^2) and its phiddot = Q/J at phi = 0 (engine, M7)."""
     sym = b.sym("pulled")
     (eq,) = sym.equations_of_motion()
     body = sym.bodies[0]
-    acc = tidy((eq.rhs / body.J).subs(body.q, 0))
+    return body, tidy((eq.rhs / body.J).subs(body.q, 0))
+
+
+def pull_equations(b: Bench) -> Derived:
+    body, acc = _pulled_acceleration(b)
     return Derived(
         (acc, pulled_friction(b, "pulled")),
         "phiddot = Q/J at phi = 0 from the engine's equation of motion (M7), and minus the "
@@ -235,10 +238,7 @@ def pull_equations(b: Bench) -> Derived:
 
 
 def pull_phiddot(b: Bench) -> Derived:
-    sym = b.sym("pulled")
-    (eq,) = sym.equations_of_motion()
-    body = sym.bodies[0]
-    acc = tidy((eq.rhs / body.J).subs(body.q, 0))
+    body, acc = _pulled_acceleration(b)
     return Derived(
         (body.s, acc, acc),
         "the engine's rolling constraint a = s phiddot (M2) and phiddot = Q/J at phi = 0 (M7)",
@@ -298,9 +298,8 @@ def fig5_labels(b: Bench) -> Derived:
 
 
 def sum_rule_fig3(b: Bench) -> Derived:
-    sym = b.sym("fig3")
     (w2,) = b.omega2("fig3")
-    clamped = sp.Add(*[sym.stiffness_matrix[i, i] / body.J for i, body in enumerate(sym.bodies)])
+    clamped = clamped_sum(b, "fig3")
     return Derived(
         (w2, tidy(w2 - clamped)),
         "the non-zero root of det(K - Omega^2 M) = 0 and its difference from the clamped sum "

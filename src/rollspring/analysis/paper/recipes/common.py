@@ -27,7 +27,7 @@ def flip_first(expr: Any) -> Any:
 
 
 def flip_first_rate(expr: Any) -> Any:
-    """As :func:`_flip_first` for a pair whose first entry is itself odd in phi_1 (an
+    """As :func:`flip_first` for a pair whose first entry is itself odd in phi_1 (an
     acceleration, a momentum rate of body 1)."""
     first, second = flip_first(expr)
     return (-first, second)
@@ -85,3 +85,10 @@ def zero_friction_height(b: Bench, key: str) -> sp.Expr:
     (height,) = sp.solve(sp.Eq(pulled_friction(b, key), 0), y)
     result: sp.Expr = height
     return result
+
+
+def clamped_sum(b: Bench, key: str) -> Any:
+    """K_11/J_1 + K_22/J_2 + ...: the squared frequencies of each body alone, the others held
+    (clamped, partial frequencies), summed; from the engine's M and K."""
+    sym = b.sym(key)
+    return sp.Add(*[sym.stiffness_matrix[i, i] / body.J for i, body in enumerate(sym.bodies)])

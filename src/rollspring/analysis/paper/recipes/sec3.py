@@ -1,11 +1,8 @@
-"""The recipes for Sec. 3.
+"""Recipes for Sec. 3: the hoop and the cylinder joined at their centres (Fig. 2).
 
-The claims of Sec. 3: the hoop and the cylinder joined at their centres (Fig. 2).
-
-Each recipe takes the bench (:class:`~rollspring.analysis.paper.bench.Bench`) and derives, from
-the engine's SymPy objects, the quantity a claim of the catalogue states
-(:class:`~rollspring.analysis.paper.types.Derived`): in general, under the assumptions the paper
-states, and under a condition the paper does not state where the claim needs one.
+From the engine's Fig. 2 system (and two hoops, two cylinders): constraints, the mass matrix
+(Steiner), the accelerations, the conserved combination (zero mode of K), the mode shape, the
+stationary point's weights and the linear static frictions in the mode.
 """
 
 from __future__ import annotations

@@ -1,11 +1,8 @@
-"""The recipes for Sec. 4.
+"""Recipes for Sec. 4: the spring at the percussion heights (Fig. 3) and eq. (fric).
 
-The claims of Sec. 4: the frictionless system, the spring at the percussion heights (Fig. 3).
-
-Each recipe takes the bench (:class:`~rollspring.analysis.paper.bench.Bench`) and derives, from
-the engine's SymPy objects, the quantity a claim of the catalogue states
-(:class:`~rollspring.analysis.paper.types.Derived`): in general, under the assumptions the paper
-states, and under a condition the paper does not state where the claim needs one.
+From the engine's Fig. 3 and pulled-body systems: the friction of a body pulled at a height, the
+heights where it vanishes, Fig. 3's exact and linearised equations combined by the paper's
+weights, its torques and angular momenta.
 """
 
 from __future__ import annotations

@@ -1,12 +1,8 @@
-"""The recipes for Sec. 5.1 and 5.2.
+"""Recipes for Sec. 5.1 (dynamic equations) and Sec. 5.2 (conservation of E and L).
 
-The claims of Sec. 5.1 (Newton's equations) and Sec. 5.2 (conservation of energy and angular
-momentum).
-
-Each recipe takes the bench (:class:`~rollspring.analysis.paper.bench.Bench`) and derives, from
-the engine's SymPy objects, the quantity a claim of the catalogue states
-(:class:`~rollspring.analysis.paper.types.Derived`): in general, under the assumptions the paper
-states, and under a condition the paper does not state where the claim needs one.
+From the engine's closed-form Omega^2 and mode shape of Fig. 2: the angle relations, the
+amplitudes and speeds in the mode, the largest kinetic energy, isochronism, and the isotonic
+oscillator as the counter-example to "unique to harmonic oscillation".
 """
 
 from __future__ import annotations

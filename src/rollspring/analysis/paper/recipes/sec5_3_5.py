@@ -1,12 +1,8 @@
-"""The recipes for Sec. 5.3 to 5.5.
+"""Recipes for Sec. 5.3 (Euler-Lagrange), Sec. 5.4 (natural frequencies) and Sec. 5.5.
 
-The claims of Sec. 5.3 (Euler-Lagrange), Sec. 5.4 (natural frequencies) and Sec. 5.5 (what they are
-for).
-
-Each recipe takes the bench (:class:`~rollspring.analysis.paper.bench.Bench`) and derives, from
-the engine's SymPy objects, the quantity a claim of the catalogue states
-(:class:`~rollspring.analysis.paper.types.Derived`): in general, under the assumptions the paper
-states, and under a condition the paper does not state where the claim needs one.
+From the engine's Lagrangian, M and K: the spring's two parts cut at X-hat and their equations,
+the clamped (partial) frequencies against the coupled one, the sum rule on Fig. 2 and on a system
+where it fails (a wall spring), and a quadratic energy's oscillation.
 """
 
 from __future__ import annotations
@@ -19,6 +15,7 @@ from rollspring.analysis.paper.algebra import same, substitute, tidy
 from rollspring.analysis.paper.bench import Bench
 from rollspring.analysis.paper.recipes.common import (
     ORIENTATION,
+    clamped_sum,
     flip_first,
     flip_first_rate,
     mode_ratio,
@@ -168,9 +165,8 @@ def normal_oscillation(b: Bench) -> Derived:
 
 
 def sum_rule_fig2(b: Bench) -> Derived:
-    sym = b.sym("fig2")
     (w2,) = b.omega2("fig2")
-    clamped = sp.Add(*[sym.stiffness_matrix[i, i] / body.J for i, body in enumerate(sym.bodies)])
+    clamped = clamped_sum(b, "fig2")
     return Derived(
         tidy(w2 - clamped),
         "Omega^2 minus the sum of the clamped frequencies K_ii/J_ii (each body alone, the other "

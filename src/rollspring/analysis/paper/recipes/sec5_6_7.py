@@ -1,11 +1,8 @@
-"""The recipes for Sec. 5.6 and 7.
+"""Recipes for Sec. 5.6: Hamilton's equations in canonical coordinates.
 
-The claims of Sec. 5.6 (Hamilton's equations) and Sec. 7 (the conclusion).
-
-Each recipe takes the bench (:class:`~rollspring.analysis.paper.bench.Bench`) and derives, from
-the engine's SymPy objects, the quantity a claim of the catalogue states
-(:class:`~rollspring.analysis.paper.types.Derived`): in general, under the assumptions the paper
-states, and under a condition the paper does not state where the claim needs one.
+From the engine's quadratic potential in q_i = sqrt(J_i/m_i) phi_i: the Hamiltonian, Hamilton's
+equations, the ratio of the canonical coordinates in the mode and the potential of Fig. 3 (the
+conclusion of Sec. 7 restates claims whose recipes live with their sections).
 """
 
 from __future__ import annotations

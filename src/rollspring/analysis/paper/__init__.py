@@ -38,11 +38,13 @@ Sign conventions (docs/physics.md): :math:`\varphi_i` clockwise positive (rollin
 one common orientation for all bodies, measured from the equilibrium; friction :math:`f_i` is
 the force of the floor on body i, positive along +x.
 
-The package: :mod:`~.types` (the data types), :mod:`~.systems` (the paper's systems),
-:mod:`~.bench` (their symbolic forms and derived objects, built once), :mod:`~.decide` (the
-verdict), :mod:`~.assumptions` (the assumptions the paper states), :mod:`~.recipes` (the
-derivations, one module per section or group of sections) and :mod:`~.catalogue` (the claims in
-the paper's order, written with keyword arguments; their words in ``claims.toml``).
+The package: :mod:`~.types` (the data types), :mod:`~.symbols` and :mod:`~.notation` (the
+engine's symbols and the paper's own), :mod:`~.systems` (the paper's systems), :mod:`~.bench`
+(their symbolic forms and derived objects, built once), :mod:`~.algebra` (the exact comparisons),
+:mod:`~.decide` (the verdict), :mod:`~.assumptions` (the assumptions the paper states),
+:mod:`~.recipes` (the derivations, one module per section or group of sections) and
+:mod:`~.catalogue` (the claims in the paper's order, written with keyword arguments; their words
+in ``claims.toml``).
 """
 
 from rollspring.analysis.paper.catalogue import paper_claims

@@ -15,7 +15,7 @@ import sympy as sp
 from rollspring.analysis.derivation import SymbolicSystem, symbolic_system
 from rollspring.analysis.derivation.frequencies import normal_frequencies
 from rollspring.analysis.paper.algebra import tidy
-from rollspring.analysis.paper.symbols import A
+from rollspring.analysis.paper.notation import A
 from rollspring.analysis.paper.systems import paper_system
 
 

@@ -12,6 +12,7 @@ import sympy as sp
 from rollspring.analysis.paper.assumptions import ORIGIN_APP_A, RELEASED, SMALL_ANGLES
 from rollspring.analysis.paper.catalogue.common import J1, J2, TRUE, k1_paper
 from rollspring.analysis.paper.catalogue.entry import Entry, claim, restates
+from rollspring.analysis.paper.notation import I_, f1, f2, fpull, p1, p2, q1, q2, q3, q4
 from rollspring.analysis.paper.recipes.appendices import (
     app_a_friction,
     app_a_friction_torque,
@@ -35,28 +36,18 @@ from rollspring.analysis.paper.recipes.appendices import (
     sum_rule_fig3,
 )
 from rollspring.analysis.paper.symbols import (
-    I_,
     F,
     R,
-    f1,
-    f2,
-    fpull,
     k,
     k1,
     k2,
     m,
     m1,
     m2,
-    p1,
-    p2,
     phi1,
     phi2,
     phid1,
     phid2,
-    q1,
-    q2,
-    q3,
-    q4,
     y,
 )
 

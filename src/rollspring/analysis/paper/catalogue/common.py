@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import sympy as sp
 
-from rollspring.analysis.paper.symbols import R, half, k, m1, m2
+from rollspring.analysis.paper.notation import half
+from rollspring.analysis.paper.symbols import R, k, m1, m2
 
 
 def hoop_cylinder_hamiltonian(

@@ -12,6 +12,7 @@ import sympy as sp
 from rollspring.analysis.paper.assumptions import LEVEL, SMALL_ANGLES
 from rollspring.analysis.paper.catalogue.common import TRUE
 from rollspring.analysis.paper.catalogue.entry import Entry, claim, restates
+from rollspring.analysis.paper.notation import I_, Fx1, Fx2
 from rollspring.analysis.paper.recipes.sec4 import (
     fig3_angular_momentum,
     fig3_combination,
@@ -27,22 +28,7 @@ from rollspring.analysis.paper.recipes.sec4 import (
     geometry,
     heights,
 )
-from rollspring.analysis.paper.symbols import (
-    I_,
-    R1,
-    R2,
-    F,
-    Fx1,
-    Fx2,
-    R,
-    k,
-    m,
-    m1,
-    m2,
-    phi1,
-    phi2,
-    y,
-)
+from rollspring.analysis.paper.symbols import R1, R2, F, R, k, m, m1, m2, phi1, phi2, y
 
 _F3 = k * (sp.Rational(3, 2) * R2 * phi2 - 2 * R1 * phi1)  # the spring force of Fig. 3
 

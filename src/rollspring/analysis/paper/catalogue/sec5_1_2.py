@@ -13,6 +13,7 @@ import sympy as sp
 from rollspring.analysis.paper.assumptions import MAXIMAL, RELEASED
 from rollspring.analysis.paper.catalogue.common import J1, J2, TRUE
 from rollspring.analysis.paper.catalogue.entry import Entry, claim, restates
+from rollspring.analysis.paper.notation import A, Omega, Phid1
 from rollspring.analysis.paper.recipes.sec5_1_2 import (
     amplitude_sum,
     amplitudes,
@@ -37,7 +38,7 @@ from rollspring.analysis.paper.recipes.sec5_1_2 import (
     substituted,
     undeformed_at_top_speed,
 )
-from rollspring.analysis.paper.symbols import A, Omega, Phid1, R, k, m1, m2, phi1, phid1, phid2
+from rollspring.analysis.paper.symbols import R, k, m1, m2, phi1, phid1, phid2
 
 
 def claims() -> list[Entry]:

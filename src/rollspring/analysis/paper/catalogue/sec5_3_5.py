@@ -12,6 +12,7 @@ import sympy as sp
 from rollspring.analysis.paper.assumptions import ORIGIN, RELEASED
 from rollspring.analysis.paper.catalogue.common import J1, J2, TRUE, k1_paper
 from rollspring.analysis.paper.catalogue.entry import Entry, claim, restates
+from rollspring.analysis.paper.notation import ell_total
 from rollspring.analysis.paper.recipes.sec5_1_2 import phi_relation
 from rollspring.analysis.paper.recipes.sec5_3_5 import (
     app_a_phi_ratio,
@@ -34,20 +35,7 @@ from rollspring.analysis.paper.recipes.sec5_3_5 import (
     xhat_left,
     xhat_right,
 )
-from rollspring.analysis.paper.symbols import (
-    R,
-    ell_total,
-    k,
-    k1,
-    k2,
-    m1,
-    m2,
-    phi1,
-    phi2,
-    phid1,
-    phid2,
-    phidd1,
-)
+from rollspring.analysis.paper.symbols import R, k, k1, k2, m1, m2, phi1, phi2, phid1, phid2, phidd1
 
 _k2_paper = k * (3 * m2 + 4 * m1) / (4 * m1)
 

@@ -12,6 +12,7 @@ import sympy as sp
 from rollspring.analysis.paper.assumptions import ORIGIN, RELEASED
 from rollspring.analysis.paper.catalogue.common import hoop_cylinder_hamiltonian
 from rollspring.analysis.paper.catalogue.entry import Entry, claim, restates
+from rollspring.analysis.paper.notation import half, p1, p2, pd1, q1, q2
 from rollspring.analysis.paper.recipes.sec5_3_5 import lagrangian
 from rollspring.analysis.paper.recipes.sec5_6_7 import (
     canonical,
@@ -24,24 +25,7 @@ from rollspring.analysis.paper.recipes.sec5_6_7 import (
     q_ratio,
     qdot,
 )
-from rollspring.analysis.paper.symbols import (
-    R,
-    half,
-    k,
-    m1,
-    m2,
-    p1,
-    p2,
-    pd1,
-    phi1,
-    phi2,
-    phid1,
-    phid2,
-    q1,
-    q2,
-    x1,
-    x2,
-)
+from rollspring.analysis.paper.symbols import R, k, m1, m2, phi1, phi2, phid1, phid2, x1, x2
 
 
 def claims() -> list[Entry]:

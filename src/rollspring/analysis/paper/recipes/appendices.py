@@ -14,6 +14,7 @@ import sympy as sp
 
 from rollspring.analysis.paper.algebra import tidy
 from rollspring.analysis.paper.bench import Bench
+from rollspring.analysis.paper.notation import I_, f1, f2, fpull, p1, p2, p3, p4, q1, q2, q3, q4
 from rollspring.analysis.paper.recipes.common import (
     CANONICAL_ORIENTATION,
     clamped_sum,
@@ -24,28 +25,7 @@ from rollspring.analysis.paper.recipes.common import (
     split,
     zero_friction_height,
 )
-from rollspring.analysis.paper.symbols import (
-    I_,
-    F,
-    R,
-    f1,
-    f2,
-    fpull,
-    k,
-    k1,
-    k2,
-    p1,
-    p2,
-    p3,
-    p4,
-    phi1,
-    phi2,
-    q1,
-    q2,
-    q3,
-    q4,
-    y,
-)
+from rollspring.analysis.paper.symbols import F, R, k, k1, k2, phi1, phi2, y
 from rollspring.analysis.paper.types import Derived
 
 

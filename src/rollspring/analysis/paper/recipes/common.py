@@ -14,7 +14,8 @@ import sympy as sp
 
 from rollspring.analysis.paper.algebra import tidy
 from rollspring.analysis.paper.bench import Bench
-from rollspring.analysis.paper.symbols import p1, pd1, phi1, phid1, phidd1, q1, q3, y
+from rollspring.analysis.paper.notation import p1, pd1, q1, q3
+from rollspring.analysis.paper.symbols import phi1, phid1, phidd1, y
 
 
 def flip_first(expr: Any) -> Any:

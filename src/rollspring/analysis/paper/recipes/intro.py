@@ -13,7 +13,8 @@ import sympy as sp
 
 from rollspring.analysis.paper.algebra import same, substitute, tidy
 from rollspring.analysis.paper.bench import Bench
-from rollspring.analysis.paper.symbols import P0, m2
+from rollspring.analysis.paper.notation import P0
+from rollspring.analysis.paper.symbols import m2
 from rollspring.analysis.paper.types import Derived
 
 

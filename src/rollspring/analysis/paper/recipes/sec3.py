@@ -14,8 +14,9 @@ import sympy as sp
 
 from rollspring.analysis.paper.algebra import same, substitute, tidy
 from rollspring.analysis.paper.bench import Bench
+from rollspring.analysis.paper.notation import P0
 from rollspring.analysis.paper.recipes.common import mode_ratio
-from rollspring.analysis.paper.symbols import P0, R, m1, m2, phid1, phid2
+from rollspring.analysis.paper.symbols import R, m1, m2, phid1, phid2
 from rollspring.analysis.paper.types import Derived
 
 

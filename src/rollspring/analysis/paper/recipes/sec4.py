@@ -15,12 +15,13 @@ import sympy as sp
 from rollspring.analysis.derivation import SymbolicSystem
 from rollspring.analysis.paper.algebra import same, tidy
 from rollspring.analysis.paper.bench import Bench
+from rollspring.analysis.paper.notation import I_, Fx1, Fx2, a
 from rollspring.analysis.paper.recipes.common import (
     fig3_geometry,
     pulled_friction,
     zero_friction_height,
 )
-from rollspring.analysis.paper.symbols import I_, R1, R2, F, Fx1, Fx2, R, a, y
+from rollspring.analysis.paper.symbols import R1, R2, F, R, y
 from rollspring.analysis.paper.systems import paper_system
 from rollspring.analysis.paper.types import Derived
 

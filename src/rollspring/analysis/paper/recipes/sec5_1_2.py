@@ -13,23 +13,9 @@ import sympy as sp
 
 from rollspring.analysis.paper.algebra import same, substitute, tidy
 from rollspring.analysis.paper.bench import Bench
+from rollspring.analysis.paper.notation import D0, P0, A, Omega, Phid1, beta0, omega0, t, xi, xid
 from rollspring.analysis.paper.recipes.common import ORIENTATION, flip_first, mode_ratio
-from rollspring.analysis.paper.symbols import (
-    D0,
-    P0,
-    A,
-    Omega,
-    Phid1,
-    beta0,
-    m1,
-    m2,
-    omega0,
-    phi1,
-    phi2,
-    t,
-    xi,
-    xid,
-)
+from rollspring.analysis.paper.symbols import m1, m2, phi1, phi2
 from rollspring.analysis.paper.types import Derived
 
 

@@ -13,6 +13,7 @@ import sympy as sp
 
 from rollspring.analysis.paper.algebra import same, substitute, tidy
 from rollspring.analysis.paper.bench import Bench
+from rollspring.analysis.paper.notation import D0, P0, ell_total, t
 from rollspring.analysis.paper.recipes.common import (
     ORIENTATION,
     clamped_sum,
@@ -21,7 +22,7 @@ from rollspring.analysis.paper.recipes.common import (
     mode_ratio,
     split,
 )
-from rollspring.analysis.paper.symbols import D0, P0, ell_total, k1, k2, m1, m2, phi2, phidd1, t
+from rollspring.analysis.paper.symbols import k1, k2, m1, m2, phi2, phidd1
 from rollspring.analysis.paper.types import Derived
 
 

@@ -13,12 +13,13 @@ import sympy as sp
 
 from rollspring.analysis.paper.algebra import tidy
 from rollspring.analysis.paper.bench import Bench
+from rollspring.analysis.paper.notation import p1, p2, pd1, q1, q2
 from rollspring.analysis.paper.recipes.common import (
     CANONICAL_ORIENTATION,
     flip_first,
     flip_first_rate,
 )
-from rollspring.analysis.paper.symbols import k, m1, p1, p2, pd1, q1, q2
+from rollspring.analysis.paper.symbols import k, m1
 from rollspring.analysis.paper.types import Derived
 
 

@@ -2,7 +2,8 @@
 
 Its code half (:mod:`~.entry`: what each claim gives a value for, the paper's expression, the
 systems, the recipe) is one module per section or group of sections; its words (location,
-verbatim quote, statement, LaTeX) are in ``claims.toml``, one table per claim key.
+verbatim quote, statement, LaTeX: the quote where it is itself the formula) are in
+``claims.toml``, one table per claim key.
 :func:`paper_claims` joins the two.
 """
 
@@ -53,6 +54,8 @@ def _claim(entry: Entry, words: dict[str, str], original: Claim | None) -> Claim
     def said(name: str) -> str:
         if name in words:
             return words[name]
+        if original is None and name == "latex":  # the quote is the formula
+            return words["quote"]
         if original is None:
             raise RuntimeError(f"{entry.key}: claims.toml gives no {name}")
         text: str = getattr(original, name)

@@ -58,10 +58,7 @@ _Omega3, _Omega4 = sp.sqrt(2 * k / m1), sp.sqrt(3 * k / (2 * m2))
 def claims() -> list[Entry]:
     """The claims of App. A, App. B, App. C, in the paper's order."""
     return [
-        restates(
-            "sec5.2.relative-coordinates",
-            key="app-a.relative-coordinates",
-        ),
+        restates("sec5.2.relative-coordinates", key="app-a.relative-coordinates"),
         claim(
             key="app-a.hoop-rotation",
             quantity=r"\left(\ddot\phi_1,\ \ddot\phi_1\right)",
@@ -116,10 +113,7 @@ def claims() -> list[Entry]:
             key="app-a.phi-ratio",
             assumptions=(RELEASED, ORIGIN_APP_A),
         ),
-        restates(
-            "sec3.friction-ratio",
-            key="app-a.friction-ratio",
-        ),
+        restates("sec3.friction-ratio", key="app-a.friction-ratio"),
         claim(
             key="app-a.pull-equations",
             quantity=r"\left(\ddot\varphi,\ f\right)",
@@ -233,10 +227,7 @@ def claims() -> list[Entry]:
             system="fig2",
             derive=subsystem(1),
         ),
-        restates(
-            "sec5.4.sum-rule",
-            key="app-b.sum-rule",
-        ),
+        restates("sec5.4.sum-rule", key="app-b.sum-rule"),
         claim(
             key="app-b.omega2-fig3",
             quantity=r"\left(\Omega^2,\ \Omega^2-\Omega_3^2-\Omega_4^2\right)",

@@ -140,10 +140,7 @@ def claims() -> list[Entry]:
             system="fig1",
             derive=fig1_momentum_sum,
         ),
-        restates(
-            "sec2.fig1-cm-at-rest-text",
-            key="sec2.fig1-cm-at-rest",
-        ),
+        restates("sec2.fig1-cm-at-rest-text", key="sec2.fig1-cm-at-rest"),
         claim(
             key="sec2.fig1-vertical",
             quantity=r"\left(N_1-m_1g,\ N_2-m_2g\right)",

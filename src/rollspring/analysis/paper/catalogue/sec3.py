@@ -88,10 +88,7 @@ def claims() -> list[Entry]:
             system="fig2",
             derive=steiner,
         ),
-        restates(
-            "sec3.fig2-rotation",
-            key="sec3.fig2-equations",
-        ),
+        restates("sec3.fig2-rotation", key="sec3.fig2-equations"),
         claim(
             key="sec3.fig2-sum",
             quantity=r"I'_1\ddot\varphi_1+I'_2\ddot\varphi_2",
@@ -125,10 +122,7 @@ def claims() -> list[Entry]:
             derive=w_relation,
             assumptions=(RELEASED,),
         ),
-        restates(
-            "abstract.cm-moves",
-            key="sec3.cm-moves",
-        ),
+        restates("abstract.cm-moves", key="sec3.cm-moves"),
         claim(
             key="sec3.stationary-point",
             quantity=r"\dot{\hat X}",
@@ -167,10 +161,7 @@ def claims() -> list[Entry]:
             system="two-cylinders",
             derive=stationary("two-cylinders"),
         ),
-        restates(
-            "abstract.fig3",
-            key="sec3.steady-cm",
-        ),
+        restates("abstract.fig3", key="sec3.steady-cm"),
         claim(
             key="sec3.fig2-caption",
             quantity=r"f\neq 0",

@@ -91,10 +91,7 @@ def claims() -> list[Entry]:
             derive=geometry,
             assumptions=(LEVEL,),
         ),
-        restates(
-            "sec4.fig3-no-friction",
-            key="sec4.fig3-caption",
-        ),
+        restates("sec4.fig3-no-friction", key="sec4.fig3-caption"),
         claim(
             key="sec4.fig3-equations",
             quantity=r"\left(\ddot\varphi_1,\ \ddot\varphi_2\right)",
@@ -166,14 +163,8 @@ def claims() -> list[Entry]:
             derive=fig3_x,
             assumptions=(SMALL_ANGLES,),
         ),
-        restates(
-            "abstract.fig3",
-            key="sec4.fig3-cm-at-rest",
-        ),
-        restates(
-            "abstract.fig3",
-            key="sec4.fig3-cm-stationary-again",
-        ),
+        restates("abstract.fig3", key="sec4.fig3-cm-at-rest"),
+        restates("abstract.fig3", key="sec4.fig3-cm-stationary-again"),
         claim(
             key="sec4.fig3-equal-spring-forces",
             quantity=r"\lvert F_{2x}/F_{1x}\rvert",

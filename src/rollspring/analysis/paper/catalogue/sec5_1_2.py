@@ -153,10 +153,7 @@ def claims() -> list[Entry]:
             system="fig2",
             derive=orbital_spin,
         ),
-        restates(
-            "sec5.2.nu",
-            key="sec5.2.phidot-relation",
-        ),
+        restates("sec5.2.nu", key="sec5.2.phidot-relation"),
         claim(
             key="sec5.2.speeds-from-rates",
             quantity=r"\left(v_1/\dot\Phi_1,\ v_2/\dot\Phi_2\right)",
@@ -191,10 +188,7 @@ def claims() -> list[Entry]:
             system="fig2",
             derive=omega_chain,
         ),
-        restates(
-            "sec5.1.omega2-fig2",
-            key="sec5.2.omega-identical",
-        ),
+        restates("sec5.1.omega2-fig2", key="sec5.2.omega-identical"),
         claim(
             key="sec5.2.isochronism",
             quantity=r"\left(\partial v_i/\partial A\neq 0,\ \partial\Omega/\partial A\right)",

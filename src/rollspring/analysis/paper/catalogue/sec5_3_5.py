@@ -93,14 +93,8 @@ def claims() -> list[Entry]:
             system="fig2",
             derive=mode_equation(0),
         ),
-        restates(
-            "sec5.1.qq1",
-            key="sec5.3.ep",
-        ),
-        restates(
-            "sec5.1.qq1",
-            key="sec5.3.ep-identical",
-        ),
+        restates("sec5.1.qq1", key="sec5.3.ep"),
+        restates("sec5.1.qq1", key="sec5.3.ep-identical"),
         claim(
             key="sec5.3.pe",
             quantity=r"\tfrac32 m_2R^2\ddot\phi_2",
@@ -203,8 +197,5 @@ def claims() -> list[Entry]:
             system="fig2",
             derive=sum_rule_fig2,
         ),
-        restates(
-            "sec5.4.sum-rule",
-            key="sec5.5.frequencies-detect-errors",
-        ),
+        restates("sec5.4.sum-rule", key="sec5.5.frequencies-detect-errors"),
     ]

@@ -111,28 +111,10 @@ def claims() -> list[Entry]:
             system="fig1",
             derive=interchangeable,
         ),
-        restates(
-            "abstract.cm-moves",
-            key="sec7.cm-moves",
-        ),
-        restates(
-            "abstract.friction-cause",
-            key="sec7.friction-cause",
-        ),
-        restates(
-            "abstract.same-inertia",
-            key="sec7.same-inertia",
-        ),
-        restates(
-            "abstract.fig3",
-            key="sec7.fig3",
-        ),
-        restates(
-            "abstract.methods",
-            key="sec7.methods",
-        ),
-        restates(
-            "sec5.5.frequencies-detect-errors",
-            key="sec7.check",
-        ),
+        restates("abstract.cm-moves", key="sec7.cm-moves"),
+        restates("abstract.friction-cause", key="sec7.friction-cause"),
+        restates("abstract.same-inertia", key="sec7.same-inertia"),
+        restates("abstract.fig3", key="sec7.fig3"),
+        restates("abstract.methods", key="sec7.methods"),
+        restates("sec5.5.frequencies-detect-errors", key="sec7.check"),
     ]

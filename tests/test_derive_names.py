@@ -12,7 +12,7 @@ import sympy as sp
 
 from rollspring.analysis.derivation import Derivation, derive
 from rollspring.analysis.derivation.steps import Named, pretty_name, pretty_text
-from rollspring.analysis.paper_check import paper_system
+from rollspring.analysis.paper import paper_system
 from rollspring.model import load_system, preset_names
 from tests.test_derive_steps import pulled_slider_pair, wall_chain
 

@@ -17,7 +17,7 @@ import sympy as sp
 import rollspring
 from rollspring.analysis.derivation import Derivation, derive
 from rollspring.analysis.derivation.steps import OPERATIONS, Named, Step
-from rollspring.analysis.paper_check import paper_system
+from rollspring.analysis.paper import paper_system
 from rollspring.model import load_system, preset_names
 from tests.conftest import body, make_system, spring
 

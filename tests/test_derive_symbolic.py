@@ -225,7 +225,7 @@ def test_the_frictionless_potential_is_general_tilted_springs_too(raised: bool) 
     vertical part is the difference of the end heights, not the 0 of this system's numbers.
     Substituted with random values that tilt the spring, it equals rollspring.physics'
     potential energy at random angles."""
-    from rollspring.analysis.paper_check import paper_system
+    from rollspring.analysis.paper import paper_system
     from rollspring.physics import potential_energy
 
     template = paper_system("fig3") if raised else load_system("frictionless")

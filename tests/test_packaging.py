@@ -126,6 +126,7 @@ def test_the_wheel_holds_presets_page_and_uplot_and_no_tests(wheel) -> None:
     assert {"player.js", "report.css"} <= assets
     assert {f"rollspring/outputs/report/assets/{a}" for a in assets} <= names
     assert "rollspring/web/static/js/geometry.js" in names
+    assert "rollspring/analysis/paper/claims.toml" in names  # the paper check's words
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     assert not [
         n

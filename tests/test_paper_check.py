@@ -12,12 +12,15 @@ what was verified against it (with the source's sha256), so no quote changes unv
 
 from __future__ import annotations
 
+import enum
 import hashlib
 import json
 import os
 import random
 import re
+import tomllib
 from collections.abc import Callable
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -28,7 +31,7 @@ from scipy.integrate import solve_ivp
 from sympy.logic.boolalg import BooleanAtom
 from typer.testing import CliRunner
 
-from rollspring.analysis.paper_check import (
+from rollspring.analysis.paper import (
     HOLDS_ONLY_IF,
     HOLDS_STATED,
     VERDICTS,
@@ -37,11 +40,14 @@ from rollspring.analysis.paper_check import (
     Assumption,
     Claim,
     Derived,
+    Verdict,
     check_claim,
     check_paper,
     paper_claims,
     quote_key,
 )
+from rollspring.analysis.paper.catalogue import entries
+from rollspring.analysis.paper.catalogue.entry import restates
 from rollspring.cli import app
 from rollspring.cli.commands import paper_check as cli_paper_check
 
@@ -747,47 +753,49 @@ def _omega_symbol(c: Claim) -> Any:
 
 #: key -> the verdict the hand computation gives (the claim is passed in for its transcription).
 INDEPENDENT: dict[str, Check] = {
-    "abstract-cm-moves": _plain(_cm_moves),
-    "abstract-friction-cause": _plain(_friction_cause),
-    "same-inertia": _same_inertia,
-    "abstract-fig3": _fig3_at_rest,
-    "abstract-methods": _plain(_methods),
-    "cm-theorem": _plain(lambda: sp.simplify(sum(Fig1.forces) / (m1 + m2))),
-    "fig1-caption": _plain(lambda: (sum(Fig1.friction), sum(Fig1.normal_minus_weight))),
-    "fig1-cm-at-rest-text": _fig1_at_rest,
-    "fig1-equal-forces": _magnitudes(lambda: Fig1.forces[1] / Fig1.forces[0]),
-    "fig1-equations": _plain(lambda: Fig1.forces),
-    "fig1-potential": _plain(lambda: Fig1.U),
-    "fig1-forces-from-u": _plain(lambda: Fig1.forces),
-    "fig1-momentum-sum": _plain(lambda: (sum(Fig1.forces), sum(Fig1.forces))),
-    "fig1-cm-at-rest": _fig1_at_rest,
-    "fig1-vertical": _plain(lambda: Fig1.normal_minus_weight),
-    "fig2-horizontal": _plain(_fig2_vertical_pull),
-    "fig2-dof": _plain(lambda: 2),
-    "fig2-constraints": _plain(lambda: (R * phi1, R * phi2)),
-    "contact-axis": _plain(_contact_axis),
-    "fig2-rotation": _plain(lambda: Fig2.acc),
-    "fig2-spring-force": _plain(lambda: (Fig2.spring[0], sp.Abs(Fig2.spring[1]))),
-    "steiner": _plain(lambda: (Fig2.J1, Fig2.J1, Fig2.J2, Fig2.J2)),
-    "fig2-equations": _plain(lambda: Fig2.acc),
-    "fig2-sum": _plain(lambda: sp.simplify(Fig2.J1 * Fig2.acc[0] + Fig2.J2 * Fig2.acc[1])),
-    "angular-momentum": lambda c: verdict(c.paper, P0, stated=(c.paper, 0)),
-    "phase-opposition": _plain(lambda: sp.sign(Fig2.ratio)),
-    "w-relation": lambda c: verdict(c.paper, (P0 / R, P0 / R), stated=(c.paper, (0, 0))),
-    "cm-moves": _plain(_cm_moves),
-    "stationary-point": lambda c: verdict(
+    "abstract.cm-moves": _plain(_cm_moves),
+    "abstract.friction-cause": _plain(_friction_cause),
+    "abstract.same-inertia": _same_inertia,
+    "abstract.fig3": _fig3_at_rest,
+    "abstract.methods": _plain(_methods),
+    "sec1.cm-theorem": _plain(lambda: sp.simplify(sum(Fig1.forces) / (m1 + m2))),
+    "sec2.fig1-caption": _plain(lambda: (sum(Fig1.friction), sum(Fig1.normal_minus_weight))),
+    "sec2.fig1-cm-at-rest-text": _fig1_at_rest,
+    "sec2.fig1-equal-forces": _magnitudes(lambda: Fig1.forces[1] / Fig1.forces[0]),
+    "sec2.fig1-equations": _plain(lambda: Fig1.forces),
+    "sec2.fig1-potential": _plain(lambda: Fig1.U),
+    "sec2.fig1-forces-from-u": _plain(lambda: Fig1.forces),
+    "sec2.fig1-momentum-sum": _plain(lambda: (sum(Fig1.forces), sum(Fig1.forces))),
+    "sec2.fig1-cm-at-rest": _fig1_at_rest,
+    "sec2.fig1-vertical": _plain(lambda: Fig1.normal_minus_weight),
+    "sec3.fig2-horizontal": _plain(_fig2_vertical_pull),
+    "sec3.fig2-dof": _plain(lambda: 2),
+    "sec3.fig2-constraints": _plain(lambda: (R * phi1, R * phi2)),
+    "sec3.contact-axis": _plain(_contact_axis),
+    "sec3.fig2-rotation": _plain(lambda: Fig2.acc),
+    "sec3.fig2-spring-force": _plain(lambda: (Fig2.spring[0], sp.Abs(Fig2.spring[1]))),
+    "sec3.steiner": _plain(lambda: (Fig2.J1, Fig2.J1, Fig2.J2, Fig2.J2)),
+    "sec3.fig2-equations": _plain(lambda: Fig2.acc),
+    "sec3.fig2-sum": _plain(lambda: sp.simplify(Fig2.J1 * Fig2.acc[0] + Fig2.J2 * Fig2.acc[1])),
+    "sec3.angular-momentum": lambda c: verdict(c.paper, P0, stated=(c.paper, 0)),
+    "sec3.phase-opposition": _plain(lambda: sp.sign(Fig2.ratio)),
+    "sec3.w-relation": lambda c: verdict(c.paper, (P0 / R, P0 / R), stated=(c.paper, (0, 0))),
+    "sec3.cm-moves": _plain(_cm_moves),
+    "sec3.stationary-point": lambda c: verdict(
         c.paper, R * P0 / (Fig2.J1 + Fig2.J2), stated=(c.paper, 0)
     ),
-    "same-spring-forces": _magnitudes(
+    "sec3.same-spring-forces": _magnitudes(
         lambda: (Fig2.spring[1] / Fig2.spring[0], sp.simplify(Fig2.Q[1] / Fig2.Q[0]))
     ),
-    "friction-ratio": _magnitudes(_friction_ratio),
-    "two-hoops": _plain(lambda: (m1 / (m1 + m2), m2 / (m1 + m2))),
-    "two-cylinders": _plain(lambda: (m1 / (m1 + m2), m2 / (m1 + m2))),
-    "steady-cm": _fig3_at_rest,
-    "fig2-caption": _plain(lambda: sp.true if Fig2.in_mode(Fig2.friction[0]) != 0 else sp.false),
-    "friction-must-vanish": _plain(_friction_sum_without_zeros),
-    "fric": lambda c: verdict(
+    "sec3.friction-ratio": _magnitudes(_friction_ratio),
+    "sec3.two-hoops": _plain(lambda: (m1 / (m1 + m2), m2 / (m1 + m2))),
+    "sec3.two-cylinders": _plain(lambda: (m1 / (m1 + m2), m2 / (m1 + m2))),
+    "sec3.steady-cm": _fig3_at_rest,
+    "sec3.fig2-caption": _plain(
+        lambda: sp.true if Fig2.in_mode(Fig2.friction[0]) != 0 else sp.false
+    ),
+    "sec4.friction-must-vanish": _plain(_friction_sum_without_zeros),
+    "sec4.fric": lambda c: verdict(
         c.paper,
         (
             _pulled(I_)[0],
@@ -795,152 +803,160 @@ INDEPENDENT: dict[str, Check] = {
             sp.sign(sp.simplify(-sp.diff(_pulled(I_)[0], y) / F)),
         ),
     ),
-    "zero-friction-heights": _plain(
+    "sec4.zero-friction-heights": _plain(
         lambda: tuple(sp.solve(_pulled(i)[0], y)[0] for i in (m * R**2, m * R**2 / 2))
     ),
-    "fric-coupled": _fric_coupled,
-    "fig3-no-friction": _fig3_no_friction,
-    "fig3-geometry": _geometry,
-    "fig3-caption": _fig3_no_friction,
-    "fig3-equations": _fig3_equations,
-    "fig3-spring-force": _fig3_force,
-    "fig3-forces": _fig3_forces,
-    "fig3-sum": _fig3_sums,
-    "fig3-cm-acceleration": _fig3_cm_acceleration,
-    "fig3-cm-acceleration-x": _fig3_x,
-    "fig3-cm-at-rest": _fig3_at_rest,
-    "fig3-cm-stationary-again": _fig3_at_rest,
-    "fig3-equal-spring-forces": _plain(lambda: sp.Abs(sp.simplify(-Fig3.pull / Fig3.pull))),
-    "fig3-torques-differ": _fig3_torques,
-    "fig3-angular-momentum": _fig3_angular_momentum,
-    "qq2": _qq2,
-    "phi-relation": _phi_relation,
-    "phi-substituted": _plain(lambda: Fig2.in_mode(Fig2.Q[0])),
-    "qq1": _plain(lambda: Fig2.omega2),
-    "omega2-fig2": _plain(lambda: Fig2.omega2),
-    "omega2-terms": _plain(lambda: (k * R**2 / Fig2.J1, k * R**2 / Fig2.J2)),
-    "speeds-kinematics": lambda c: verdict(_omega_symbol(c), (sp.sqrt(Fig2.omega2),) * 2),
-    "amplitude-sum": _plain(lambda: sum(Fig2.amplitudes())),
-    "omega-from-sum": lambda c: verdict(
+    "sec4.fric-coupled": _fric_coupled,
+    "sec4.fig3-no-friction": _fig3_no_friction,
+    "sec4.fig3-geometry": _geometry,
+    "sec4.fig3-caption": _fig3_no_friction,
+    "sec4.fig3-equations": _fig3_equations,
+    "sec4.fig3-spring-force": _fig3_force,
+    "sec4.fig3-forces": _fig3_forces,
+    "sec4.fig3-sum": _fig3_sums,
+    "sec4.fig3-cm-acceleration": _fig3_cm_acceleration,
+    "sec4.fig3-cm-acceleration-x": _fig3_x,
+    "sec4.fig3-cm-at-rest": _fig3_at_rest,
+    "sec4.fig3-cm-stationary-again": _fig3_at_rest,
+    "sec4.fig3-equal-spring-forces": _plain(lambda: sp.Abs(sp.simplify(-Fig3.pull / Fig3.pull))),
+    "sec4.fig3-torques-differ": _fig3_torques,
+    "sec4.fig3-angular-momentum": _fig3_angular_momentum,
+    "sec5.qq2": _qq2,
+    "sec5.1.phi-relation": _phi_relation,
+    "sec5.1.phi-substituted": _plain(lambda: Fig2.in_mode(Fig2.Q[0])),
+    "sec5.1.qq1": _plain(lambda: Fig2.omega2),
+    "sec5.1.omega2-fig2": _plain(lambda: Fig2.omega2),
+    "sec5.1.omega2-terms": _plain(lambda: (k * R**2 / Fig2.J1, k * R**2 / Fig2.J2)),
+    "sec5.2.speeds-kinematics": lambda c: verdict(_omega_symbol(c), (sp.sqrt(Fig2.omega2),) * 2),
+    "sec5.2.amplitude-sum": _plain(lambda: sum(Fig2.amplitudes())),
+    "sec5.2.omega-from-sum": lambda c: verdict(
         _omega_symbol(c),
         (
             sp.sqrt(Fig2.omega2) * sum(Fig2.amplitudes()),
             sp.sqrt(Fig2.omega2) * sum(Fig2.amplitudes()) / A,
         ),
     ),
-    "relative-coordinates": _relative_rates,
-    "energy": _plain(
+    "sec5.2.relative-coordinates": _relative_rates,
+    "sec5.2.energy": _plain(
         lambda: sum(
             J * (sp.sqrt(Fig2.omega2) * amp / R) ** 2 / 2
             for J, amp in zip((Fig2.J1, Fig2.J2), Fig2.amplitudes(), strict=True)
         )
     ),
-    "nu": _magnitudes(lambda: Fig2.ratio * Phid1),
-    "undeformed-at-top-speed": _plain(_undeformed),
-    "kinetic-rotational": _plain(lambda: Fig2.T),
-    "orbital-spin": _plain(lambda: (m2 * R**2, Fig2.I2)),
-    "phidot-relation": _magnitudes(lambda: Fig2.ratio * Phid1),
-    "speeds-from-rates": _plain(lambda: (R, R)),
-    "speeds": _plain(lambda: tuple(sp.sqrt(Fig2.omega2) * a_ for a_ in Fig2.amplitudes())),
-    "omega-from-speeds": _plain(lambda: (sp.sqrt(Fig2.omega2),) * 4),
-    "omega-identical": _plain(lambda: Fig2.omega2),
-    "isochronism": _plain(
+    "sec5.2.nu": _magnitudes(lambda: Fig2.ratio * Phid1),
+    "sec5.2.undeformed-at-top-speed": _plain(_undeformed),
+    "sec5.2.kinetic-rotational": _plain(lambda: Fig2.T),
+    "sec5.2.orbital-spin": _plain(lambda: (m2 * R**2, Fig2.I2)),
+    "sec5.2.phidot-relation": _magnitudes(lambda: Fig2.ratio * Phid1),
+    "sec5.2.speeds-from-rates": _plain(lambda: (R, R)),
+    "sec5.2.speeds": _plain(lambda: tuple(sp.sqrt(Fig2.omega2) * a_ for a_ in Fig2.amplitudes())),
+    "sec5.2.omega-from-speeds": _plain(lambda: (sp.sqrt(Fig2.omega2),) * 4),
+    "sec5.2.omega-identical": _plain(lambda: Fig2.omega2),
+    "sec5.2.isochronism": _plain(
         lambda: (
             sp.true if sp.diff(Fig2.amplitudes()[0], A) != 0 else sp.false,
             sp.diff(sp.sqrt(Fig2.omega2), A),
         )
     ),
-    "isochronism-unique": _isotonic,
-    "amplitudes": _plain(Fig2.amplitudes),
-    "amplitudes-equal-masses": _plain(lambda: tuple(a_.subs(m2, m1) for a_ in Fig2.amplitudes())),
-    "cm-not-stationary-equal-masses": _plain(
+    "sec5.2.isochronism-unique": _isotonic,
+    "sec5.2.amplitudes": _plain(Fig2.amplitudes),
+    "sec5.2.amplitudes-equal-masses": _plain(
+        lambda: tuple(a_.subs(m2, m1) for a_ in Fig2.amplitudes())
+    ),
+    "sec5.2.cm-not-stationary-equal-masses": _plain(
         lambda: (
             sp.true
             if sp.simplify((Fig2.amplitudes()[0] - Fig2.amplitudes()[1]).subs(m2, m1)) != 0
             else sp.false
         )
     ),
-    "lagrangian": _oriented(lambda: sp.expand(Fig2.T - Fig2.V)),
-    "spring-part-equations": lambda c: verdict(_parts_subs(c), (_in_mode_acc(0), _in_mode_acc(1))),
-    "spring-parts": _plain(lambda: 1 / Fig2.parts()[0] + 1 / Fig2.parts()[1]),
-    "lagrange-equations": _oriented(lambda: Fig2.Q, rate=True),
-    "ga": _oriented(lambda: Fig2.acc[1] / Fig2.acc[0] * phidd1),
-    "de": _de,
-    "ep0": _plain(lambda: -Fig2.omega2 * Fig2.J1 * phi1),
-    "ep": _plain(lambda: Fig2.omega2),
-    "ep-identical": _plain(lambda: Fig2.omega2),
-    "pe": _plain(lambda: -Fig2.omega2 * Fig2.J2 * phi2),
-    "phi1-from-de": _app_a_ratio,
-    "k1-k2": _plain(Fig2.parts),
-    "part-satisfied": _plain(lambda: 1 / k),
-    "k-equal": _plain(_k_equal),
-    "k-equal-masses": _plain(lambda: tuple(x.subs(m2, m1) for x in Fig2.parts())),
-    "xhat-three-sevenths": _plain(lambda: Fig2.weights[1].subs(m2, m1) * ell),
-    "right-part": _plain(lambda: ell - Fig2.weights[1].subs(m2, m1) * ell),
-    "shorter-stiffer": _plain(_shorter_stiffer),
-    "normal-oscillation": _plain(lambda: sp.true if Fig2.ratio.is_real else sp.false),
-    "sum-rule-consequently": _sum_rule_consequently,
-    "clamped-is-coupled": _clamped_is_coupled,
-    "quadratic-energy": _quadratic_energy,
-    "sum-rule": _plain(lambda: Fig2.omega2 - k * R**2 / Fig2.J1 - k * R**2 / Fig2.J2),
-    "frequencies-detect-errors": _plain(
+    "sec5.3.lagrangian": _oriented(lambda: sp.expand(Fig2.T - Fig2.V)),
+    "sec5.3.spring-part-equations": lambda c: verdict(
+        _parts_subs(c), (_in_mode_acc(0), _in_mode_acc(1))
+    ),
+    "sec5.3.spring-parts": _plain(lambda: 1 / Fig2.parts()[0] + 1 / Fig2.parts()[1]),
+    "sec5.3.lagrange-equations": _oriented(lambda: Fig2.Q, rate=True),
+    "sec5.3.ga": _oriented(lambda: Fig2.acc[1] / Fig2.acc[0] * phidd1),
+    "sec5.3.de": _de,
+    "sec5.3.ep0": _plain(lambda: -Fig2.omega2 * Fig2.J1 * phi1),
+    "sec5.3.ep": _plain(lambda: Fig2.omega2),
+    "sec5.3.ep-identical": _plain(lambda: Fig2.omega2),
+    "sec5.3.pe": _plain(lambda: -Fig2.omega2 * Fig2.J2 * phi2),
+    "sec5.3.phi1-from-de": _app_a_ratio,
+    "sec5.3.k1-k2": _plain(Fig2.parts),
+    "sec5.3.part-satisfied": _plain(lambda: 1 / k),
+    "sec5.3.k-equal": _plain(_k_equal),
+    "sec5.3.k-equal-masses": _plain(lambda: tuple(x.subs(m2, m1) for x in Fig2.parts())),
+    "sec5.3.xhat-three-sevenths": _plain(lambda: Fig2.weights[1].subs(m2, m1) * ell),
+    "sec5.3.right-part": _plain(lambda: ell - Fig2.weights[1].subs(m2, m1) * ell),
+    "sec5.3.shorter-stiffer": _plain(_shorter_stiffer),
+    "sec5.4.normal-oscillation": _plain(lambda: sp.true if Fig2.ratio.is_real else sp.false),
+    "sec5.4.sum-rule-consequently": _sum_rule_consequently,
+    "sec5.4.clamped-is-coupled": _clamped_is_coupled,
+    "sec5.4.quadratic-energy": _quadratic_energy,
+    "sec5.4.sum-rule": _plain(lambda: Fig2.omega2 - k * R**2 / Fig2.J1 - k * R**2 / Fig2.J2),
+    "sec5.5.frequencies-detect-errors": _plain(
         lambda: Fig2.omega2 - k * R**2 / Fig2.J1 - k * R**2 / Fig2.J2
     ),
-    "lagrangian-hamilton": _oriented(lambda: sp.expand(Fig2.T - Fig2.V)),
-    "hamiltonian": _oriented(lambda: _canonical_h()[0]),
-    "canonical-coordinates": _plain(
+    "sec5.6.lagrangian-hamilton": _oriented(lambda: sp.expand(Fig2.T - Fig2.V)),
+    "sec5.6.hamiltonian": _oriented(lambda: _canonical_h()[0]),
+    "sec5.6.canonical-coordinates": _plain(
         lambda: (sp.sqrt(Fig2.J1 / m1) * phi1, sp.sqrt(Fig2.J2 / m2) * phi2)
     ),
-    "hamilton-equations": _oriented(
+    "sec5.6.hamilton-equations": _oriented(
         lambda: tuple(sp.expand(sp.diff(_canonical_h()[0], q)) for q in (q1, q2)), rate=True
     ),
-    "factor-two-over-root-three": _plain(lambda: sp.sqrt(2) / sp.sqrt(3) * sp.sqrt(2)),
-    "canonical-ratio": _canonical_ratio,
-    "hamilton-motion": _plain(lambda: m1 * Fig2.omega2 * q1),
-    "hamilton-is-ep": _plain(_hamilton_to_ep),
-    "qdot": _plain(lambda: tuple(sp.diff(_canonical_h()[0], p) for p in (p1, p2))),
-    "point-masses-canonical": _plain(lambda: (x1, x2)),
-    "conclusion-cm-moves": _plain(_cm_moves),
-    "conclusion-friction-cause": _plain(_friction_cause),
-    "conclusion-same-inertia": _same_inertia,
-    "conclusion-fig3": _fig3_at_rest,
-    "conclusion-methods": _plain(_methods),
-    "conclusion-check": _plain(lambda: Fig2.omega2 - k * R**2 / Fig2.J1 - k * R**2 / Fig2.J2),
-    "relative-coordinates-app-a": _relative_rates,
-    "app-a-hoop-rotation": lambda c: verdict(_parts_subs(c), (_in_mode_acc(0),) * 2),
-    "app-a-hoop-friction-torque": _friction_torque(0),
-    "app-a-cylinder-rotation": lambda c: verdict(_parts_subs(c), (_in_mode_acc(1),) * 2),
-    "app-a-cylinder-friction-torque": _friction_torque(1),
-    "friction-hoop": lambda c: verdict(_parts_subs(c), (_friction_in_mode(0),) * 2),
-    "friction-cylinder-k2": lambda c: verdict(_parts_subs(c), _friction_in_mode(1)),
-    "friction-cylinder": _plain(lambda: _friction_in_mode(1)),
-    "app-a-phi-ratio": _app_a_ratio,
-    "friction-ratio-app-a": _magnitudes(_friction_ratio),
-    "pull-equations": _plain(lambda: (_pulled(I_)[1], _pulled(I_)[0])),
-    "pull-phiddot": lambda c: verdict(
+    "sec5.6.factor-two-over-root-three": _plain(lambda: sp.sqrt(2) / sp.sqrt(3) * sp.sqrt(2)),
+    "sec5.6.canonical-ratio": _canonical_ratio,
+    "sec5.6.hamilton-motion": _plain(lambda: m1 * Fig2.omega2 * q1),
+    "sec5.6.hamilton-is-ep": _plain(_hamilton_to_ep),
+    "sec5.6.qdot": _plain(lambda: tuple(sp.diff(_canonical_h()[0], p) for p in (p1, p2))),
+    "sec5.6.point-masses-canonical": _plain(lambda: (x1, x2)),
+    "sec7.cm-moves": _plain(_cm_moves),
+    "sec7.friction-cause": _plain(_friction_cause),
+    "sec7.same-inertia": _same_inertia,
+    "sec7.fig3": _fig3_at_rest,
+    "sec7.methods": _plain(_methods),
+    "sec7.check": _plain(lambda: Fig2.omega2 - k * R**2 / Fig2.J1 - k * R**2 / Fig2.J2),
+    "app-a.relative-coordinates": _relative_rates,
+    "app-a.hoop-rotation": lambda c: verdict(_parts_subs(c), (_in_mode_acc(0),) * 2),
+    "app-a.hoop-friction-torque": _friction_torque(0),
+    "app-a.cylinder-rotation": lambda c: verdict(_parts_subs(c), (_in_mode_acc(1),) * 2),
+    "app-a.cylinder-friction-torque": _friction_torque(1),
+    "app-a.friction-hoop": lambda c: verdict(_parts_subs(c), (_friction_in_mode(0),) * 2),
+    "app-a.friction-cylinder-k2": lambda c: verdict(_parts_subs(c), _friction_in_mode(1)),
+    "app-a.friction-cylinder": _plain(lambda: _friction_in_mode(1)),
+    "app-a.phi-ratio": _app_a_ratio,
+    "app-a.friction-ratio": _magnitudes(_friction_ratio),
+    "app-a.pull-equations": _plain(lambda: (_pulled(I_)[1], _pulled(I_)[0])),
+    "app-a.pull-phiddot": lambda c: verdict(
         by_name(c.paper, {"f": _pulled(I_)[0]}), (R, _pulled(I_)[1], _pulled(I_)[1])
     ),
-    "pull-eliminated": lambda c: verdict(by_name(c.paper, {"f": _pulled(I_)[0]}), 0),
-    "fric-app-a": _plain(lambda: _pulled(I_)[0]),
-    "fig5-labels": _fig5_labels,
-    "friction-reversal": _reversal,
-    "pull-at-floor": _plain(lambda: (_pulled(I_)[0].subs(y, 0), R * _pulled(I_)[1].subs(y, 0))),
+    "app-a.pull-eliminated": lambda c: verdict(by_name(c.paper, {"f": _pulled(I_)[0]}), 0),
+    "app-a.fric": _plain(lambda: _pulled(I_)[0]),
+    "app-a.fig5-labels": _fig5_labels,
+    "app-a.friction-reversal": _reversal,
+    "app-a.pull-at-floor": _plain(
+        lambda: (_pulled(I_)[0].subs(y, 0), R * _pulled(I_)[1].subs(y, 0))
+    ),
     # the contact point: the centre's R phidot plus the rim's -R phidot relative to the centre
-    "friction-no-work": _plain(lambda: R * phid1 + (-R) * phid1),
-    "fig5-cylinder": _plain(lambda: _pulled(m * R**2 / 2)[0].subs(y, 2 * R)),
-    "app-b-energy-1": _plain(lambda: _subsystem_energy(0)),
-    "app-b-subsystem-1": _plain(lambda: _subsystem(0)),
-    "app-b-mass-m": _plain(lambda: m2),
-    "app-b-energy-2": _plain(lambda: _subsystem_energy(1)),
-    "app-b-subsystem-2": _plain(lambda: _subsystem(1)),
-    "sum-rule-app-b": _plain(lambda: Fig2.omega2 - k * R**2 / Fig2.J1 - k * R**2 / Fig2.J2),
-    "omega2-fig3": _plain(_fig3_omega2),
-    "hamiltonian-app-c": _oriented(lambda: _canonical_h()[0]),
-    "potential-coefficients": _plain(lambda: (1 / sp.sqrt(2), sp.sqrt(sp.Rational(2, 3)))),
-    "potential-fig2": _oriented(lambda: _canonical_h()[1]),
-    "omega1-omega2": _plain(lambda: (sp.sqrt(k * R**2 / Fig2.J1), sp.sqrt(k * R**2 / Fig2.J2))),
-    "potential-fig3": _potential_fig3,
-    "omega3-omega4": _plain(lambda: _fig3_clamped(True)),
+    "app-a.friction-no-work": _plain(lambda: R * phid1 + (-R) * phid1),
+    "app-a.fig5-cylinder": _plain(lambda: _pulled(m * R**2 / 2)[0].subs(y, 2 * R)),
+    "app-b.energy-1": _plain(lambda: _subsystem_energy(0)),
+    "app-b.subsystem-1": _plain(lambda: _subsystem(0)),
+    "app-b.mass-m": _plain(lambda: m2),
+    "app-b.energy-2": _plain(lambda: _subsystem_energy(1)),
+    "app-b.subsystem-2": _plain(lambda: _subsystem(1)),
+    "app-b.sum-rule": _plain(lambda: Fig2.omega2 - k * R**2 / Fig2.J1 - k * R**2 / Fig2.J2),
+    "app-b.omega2-fig3": _plain(_fig3_omega2),
+    "app-c.hamiltonian": _oriented(lambda: _canonical_h()[0]),
+    "app-c.potential-coefficients": _plain(lambda: (1 / sp.sqrt(2), sp.sqrt(sp.Rational(2, 3)))),
+    "app-c.potential-fig2": _oriented(lambda: _canonical_h()[1]),
+    "app-c.omega1-omega2": _plain(
+        lambda: (sp.sqrt(k * R**2 / Fig2.J1), sp.sqrt(k * R**2 / Fig2.J2))
+    ),
+    "app-c.potential-fig3": _potential_fig3,
+    "app-c.omega3-omega4": _plain(lambda: _fig3_clamped(True)),
 }
 
 
@@ -982,45 +998,45 @@ def test_verdict_agrees_with_the_hand_computation(checks, key: str) -> None:
 def test_the_false_alarms_of_the_review_are_stated_assumptions(checks) -> None:
     # issue 13: released from rest and "maximal" (magnitudes) are the paper's own words
     for key in (
-        "fig1-cm-at-rest",
-        "fig1-cm-at-rest-text",
-        "angular-momentum",
-        "w-relation",
-        "stationary-point",
-        "fig3-cm-at-rest",
-        "nu",
-        "phidot-relation",
-        "friction-ratio",
-        "friction-ratio-app-a",
-        "fig3-geometry",
-        "fig3-no-friction",
+        "sec2.fig1-cm-at-rest",
+        "sec2.fig1-cm-at-rest-text",
+        "sec3.angular-momentum",
+        "sec3.w-relation",
+        "sec3.stationary-point",
+        "sec4.fig3-cm-at-rest",
+        "sec5.2.nu",
+        "sec5.2.phidot-relation",
+        "sec3.friction-ratio",
+        "app-a.friction-ratio",
+        "sec4.fig3-geometry",
+        "sec4.fig3-no-friction",
     ):
         assert checks[key].verdict == HOLDS_STATED, key
     # the correction for (nu) was negative: with magnitudes there is none
-    assert checks["nu"].correction is None
-    assert "maximal" in checks["nu"].assumption
+    assert checks["sec5.2.nu"].correction is None
+    assert "maximal" in checks["sec5.2.nu"].assumption
 
 
 def test_corrections_are_in_the_papers_own_terms(checks) -> None:
     m1_, m2_ = sp.symbols("m_1 m_2", positive=True)
     phi1_ = sp.Symbol("phi_1", real=True)
     # (de): with the origin at X-hat and a start from rest (both stated) only the sign remains
-    assert checks["de"].correction == r"\phi_2 = - \frac{4 m_{1} \phi_{1}}{3 m_{2}}"
-    general = by_name(checks["de"].derived, {"P_0": 0, "D_0": 0})
+    assert checks["sec5.3.de"].correction == r"\phi_2 = - \frac{4 m_{1} \phi_{1}}{3 m_{2}}"
+    general = by_name(checks["sec5.3.de"].derived, {"P_0": 0, "D_0": 0})
     assert sp.simplify(general + 4 * m1_ * phi1_ / (3 * m2_)) == 0
     # App. A: f2 = (k2/3) R phi2
-    assert checks["friction-cylinder-k2"].correction.startswith(r"f_2=\frac{k_2}{3}R\phi_2=")
+    assert checks["app-a.friction-cylinder-k2"].correction.startswith(r"f_2=\frac{k_2}{3}R\phi_2=")
     # Fig. 3: the total angular momentum is conserved
-    assert checks["fig3-angular-momentum"].correction == r"\dot L_O=0"
+    assert checks["sec4.fig3-angular-momentum"].correction == r"\dot L_O=0"
     # (QQ2): about the equilibrium value, the paper's q itself does not oscillate about zero
-    assert "q_e" in checks["qq2"].correction and "P_0" not in checks["qq2"].correction
+    assert "q_e" in checks["sec5.qq2"].correction and "P_0" not in checks["sec5.qq2"].correction
 
 
 def test_the_subsystem_frequencies_are_named_clamped(checks) -> None:
-    assert "clamped" in checks["omega2-terms"].reason
-    assert checks["clamped-is-coupled"].verdict == WRONG
-    assert "partial" in checks["clamped-is-coupled"].reason
-    consequently = checks["sum-rule-consequently"]
+    assert "clamped" in checks["sec5.1.omega2-terms"].reason
+    assert checks["sec5.4.clamped-is-coupled"].verdict == WRONG
+    assert "partial" in checks["sec5.4.clamped-is-coupled"].reason
+    consequently = checks["sec5.4.sum-rule-consequently"]
     assert consequently.verdict == WRONG and consequently.reason.startswith("does not follow")
     assert "rank one" in consequently.reason
     assert "any coupled system" not in " ".join(c.claim.latex for c in checks.values())
@@ -1179,6 +1195,7 @@ def test_cli_json_is_a_list_of_the_documented_records(checks) -> None:
     assert isinstance(data, list) and len(data) == len(INDEPENDENT)
     for record in data:
         assert set(record) == {
+            "key",
             "location",
             "claim",
             "quote",
@@ -1278,15 +1295,87 @@ def test_the_readme_counts_are_the_checks() -> None:
 def test_the_second_review_findings(checks) -> None:
     # Sec. 4: "We need to ensure that there is no static friction force": sufficient, not
     # necessary (the frictions need only cancel: two hoops, or a hoop of radius 3R2/4)
-    need = checks["friction-must-vanish"]
+    need = checks["sec4.friction-must-vanish"]
     assert need.verdict == WRONG and "sufficient, not necessary" in need.reason
     assert "3*R_2*k*(phi_1 - phi_2)/8" in need.reason  # f_1 = -F/2, F = k(3R2/4)(phi2 - phi1)
     # Sec. 5.4: a quadratic energy oscillates only for beta/alpha > 0
-    energy_check = checks["quadratic-energy"]
+    energy_check = checks["sec5.4.quadratic-energy"]
     assert energy_check.verdict == HOLDS_ONLY_IF and "β/α > 0" in energy_check.reason
     # the sentences that assert them, not the one next to them
-    assert checks["friction-ratio"].claim.location == "Sec. 3, paragraph after eq. (c)"
-    assert checks["k-equal"].claim.location == "Sec. 5.3, second sentence after eq. (k2)"
-    assert "not equal for the same masses" in checks["k-equal-masses"].claim.quote
-    assert checks["contact-axis"].verdict == VERIFIED
-    assert checks["frequencies-detect-errors"].verdict == VERIFIED
+    assert checks["sec3.friction-ratio"].claim.location == "Sec. 3, paragraph after eq. (c)"
+    assert checks["sec5.3.k-equal"].claim.location == "Sec. 5.3, second sentence after eq. (k2)"
+    assert "not equal for the same masses" in checks["sec5.3.k-equal-masses"].claim.quote
+    assert checks["sec3.contact-axis"].verdict == VERIFIED
+    assert checks["sec5.5.frequencies-detect-errors"].verdict == VERIFIED
+
+
+# -- the catalogue: code plus the paper's words (claims.toml), joined by key ----------------------
+
+
+def test_every_claim_has_a_short_stable_key_and_the_json_carries_it(checks) -> None:
+    keys = [claim.key for claim in paper_claims()]
+    assert len(set(keys)) == len(keys) == len(INDEPENDENT)
+    for key in keys:  # the section as the paper numbers it, then what the claim says
+        assert re.fullmatch(r"(abstract|sec[1-7](\.[1-6])?|app-[abc])\.[a-z0-9]+(-[a-z0-9]+)*", key)
+        assert len(key) <= 40, key
+    section = {"abstract": "Abstract", "app-a": "App. A", "app-b": "App. B", "app-c": "App. C"}
+    for claim in paper_claims():
+        where = claim.key.rsplit(".", 1)[0]
+        expected = section.get(where, f"Sec. {where[3:]}")
+        assert claim.location.startswith((expected, "Fig.")), claim.key
+    data = [check.to_dict() for check in check_paper()]
+    assert [record["key"] for record in data] == keys
+    assert all(next(iter(record)) == "key" for record in data)
+
+
+def test_verdicts_are_an_enum_written_as_their_words() -> None:
+    assert issubclass(Verdict, enum.StrEnum)
+    assert (
+        VERDICTS
+        == tuple(Verdict)
+        == ("verified", "holds-under-stated-assumption", "holds-only-if", "wrong")
+    )
+    assert all(isinstance(check.verdict, Verdict) for check in check_paper())
+    assert json.dumps([Verdict.HOLDS_ONLY_IF]) == '["holds-only-if"]'
+
+
+def test_the_words_file_and_the_catalogue_join_by_key() -> None:
+    words = tomllib.loads(
+        (resources.files("rollspring.analysis.paper") / "claims.toml").read_text(encoding="utf-8")
+    )
+    found = entries()
+    assert [entry.key for entry in found] == [claim.key for claim in paper_claims()]
+    assert set(words) == {entry.key for entry in found}
+    claims = {claim.key: claim for claim in paper_claims()}
+    seen: set[str] = set()
+    restated = 0
+    for entry in found:
+        table = words[entry.key]
+        if entry.restates is None:  # a claim of its own: all (LaTeX: else the quote)
+            assert set(table) - {"latex"} == {"location", "quote", "statement"}, entry.key
+            assert table.get("latex") != table["quote"], entry.key
+            assert None not in (entry.quantity, entry.paper, entry.system, entry.derive)
+        else:  # a restatement gives only what differs from the claim it repeats, an earlier one
+            restated += 1
+            assert entry.restates in seen, entry.key
+            original = claims[entry.restates]
+            assert all(table[name] != getattr(original, name) for name in table), entry.key
+            for name in ("quantity", "paper", "system", "derive", "assumptions"):
+                value = getattr(entry, name)
+                assert value is None or value != getattr(original, name), (entry.key, name)
+        seen.add(entry.key)
+    assert restated >= 20  # the abstract's claims again in Sec. 7, the equations again in App. A-C
+
+
+def test_a_restatement_takes_what_it_does_not_give_from_the_claim_it_repeats() -> None:
+    claims = {claim.key: claim for claim in paper_claims()}
+    again, first = claims["sec7.fig3"], claims["abstract.fig3"]
+    assert (again.quantity, again.system, again.derive, again.assumptions, again.latex) == (
+        first.quantity,
+        first.system,
+        first.derive,
+        first.assumptions,
+        first.latex,
+    )
+    assert again.location == "Sec. 7, sentence 3" and again.quote != first.quote
+    assert restates("abstract.fig3", key="x").restates == "abstract.fig3"

@@ -23,8 +23,8 @@ import pytest
 from typer.testing import CliRunner
 
 from rollspring import analyze, load_system, system_from_dict
-from rollspring.analysis import paper_check
-from rollspring.analysis.paper_check import paper_figure
+from rollspring.analysis import paper as paper_check
+from rollspring.analysis.paper import paper_figure
 from rollspring.cli import app
 from rollspring.model import preset_names
 from rollspring.outputs import files
@@ -322,7 +322,7 @@ def test_the_papers_claims_about_fig_2_with_their_verdicts(report: Report, page:
     # the frequency of eq. (QQQ1) is right (tests above recompute it from the closed form)
     assert ("Sec. 5.1, eq. (QQQ1)", "✔ verified") in shown
     # Sec. 3's "f1/f2 = 3/2" is a ratio of the amounts the paper names: the signed ratio is -3/2
-    ratio = [c.key for c in claims].index("friction-ratio")
+    ratio = [c.key for c in claims].index("sec3.friction-ratio")
     assert shown[ratio][1] == words["holds-under-stated-assumption"]
 
 

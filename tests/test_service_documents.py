@@ -8,11 +8,11 @@ import json
 import pytest
 
 from rollspring import load_system
-from rollspring.analysis.paper_check import VERDICTS, check_paper, paper_figure
+from rollspring.analysis.paper import VERDICTS, check_paper, paper_figure
 from rollspring.service.documents import derivation_payload
 
 STEP_KEYS = {"words", "latex", "mathml", "ref"}
-CLAIM_KEYS = {"location", "claim", "quote", "verdict", "assumption", "correction", "reason"}
+CLAIM_KEYS = {"key", "location", "claim", "quote", "verdict", "assumption", "correction", "reason"}
 
 
 @pytest.fixture(scope="module")

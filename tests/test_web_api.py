@@ -215,7 +215,7 @@ def test_derive_the_paper_system_with_its_claims(client: TestClient) -> None:
     data = client.post("/api/derive", json={"system": system_json("hoop-cylinder")}).json()
     assert data["cross_check"]["agree"] is True
     assert data["claims"], "the paper's checked claims come with its Fig. 2 system"
-    from rollspring.analysis.paper_check import VERDICTS
+    from rollspring.analysis.paper import VERDICTS
     from rollspring.service.documents import claims_json, figure_claims
 
     assert {claim["verdict"] for claim in data["claims"]} <= set(VERDICTS)

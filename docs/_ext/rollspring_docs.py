@@ -55,7 +55,7 @@ SECTIONS: list[tuple[str, str, tuple[str, ...]]] = [
         "Loaded on first use (SymPy, Matplotlib, Zarr): `import rollspring` stays light.",
         (
             "rollspring.analysis.derivation",
-            "rollspring.analysis.paper_check",
+            "rollspring.analysis.paper",
             "rollspring.service",
             "rollspring.outputs",
         ),

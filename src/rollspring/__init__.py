@@ -39,7 +39,7 @@ if TYPE_CHECKING:  # what the names below load on first use, for type checkers a
     from rollspring import web as web
     from rollspring.analysis import LinearAnalysis, Mode, analyze, find_equilibrium, normal_modes
     from rollspring.analysis.derivation import Derivation, derive, symbolic_system
-    from rollspring.analysis.paper_check import check_paper, paper_claims
+    from rollspring.analysis.paper import check_paper, paper_claims
     from rollspring.model import (
         Anchor,
         Attachment,
@@ -183,8 +183,8 @@ _LAZY = {
     "derive": "rollspring.analysis.derivation",
     "Derivation": "rollspring.analysis.derivation",
     "symbolic_system": "rollspring.analysis.derivation",
-    "check_paper": "rollspring.analysis.paper_check",
-    "paper_claims": "rollspring.analysis.paper_check",
+    "check_paper": "rollspring.analysis.paper",
+    "paper_claims": "rollspring.analysis.paper",
     "build_report": "rollspring.service.documents",
     "write_report": "rollspring.outputs.report",
     "worksheet": "rollspring.service.documents",

@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any
 from rollspring.analysis import analyze
 from rollspring.analysis.derivation import ALL, CrossCheck, derive
 from rollspring.analysis.exercises import LEVELS, Worksheet
-from rollspring.analysis.paper_check import (
+from rollspring.analysis.paper import (
     ClaimCheck,
     check_claims,
     check_paper,
@@ -308,7 +308,7 @@ def paper_checks() -> tuple[ClaimCheck, ...]:
 def figure_claims(system: System) -> tuple[str, tuple[ClaimCheck, ...]] | None:
     """The paper's claims about ``system`` with their verdicts, as ``(label of the paper's
     figure, checks)``, when ``system`` is one of the paper's systems
-    (:func:`rollspring.analysis.paper_check.paper_figure`); None otherwise."""
+    (:func:`rollspring.analysis.paper.paper_figure`); None otherwise."""
     figure = paper_figure(system)
     if figure is None:
         return None

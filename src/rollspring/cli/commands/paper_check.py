@@ -5,7 +5,7 @@ verbatim from its LaTeX source), ``verdict`` (``verified`` | ``holds-under-state
 ``holds-only-if`` | ``wrong``), ``assumption`` (the paper's stated assumptions the verdict relies
 on, with the paper's words, or null), ``correction`` (LaTeX or null), ``reason``}; ``--format
 text`` (default) a Rich table with ✔/☑/⚠/✘ marks, ``--format markdown`` a Markdown table with the
-LaTeX in ``$...$``. The verdicts come from :mod:`rollspring.analysis.paper_check` (the
+LaTeX in ``$...$``. The verdicts come from :mod:`rollspring.analysis.paper` (the
 derivation engine), through :func:`rollspring.service.documents.paper_checks`. The command is
 added to an app by :func:`register`.
 """
@@ -24,7 +24,7 @@ from rollspring.cli.common import add_command, format_option, json_option, stdou
 from rollspring.errors import PaperCheckError
 
 if TYPE_CHECKING:
-    from rollspring.analysis.paper_check import ClaimCheck
+    from rollspring.analysis.paper import ClaimCheck
 
 __all__ = [
     "FORMATS",
@@ -38,7 +38,7 @@ __all__ = [
     "summary",
 ]
 
-# the verdicts of rollspring.analysis.paper_check (imported when the command runs: SymPy)
+# the verdicts of rollspring.analysis.paper (imported when the command runs: SymPy)
 VERIFIED, WRONG, HOLDS_ONLY_IF = "verified", "wrong", "holds-only-if"
 HOLDS_STATED = "holds-under-stated-assumption"
 

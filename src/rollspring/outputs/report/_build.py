@@ -18,7 +18,7 @@ from pathlib import Path
 
 from rollspring.analysis import LinearAnalysis
 from rollspring.analysis.derivation import Derivation
-from rollspring.analysis.paper_check import (
+from rollspring.analysis.paper import (
     ClaimCheck,
 )
 from rollspring.model import System

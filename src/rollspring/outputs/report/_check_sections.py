@@ -11,7 +11,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from rollspring.analysis.derivation import Derivation, Section
-from rollspring.analysis.paper_check import (
+from rollspring.analysis.paper import (
     HOLDS_ONLY_IF,
     HOLDS_STATED,
     VERDICTS,

@@ -37,6 +37,7 @@ from rollspring.analysis.derivation.derive import (
     DerivationError,
     derive,
     parse_methods,
+    run_method,
     setup_section,
 )
 from rollspring.analysis.derivation.forces import (
@@ -45,12 +46,8 @@ from rollspring.analysis.derivation.forces import (
     zero_friction_heights,
 )
 from rollspring.analysis.derivation.frequencies import OMEGA2, Frequencies, normal_frequencies
-from rollspring.analysis.derivation.methods import (
-    METHODS,
-    MethodResult,
-    mechanics_lagrange_check,
-    run_method,
-)
+from rollspring.analysis.derivation.lagrange import mechanics_lagrange_check
+from rollspring.analysis.derivation.method import METHODS, MethodResult
 from rollspring.analysis.derivation.render import FORMATS
 from rollspring.analysis.derivation.steps import OPERATIONS, How, Section, Step
 from rollspring.analysis.derivation.symbolic import (

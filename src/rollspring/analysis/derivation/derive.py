@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
+from rollspring.analysis.derivation.build import symbolic_system
 from rollspring.analysis.derivation.conservation import conservation
 from rollspring.analysis.derivation.crosscheck import CrossCheck, cross_check
 from rollspring.analysis.derivation.forces import appendix_a_friction, contact_force_section
@@ -26,7 +27,7 @@ from rollspring.analysis.derivation.newton import newton
 from rollspring.analysis.derivation.render import latex_document, markdown, text
 from rollspring.analysis.derivation.setup import setup_section
 from rollspring.analysis.derivation.steps import Section
-from rollspring.analysis.derivation.symbolic import SymbolicSystem, symbolic_system
+from rollspring.analysis.derivation.symbolic import SymbolicSystem
 from rollspring.errors import DerivationError
 from rollspring.model import System
 

@@ -33,9 +33,10 @@ from typing import Any
 import sympy as sp
 
 from rollspring.analysis.derivation.frequencies import Frequencies, normal_frequencies
+from rollspring.analysis.derivation.parts import derivatives_at_reference
 from rollspring.analysis.derivation.setup import rate_symbols, setup_tags
 from rollspring.analysis.derivation.steps import Section, Step, inline
-from rollspring.analysis.derivation.symbolic import SymbolicSystem, _derivatives_at_reference
+from rollspring.analysis.derivation.symbolic import SymbolicSystem
 
 __all__ = [
     "METHODS",
@@ -280,7 +281,7 @@ def single_spring_lever(sym: SymbolicSystem) -> list[sp.Expr] | None:
     out = [sp.Integer(0), sp.Integer(0)]
     for sign, at in zip((-1, 1), spring.attachments, strict=True):
         assert at is not None
-        (dx, dy), _ = _derivatives_at_reference(at, sym.bodies[at.body])
+        (dx, dy), _ = derivatives_at_reference(at, sym.bodies[at.body])
         out[at.body] += sign * (ex * dx + ey * dy)
     return [sp.factor(b) for b in out]
 

@@ -234,9 +234,7 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
             "paper -p1' = k(q1/2 + 2 m1 q1/(3 m2))",
         ),
     )
-    result.system_equation = out.get("system_equation")
-    result.omega2 = out.get("omega2", [])
-    result.extras.update(out)
+    result.record(out)
     result.extras["Kq"] = Kq
     return result
 

@@ -27,11 +27,7 @@ from rollspring.analysis.derivation.method import (
 from rollspring.analysis.derivation.setup import setup_tags
 from rollspring.analysis.derivation.steps import DEFINE, How, eq, inline, named
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
-from rollspring.analysis.derivation.whole_system import (
-    linearised_step,
-    to_whole_system_in_angles,
-    why_not_linear,
-)
+from rollspring.analysis.derivation.whole_system import linearise_in_angles
 
 __all__ = ["lagrange", "mechanics_lagrange_check"]
 
@@ -106,17 +102,10 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     )
     result = MethodResult("lagrange", TITLES["lagrange"], True, "", section, nonlinear=nonlinear)
     result.extras["mechanics"] = mechanics_lagrange_check(sym, budget=budget)
-    reason = why_not_linear(sym)
-    if reason:
-        result.reason = "linearisation: " + reason
-        return result
-    eqs_tag, equations = linearised_step(section, sym, exact.tag, "lagrange")
-    result.equations = equations
-    out = to_whole_system_in_angles(
-        section,
+    linearised = linearise_in_angles(
+        result,
         sym,
-        eqs_tag,
-        equations,
+        exact.tag,
         budget,
         labels=(
             "paper (ga)",
@@ -127,9 +116,8 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
             "paper (ep0)",
         ),
     )
-    result.system_equation = out.get("system_equation")
-    result.omega2 = out.get("omega2", [])
-    result.extras.update(out)
+    if not linearised:
+        return result
     split = _spring_split(sym, cached_frequencies(sym, budget))
     if split is not None:
         section.add(

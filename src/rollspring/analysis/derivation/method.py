@@ -119,6 +119,13 @@ class MethodResult:
         """The steps of the derivation."""
         return self.section.steps
 
+    def record(self, whole: dict[str, Any]) -> None:
+        """Keep the whole system's results (:func:`~.whole_system.to_whole_system`): its
+        equation, the squared frequencies, and every named intermediate in ``extras``."""
+        self.system_equation = whole.get("system_equation")
+        self.omega2 = whole.get("omega2", [])
+        self.extras.update(whole)
+
 
 def method_section(sym: SymbolicSystem, name: str, title: str | None = None) -> Section:
     return Section(title or TITLES[name], prefix=PREFIXES[name], rates=dict(rate_symbols(sym)))

@@ -18,11 +18,7 @@ from rollspring.analysis.derivation.method import TITLES, MethodResult, method_s
 from rollspring.analysis.derivation.setup import length_symbols, setup_tags
 from rollspring.analysis.derivation.steps import GIVEN, How, eq
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
-from rollspring.analysis.derivation.whole_system import (
-    linearised_step,
-    to_whole_system_in_angles,
-    why_not_linear,
-)
+from rollspring.analysis.derivation.whole_system import linearise_in_angles
 
 __all__ = ["newton"]
 
@@ -92,14 +88,5 @@ def newton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
             how=How("substitute", (law_step.tag, tension.tag), args=tuple(forces)),
         ).tag
     result = MethodResult("newton", TITLES["newton"], True, "", section, nonlinear=nonlinear)
-    reason = why_not_linear(sym)
-    if reason:
-        result.reason = "linearisation: " + reason
-        return result
-    eqs_tag, equations = linearised_step(section, sym, exact_tag, "newton")
-    result.equations = equations
-    out = to_whole_system_in_angles(section, sym, eqs_tag, equations, budget)
-    result.system_equation = out.get("system_equation")
-    result.omega2 = out.get("omega2", [])
-    result.extras.update(out)
+    linearise_in_angles(result, sym, exact_tag, budget)
     return result

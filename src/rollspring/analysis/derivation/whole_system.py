@@ -9,6 +9,8 @@ elimination of the second coordinate gives :math:`\ddot\varphi_1 + \Omega^2\varp
 (QQ1), (QQQ1)); otherwise the matrix form :math:`M\ddot q + Kq = 0` and the roots of the
 characteristic equation :math:`\det(K - \Omega^2 M) = 0` (M12), in closed form where SymPy
 finds them, else as numbers with the reason why.
+Newton and Lagrange, whose equations are in the bodies' own coordinates, do both steps through
+:func:`linearise_in_angles`; Hamilton calls :func:`to_whole_system` in its canonical coordinates.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from rollspring.analysis.derivation.frequencies import (
     exact_values,
 )
 from rollspring.analysis.derivation.method import (
+    MethodResult,
     cached_frequencies,
     content_free,
     coordinates_word,
@@ -48,9 +51,9 @@ from rollspring.analysis.derivation.symbolic import SymbolicSystem
 __all__ = [
     "PHAT",
     "linear_equations",
+    "linearise_in_angles",
     "linearised_step",
     "to_whole_system",
-    "to_whole_system_in_angles",
     "why_not_linear",
 ]
 
@@ -107,36 +110,6 @@ def linearised_step(
         how=How("linearise", (exact_tag,)),
     )
     return step.tag, equations
-
-
-def to_whole_system_in_angles(
-    section: Section,
-    sym: SymbolicSystem,
-    eqs_tag: str,
-    equations: list[sp.Eq],
-    budget: float | None,
-    labels: tuple[str, ...] = (),
-) -> dict[str, Any]:
-    """:func:`to_whole_system` for the methods whose equations are in the bodies' own coordinates
-    (angles, lengths for sliders) with the inertias about the contact lines (Newton, Lagrange)."""
-    v0 = zero_mode_in_angles(sym)
-    return to_whole_system(
-        section,
-        sym,
-        eqs_tag=eqs_tag,
-        eqs=equations,
-        coords=sym.q,
-        velocities=sym.qd,
-        accels=sym.qdd,
-        masses=[b.J for b in sym.bodies],
-        K=sym.stiffness_matrix,
-        v0=v0,
-        frequencies=cached_frequencies(sym, budget),
-        in_angles=True,
-        momentum_words=names_momentum(sym, v0),
-        names=coordinates_word(sym),
-        labels=labels,
-    )
 
 
 def to_whole_system(
@@ -398,6 +371,46 @@ def to_whole_system(
     section.add(roots, words + ".", "", how=How("solve", (char.tag,), args=(OMEGA2,)))
     out["omega2"] = list(frequencies.omega2)
     return out
+
+
+def linearise_in_angles(
+    result: MethodResult,
+    sym: SymbolicSystem,
+    exact_tag: str,
+    budget: float | None,
+    labels: tuple[str, ...] = (),
+) -> bool:
+    """The end of the methods whose exact equations (step ``exact_tag``) are in the bodies' own
+    coordinates (angles, lengths for sliders) with the inertias about the contact lines (Newton,
+    Lagrange): :func:`linearised_step`, then :func:`to_whole_system`, kept in ``result``. False,
+    with the reason in ``result.reason``, where there is no oscillation to linearise about."""
+    reason = why_not_linear(sym)
+    if reason:
+        result.reason = "linearisation: " + reason
+        return False
+    section = result.section
+    eqs_tag, equations = linearised_step(section, sym, exact_tag, result.name)
+    result.equations = equations
+    v0 = zero_mode_in_angles(sym)
+    whole = to_whole_system(
+        section,
+        sym,
+        eqs_tag=eqs_tag,
+        eqs=equations,
+        coords=sym.q,
+        velocities=sym.qd,
+        accels=sym.qdd,
+        masses=[b.J for b in sym.bodies],
+        K=sym.stiffness_matrix,
+        v0=v0,
+        frequencies=cached_frequencies(sym, budget),
+        in_angles=True,
+        momentum_words=names_momentum(sym, v0),
+        names=coordinates_word(sym),
+        labels=labels,
+    )
+    result.record(whole)
+    return True
 
 
 def _mode_omega2(n: int) -> sp.Symbol:

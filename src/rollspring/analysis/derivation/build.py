@@ -46,11 +46,7 @@ __all__ = ["symbolic_system"]
 
 
 _ZERO_TILT = 1e-12  # |d_y| / l below this: the spring is horizontal at the reference
-
-
 _ZERO_TENSION = 1e-9  # |l - L0| / l below this: the spring is at rest length at the reference
-
-
 _ZERO_ANGLE = 1e-12  # |q*| below this (rad or m): the body did not move to reach equilibrium
 
 

@@ -63,7 +63,6 @@ __all__ = [
 #: Method names, in the paper's order.
 METHODS = ("newton", "conservation", "lagrange", "natural-frequencies", "hamilton")
 
-
 TITLES = {
     "newton": "Dynamic equations (Newton: torques about the contact points)",
     "conservation": "Conservation laws (energy and the zero mode's momentum)",
@@ -72,7 +71,6 @@ TITLES = {
     "hamilton": "Hamilton's equations",
 }
 
-
 PREFIXES = {
     "newton": "N",
     "conservation": "E",
@@ -80,7 +78,6 @@ PREFIXES = {
     "natural-frequencies": "F",
     "hamilton": "H",
 }
-
 
 PAPER_SECTIONS = {
     "newton": "paper Sec. 2 and 4.1",
@@ -128,10 +125,13 @@ class MethodResult:
 
 
 def method_section(sym: SymbolicSystem, name: str, title: str | None = None) -> Section:
+    """The empty section of method ``name``: its title, its step prefix (``N``, ``E``, ...)
+    and the rates of the coordinates (so that steps can say what differentiates into what)."""
     return Section(title or TITLES[name], prefix=PREFIXES[name], rates=dict(rate_symbols(sym)))
 
 
 def cached_frequencies(sym: SymbolicSystem, budget: float | None) -> Frequencies:
+    """:func:`~.frequencies.normal_frequencies` of ``sym``, computed once per system."""
     key = "frequencies"
     if key not in sym._cache:
         sym._cache[key] = normal_frequencies(sym, budget=budget)
@@ -145,6 +145,7 @@ def coordinates_word(sym: SymbolicSystem) -> str:
 
 
 def tuple_text(values: Sequence[sp.Expr]) -> str:
+    """'(1, -m_1/m_2)': the entries inline, as a tuple in the text of a step."""
     return "(" + ", ".join(inline(v) for v in values) + ")"
 
 

@@ -174,6 +174,7 @@ def _zero_mode(sym: SymbolicSystem) -> sp.Matrix | None:
 
 
 def is_tridiagonal(K: sp.Matrix) -> bool:
+    """No entry more than one place off the diagonal (a chain: each spring joins neighbours)."""
     n = K.shape[0]
     return all(K[i, j] == 0 for i in range(n) for j in range(n) if abs(i - j) > 1)
 

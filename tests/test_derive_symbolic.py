@@ -20,7 +20,8 @@ from rollspring.analysis.derivation import (
     normal_frequencies,
     symbolic_system,
 )
-from rollspring.analysis.derivation.symbolic import exact_number, matrix_to_float
+from rollspring.analysis.derivation.parts import exact_number
+from rollspring.analysis.derivation.symbolic import matrix_to_float
 from rollspring.model import load_system, preset_names
 from rollspring.physics import (
     contact_forces,

@@ -30,6 +30,7 @@ Methods (the paper's order of ideas): ``newton`` (torques about the contact poin
 (canonical equations, Sec. 4.5).
 """
 
+from rollspring.analysis.derivation.build import symbolic_system
 from rollspring.analysis.derivation.crosscheck import Check, CrossCheck, cross_check
 from rollspring.analysis.derivation.derive import (
     ALL,
@@ -37,6 +38,7 @@ from rollspring.analysis.derivation.derive import (
     DerivationError,
     derive,
     parse_methods,
+    run_method,
     setup_section,
 )
 from rollspring.analysis.derivation.forces import (
@@ -45,24 +47,18 @@ from rollspring.analysis.derivation.forces import (
     zero_friction_heights,
 )
 from rollspring.analysis.derivation.frequencies import OMEGA2, Frequencies, normal_frequencies
-from rollspring.analysis.derivation.methods import (
-    METHODS,
-    MethodResult,
-    mechanics_lagrange_check,
-    run_method,
-)
-from rollspring.analysis.derivation.render import FORMATS
-from rollspring.analysis.derivation.steps import OPERATIONS, How, Section, Step
-from rollspring.analysis.derivation.symbolic import (
+from rollspring.analysis.derivation.lagrange import mechanics_lagrange_check
+from rollspring.analysis.derivation.method import METHODS, MethodResult
+from rollspring.analysis.derivation.parts import (
     EXACT_INERTIA_FACTORS,
     SymbolicBody,
     SymbolicForce,
     SymbolicSpring,
-    SymbolicSystem,
     exact_number,
-    matrix_to_float,
-    symbolic_system,
 )
+from rollspring.analysis.derivation.render import FORMATS
+from rollspring.analysis.derivation.steps import OPERATIONS, How, Section, Step
+from rollspring.analysis.derivation.symbolic import SymbolicSystem, matrix_to_float
 
 __all__ = [
     "ALL",

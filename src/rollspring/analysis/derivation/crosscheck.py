@@ -16,7 +16,7 @@ from typing import Any
 import sympy as sp
 
 from rollspring.analysis.derivation.frequencies import BudgetExceeded, Frequencies, time_budget
-from rollspring.analysis.derivation.methods import MethodResult
+from rollspring.analysis.derivation.method import MethodResult
 from rollspring.analysis.derivation.steps import How, Section, latex_of, named
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
 

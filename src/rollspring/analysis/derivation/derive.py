@@ -1,30 +1,45 @@
 r"""``derive(system, method=...)``: the symbolic system, every method's derivation, the forces and
 the cross-check, as one :class:`Derivation` (rendered as text, Markdown or LaTeX, and as math in
-Jupyter)."""
+Jupyter); :func:`run_method` runs one method (:mod:`.newton`, :mod:`.conservation`,
+:mod:`.lagrange`, :mod:`.natural_frequencies`, :mod:`.hamilton`) by name."""
 
 from __future__ import annotations
 
 import math
 import os
-from collections.abc import Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 import sympy as sp
 
+from rollspring.analysis.derivation.build import symbolic_system
+from rollspring.analysis.derivation.conservation import conservation
 from rollspring.analysis.derivation.crosscheck import CrossCheck, cross_check
 from rollspring.analysis.derivation.forces import appendix_a_friction, contact_force_section
 from rollspring.analysis.derivation.frequencies import Frequencies, normal_frequencies
-from rollspring.analysis.derivation.methods import METHODS, MethodResult, run_method
+from rollspring.analysis.derivation.hamilton import hamilton
+from rollspring.analysis.derivation.lagrange import lagrange
+from rollspring.analysis.derivation.method import METHODS, MethodResult, is_papers_fig2
+from rollspring.analysis.derivation.natural_frequencies import natural_frequencies
+from rollspring.analysis.derivation.newton import newton
 from rollspring.analysis.derivation.render import latex_document, markdown, text
 from rollspring.analysis.derivation.setup import setup_section
 from rollspring.analysis.derivation.steps import Section
-from rollspring.analysis.derivation.symbolic import SymbolicSystem, symbolic_system
+from rollspring.analysis.derivation.symbolic import SymbolicSystem
 from rollspring.errors import DerivationError
 from rollspring.model import System
 
-__all__ = ["ALL", "Derivation", "DerivationError", "derive", "parse_methods", "setup_section"]
+__all__ = [
+    "ALL",
+    "Derivation",
+    "DerivationError",
+    "derive",
+    "parse_methods",
+    "run_method",
+    "setup_section",
+]
 
 #: ``method="all"`` runs every method in :data:`METHODS`.
 ALL = "all"
@@ -136,6 +151,36 @@ class Derivation:
             for step in section.steps:
                 lines.append(step.math)
         return r"$$\begin{gathered}" + r" \\ ".join(lines[:60]) + r"\end{gathered}$$"
+
+
+_RUNNERS: dict[str, Callable[[SymbolicSystem, float | None], MethodResult]] = {
+    "newton": newton,
+    "conservation": conservation,
+    "lagrange": lagrange,
+    "natural-frequencies": natural_frequencies,
+    "hamilton": hamilton,
+}
+
+
+def run_method(sym: SymbolicSystem, name: str, *, budget: float | None = 10.0) -> MethodResult:
+    """Run one method by name (see :data:`METHODS`). The paper's equation labels name its
+    Fig. 2 formulas (centres joined by a horizontal spring); for any other system they are
+    shown as "cf. paper ... (Fig. 2 there)": the step is the same idea, not the paper's
+    expression."""
+    result = _RUNNERS[name](sym, budget)
+    if not is_papers_fig2(sym):
+        result.section.steps[:] = [
+            replace(step, ref=_compare_ref(step.ref)) for step in result.section.steps
+        ]
+    return result
+
+
+def _compare_ref(ref: str) -> str:
+    """'paper (QQQ1); (M12)' -> 'cf. paper (QQQ1) (Fig. 2 there); (M12)'."""
+    parts = [part.strip() for part in ref.split(";")]
+    return "; ".join(
+        f"cf. {part} (Fig. 2 there)" if part.startswith("paper") else part for part in parts if part
+    )
 
 
 def parse_methods(method: str | Sequence[str]) -> list[str]:

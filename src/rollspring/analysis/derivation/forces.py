@@ -15,9 +15,10 @@ from typing import Any
 
 import sympy as sp
 
+from rollspring.analysis.derivation.parts import EXACT_INERTIA_FACTORS
 from rollspring.analysis.derivation.setup import setup_tags
 from rollspring.analysis.derivation.steps import DEFINE, GIVEN, How, Section, eq, inline, named
-from rollspring.analysis.derivation.symbolic import EXACT_INERTIA_FACTORS, SymbolicSystem
+from rollspring.analysis.derivation.symbolic import SymbolicSystem
 
 __all__ = ["appendix_a_friction", "contact_force_section", "zero_friction_heights"]
 

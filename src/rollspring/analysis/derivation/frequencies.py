@@ -31,7 +31,8 @@ from typing import NoReturn
 
 import sympy as sp
 
-from rollspring.analysis.derivation.symbolic import SymbolicSystem, _is_tridiagonal, exact_number
+from rollspring.analysis.derivation.parts import exact_number
+from rollspring.analysis.derivation.symbolic import SymbolicSystem, is_tridiagonal
 from rollspring.errors import BudgetExceeded
 
 __all__ = [
@@ -123,7 +124,7 @@ def characteristic_polynomial(A: sp.Matrix, variable: sp.Symbol = OMEGA2) -> sp.
     r""":math:`\det(\lambda I - A)`: a three-term recurrence when A is tridiagonal, else
     Berkowitz."""
     n = A.shape[0]
-    if _is_tridiagonal(A):
+    if is_tridiagonal(A):
         previous, current = sp.Integer(1), variable - A[0, 0]
         for k in range(1, n):
             previous, current = (
@@ -244,7 +245,7 @@ def normal_frequencies(
         return numbers_only()
     try:
         with time_budget(left()):
-            if matrix is None and _is_tridiagonal(sym.stiffness_matrix):
+            if matrix is None and is_tridiagonal(sym.stiffness_matrix):
                 # det(K - Omega^2 M) = (-1)^n prod(J) det(Omega^2 - M^-1 K): polynomial
                 # arithmetic, no rational functions
                 determinant = _tridiagonal_determinant(sym)

@@ -5,7 +5,7 @@ hide behind a deferred or a string import. Only the composition root (``rollspri
 imports rollspring's modules by name at all.
 
 import-linter (tests/test_architecture.py) checks the layers between subpackages; this checks
-the modules within them, e.g. inside :mod:`rollspring.analysis`: ``report`` (the sign
+the modules within them, e.g. inside :mod:`rollspring.analysis`: ``conventions`` (the sign
 conventions) <- ``linear`` (equilibrium, modes, the result type and its JSON form) <- ``checks``
 <- ``modal`` (``analyze``).
 """
@@ -143,11 +143,11 @@ def test_no_import_cycles(package: str) -> None:
 
 def test_the_analysis_modules_build_one_way() -> None:
     graph = import_graph(SRC, "rollspring.analysis")
-    assert graph["rollspring.analysis.report"] == set()
+    assert graph["rollspring.analysis.conventions"] == set()
     assert graph["rollspring.analysis.banded"] == set()  # sparse linear algebra: a leaf
     assert graph["rollspring.analysis.linear"] == {
         "rollspring.analysis.banded",
-        "rollspring.analysis.report",
+        "rollspring.analysis.conventions",
     }
     assert graph["rollspring.analysis.checks"] == {"rollspring.analysis.linear"}
     assert graph["rollspring.analysis.costs"] == set()  # the cost guard: a leaf

@@ -27,7 +27,7 @@ from rollspring.analysis import paper as paper_check
 from rollspring.analysis.paper import paper_figure
 from rollspring.cli import app
 from rollspring.model import preset_names
-from rollspring.outputs import files
+from rollspring.outputs import atomic as files
 from rollspring.outputs.report import (
     CHROMIUM_ENV,
     MathConversionError,

@@ -14,7 +14,7 @@ from typer.testing import CliRunner
 
 from rollspring.cli import app
 from rollspring.model import load_system
-from rollspring.outputs import files as output_files
+from rollspring.outputs import atomic as output_files
 from rollspring.outputs import write_trajectory
 from rollspring.simulate import simulate
 

@@ -26,7 +26,7 @@ from rollspring.analysis.banded import (
     banded_modes,
     sparse_equilibrium,
 )
-from rollspring.analysis.report import CONVENTIONS
+from rollspring.analysis.conventions import CONVENTIONS
 from rollspring.model import System
 from rollspring.physics import (
     SystemArrays,
@@ -780,7 +780,7 @@ class LinearAnalysis:
     def to_dict(self) -> dict[str, Any]:
         """The JSON form printed by ``rollspring analyze --json`` (see the README): every
         number finite or null, every per-body value keyed by id, the sign conventions
-        (:data:`rollspring.analysis.report.CONVENTIONS`) stated."""
+        (:data:`rollspring.analysis.conventions.CONVENTIONS`) stated."""
         arrays = self.arrays
         ids = arrays.ids
         q = self.equilibrium.q

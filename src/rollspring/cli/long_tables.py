@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rollspring.analysis.report import CONVENTIONS
+from rollspring.analysis.conventions import CONVENTIONS
 from rollspring.cli.tables import _g
 from rollspring.cli.text import markup, plain
 

@@ -10,7 +10,7 @@ from rich.console import Console
 from rich.table import Table
 
 from rollspring.analysis import LinearAnalysis
-from rollspring.analysis.report import CONVENTIONS
+from rollspring.analysis.conventions import CONVENTIONS
 from rollspring.cli.text import markup, plain
 from rollspring.outputs.numbers import integrator_words
 

@@ -1,6 +1,6 @@
 """Outputs: files, plots, animations and reports made from analyses and trajectories."""
 
-from rollspring.outputs.files import atomic_write, atomic_write_bytes, atomic_write_text
+from rollspring.outputs.atomic import atomic_write, atomic_write_bytes, atomic_write_text
 from rollspring.outputs.mjcf import mjcf_warnings, system_to_mjcf, write_mjcf
 from rollspring.outputs.trajectory import (
     json_ready,

@@ -50,6 +50,7 @@ from matplotlib.figure import Figure
 
 from rollspring.analysis.waves import Waves
 from rollspring.errors import AnimationError
+from rollspring.outputs.atomic import atomic_path, atomic_write, atomic_write_text
 from rollspring.outputs.figures import (
     LONG_CHAIN,
     SystemScene,
@@ -59,7 +60,6 @@ from rollspring.outputs.figures import (
     states_at,
     theme,
 )
-from rollspring.outputs.files import atomic_path, atomic_write, atomic_write_text
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import Trajectory
 

@@ -84,7 +84,7 @@ def plot_dispersion(result: Dispersion, fig: Figure | None = None) -> Figure:
 
 def write_dispersion_figure(result: Dispersion, path: str | os.PathLike[str]) -> Path:
     """Write the figure to ``path`` (.png or .svg, atomically) and return the path."""
-    from rollspring.outputs.files import atomic_write_bytes, atomic_write_text
+    from rollspring.outputs.atomic import atomic_write_bytes, atomic_write_text
 
     target = Path(path)
     suffix = target.suffix.lower()

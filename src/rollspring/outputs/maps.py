@@ -55,8 +55,8 @@ from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from rollspring.errors import MapError, ModelError
 from rollspring.model import system_from_text
+from rollspring.outputs.atomic import atomic_path, atomic_write_bytes, atomic_write_text
 from rollspring.outputs.figures import BODY_COLORS, figure_png, figure_svg, new_figure, theme
-from rollspring.outputs.files import atomic_path, atomic_write_bytes, atomic_write_text
 
 __all__ = [
     "CATEGORICAL",

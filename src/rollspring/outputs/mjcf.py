@@ -75,7 +75,7 @@ from typing import Any
 
 from rollspring.errors import ExportError
 from rollspring.model import Body, System, as_system
-from rollspring.outputs.files import atomic_write_text
+from rollspring.outputs.atomic import atomic_write_text
 from rollspring.physics import system_arrays
 
 __all__ = [

@@ -1,5 +1,5 @@
 """Trajectory files: ``trajectory.csv``, ``trajectory.npz`` and ``summary.json``, written as a
-set (:func:`rollspring.outputs.files.write_file_set`): a killed run never leaves a half-written
+set (:func:`rollspring.outputs.atomic.write_file_set`): a killed run never leaves a half-written
 file, nor its files beside an earlier run's."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rollspring.outputs.files import write_file_set
+from rollspring.outputs.atomic import write_file_set
 
 if TYPE_CHECKING:  # in annotations only: writing a file loads no simulator (Numba, SciPy)
     from rollspring.simulate import Trajectory

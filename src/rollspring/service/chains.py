@@ -42,7 +42,7 @@ def system_text(system: System, format: str = "toml") -> str:  # noqa: A002 - to
 def chain_file(system: System, path: str | os.PathLike[str]) -> Path:
     """Write ``system`` to ``path``: JSON for a ``.json`` file, TOML for ``.toml``
     (atomically; OutputError naming the file otherwise)."""
-    from rollspring.outputs.files import atomic_write_text
+    from rollspring.outputs.atomic import atomic_write_text
 
     target = Path(path)
     suffix = target.suffix.lower()

@@ -125,7 +125,7 @@ def _check(
             f"--duration: {duration:g} s at --speed {speed:g} and --fps {fps} is {frames} "
             f"frames (at most {MAX_FRAMES}); shorten it, raise --speed or lower --fps"
         )
-    from rollspring.outputs.files import writable_file
+    from rollspring.outputs.atomic import writable_file
 
     return writable_file(target)  # an unwritable --out fails now, not after the work
 

@@ -107,7 +107,7 @@ def chain(
     if out is not None:
         from pathlib import Path
 
-        from rollspring.outputs.files import writable_file
+        from rollspring.outputs.atomic import writable_file
 
         if Path(out).suffix.lower() not in SYSTEM_FORMATS:
             raise ModelError(

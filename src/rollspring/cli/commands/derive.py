@@ -76,7 +76,7 @@ def derive_command(
                 f"--method: unknown method '{name}' (methods: {', '.join(METHODS)}, {ALL})"
             )
     if out is not None:
-        from rollspring.outputs.files import writable_file
+        from rollspring.outputs.atomic import writable_file
 
         writable_file(out)  # an unwritable --out fails now, not after the derivation
     from rollspring.service.costs import check_cost, derivation_cost
@@ -92,7 +92,7 @@ def derive_command(
         sys.stdout.write(rendered)
         sys.stdout.flush()
     else:
-        from rollspring.outputs.files import atomic_write_text
+        from rollspring.outputs.atomic import atomic_write_text
 
         try:
             atomic_write_text(out, rendered)

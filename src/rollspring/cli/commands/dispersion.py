@@ -57,7 +57,7 @@ def dispersion(
         from pathlib import Path
 
         from rollspring.errors import OutputError, require_extra
-        from rollspring.outputs.files import writable_file
+        from rollspring.outputs.atomic import writable_file
 
         with require_extra("plot", "rollspring dispersion --figure"):
             import matplotlib  # noqa: F401 - the extra's check, before any work

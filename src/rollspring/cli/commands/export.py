@@ -51,7 +51,7 @@ def export(
             f"(MuJoCo steps a model in far less), not {timestep!r}"
         )
     if out != "-":
-        from rollspring.outputs.files import writable_file
+        from rollspring.outputs.atomic import writable_file
 
         writable_file(out)  # an unwritable --out fails now, before the system is read
     model = load(system)

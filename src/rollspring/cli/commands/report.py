@@ -86,7 +86,7 @@ def report(
     if duration is not None and not (math.isfinite(duration) and duration > 0):
         raise ReportError(f"--duration: must be a positive number of seconds, got {duration:g}")
     target = Path(out if out is not None else f"report.{format}")
-    from rollspring.outputs.files import writable_file
+    from rollspring.outputs.atomic import writable_file
 
     writable_file(target)  # an unwritable --out fails now, not after the work
     if format == "pdf":

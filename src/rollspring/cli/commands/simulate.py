@@ -60,7 +60,7 @@ def simulate(
 ) -> None:
     """Integrate the exact nonlinear motion; report energy, period, friction, slip, lift-off."""
     if out is not None:  # an unwritable --out fails now, not after the run
-        from rollspring.outputs.files import writable_directory
+        from rollspring.outputs.atomic import writable_directory
 
         writable_directory(out)
     from rollspring.service.costs import check_cost, simulation_cost

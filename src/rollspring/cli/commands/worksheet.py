@@ -114,7 +114,7 @@ def worksheet_command(
         sys.stdout.write(text + SEPARATORS[format] + solutions)
         sys.stdout.flush()
         return
-    from rollspring.outputs.files import atomic_write_text
+    from rollspring.outputs.atomic import atomic_write_text
 
     for path, content in ((Path(out), text), (solutions_path(out), solutions)):
         try:

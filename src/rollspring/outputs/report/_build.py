@@ -22,7 +22,7 @@ from rollspring.analysis.paper import (
     ClaimCheck,
 )
 from rollspring.model import System
-from rollspring.outputs.files import atomic_write_text
+from rollspring.outputs.atomic import atomic_write_text
 from rollspring.outputs.report._check_sections import (
     section_data,
     section_derivation,

@@ -10,6 +10,7 @@ import json
 from collections.abc import Sequence
 from typing import Any
 
+from rollspring.analysis.conventions import CONVENTIONS
 from rollspring.analysis.derivation import Derivation, Section
 from rollspring.analysis.paper import (
     HOLDS_ONLY_IF,
@@ -19,7 +20,6 @@ from rollspring.analysis.paper import (
     WRONG,
     ClaimCheck,
 )
-from rollspring.analysis.report import CONVENTIONS
 from rollspring.outputs.report._html import Markup, esc, table
 from rollspring.outputs.report._page import Page, _json_script, _verdict
 from rollspring.outputs.trajectory import summary_json, trajectory_csv

@@ -13,7 +13,7 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-from rollspring.outputs.files import atomic_write_bytes
+from rollspring.outputs.atomic import atomic_write_bytes
 from rollspring.outputs.report._html import ReportError
 
 __all__ = ["CHROMIUM_ENV", "find_chromium", "html_to_pdf"]

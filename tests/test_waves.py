@@ -173,7 +173,7 @@ def test_a_long_chain_gets_a_report_that_summarises_its_wave(monkeypatch) -> Non
     """More than LONG_CHAIN bodies: no per-body tables or modal analysis; space–time images,
     the chain animation and the measured speed beside dω/dq, the numbers those of
     travelling_wave on the report's own run."""
-    from rollspring.outputs.figures import LONG_CHAIN
+    from rollspring.model.chains import LONG_CHAIN
     from rollspring.outputs.report import _chain
     from rollspring.service.documents import build_report
 

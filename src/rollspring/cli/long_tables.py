@@ -17,19 +17,17 @@ if TYPE_CHECKING:
 
     from rollspring.analysis.linear import LinearAnalysis, Mode
 
-__all__ = ["LONG", "print_long_analysis"]
+__all__ = ["print_long_analysis"]
 
-#: More bodies than this: the analysis is printed as summaries.
-LONG = 20
 #: Modes listed at each end of the spectrum, warnings listed in full, of a long system.
 _EDGE_MODES, _WARNINGS = 8, 10
 
 
 def print_long_analysis(console: Console, result: LinearAnalysis) -> None:
-    """The analysis of a system of more than :data:`LONG` bodies: bodies by kind, the
-    extremes of the equilibrium forces, the ends of the spectrum, the response's extremes
-    (which body), the springs' ranges; ``analyze --json`` and the Python API hold every
-    number."""
+    """The analysis of a long chain (more than :data:`~rollspring.model.chains.LONG_CHAIN`
+    bodies): bodies by kind, the extremes of the equilibrium forces, the ends of the
+    spectrum, the response's extremes (which body), the springs' ranges; ``analyze --json``
+    and the Python API hold every number."""
     from rich.table import Table
 
     arrays = result.arrays

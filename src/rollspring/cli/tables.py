@@ -12,6 +12,7 @@ from rich.table import Table
 from rollspring.analysis import LinearAnalysis
 from rollspring.analysis.conventions import CONVENTIONS
 from rollspring.cli.text import markup, plain
+from rollspring.model.chains import LONG_CHAIN
 from rollspring.outputs.numbers import integrator_words
 
 __all__ = ["print_analysis"]
@@ -164,7 +165,7 @@ def print_simulation(console: Console, trajectory, written) -> None:
         title_justify="left",
         show_header=False,
         # a long chain's name ("Chain of 1000 bodies (...)") on one line, not wrapped
-        min_width=len(title) if len(trajectory.ids) > MANY_BODIES else None,
+        min_width=len(title) if len(trajectory.ids) > LONG_CHAIN else None,
     )
     head.add_column("quantity", style="bold")
     head.add_column("value")
@@ -191,17 +192,12 @@ def print_simulation(console: Console, trajectory, written) -> None:
             "none" if event is None else f"'{event['body']}' at t = {_g(event['time'], 12)} s",
         )
     console.print(head)
-    if len(trajectory.ids) > MANY_BODIES:
+    if len(trajectory.ids) > LONG_CHAIN:
         console.print(_body_extremes(trajectory))
     else:
         console.print(_body_rows(trajectory))
     for path in written:
         console.print(f"wrote {plain(path)}", markup=False)
-
-
-#: more bodies than this (a long chain; the report's and the animation's LONG_CHAIN) get one
-#: row per quantity with its extremes over the bodies instead of one row per body
-MANY_BODIES = 20
 
 
 def _body_rows(trajectory: Any) -> Table:

@@ -52,12 +52,16 @@ from rollspring.errors import ModelError
 from rollspring.model.placement import rolled
 from rollspring.model.schema import LIMITS, System
 
-__all__ = ["CHAIN_SHAPES", "WALLS", "chain"]
+__all__ = ["CHAIN_SHAPES", "LONG_CHAIN", "WALLS", "chain"]
 
 #: Shapes a chain's pattern may hold (``custom`` needs its own inertia factor: write a file).
 CHAIN_SHAPES = ("hoop", "cylinder", "sphere", "shell", "slider")
 #: Where ``walls`` may put walls.
 WALLS = ("none", "left", "both")
+#: More bodies than this are a long chain: the command line's tables, the report and the
+#: animation summarise them (extremes over the bodies, space–time images) instead of showing
+#: every body.
+LONG_CHAIN = 20
 
 
 def chain(

@@ -20,7 +20,7 @@ Public API
   ``pixel(x, y)`` to find a point of the scene in a frame).
 * :data:`FORMATS`, :class:`AnimationError` (a :class:`~rollspring.errors.RollspringError`).
 
-A long chain (more than :data:`~rollspring.outputs.figures.LONG_CHAIN` bodies) is drawn as a
+A long chain (more than :data:`~rollspring.model.chains.LONG_CHAIN` bodies) is drawn as a
 :class:`ChainAnimation` instead: every body a point at its rest position, raised by its
 displacement (or, without the waves analysis, its velocity) and coloured by the friction it
 needs against :math:`\mu_s N` (signed), with a strip of the same colours below (the friction
@@ -50,9 +50,9 @@ from matplotlib.figure import Figure
 
 from rollspring.analysis.waves import Waves
 from rollspring.errors import AnimationError
+from rollspring.model.chains import LONG_CHAIN
 from rollspring.outputs.atomic import atomic_path, atomic_write, atomic_write_text
 from rollspring.outputs.figures import (
-    LONG_CHAIN,
     SystemScene,
     new_figure,
     scene_for_trajectory,

@@ -103,7 +103,7 @@ def report_cost(
     simulation (``duration``, default at most 20 s) and, with ``derivation``, the derivation.
     ``flag`` is how the run is confirmed (``--yes``, or ``confirm=True`` in Python): the words
     of the message that says how to make it smaller."""
-    from rollspring.outputs.figures import LONG_CHAIN
+    from rollspring.model.chains import LONG_CHAIN
 
     run = simulation_cost(system, _REPORT_DURATION if duration is None else duration, what=what)
     if len(system.bodies) > LONG_CHAIN:  # a long chain's summary: no analysis, no derivation

@@ -79,7 +79,7 @@ def build_report(
     part for large systems); ``progress`` is called with the fraction done (0..1) after each
     stage. ``Report.timings`` holds the seconds each stage took, and their ``total``.
 
-    A long chain (more than :data:`~rollspring.outputs.figures.LONG_CHAIN` bodies) gets a
+    A long chain (more than :data:`~rollspring.model.chains.LONG_CHAIN` bodies) gets a
     summary instead (:func:`~rollspring.outputs.report.render_chain_report`): no modal
     analysis or derivation; the run (``duration`` default :data:`CHAIN_DURATION` s,
     :data:`CHAIN_ROWS` output rows) and its waves
@@ -111,7 +111,7 @@ def build_report(
     Report
         The page (``html``), its parts and ``timings``; ``write_report`` saves it.
     """
-    from rollspring.outputs.figures import LONG_CHAIN
+    from rollspring.model.chains import LONG_CHAIN
     from rollspring.outputs.report import (
         ReportError,
         animation_frames,

@@ -59,9 +59,10 @@ def analyze(
         print_json(payload)
         return
     from rollspring.analysis import analyze as run_analysis
+    from rollspring.model.chains import LONG_CHAIN
 
     result = run_analysis(model, confirm=True, modes=chosen)  # checked above (--yes)
-    if len(model.bodies) > 20:  # cli.long_tables.LONG: summaries, not a row per body
+    if len(model.bodies) > LONG_CHAIN:  # summaries, not a row per body
         from rollspring.cli.long_tables import print_long_analysis
 
         print_long_analysis(stdout_console(), result)

@@ -27,7 +27,8 @@ Public functions
   velocity, one panel per body.
 * :func:`plot_modes` ``(analysis, fig=None) -> Figure``: one panel per normal mode, arrows on
   the diagram, with :math:`\omega`.
-* Long chains (more than :data:`LONG_CHAIN` bodies), summarised instead of one curve per body:
+* Long chains (more than :data:`~rollspring.model.chains.LONG_CHAIN` bodies), summarised
+  instead of one curve per body:
   :func:`plot_space_time` ``(trajectory, waves, fig=None) -> Figure``: space–time images (body
   position against time) of the displacement, of the signed friction ratio
   :math:`f/(\mu_s N)` and of the energy per body with the energy centroid's path and the
@@ -51,7 +52,7 @@ their public names.
 
 from __future__ import annotations
 
-from rollspring.outputs.figures._chain import LONG_CHAIN, plot_space_time, signed_friction_ratio
+from rollspring.outputs.figures._chain import plot_space_time, signed_friction_ratio
 from rollspring.outputs.figures._geometry import ForceScale
 from rollspring.outputs.figures._modes import plot_modes
 from rollspring.outputs.figures._scene import SceneState, SystemScene
@@ -76,7 +77,6 @@ from rollspring.outputs.figures._time import (
 __all__ = [
     "BODY_COLORS",
     "COLORS",
-    "LONG_CHAIN",
     "ForceScale",
     "SceneState",
     "SystemScene",

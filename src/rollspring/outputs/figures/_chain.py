@@ -1,6 +1,6 @@
-"""Long chains (more than :data:`LONG_CHAIN` bodies), summarised instead of drawn body by body:
-space–time images of the displacement, the signed friction ratio and the energy per body, with
-the energy centroid and the group-velocity line.
+"""Long chains (more than :data:`~rollspring.model.chains.LONG_CHAIN` bodies), summarised
+instead of drawn body by body: space–time images of the displacement, the signed friction ratio
+and the energy per body, with the energy centroid and the group-velocity line.
 """
 
 from __future__ import annotations
@@ -15,8 +15,6 @@ from rollspring.outputs.figures._style import new_figure, theme
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import Trajectory
 
-#: images, the friction pattern as colours) instead of drawing every body.
-LONG_CHAIN = 20
 #: At most this many time rows in a space–time image (rows are picked evenly).
 _IMAGE_ROWS = 600
 

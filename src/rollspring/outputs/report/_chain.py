@@ -1,4 +1,4 @@
-r"""The report of a long chain (more than :data:`~rollspring.outputs.figures.LONG_CHAIN`
+r"""The report of a long chain (more than :data:`~rollspring.model.chains.LONG_CHAIN`
 bodies): a summary instead of one row, curve or matrix entry per body.
 
 The page holds the chain in a few lines (the kinds of bodies and springs, with their counts),

@@ -26,7 +26,7 @@ to be right within a factor of a few, enough to tell seconds from days.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from rollspring.analysis.costs import (
     CONFIRM,
@@ -40,6 +40,9 @@ from rollspring.analysis.costs import (
 )
 from rollspring.model import System
 
+if TYPE_CHECKING:
+    from rollspring.simulate.request import SimulationRequest
+
 __all__ = [
     "CONFIRM",
     "MAX_MEMORY",
@@ -50,6 +53,7 @@ __all__ = [
     "check_cost",
     "derivation_cost",
     "report_cost",
+    "request_cost",
     "simulation_cost",
 ]
 
@@ -89,6 +93,16 @@ def simulation_cost(
         written=written,
         what=what,
     )
+
+
+def request_cost(
+    system: System, request: SimulationRequest, *, written: bool = False, what: str = "this run"
+) -> Cost:
+    """:func:`simulation_cost` of a request whose arguments are checked already
+    (:func:`rollspring.simulate.request.simulation_request`): nothing is checked again."""
+    from rollspring.simulate.costs import request_cost as estimate
+
+    return estimate(system, request, written=written, what=what)
 
 
 def report_cost(

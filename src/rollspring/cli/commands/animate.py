@@ -57,25 +57,21 @@ def animate(
     the CM and X-hat on the floor, and a clock."""
     target = _check(out, duration, speed, fps, dpi, on_slip)
     from rollspring.outputs.animation import AnimationError, frame_times, write_animation
-    from rollspring.service.costs import check_cost, simulation_cost
-    from rollspring.simulate import simulate
+    from rollspring.service.costs import check_cost, request_cost
+    from rollspring.service.runs import run_request
+    from rollspring.simulate.request import simulation_request
 
     model = load(system)
     frames = math.floor(duration / speed * fps) + 1
-    cost = simulation_cost(model, duration, outputs=max(2001, 2 * frames), what="the simulation")
+    # the arguments checked once, the cost estimated once: the run checks nothing again
+    request = simulation_request(duration, on_slip=on_slip, n_output=max(2001, 2 * frames))
+    cost = request_cost(model, request, what="the simulation")
     check_cost(cost, confirmed=yes)
     if cost.long:
         say(f"note: the simulation will take {cost.describe()}; Ctrl-C stops it")
     with ProgressBar(delay=0.0, columns=_columns) as bar:  # shown at once
         bar.start("simulating")
-        trajectory = simulate(
-            model,
-            duration,
-            n_output=max(2001, 2 * frames),
-            on_slip=on_slip,
-            progress=bar,
-            confirm=True,  # checked above (--yes)
-        )
+        trajectory = run_request(model, request, progress=bar).trajectory
         bar.start(f"rendering {target.name}")
         try:
             write_animation(

@@ -1,6 +1,6 @@
 """``rollspring simulate SYSTEM``: the exact nonlinear motion, with energy, period, friction,
 slip and lift-off (:func:`rollspring.simulate`, run by
-:func:`rollspring.service.runs.run_simulation`).
+:func:`rollspring.service.runs.run_request`).
 
 ``--out DIR`` writes ``trajectory.csv``, ``trajectory.npz`` and ``summary.json`` as a set;
 ``--json`` prints the summary as one JSON object; otherwise Rich tables
@@ -63,28 +63,21 @@ def simulate(
         from rollspring.outputs.atomic import writable_directory
 
         writable_directory(out)
-    from rollspring.service.costs import check_cost, simulation_cost
-    from rollspring.service.runs import run_simulation
-    from rollspring.simulate.arguments import ON_SLIP, check_choice
+    from rollspring.service.costs import check_cost, request_cost
+    from rollspring.service.runs import run_request
+    from rollspring.simulate.request import simulation_request
 
     model = load(system)
-    check_choice("on_slip", on_slip, ON_SLIP, "on_slip")
-    cost = simulation_cost(
-        model, duration, rtol=rtol, integrator=integrator, outputs=outputs, written=out is not None
+    # the arguments checked once, the cost estimated once: the run checks nothing again
+    request = simulation_request(
+        duration, rtol=rtol, integrator=integrator, on_slip=on_slip, n_output=outputs
     )
+    cost = request_cost(model, request, written=out is not None)
     check_cost(cost, confirmed=yes)
     if cost.long:
         say(f"note: this run will take {cost.describe()}; Ctrl-C stops it")
     with ProgressBar("simulating") as progress:
-        trajectory = run_simulation(
-            model,
-            duration,
-            rtol=rtol,
-            integrator=integrator,
-            outputs=outputs,
-            on_slip=on_slip,
-            progress=progress,
-        ).trajectory
+        trajectory = run_request(model, request, progress=progress).trajectory
     written = []
     if out is not None:
         from rollspring.outputs import write_trajectory

@@ -39,6 +39,7 @@ if TYPE_CHECKING:  # what the names below load on first use, for type checkers a
     from rollspring import web as web
     from rollspring.analysis import LinearAnalysis, Mode, analyze, find_equilibrium, normal_modes
     from rollspring.analysis.derivation import Derivation, derive, symbolic_system
+    from rollspring.analysis.dispersion import dispersion
     from rollspring.analysis.paper import check_paper, paper_claims
     from rollspring.model import (
         Anchor,
@@ -53,6 +54,7 @@ if TYPE_CHECKING:  # what the names below load on first use, for type checkers a
         system_from_dict,
         system_json_schema,
     )
+    from rollspring.outputs.mjcf import export_mjcf
     from rollspring.outputs.report import write_report
     from rollspring.physics import (
         SystemArrays,
@@ -72,6 +74,7 @@ if TYPE_CHECKING:  # what the names below load on first use, for type checkers a
     from rollspring.service.documents import build_report, worksheet
     from rollspring.service.sweeps import sweep
     from rollspring.simulate import BatchResult, Trajectory, simulate_batch
+    from rollspring.web.app import create_app
 
     __version__: str
 del TYPE_CHECKING
@@ -189,6 +192,9 @@ _LAZY = {
     "write_report": "rollspring.outputs.report",
     "worksheet": "rollspring.service.documents",
     "sweep": "rollspring.service.sweeps",
+    "dispersion": "rollspring.analysis.dispersion",
+    "export_mjcf": "rollspring.outputs.mjcf",
+    "create_app": "rollspring.web.app",
 }
 
 #: The subpackages, also loaded on first use (``rollspring.simulate`` is one of them).
@@ -208,6 +214,7 @@ _EXTRAS = {
     "worksheet": "report",
     "sweep": "sweep",
     "web": "web",
+    "create_app": "web",
 }
 
 
@@ -266,7 +273,10 @@ __all__ = [
     "chain",
     "check_paper",
     "contact_forces",
+    "create_app",
     "derive",
+    "dispersion",
+    "export_mjcf",
     "find_equilibrium",
     "generalized_forces",
     "kinetic_energy",

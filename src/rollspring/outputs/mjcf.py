@@ -83,6 +83,7 @@ __all__ = [
     "MAX_TRACKS",
     "ExportError",
     "body_joint_names",
+    "export_mjcf",
     "mjcf_warnings",
     "spring_site_name",
     "system_to_mjcf",
@@ -340,7 +341,36 @@ def write_mjcf(
 ) -> None:
     """Write :func:`system_to_mjcf` to ``path`` atomically (the previous file or the complete
     new one, never a partial file)."""
-    atomic_write_text(path, system_to_mjcf(system, timestep=timestep))
+    export_mjcf(system, path, timestep=timestep)
+
+
+def export_mjcf(
+    system: System | dict[str, Any] | str | os.PathLike[str],
+    path: str | os.PathLike[str] | None = None,
+    *,
+    timestep: float | None = None,
+) -> str:
+    """The system as a MuJoCo model (MJCF; module docstring), written atomically to ``path``
+    when one is given (``rollspring export SYSTEM --format mjcf -o PATH``).
+
+    Parameters
+    ----------
+    system
+        A :class:`~rollspring.model.System`, its JSON form, a file path or a preset name.
+    path
+        Where to write the model (None: only return it).
+    timestep
+        MuJoCo's time step (s; None: :data:`DEFAULT_TIMESTEP`).
+
+    Returns
+    -------
+    str
+        The MJCF document.
+    """
+    text = system_to_mjcf(system, timestep=timestep)
+    if path is not None:
+        atomic_write_text(path, text)
+    return text
 
 
 def _add_joints_and_geom(element: ET.Element, body: Body, bit_of_height: dict[float, int]) -> None:

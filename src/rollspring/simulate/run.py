@@ -96,6 +96,28 @@ def simulate(
     minutes or 2 GiB (:func:`~rollspring.simulate.costs.simulation_cost`) is refused with its
     estimate (:class:`~rollspring.errors.CostTooHigh`) unless ``confirm=True`` (``--yes`` on
     the command line); outputs that cannot fit in memory are refused even then.
+
+    Parameters
+    ----------
+    system
+        A :class:`~rollspring.model.System`, its JSON form, a file path or a preset name.
+    duration
+        The simulated time (s).
+    rtol, integrator, step, energy_tolerance
+        The accuracy contract, the scheme (``auto``, ``verlet``, ``yoshida4``, ``yoshida6``,
+        ``kahanli8``, ``dop853``), a fixed step (s) and the energy error allowed.
+    n_output
+        The number of evenly spaced output times (default 2001).
+    on_slip
+        ``"stop"`` at the first slip, or ``"continue"`` with kinetic friction.
+    progress, confirm
+        Called with the fraction done; start even when the estimate is above the bound.
+
+    Returns
+    -------
+    Trajectory
+        Positions, velocities, friction and normal forces at the output times, the events,
+        ``status`` and the ``summary``.
     """
     from rollspring.analysis.costs import CONFIRM, check_cost
     from rollspring.model import as_system

@@ -238,6 +238,25 @@ def derive(
     estimated at more than 5 minutes (:func:`~rollspring.analysis.costs.derivation_cost`: many
     bodies) is refused with its estimate (:class:`~rollspring.errors.CostTooHigh`) unless
     ``confirm=True`` (``--yes`` on the command line). Every check comes before any work.
+
+    Parameters
+    ----------
+    system
+        A :class:`~rollspring.model.System`, its JSON form, a file path or a preset name.
+    method
+        ``"all"``, or one or more of the five methods.
+    symbols
+        Parameters as symbols instead of exact numbers.
+    budget
+        Seconds for each open-ended symbolic step (None: no limit).
+    confirm
+        Start even when the estimated time is above the bound.
+
+    Returns
+    -------
+    Derivation
+        Each method's steps and results and their cross-check; ``to_markdown()``,
+        ``to_latex()``.
     """
     from rollspring.analysis.costs import CONFIRM, check_cost, derivation_cost
     from rollspring.model import as_system

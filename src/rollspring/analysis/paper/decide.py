@@ -83,5 +83,13 @@ def check_claims(claims: Iterable[Claim]) -> tuple[ClaimCheck, ...]:
 
 @functools.cache
 def check_paper() -> tuple[ClaimCheck, ...]:
-    """Every claim of :func:`paper_claims` with its verdict (computed once per process)."""
+    """Every claim of :func:`paper_claims` with its verdict (computed once per process).
+
+    Returns
+    -------
+    tuple of ClaimCheck
+        In the paper's order: the claim (its key, location, quote and statement), the
+        verdict (:class:`Verdict`), the condition it needs or the correction, and the
+        derivation's value.
+    """
     return check_claims(paper_claims())

@@ -30,14 +30,14 @@ class Verdict(StrEnum):
     """It does not hold; the correction gives the derived value."""
 
 
-# The verdicts by name, typed as the words they are (the command line and the report key their
-# tables by the words; a Verdict compares and hashes as its value).
-VERIFIED: str = Verdict.VERIFIED
-HOLDS_STATED: str = Verdict.HOLDS_STATED
-HOLDS_ONLY_IF: str = Verdict.HOLDS_ONLY_IF
-WRONG: str = Verdict.WRONG
+# The verdicts by name (a Verdict compares and hashes as its word: the command line, which does
+# not load this package to start, keys its tables by the words).
+VERIFIED = Verdict.VERIFIED
+HOLDS_STATED = Verdict.HOLDS_STATED
+HOLDS_ONLY_IF = Verdict.HOLDS_ONLY_IF
+WRONG = Verdict.WRONG
 #: The four verdicts, in the order they are counted.
-VERDICTS: tuple[str, ...] = tuple(Verdict)
+VERDICTS: tuple[Verdict, ...] = tuple(Verdict)
 
 
 def quote_key(text: str) -> str:
@@ -109,7 +109,7 @@ class ClaimCheck:
     the verdict relies on (None for a claim verified without them)."""
 
     claim: Claim
-    verdict: str  # a Verdict: a str enum, compared and written as its value
+    verdict: Verdict  # a str enum: compared and written as its value
     correction: str | None
     reason: str
     paper: Any

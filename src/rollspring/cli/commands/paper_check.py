@@ -85,7 +85,7 @@ def paper_check(
 def summary(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
     """'N claims: a verified, b hold under an assumption the paper states, c hold only under a
     condition the paper does not state, d wrong'."""
-    counts = Counter(c.verdict for c in checks)
+    counts = Counter(str(c.verdict) for c in checks)  # by the words (a Verdict is its word)
     return (
         f"{len(checks)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_STATED]} hold under "
         f"an assumption the paper states, {counts[HOLDS_ONLY_IF]} hold only under a condition "

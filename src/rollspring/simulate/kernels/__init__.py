@@ -36,7 +36,7 @@ source file):
   :func:`run_fixed_step` and its interpolated outputs;
 * :mod:`.refine` -- extremes and the period's zero refined on the integrator, the balls of
   bodies of long chains;
-* :mod:`.observe` -- the general (slipping) state's derivative and what is observed of rows;
+* :mod:`.observation` -- the general (slipping) state's derivative and what is observed of rows;
 * :mod:`.linear_setup` -- :func:`level_setup`, the compiled setup of small level systems.
 """
 
@@ -56,7 +56,7 @@ from rollspring.simulate.kernels.linear_setup import (
     level_setup,
 )
 from rollspring.simulate.kernels.model import kernel_model
-from rollspring.simulate.kernels.observe import (
+from rollspring.simulate.kernels.observation import (
     observe,
     observe_rolling,
     row_extremes,

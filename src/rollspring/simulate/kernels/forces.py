@@ -22,6 +22,21 @@ import math
 import numpy as np
 from numba import njit
 
+from rollspring.simulate.kernels.law import (
+    attachment,
+    attachment_lever,
+    damping_tension,
+    distance,
+    elastic_tension,
+    generalized_force,
+    is_level,
+    level_pull,
+    needed_friction,
+    normal_force,
+    pull,
+    spring_length,
+    torque,
+)
 from rollspring.simulate.kernels.model import (
     AAX,
     AAY,
@@ -52,13 +67,7 @@ __all__ = ["body_loads", "force_rates", "generalized_forces", "rolling_forces"]
 @njit(cache=True, inline="always", error_model="numpy")
 def _point(bodies, i, r, alpha, x, phi):
     """Attachment position (M1) and its velocity per unit angular velocity at fixed centre."""
-    if r == 0.0:
-        return x[i], bodies[i, CY], 0.0, 0.0
-    rolls = bodies[i, ROLLS]
-    theta = alpha + rolls * phi[i]
-    s = math.sin(theta)
-    c = math.cos(theta)
-    return x[i] + r * s, bodies[i, CY] + r * c, rolls * r * c, -rolls * r * s
+    return attachment(x[i], bodies[i, CY], bodies[i, ROLLS], r, alpha, phi[i])
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -84,11 +93,7 @@ def _spring_geometry(bodies, springs, ends, s, x, phi):
         pby = springs[s, ABY]
     dx = pbx - pax
     dy = pby - pay
-    # a level spring (both ends at one height): sqrt(dx^2) is |dx| exactly (IEEE
-    # round-to-nearest, dx^2 neither overflowing nor underflowing), without the square
-    # root's latency on the stepping's chain
-    dist = abs(dx) if dy == 0.0 and 1e-150 < abs(dx) < 1e150 else math.sqrt(dx * dx + dy * dy)
-    return dx, dy, dist, oax, oay, obx, oby
+    return dx, dy, spring_length(dx, dy), oax, oay, obx, oby
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -97,17 +102,15 @@ def _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau):
     end b, and their clockwise torques about the centres."""
     ia = ends[s, 0]
     ib = ends[s, 1]
-    per_length = t / dist
-    tx = per_length * dx
-    ty = per_length * dy
+    tx, ty = pull(t, dx, dy, dist)
     if ia >= 0:
         fx[ia] += tx
         fy[ia] += ty
-        tau[ia] += oax * tx + oay * ty
+        tau[ia] += torque(oax, oay, tx, ty)
     if ib >= 0:
         fx[ib] -= tx
         fy[ib] -= ty
-        tau[ib] -= obx * tx + oby * ty
+        tau[ib] -= torque(obx, oby, tx, ty)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -123,7 +126,7 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
         tau[i] = 0.0
     for s in range(springs.shape[0]):
         dx, dy, dist, oax, oay, obx, oby = _spring_geometry(bodies, springs, ends, s, x, phi)
-        t = springs[s, STIFF] * (dist - springs[s, REST])
+        t = elastic_tension(springs[s, STIFF], springs[s, REST], dist)
         if damped and springs[s, DAMP] != 0.0:
             ia = ends[s, 0]
             ib = ends[s, 1]
@@ -137,7 +140,7 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
             if ib >= 0:
                 vbx = u[ib] + obx * w[ib]
                 vby = oby * w[ib]
-            t += springs[s, DAMP] * (dx * (vbx - vax) + dy * (vby - vay)) / dist
+            t += damping_tension(springs[s, DAMP], dx, dy, vbx - vax, vby - vay, dist)
         length[s] = dist
         tension[s] = t
         _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau)
@@ -146,7 +149,7 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
         _, _, ox, oy = _point(bodies, i, forces[j, FR], forces[j, FALPHA], x, phi)
         fx[i] += forces[j, FX]
         fy[i] += forces[j, FY]
-        tau[i] += ox * forces[j, FX] + oy * forces[j, FY]
+        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -182,47 +185,39 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
             pby = springs[s, ABY]
         dx = pbx - pax
         dy = pby - pay
-        if dy == 0.0 and 1e-150 < abs(dx) < 1e150:
+        if is_level(dx, dy):
             # a level spring (both ends at one height): T e_x = k (|dx| - L0) sign(dx), without
             # the square root and the division on the stepping's chain
-            tx = springs[s, STIFF] * (dx - springs[s, REST] if dx > 0.0 else dx + springs[s, REST])
+            tx = level_pull(springs[s, STIFF], springs[s, REST], dx)
             ty = 0.0
         else:
-            dist = math.sqrt(dx * dx + dy * dy)
-            per_length = springs[s, STIFF] * (dist - springs[s, REST]) / dist
-            tx = per_length * dx
-            ty = per_length * dy
+            dist = distance(dx, dy)
+            tx, ty = pull(elastic_tension(springs[s, STIFF], springs[s, REST], dist), dx, dy, dist)
         # _load_ends's writes, written out here: a shared inlined helper for them made the
         # whole integration 2.5 times slower (bench_hoop_cylinder.py: 0.19 -> 0.47 ms)
         if ia >= 0:
             fx[ia] += tx
             fy[ia] += ty
-            tau[ia] += oax * tx + oay * ty
+            tau[ia] += torque(oax, oay, tx, ty)
         if ib >= 0:
             fx[ib] -= tx
             fy[ib] -= ty
-            tau[ib] -= obx * tx + oby * ty
+            tau[ib] -= torque(obx, oby, tx, ty)
     for j in range(forces.shape[0]):
         i = force_body[j]
         _, _, ox, oy = _rolling_point(bodies, i, forces[j, FR], forces[j, FALPHA], q)
         fx[i] += forces[j, FX]
         fy[i] += forces[j, FY]
-        tau[i] += ox * forces[j, FX] + oy * forces[j, FY]
+        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
     for i in range(q.shape[0]):
-        gen[i] = bodies[i, SCALE] * fx[i] + tau[i]
+        gen[i] = generalized_force(bodies[i, SCALE], fx[i], tau[i])
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _rolling_point(bodies, i, r, alpha, q):
     """:func:`_point` of an all-rolling state q: centre x = x0 + s q, rotation q."""
     x = bodies[i, X0] + bodies[i, SCALE] * q[i]
-    if r == 0.0:
-        return x, bodies[i, CY], 0.0, 0.0
-    rolls = bodies[i, ROLLS]
-    theta = alpha + rolls * q[i]
-    s = math.sin(theta)
-    c = math.cos(theta)
-    return x + r * s, bodies[i, CY] + r * c, rolls * r * c, -rolls * r * s
+    return attachment(x, bodies[i, CY], bodies[i, ROLLS], r, alpha, q[i])
 
 
 @njit(cache=True, error_model="numpy")
@@ -249,8 +244,12 @@ def _scratch(n, n_springs):
 def _contact(model, i, gen_i, fx_i, fy_i):
     """(M8), (M9): friction needed to roll and the normal force."""
     b = model[0]
-    friction = b[i, MASS] * b[i, SCALE] * gen_i / b[i, INERTIA] - fx_i if b[i, ROLLS] > 0.0 else 0.0
-    return friction, b[i, MASS] * model[5] - fy_i
+    friction = (
+        needed_friction(b[i, MASS], b[i, SCALE], b[i, INERTIA], gen_i, fx_i)
+        if b[i, ROLLS] > 0.0
+        else 0.0
+    )
+    return friction, normal_force(b[i, MASS] * model[5], fy_i)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -260,20 +259,8 @@ def _rolling_lever(bodies, i, r, alpha, q, v):
     :math:`\dot\ell = \dot q_i\,\partial\ell/\partial q_i` (M1):
     (px, py, lx, ly, dlx, dly)."""
     x = bodies[i, X0] + bodies[i, SCALE] * q[i]
-    if r == 0.0:
-        return x, bodies[i, CY], bodies[i, SCALE], 0.0, 0.0, 0.0
-    rolls = bodies[i, ROLLS]
-    theta = alpha + rolls * q[i]
-    s = math.sin(theta)
-    c = math.cos(theta)
-    spin = rolls * rolls * v[i]
-    return (
-        x + r * s,
-        bodies[i, CY] + r * c,
-        bodies[i, SCALE] + rolls * r * c,
-        -rolls * r * s,
-        -spin * r * s,
-        -spin * r * c,
+    return attachment_lever(
+        x, bodies[i, CY], bodies[i, SCALE], bodies[i, ROLLS], r, alpha, q[i], v[i]
     )
 
 
@@ -326,7 +313,7 @@ def force_rates(model, q, v, rate):
         k = springs[s, STIFF]
         if dy == 0.0 and ddy == 0.0 and 1e-150 < abs(dx) < 1e150:
             # a level spring staying level: F_x = k (|dx| - L0) sign(dx), dF_x/dt = k ddx
-            force_x = k * (dx - springs[s, REST] if dx > 0.0 else dx + springs[s, REST])
+            force_x = level_pull(k, springs[s, REST], dx)
             force_y = 0.0
             rate_x = k * ddx
             rate_y = 0.0

@@ -10,6 +10,16 @@ import numpy as np
 from numba import njit
 
 from rollspring.simulate.kernels.forces import _load_ends, _point, _spring_geometry, body_loads
+from rollspring.simulate.kernels.law import (
+    elastic_tension,
+    generalized_force,
+    kinetic_friction,
+    needed_friction,
+    normal_force,
+    spring_energy,
+    torque,
+    work,
+)
 from rollspring.simulate.kernels.model import (
     CENTRAL,
     FALPHA,
@@ -60,11 +70,11 @@ def slipping_derivatives(model, state, slipping, sign, damped, out):
             out[2 * n + i] = fx[i] / b[i, MASS]
             out[3 * n + i] = 0.0
         elif slipping[i]:
-            friction = -b[i, MU_K] * (b[i, MASS] * g - fy[i]) * sign[i]
+            friction = kinetic_friction(b[i, MU_K], normal_force(b[i, MASS] * g, fy[i]), sign[i])
             out[2 * n + i] = (fx[i] + friction) / b[i, MASS]
             out[3 * n + i] = (tau[i] - b[i, RADIUS] * friction) / b[i, CENTRAL]
         else:
-            alpha = (b[i, SCALE] * fx[i] + tau[i]) / b[i, INERTIA]
+            alpha = generalized_force(b[i, SCALE], fx[i], tau[i]) / b[i, INERTIA]
             out[2 * n + i] = b[i, SCALE] * alpha
             out[3 * n + i] = alpha
 
@@ -120,23 +130,23 @@ def observe(
         )
         energy = 0.0
         for s in range(springs.shape[0]):
-            energy += 0.5 * springs[s, STIFF] * (length[row, s] - springs[s, REST]) ** 2
+            energy += spring_energy(springs[s, STIFF], springs[s, REST], length[row, s])
         for j in range(forces.shape[0]):
             i = force_body[j]
             px, py, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)
             p0x, p0y, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], zero_x, zero_phi)
-            energy -= forces[j, FX] * (px - p0x) + forces[j, FY] * (py - p0y)
+            energy -= work(forces[j, FX], forces[j, FY], px - p0x, py - p0y)
         potential[row] = energy
         for i in range(n):
-            normal[row, i] = b[i, MASS] * g - fy[i]
+            normal[row, i] = normal_force(b[i, MASS] * g, fy[i])
             if b[i, ROLLS] == 0.0:
                 friction[row, i] = 0.0
             elif slipping[row, i]:
-                friction[row, i] = -b[i, MU_K] * normal[row, i] * sign[row, i]
+                friction[row, i] = kinetic_friction(b[i, MU_K], normal[row, i], sign[row, i])
             else:
-                friction[row, i] = (
-                    b[i, MASS] * b[i, SCALE] * (b[i, SCALE] * fx[i] + tau[i]) / b[i, INERTIA]
-                    - fx[i]
+                gen = generalized_force(b[i, SCALE], fx[i], tau[i])
+                friction[row, i] = needed_friction(
+                    b[i, MASS], b[i, SCALE], b[i, INERTIA], gen, fx[i]
                 )
         moving = 0.0
         for i in range(n):
@@ -233,10 +243,10 @@ def observe_rolling(
         energy = 0.0
         for s in range(springs.shape[0]):  # body_loads without damping
             dx, dy, dist, oax, oay, obx, oby = _spring_geometry(b, springs, ends, s, x, phi)
-            t = springs[s, STIFF] * (dist - springs[s, REST])
+            t = elastic_tension(springs[s, STIFF], springs[s, REST], dist)
             length[row, s] = dist
             tension[row, s] = t
-            energy += 0.5 * springs[s, STIFF] * (dist - springs[s, REST]) ** 2
+            energy += spring_energy(springs[s, STIFF], springs[s, REST], dist)
             if dy == 0.0 and 1e-150 < abs(dx) < 1e150:
                 # a level spring (dist is |dx|): T e_x = T sign(dx) (the stepping's force,
                 # without the division of _load_ends, which gives it to the last bit or two)
@@ -256,24 +266,22 @@ def observe_rolling(
             px, py, ox, oy = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)
             fx[i] += forces[j, FX]
             fy[i] += forces[j, FY]
-            tau[i] += ox * forces[j, FX] + oy * forces[j, FY]
+            tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
         for j in range(forces.shape[0]):
             i = force_body[j]
             px, py, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)
-            energy -= forces[j, FX] * (px - p0[j, 0]) + forces[j, FY] * (py - p0[j, 1])
+            energy -= work(forces[j, FX], forces[j, FY], px - p0[j, 0], py - p0[j, 1])
         potential[row] = energy
         kinetic[row] = moving
         for i in range(n):
-            nn = b[i, MASS] * g - fy[i]
+            nn = normal_force(b[i, MASS] * g, fy[i])
             normal[row, i] = nn
             if b[i, ROLLS] == 0.0:
                 f = 0.0
                 ratio[row, i] = 0.0
             else:
-                f = (
-                    b[i, MASS] * b[i, SCALE] * (b[i, SCALE] * fx[i] + tau[i]) / b[i, INERTIA]
-                    - fx[i]
-                )
+                gen = generalized_force(b[i, SCALE], fx[i], tau[i])
+                f = needed_friction(b[i, MASS], b[i, SCALE], b[i, INERTIA], gen, fx[i])
                 if nn <= 0.0:
                     ratio[row, i] = np.inf
                 elif math.isinf(b[i, MU_S]):

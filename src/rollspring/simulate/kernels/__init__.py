@@ -1,35 +1,19 @@
 r"""Compiled (Numba) kernels: the exact rolling equations and explicit symplectic integrators.
 
-While every body rolls the Hamiltonian is separable, :math:`H = \sum p_i^2/(2J_i) + U(q)` with a
-constant diagonal mass matrix (docs/physics.md (M6)), so compositions of the kick-drift-kick
-leapfrog
-
-.. math:: v \mathrel{+}= \tfrac{h_k}{2} Q(q)/J,\quad q \mathrel{+}= h_k v,\quad
-          v \mathrel{+}= \tfrac{h_k}{2} Q(q)/J, \qquad h_k = w_k h
-
-are explicit and symplectic; the weights :math:`w_k` (Yoshida 1990; Kahan and Li 1997) give
-orders 2, 4, 6 and 8. The force at the end of a stage is reused at the start of the next.
-
-The general state (any body may slip) is per body the centre position :math:`x_i`, the rotation
-:math:`\varphi_i` from the initial placement, the centre velocity :math:`u_i` and the angular
-velocity :math:`\omega_i` (clockwise positive). An attachment at distance :math:`r` and angle
-:math:`\alpha` (clockwise from up) is at (M1)
-
-.. math::
-
-   P = (x_i + r\sin\theta,\; h_i + R_i + r\cos\theta), \qquad \theta = \alpha + \rho_i\varphi_i
-
-and the loads :func:`body_loads` are the resultant force :math:`(F_{ix}, F_{iy})` and the
-clockwise torque :math:`\tau_i` about the centre of the springs (tension
-:math:`T = k(l - L_0) + c\,\dot l`) and constant forces. For a rolling body the generalised force
-is :math:`Q_i = R_i F_{ix} + \tau_i` (the torque about the contact point, (M7)), and (M8), (M9)
-give the friction it needs and its normal force. The model is a tuple of flat arrays
+The rolling state (every body rolls) is one angle per body and its rate, stepped by explicit
+symplectic compositions of the leapfrog (:mod:`.stepping`). The general state (any body may
+slip) is per body the centre position :math:`x_i`, the rotation :math:`\varphi_i` from the
+initial placement, the centre velocity :math:`u_i` and the angular velocity :math:`\omega_i`
+(clockwise positive) (:mod:`.observation`). Both take their forces from one law
+(:mod:`.law`, docs/force-law.md) and the model as a tuple of flat arrays (:func:`kernel_model`);
+tests check the kernels against :mod:`rollspring.physics` to rounding.
 
 The package keeps each part beside the constants it uses (Numba caches a compiled kernel per
 source file):
 
 * :mod:`.model` -- :func:`kernel_model` and the columns of its packed arrays;
-* :mod:`.forces` -- the force law: attachment points (M1), spring tensions and their loads,
+* :mod:`.law` -- the force law, written once: each term a scalar function Numba inlines;
+* :mod:`.forces` -- the loads of a state from the law: springs and constant forces,
   :func:`body_loads`, the stepping's :func:`rolling_forces`, :func:`force_rates`, contact (M8),
   (M9);
 * :mod:`.stepping` -- the symplectic compositions (:data:`SCHEMES`), :func:`advance`,
@@ -38,6 +22,12 @@ source file):
   bodies of long chains;
 * :mod:`.observation` -- the general (slipping) state's derivative and what is observed of rows;
 * :mod:`.linear_setup` -- :func:`level_setup`, the compiled setup of small level systems.
+
+Numba's cache checks only the file of the function it compiled: a kernel that inlines the law
+or reads :mod:`.model`'s columns keeps its cached machine code when those files change alone. An
+edit to ``law.py`` or ``model.py`` in a source tree therefore goes with clearing this package's
+``__pycache__`` (an installed version is cached per file stamp, so a new release recompiles; the
+batch kernels carry the law's hash in their source).
 """
 
 from __future__ import annotations

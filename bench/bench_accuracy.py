@@ -13,7 +13,7 @@ An output has two errors, measured apart:
   rtol/10 (``Integrator.phase_omega_step`` without its safety factor), its
   outputs on step ends. The ratio error / contract falls as h^p: the safety factor of a scheme
   is the largest factor on omega h that brings every ratio to TARGET or below.
-* **B, the interpolated outputs** (septic Hermite inside a step, ``kernels._hermite``):
+* **B, the interpolated outputs** (septic Hermite inside a step, ``kernels.stepping._hermite``):
   evaluated here on the reference itself, its states, accelerations and jerks at step ends,
   against the reference between them, at the step of ``output_omega_step`` without its safety
   factor. Its error / contract is the same at every rtol (the step goes as rtol^(1/7)); it

@@ -4,13 +4,23 @@ Runs are processed in blocks of :data:`BLOCK` lanes; every loop over the lanes i
 code for one lane that LLVM vectorises, and no lane reads another lane's state: a block's OR of
 the lanes' event conditions only decides whether the scalar event pass runs, and that pass
 recomputes each lane's own conditions (a lane's motion and metrics are the same in any batch).
+
+The force terms are not written here: the generated code calls the scalar functions of
+:mod:`rollspring.simulate.kernels.law` (the spring's pull and length, torques, the generalised
+force, friction and normal force, a constant force's work), which Numba inlines into each lane
+loop with its ``fastmath`` flags; the generated module's source carries the law's hash, so its
+cache follows the law (docs/force-law.md).
 """
 
 from __future__ import annotations
 
+import hashlib
 import re
+from functools import cache
+from pathlib import Path
 
 from rollspring.simulate.batch.plan import Plan
+from rollspring.simulate.kernels import law
 from rollspring.simulate.status import Status
 
 __all__ = ["BLOCK", "OUT_BODY", "OUT_COLUMNS", "OUT_EVENT_TIME", "SINCOS", "Source"]
@@ -195,7 +205,7 @@ class Source:
                 )
                 lines.append(f"d{k} = {F(f'dx_{k}')} {shift}")
             if sp.geometry == "flat":
-                lines.append(f"tx{k} = {stiff} * (d{k} - math.copysign({rest}, d{k}))")
+                lines.append(f"tx{k} = level_pull({stiff}, {rest}, d{k})")
                 ty = None
                 if energy:
                     lines.append(f"ext{k} = abs(d{k}) - {rest}")
@@ -206,11 +216,10 @@ class Source:
                 dy = F(f"dy_{k}") if sp.geometry == "fixed" else f"({by} - {ay})"
                 lines += [
                     f"e{k} = {dy}",
-                    f"l{k} = math.sqrt(d{k} * d{k} + e{k} * e{k})",
+                    f"l{k} = distance(d{k}, e{k})",
                     f"ext{k} = l{k} - {rest}",
-                    f"tl{k} = {stiff} * ext{k} / l{k}",
-                    f"tx{k} = tl{k} * d{k}",
-                    f"ty{k} = tl{k} * e{k}",
+                    f"tn{k} = elastic_tension({stiff}, {rest}, l{k})",
+                    f"tx{k}, ty{k} = pull(tn{k}, d{k}, e{k}, l{k})",
                 ]
                 ty = f"ty{k}"
                 if lever and k == 0:
@@ -225,8 +234,8 @@ class Source:
                 fx[i].append(f"{sign} tx{k}")
                 if ty is not None:
                     fy[i].append(f"{sign} {ty}")
-                if ox is not None:  # clockwise torque of (tx, ty) at arm (ox, oy): oy tx - ox ty
-                    tau[i].append(f"{sign} ({oy} * tx{k} - {ox} * {ty})")
+                if ox is not None:  # clockwise torque of (tx, ty) at arm (ox, oy)
+                    tau[i].append(f"{sign} arm_torque({ox}, {oy}, tx{k}, {ty})")
             if lever and k == 0:
                 for i, sign, wx, wy, name in ((ia, "-", awx, awy, "a"), (ib, "", bwx, bwy, "b")):
                     if i < 0:
@@ -244,11 +253,11 @@ class Source:
                     f"fox{j} = {r} * sn",
                     f"foy{j} = {r} * cs",
                 ]
-                tau[i].append(f"+ ({fxj} * foy{j} - {fyj} * fox{j})")
+                tau[i].append(f"+ arm_torque(fox{j}, foy{j}, {fxj}, {fyj})")
                 if energy:
                     energy_terms.append(
-                        f"- ({fxj} * ({y[i]} + fox{j} - {F(f'frs_{j}')})"
-                        f" + {fyj} * (foy{j} - {F(f'frc_{j}')}))"
+                        f"- work({fxj}, {fyj}, {y[i]} + fox{j} - {F(f'frs_{j}')},"
+                        f" foy{j} - {F(f'frc_{j}')})"
                     )
             elif energy:
                 energy_terms.append(f"- {fxj} * {y[i]}")
@@ -260,7 +269,7 @@ class Source:
                 ext_y = [F(f"efy_{i}")] if i in has_force else []
                 lines.append(f"fy{i} = {_sum(ext_y + fy[i])}")
             if tau[i]:  # Q/s = F_x + tau/s (M7)
-                lines.append(f"gx{i} = fx{i} + ({_sum(tau[i])}) * {F(f'is_{i}')}")
+                lines.append(f"gx{i} = reduced_force(fx{i}, {_sum(tau[i])}, {F(f'is_{i}')})")
             else:
                 lines.append(f"gx{i} = fx{i}")
             if acc:
@@ -274,13 +283,13 @@ class Source:
         F, lines = self.fld, []
         for i in range(self.n):
             if self.p.rolls[i]:
-                lines.append(f"f{i} = {F(f'm_{i}')} * acc{i} - fx{i}")
+                lines.append(f"f{i} = rolling_friction({F(f'm_{i}')}, acc{i}, fx{i})")
             else:
                 lines.append(f"f{i} = 0.0")
             if self.p.normal_const[i]:
                 lines.append(f"N{i} = {F(f'nn_{i}')}")
             else:
-                lines.append(f"N{i} = {F(f'wt_{i}')} - fy{i}")
+                lines.append(f"N{i} = normal_force({F(f'wt_{i}')}, fy{i})")
         return lines
 
     def condition(self) -> str:
@@ -702,6 +711,8 @@ class Source:
             "import math",
             "import numpy as np",
             "from numba import njit, prange",
+            _LAW_IMPORT,
+            f"# the force law: rollspring.simulate.kernels.law, sha256 {_law_digest()}",
             f"B = {BLOCK}",
             SINCOS,
             *self.stage(),
@@ -753,6 +764,28 @@ def sincos(x):
     s = -s if quadrant >= 2.0 else s
     c = -c if (quadrant == 1.0) | (quadrant == 2.0) else c
     return s, c"""
+
+
+#: the law's terms the generated code calls (Numba inlines them: ``inline="always"``)
+_LAW_TERMS = (
+    "arm_torque",
+    "distance",
+    "elastic_tension",
+    "level_pull",
+    "normal_force",
+    "pull",
+    "reduced_force",
+    "rolling_friction",
+    "work",
+)
+_LAW_IMPORT = f"from rollspring.simulate.kernels.law import {', '.join(_LAW_TERMS)}"
+
+
+@cache
+def _law_digest() -> str:
+    """The hash of the law's source: in the generated source, so its name (the cache key of
+    :mod:`.cache`) changes with the law (Numba's cache of a module sees only its own file)."""
+    return hashlib.sha256(Path(law.__file__).read_bytes()).hexdigest()[:20]
 
 
 def _sum(terms: list[str]) -> str:

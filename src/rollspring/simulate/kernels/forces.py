@@ -1,0 +1,335 @@
+r"""The force law of the compiled kernels: attachment points, spring tensions, loads, contact.
+
+An attachment at distance :math:`r` and angle :math:`\alpha` (clockwise from up) on body
+:math:`i` is at (M1)
+
+.. math::
+
+   P = (x_i + r\sin\theta,\; h_i + R_i + r\cos\theta), \qquad \theta = \alpha + \rho_i\varphi_i
+
+and :func:`body_loads` gives each centre's resultant force :math:`(F_{ix}, F_{iy})` and clockwise
+torque :math:`\tau_i` of the springs (tension :math:`T = k(l - L_0) + c\,\dot l`, :math:`+T e`
+on end a, :math:`-T e` on end b) and the constant forces. A rolling body's generalised force is
+:math:`Q_i = s_i F_{ix} + \tau_i` (M7) (:func:`rolling_forces`, the stepping's), its rate
+:func:`force_rates`; (M8), (M9) give the friction it needs and its normal force
+(:func:`_contact`). docs/physics.md §2.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rollspring.simulate.kernels.law import (
+    attachment,
+    attachment_lever,
+    damping_tension,
+    distance,
+    elastic_tension,
+    generalized_force,
+    is_level,
+    level_pull,
+    needed_friction,
+    normal_force,
+    pull,
+    spring_length,
+    torque,
+)
+from rollspring.simulate.kernels.model import (
+    AAX,
+    AAY,
+    ABX,
+    ABY,
+    ALPHA_A,
+    ALPHA_B,
+    CY,
+    DAMP,
+    FALPHA,
+    FR,
+    FX,
+    FY,
+    INERTIA,
+    MASS,
+    RA,
+    RB,
+    REST,
+    ROLLS,
+    SCALE,
+    STIFF,
+    X0,
+)
+
+__all__ = ["body_loads", "force_rates", "generalized_forces", "rolling_forces"]
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _point(bodies, i, r, alpha, x, phi):
+    """Attachment position (M1) and its velocity per unit angular velocity at fixed centre."""
+    return attachment(x[i], bodies[i, CY], bodies[i, ROLLS], r, alpha, phi[i])
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _spring_geometry(bodies, springs, ends, s, x, phi):
+    """Spring ``s``: the vector from its end a to its end b (dx, dy), its length, and each
+    end's velocity per unit angular velocity of its body at a fixed centre (oax, oay, obx, oby;
+    0 for an anchor), (M1)."""
+    ia = ends[s, 0]
+    ib = ends[s, 1]
+    oax = 0.0
+    oay = 0.0
+    obx = 0.0
+    oby = 0.0
+    if ia >= 0:
+        pax, pay, oax, oay = _point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], x, phi)
+    else:
+        pax = springs[s, AAX]
+        pay = springs[s, AAY]
+    if ib >= 0:
+        pbx, pby, obx, oby = _point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], x, phi)
+    else:
+        pbx = springs[s, ABX]
+        pby = springs[s, ABY]
+    dx = pbx - pax
+    dy = pby - pay
+    return dx, dy, spring_length(dx, dy), oax, oay, obx, oby
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau):
+    """Add spring ``s``'s tension ``t`` to its bodies: :math:`+T e` on end a, :math:`-T e` on
+    end b, and their clockwise torques about the centres."""
+    ia = ends[s, 0]
+    ib = ends[s, 1]
+    tx, ty = pull(t, dx, dy, dist)
+    if ia >= 0:
+        fx[ia] += tx
+        fy[ia] += ty
+        tau[ia] += torque(oax, oay, tx, ty)
+    if ib >= 0:
+        fx[ib] -= tx
+        fy[ib] -= ty
+        tau[ib] -= torque(obx, oby, tx, ty)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
+    r"""Resultant force and clockwise torque about each centre of springs and constant forces;
+    each spring's length and tension :math:`T = k(l - L_0) + c\,\dot l` (``damped``: include
+    :math:`c\,\dot l`). Force on end a: :math:`+T e`, on end b: :math:`-T e`
+    (docs/physics.md §2)."""
+    bodies, springs, ends, forces, force_body = model[0], model[1], model[2], model[3], model[4]
+    for i in range(x.shape[0]):
+        fx[i] = 0.0
+        fy[i] = 0.0
+        tau[i] = 0.0
+    for s in range(springs.shape[0]):
+        dx, dy, dist, oax, oay, obx, oby = _spring_geometry(bodies, springs, ends, s, x, phi)
+        t = elastic_tension(springs[s, STIFF], springs[s, REST], dist)
+        if damped and springs[s, DAMP] != 0.0:
+            ia = ends[s, 0]
+            ib = ends[s, 1]
+            vax = 0.0
+            vay = 0.0
+            vbx = 0.0
+            vby = 0.0
+            if ia >= 0:
+                vax = u[ia] + oax * w[ia]
+                vay = oay * w[ia]
+            if ib >= 0:
+                vbx = u[ib] + obx * w[ib]
+                vby = oby * w[ib]
+            t += damping_tension(springs[s, DAMP], dx, dy, vbx - vax, vby - vay, dist)
+        length[s] = dist
+        tension[s] = t
+        _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau)
+    for j in range(forces.shape[0]):
+        i = force_body[j]
+        _, _, ox, oy = _point(bodies, i, forces[j, FR], forces[j, FALPHA], x, phi)
+        fx[i] += forces[j, FX]
+        fy[i] += forces[j, FY]
+        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def rolling_forces(model, q, scratch, gen, fx, fy):
+    r"""Generalised forces :math:`Q_i = s_i F_{ix} + \tau_i` (M7) of the all-rolling state
+    ``q`` (no damping), into ``gen``; resultant forces into ``fx``, ``fy``. ``scratch`` is a
+    tuple of work arrays (x, zeros, tau, length, tension)."""
+    # body_loads without damping, spring lengths and tensions, with fewer loads and stores on
+    # the stepping's chain: the same operations but for level springs (both ends at one
+    # height), whose force k (|dx| - L0) sign(dx) takes neither a square root nor a division
+    bodies, springs, ends, forces, force_body = model[0], model[1], model[2], model[3], model[4]
+    tau = scratch[2]
+    for i in range(q.shape[0]):
+        fx[i] = 0.0
+        fy[i] = 0.0
+        tau[i] = 0.0
+    for s in range(springs.shape[0]):
+        ia = ends[s, 0]
+        ib = ends[s, 1]
+        oax = 0.0
+        oay = 0.0
+        obx = 0.0
+        oby = 0.0
+        if ia >= 0:
+            pax, pay, oax, oay = _rolling_point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], q)
+        else:
+            pax = springs[s, AAX]
+            pay = springs[s, AAY]
+        if ib >= 0:
+            pbx, pby, obx, oby = _rolling_point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], q)
+        else:
+            pbx = springs[s, ABX]
+            pby = springs[s, ABY]
+        dx = pbx - pax
+        dy = pby - pay
+        if is_level(dx, dy):
+            # a level spring (both ends at one height): T e_x = k (|dx| - L0) sign(dx), without
+            # the square root and the division on the stepping's chain
+            tx = level_pull(springs[s, STIFF], springs[s, REST], dx)
+            ty = 0.0
+        else:
+            dist = distance(dx, dy)
+            tx, ty = pull(elastic_tension(springs[s, STIFF], springs[s, REST], dist), dx, dy, dist)
+        # _load_ends's writes, written out here: a shared inlined helper for them made the
+        # whole integration 2.5 times slower (bench_hoop_cylinder.py: 0.19 -> 0.47 ms)
+        if ia >= 0:
+            fx[ia] += tx
+            fy[ia] += ty
+            tau[ia] += torque(oax, oay, tx, ty)
+        if ib >= 0:
+            fx[ib] -= tx
+            fy[ib] -= ty
+            tau[ib] -= torque(obx, oby, tx, ty)
+    for j in range(forces.shape[0]):
+        i = force_body[j]
+        _, _, ox, oy = _rolling_point(bodies, i, forces[j, FR], forces[j, FALPHA], q)
+        fx[i] += forces[j, FX]
+        fy[i] += forces[j, FY]
+        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
+    for i in range(q.shape[0]):
+        gen[i] = generalized_force(bodies[i, SCALE], fx[i], tau[i])
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _rolling_point(bodies, i, r, alpha, q):
+    """:func:`_point` of an all-rolling state q: centre x = x0 + s q, rotation q."""
+    x = bodies[i, X0] + bodies[i, SCALE] * q[i]
+    return attachment(x, bodies[i, CY], bodies[i, ROLLS], r, alpha, q[i])
+
+
+@njit(cache=True, error_model="numpy")
+def _workspace(model, n):
+    """The work arrays of one force evaluation: (scratch, gen, fx, fy)."""
+    return _scratch(n, model[1].shape[0]), np.empty(n), np.empty(n), np.empty(n)
+
+
+@njit(cache=True, error_model="numpy")
+def generalized_forces(model, q):
+    r"""The generalised forces :math:`Q(q)` (M7) of an all-rolling state, as a new array (the
+    compiled twin of :func:`rollspring.physics.generalized_forces` without damping)."""
+    scratch, gen, fx, fy = _workspace(model, q.shape[0])
+    rolling_forces(model, q, scratch, gen, fx, fy)
+    return gen
+
+
+@njit(cache=True, error_model="numpy")
+def _scratch(n, n_springs):
+    return (np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n_springs), np.zeros(n_springs))
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _contact(model, i, gen_i, fx_i, fy_i):
+    """(M8), (M9): friction needed to roll and the normal force."""
+    b = model[0]
+    friction = (
+        needed_friction(b[i, MASS], b[i, SCALE], b[i, INERTIA], gen_i, fx_i)
+        if b[i, ROLLS] > 0.0
+        else 0.0
+    )
+    return friction, normal_force(b[i, MASS] * model[5], fy_i)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _rolling_lever(bodies, i, r, alpha, q, v):
+    r"""Of a point at (r, alpha) on body i in the all-rolling state (q, v): its position p,
+    its lever :math:`\ell = \partial p/\partial q_i` and the lever's rate
+    :math:`\dot\ell = \dot q_i\,\partial\ell/\partial q_i` (M1):
+    (px, py, lx, ly, dlx, dly)."""
+    x = bodies[i, X0] + bodies[i, SCALE] * q[i]
+    return attachment_lever(
+        x, bodies[i, CY], bodies[i, SCALE], bodies[i, ROLLS], r, alpha, q[i], v[i]
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def force_rates(model, q, v, rate):
+    r"""The rates :math:`\dot Q = (\partial Q/\partial q)\,\dot q = -K(q)\,\dot q` of the
+    generalised forces (M7) of the all-rolling state (q, v) (no damping), into ``rate``: the
+    jerk :math:`\dddot q = J^{-1}\dot Q` that the septic output interpolant takes.
+
+    A spring's force on its end a is :math:`F = k(1 - L_0/L)\,d` (:math:`d = p_b - p_a`,
+    :math:`L = |d|`) and :math:`Q_a = \ell_a\cdot F` (:math:`\ell = \partial p/\partial q`,
+    :math:`-F` and :math:`Q_b = -\ell_b\cdot F` on end b), so
+    :math:`\dot Q_a = \dot\ell_a\cdot F + \ell_a\cdot\dot F` with
+    :math:`\dot F = k(1 - L_0/L)\,\dot d + k L_0 (d\cdot\dot d)/L^3\,d` and
+    :math:`\dot d = \ell_b\dot q_b - \ell_a\dot q_a`; a constant force adds
+    :math:`\dot\ell\cdot F`."""
+    bodies, springs, ends, forces, force_body = model[0], model[1], model[2], model[3], model[4]
+    for i in range(q.shape[0]):
+        rate[i] = 0.0
+    for s in range(springs.shape[0]):
+        ia = ends[s, 0]
+        ib = ends[s, 1]
+        # the two ends written out: one inlined helper for both made the run's stepping kernel
+        # (which calls this every step) 12% slower (349 steps of the paper's system: 154 ->
+        # 172 us)
+        lax = lay = dlax = dlay = lbx = lby = dlbx = dlby = 0.0
+        vax = vay = vbx = vby = 0.0
+        if ia >= 0:
+            pax, pay, lax, lay, dlax, dlay = _rolling_lever(
+                bodies, ia, springs[s, RA], springs[s, ALPHA_A], q, v
+            )
+            vax = lax * v[ia]
+            vay = lay * v[ia]
+        else:
+            pax = springs[s, AAX]
+            pay = springs[s, AAY]
+        if ib >= 0:
+            pbx, pby, lbx, lby, dlbx, dlby = _rolling_lever(
+                bodies, ib, springs[s, RB], springs[s, ALPHA_B], q, v
+            )
+            vbx = lbx * v[ib]
+            vby = lby * v[ib]
+        else:
+            pbx = springs[s, ABX]
+            pby = springs[s, ABY]
+        dx = pbx - pax
+        dy = pby - pay
+        ddx = vbx - vax
+        ddy = vby - vay
+        k = springs[s, STIFF]
+        if dy == 0.0 and ddy == 0.0 and 1e-150 < abs(dx) < 1e150:
+            # a level spring staying level: F_x = k (|dx| - L0) sign(dx), dF_x/dt = k ddx
+            force_x = level_pull(k, springs[s, REST], dx)
+            force_y = 0.0
+            rate_x = k * ddx
+            rate_y = 0.0
+        else:
+            length = math.sqrt(dx * dx + dy * dy)
+            stretch = k * (1.0 - springs[s, REST] / length)
+            along = k * springs[s, REST] * (dx * ddx + dy * ddy) / (length * length * length)
+            force_x = stretch * dx
+            force_y = stretch * dy
+            rate_x = stretch * ddx + along * dx
+            rate_y = stretch * ddy + along * dy
+        if ia >= 0:
+            rate[ia] += dlax * force_x + dlay * force_y + lax * rate_x + lay * rate_y
+        if ib >= 0:
+            rate[ib] -= dlbx * force_x + dlby * force_y + lbx * rate_x + lby * rate_y
+    for j in range(forces.shape[0]):
+        i = force_body[j]
+        _, _, _, _, dlx, dly = _rolling_lever(bodies, i, forces[j, FR], forces[j, FALPHA], q, v)
+        rate[i] += dlx * forces[j, FX] + dly * forces[j, FY]

@@ -1,0 +1,225 @@
+r"""The force law, written once: every force term as a scalar function Numba inlines.
+
+Each term of docs/physics.md §2 is one small function of plain floats (no model arrays, no
+columns), compiled with ``inline="always"`` so that it becomes part of the caller's own code:
+the single-run kernels (:mod:`.forces`, :mod:`.observation`, :mod:`.linear_setup` through
+:func:`~.forces.generalized_forces`) and the generated batch kernels
+(:mod:`rollspring.simulate.batch.codegen`, which imports this module into every kernel it writes)
+call them; the NumPy physics (:mod:`rollspring.physics.mechanics`), the SymPy derivation and
+:mod:`rollspring.analysis.batch_linear` are checked against them, row by row, in
+``tests/test_force_law.py``. An inlined call is the same operations on the same numbers as the
+expression written out, so the callers' results are the same bits; the callers keep their loops,
+loads and stores (a shared helper that writes the loads into arrays made the stepping 2.5 times
+slower). docs/force-law.md lists the places a new force term touches.
+
+The terms, with the equations they implement:
+
+* :func:`attachment` -- a point at (r, alpha) on a body and its velocity per unit angular
+  velocity at a fixed centre (M1);
+* :func:`attachment_lever` -- the same point in the all-rolling state, its lever
+  :math:`\partial P/\partial q` and the lever's rate;
+* :func:`distance`, :func:`spring_length` -- a spring's length (the latter exact for a level
+  spring without a square root);
+* :func:`elastic_tension` -- :math:`T = k(l - L_0)`; :func:`damping_tension` -- :math:`c\,\dot l`;
+* :func:`pull` -- the force :math:`T e` on end a (:math:`-T e` on end b);
+  :func:`level_pull` -- the same for a level spring, :math:`k(d_x - L_0\,\mathrm{sign}\,d_x)`;
+  :func:`spring_pull` -- the undamped force, level or not (the stepping's);
+* :func:`torque` -- the clockwise torque of a force at a point whose velocity per unit angular
+  velocity is (ox, oy); :func:`arm_torque` -- the same from the arm :math:`P - C`;
+* :func:`generalized_force` -- :math:`Q_i = s_i F_{ix} + \tau_i` (M7); :func:`reduced_force`
+  -- the same per unit travel of the centre, :math:`Q_i/s_i`;
+* :func:`needed_friction` -- the static friction rolling needs, (M8), from Q;
+  :func:`rolling_friction` -- the same from the centre's acceleration, :math:`m\ddot x - F_x`;
+* :func:`normal_force` -- :math:`N = m g - F_y` (M9);
+* :func:`kinetic_friction` -- :math:`-\mu_k N\,\mathrm{sign}\,v_s` while slipping (M19);
+* :func:`spring_energy` -- :math:`\tfrac12 k (l - L_0)^2`; :func:`work` -- a constant force's
+  work :math:`F\cdot\Delta P`.
+
+A constant (external) force enters as its components and :func:`torque` at its point.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+__all__ = [
+    "arm_torque",
+    "attachment",
+    "attachment_lever",
+    "damping_tension",
+    "distance",
+    "elastic_tension",
+    "generalized_force",
+    "is_level",
+    "kinetic_friction",
+    "level_pull",
+    "needed_friction",
+    "normal_force",
+    "pull",
+    "reduced_force",
+    "rolling_friction",
+    "spring_energy",
+    "spring_length",
+    "spring_pull",
+    "torque",
+    "work",
+]
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def attachment(cx, cy, rolls, r, alpha, phi):
+    r"""(M1): the point at distance ``r``, angle ``alpha`` (clockwise from up) on a body with
+    centre (cx, cy) turned by ``phi`` (``rolls`` 0 for a slider), and its velocity per unit
+    angular velocity at a fixed centre: ``(px, py, ox, oy)``,
+    :math:`P = (c_x + r\sin\theta, c_y + r\cos\theta)`, :math:`\theta = \alpha + \rho\varphi`."""
+    if r == 0.0:
+        return cx, cy, 0.0, 0.0
+    theta = alpha + rolls * phi
+    s = math.sin(theta)
+    c = math.cos(theta)
+    return cx + r * s, cy + r * c, rolls * r * c, -rolls * r * s
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def attachment_lever(cx, cy, scale, rolls, r, alpha, q, v):
+    r"""Of the point (r, alpha) on a rolling body (centre (cx, cy), coordinate q, rate v): its
+    position p, its lever :math:`\ell = \partial p/\partial q` and the lever's rate
+    :math:`\dot\ell = \dot q\,\partial\ell/\partial q` (M1): ``(px, py, lx, ly, dlx, dly)``."""
+    if r == 0.0:
+        return cx, cy, scale, 0.0, 0.0, 0.0
+    theta = alpha + rolls * q
+    s = math.sin(theta)
+    c = math.cos(theta)
+    spin = rolls * rolls * v
+    return (
+        cx + r * s,
+        cy + r * c,
+        scale + rolls * r * c,
+        -rolls * r * s,
+        -spin * r * s,
+        -spin * r * c,
+    )
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def distance(dx, dy):
+    """The length of the vector (dx, dy)."""
+    return math.sqrt(dx * dx + dy * dy)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def is_level(dx, dy):
+    """Both ends of a spring at one height, and dx^2 neither overflowing nor underflowing: its
+    length is |dx| exactly (IEEE round-to-nearest)."""
+    return dy == 0.0 and 1e-150 < abs(dx) < 1e150
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def spring_length(dx, dy):
+    """A spring's length; a level spring's is |dx|, without the square root's latency on the
+    stepping's chain (:func:`is_level`: the same number)."""
+    return abs(dx) if is_level(dx, dy) else distance(dx, dy)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def elastic_tension(k, rest, length):
+    r"""The elastic tension :math:`T = k(l - L_0)` (positive when stretched)."""
+    return k * (length - rest)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def damping_tension(c, dx, dy, dvx, dvy, length):
+    r"""The damping tension :math:`c\,\dot l = c\,(d\cdot\dot d)/l` (d = end b - end a)."""
+    return c * (dx * dvx + dy * dvy) / length
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def pull(t, dx, dy, length):
+    r"""The force of tension ``t`` on end a: :math:`T e = (T/l)\,d` (end b takes :math:`-T e`)."""
+    per_length = t / length
+    return per_length * dx, per_length * dy
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def level_pull(k, rest, dx):
+    r""":func:`pull` of a level spring's elastic tension, :math:`T e_x = k(d_x - L_0\,
+    \mathrm{sign}\,d_x)`: neither a square root nor a division (the same number as
+    :math:`k(|d_x| - L_0)\,\mathrm{sign}\,d_x` for :math:`d_x \ne 0`)."""
+    return k * (dx - math.copysign(rest, dx))
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def spring_pull(k, rest, dx, dy):
+    """The undamped force on end a, ``(tx, ty)``: :func:`level_pull` for a level spring, else
+    :func:`pull` of :func:`elastic_tension` (the stepping's)."""
+    if is_level(dx, dy):
+        return level_pull(k, rest, dx), 0.0
+    length = distance(dx, dy)
+    return pull(elastic_tension(k, rest, length), dx, dy, length)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def torque(ox, oy, fx, fy):
+    r"""The clockwise torque about the centre of the force (fx, fy) at a point whose velocity per
+    unit angular velocity is (ox, oy) (:func:`attachment`): :math:`o\cdot F`."""
+    return ox * fx + oy * fy
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def arm_torque(ax, ay, fx, fy):
+    r"""The clockwise torque of the force (fx, fy) at the arm (ax, ay) = P - C:
+    :math:`a_y F_x - a_x F_y` (:func:`torque` with :math:`o = (a_y, -a_x)`)."""
+    return ay * fx - ax * fy
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def generalized_force(scale, fx, tau):
+    r"""(M7) A rolling body's generalised force :math:`Q_i = s_i F_{ix} + \tau_i` (the torque
+    about the contact point; ``scale`` :math:`s_i` is the centre's travel per unit q)."""
+    return scale * fx + tau
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def reduced_force(fx, tau, inv_scale):
+    r"""(M7) per unit travel of the centre, :math:`Q_i/s_i = F_{ix} + \tau_i/s_i` (``inv_scale``
+    :math:`1/s_i`; the batch kernels', which step the centre's displacement)."""
+    return fx + tau * inv_scale
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def needed_friction(mass, scale, inertia, gen, fx):
+    r"""(M8) The static friction a rolling body needs, :math:`f = m s Q/J - F_x` (+x)."""
+    return mass * scale * gen / inertia - fx
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def rolling_friction(mass, acc, fx):
+    r"""(M8) from the centre's acceleration: :math:`f = m\ddot x - F_x` (the batch kernels')."""
+    return mass * acc - fx
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def normal_force(weight, fy):
+    """(M9) The floor's normal force N = m g - F_y (``weight`` m g)."""
+    return weight - fy
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def kinetic_friction(mu_k, normal, sign):
+    r"""(M19) Kinetic friction while slipping, :math:`-\mu_k N\,\mathrm{sign}(v_s)`."""
+    return -mu_k * normal * sign
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def spring_energy(k, rest, length):
+    r"""A spring's elastic energy :math:`\tfrac12 k (l - L_0)^2`."""
+    return 0.5 * k * (length - rest) ** 2
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def work(fx, fy, dx, dy):
+    r"""The work :math:`F\cdot\Delta P` of a constant force (fx, fy) over the displacement
+    (dx, dy) of its point (the potential is its negative)."""
+    return fx * dx + fy * dy

@@ -1,0 +1,334 @@
+r"""The explicit symplectic stepping of the all-rolling state, and its outputs inside a step.
+
+While every body rolls the Hamiltonian is separable, :math:`H = \sum p_i^2/(2J_i) + U(q)` with a
+constant diagonal mass matrix (docs/physics.md (M6)), so compositions of the kick-drift-kick
+leapfrog
+
+.. math:: v \mathrel{+}= \tfrac{h_k}{2} Q(q)/J,\quad q \mathrel{+}= h_k v,\quad
+          v \mathrel{+}= \tfrac{h_k}{2} Q(q)/J, \qquad h_k = w_k h
+
+are explicit and symplectic; the weights :math:`w_k` (Yoshida 1990; Kahan and Li 1997) give
+orders 2, 4, 6 and 8. The force at the end of a stage is reused at the start of the next.
+:func:`run_fixed_step` is the run's loop: steps, contact checks, septic Hermite outputs inside
+the steps (:func:`_hermite`), the extremes and the crossings of the period signal.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rollspring.simulate.integrators import INTEGRATORS
+from rollspring.simulate.kernels.forces import _contact, _workspace, force_rates, rolling_forces
+from rollspring.simulate.kernels.model import INV_INERTIA, MU_S, ROLLS
+from rollspring.simulate.status import Status
+
+__all__ = [
+    "SCHEMES",
+    "STATUS_FINISHED",
+    "STATUS_LIFTOFF",
+    "STATUS_NONFINITE",
+    "STATUS_SLIP",
+    "advance",
+    "advance_many",
+    "run_fixed_step",
+]
+
+STATUS_FINISHED = int(Status.FINISHED)
+STATUS_NONFINITE = int(Status.NONFINITE)
+STATUS_SLIP = int(Status.SLIP)
+STATUS_LIFTOFF = int(Status.LIFTOFF)
+
+#: name -> (order p, stage weights, C_p): the relative frequency error is C_p (omega h)^p
+#: (:data:`rollspring.simulate.integrators.INTEGRATORS`, as the kernels take them).
+SCHEMES: dict[str, tuple[int, np.ndarray, float]] = {
+    name: (scheme.order, scheme.weights, scheme.error_constant)
+    for name, scheme in INTEGRATORS.items()
+}
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _stages(model, coeffs, h, q, v, scratch, gen, fx, fy):
+    """One step: the stages of the composition, the closing half-kick of each stage merged
+    with the opening half-kick of the next (they use the same force)."""
+    bodies = model[0]
+    n = q.shape[0]
+    m = coeffs.shape[0]
+    kick = 0.5 * h * coeffs[0]
+    for i in range(n):
+        v[i] += kick * gen[i] * bodies[i, INV_INERTIA]
+    for k in range(m):
+        hw = h * coeffs[k]
+        for i in range(n):
+            q[i] += hw * v[i]
+        rolling_forces(model, q, scratch, gen, fx, fy)
+        kick = 0.5 * h * (coeffs[k] + coeffs[k + 1]) if k + 1 < m else 0.5 * hw
+        for i in range(n):  # kick / J off the chain force -> velocity -> position
+            v[i] += gen[i] * (kick * bodies[i, INV_INERTIA])
+
+
+@njit(cache=True, error_model="numpy")
+def advance(model, coeffs, q, v, duration, n_steps):
+    """Integrate ``n_steps`` equal steps over ``duration`` (may be 0) from (q, v); returns new
+    arrays (q, v, friction, normal) at the end."""
+    q = q.copy()
+    v = v.copy()
+    n = q.shape[0]
+    scratch, gen, fx, fy = _workspace(model, n)
+    friction = np.empty(n)
+    normal = np.empty(n)
+    rolling_forces(model, q, scratch, gen, fx, fy)
+    h = duration / max(n_steps, 1)
+    for _ in range(n_steps):
+        _stages(model, coeffs, h, q, v, scratch, gen, fx, fy)
+    for i in range(n):
+        friction[i], normal[i] = _contact(model, i, gen[i], fx[i], fy[i])
+    return q, v, friction, normal
+
+
+@njit(cache=True, error_model="numpy")
+def advance_many(model, coeffs, q_rows, v_rows, spans, pieces):
+    """``advance`` from row j of (q_rows, v_rows) over spans[j] in pieces[j] equal steps, for
+    every j at once; returns the arrays (q, v)."""
+    q_out = np.empty_like(q_rows)
+    v_out = np.empty_like(v_rows)
+    for j in range(q_rows.shape[0]):
+        q, v, _, _ = advance(model, coeffs, q_rows[j], v_rows[j], spans[j], pieces[j])
+        q_out[j] = q
+        v_out[j] = v
+    return q_out, v_out
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _hermite_coefficients(model, h, q0, v0, g0, r0, q1, v1, g1, r1, coef):
+    r"""The septic Hermite interpolant of one step, per body as :math:`q(\theta) =
+    \sum_{k=0}^{7} c_k\theta^k` (:math:`\theta = s/h \in [0, 1]`), from positions,
+    velocities, accelerations :math:`a = Q/J` and jerks :math:`j = \dot Q/J` at both ends
+    (``g``: Q, ``r``: :math:`\dot Q`), into ``coef[:, :8]`` and those of its derivative divided
+    by h, the velocity, into ``coef[:, 8:]`` (n, 15). With :math:`V = h\dot q`,
+    :math:`A = h^2 a`, :math:`\mathcal{J} = h^3 j` and :math:`D = q_1 - q_0`: :math:`c_0 = q_0`,
+    :math:`c_1 = V_0`, :math:`c_2 = A_0/2`, :math:`c_3 = \mathcal{J}_0/6` and
+
+    .. math::
+        c_4 &= 35D - 20V_0 - 15V_1 - 5A_0 + \tfrac52 A_1 - \tfrac23\mathcal{J}_0
+               - \tfrac16\mathcal{J}_1,\\
+        c_5 &= -84D + 45V_0 + 39V_1 + 10A_0 - 7A_1 + \mathcal{J}_0 + \tfrac12\mathcal{J}_1,\\
+        c_6 &= 70D - 36V_0 - 34V_1 - \tfrac{15}2 A_0 + \tfrac{13}2 A_1 - \tfrac23\mathcal{J}_0
+               - \tfrac12\mathcal{J}_1,\\
+        c_7 &= -20D + 10V_0 + 10V_1 + 2A_0 - 2A_1 + \tfrac16(\mathcal{J}_0 + \mathcal{J}_1).
+
+    Its error is at most :math:`h^8\max|q^{(8)}|/10321920` in position (and, through its
+    derivative, :math:`(\omega h)^7/2710000` of the velocity amplitude on a sine)."""
+    bodies = model[0]
+    hh = h * h
+    hhh = hh * h
+    inv_h = 1.0 / h
+    sixth = 1.0 / 6.0
+    for i in range(q0.shape[0]):
+        inv = bodies[i, INV_INERTIA]
+        d = q1[i] - q0[i]
+        w0 = h * v0[i]
+        w1 = h * v1[i]
+        a0 = hh * (g0[i] * inv)
+        a1 = hh * (g1[i] * inv)
+        j0 = hhh * (r0[i] * inv)
+        j1 = hhh * (r1[i] * inv)
+        c4 = 35.0 * d - 20.0 * w0 - 15.0 * w1 - 5.0 * a0 + 2.5 * a1 - (4.0 * j0 + j1) * sixth
+        c5 = -84.0 * d + 45.0 * w0 + 39.0 * w1 + 10.0 * a0 - 7.0 * a1 + j0 + 0.5 * j1
+        c6 = 70.0 * d - 36.0 * w0 - 34.0 * w1 - 7.5 * a0 + 6.5 * a1 - (4.0 * j0 + 3.0 * j1) * sixth
+        c7 = -20.0 * d + 10.0 * (w0 + w1) + 2.0 * (a0 - a1) + (j0 + j1) * sixth
+        coef[i, 0] = q0[i]
+        coef[i, 1] = w0
+        coef[i, 2] = 0.5 * a0
+        coef[i, 3] = j0 * sixth
+        coef[i, 4] = c4
+        coef[i, 5] = c5
+        coef[i, 6] = c6
+        coef[i, 7] = c7
+        # the derivative's, divided by h: the velocity
+        coef[i, 8] = v0[i]
+        coef[i, 9] = a0 * inv_h
+        coef[i, 10] = 0.5 * j0 * inv_h
+        coef[i, 11] = 4.0 * c4 * inv_h
+        coef[i, 12] = 5.0 * c5 * inv_h
+        coef[i, 13] = 6.0 * c6 * inv_h
+        coef[i, 14] = 7.0 * c7 * inv_h
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _hermite(coef, theta, row, out_q, out_v):
+    """The interpolant of :func:`_hermite_coefficients` at ``theta`` and its derivative (the
+    velocity), by Estrin's scheme (short dependency chains), into row ``row`` of
+    ``out_q``/``out_v``."""
+    t = theta
+    t2 = t * t
+    t4 = t2 * t2
+    for i in range(coef.shape[0]):
+        out_q[row, i] = (
+            (coef[i, 0] + coef[i, 1] * t)
+            + t2 * (coef[i, 2] + coef[i, 3] * t)
+            + t4 * ((coef[i, 4] + coef[i, 5] * t) + t2 * (coef[i, 6] + coef[i, 7] * t))
+        )
+        out_v[row, i] = (
+            (coef[i, 8] + coef[i, 9] * t)
+            + t2 * (coef[i, 10] + coef[i, 11] * t)
+            + t4 * ((coef[i, 12] + coef[i, 13] * t) + t2 * coef[i, 14])
+        )
+
+
+@njit(cache=True, error_model="numpy")
+def run_fixed_step(
+    model,
+    coeffs,
+    q,
+    v,
+    t0,
+    h,
+    n_steps,
+    check_contacts,
+    out_times,
+    out_q,
+    out_v,
+    extremes,
+    extreme_states,
+    ball_ptr,
+    ball_idx,
+    weights,
+    q_ref,
+    crossing,
+    crossing_states,
+    before,
+):
+    """Integrate ``n_steps`` steps of size ``h`` from (q, v) at time ``t0`` (updated in place),
+    checking rolling validity after every step. The state at each of the sorted ``out_times``
+    (within (t0, t0 + n_steps h]) is interpolated from the step holding it (``_hermite``,
+    septic: with the jerks of :func:`force_rates` at the step's ends) into
+    the rows of ``out_q``/``out_v``: the output spacing never limits the step.
+
+    Kept across calls (the caller seeds them):
+
+    * ``extremes`` (4, n): per body max |f|/N over the step ends and the start time of that
+      step, min N and the start time of its step; ``extreme_states`` (2, 2, B) the state
+      (q, v) at the start of those steps, from which the extreme can be refined: for body i
+      (kind k) only the bodies of its ball ``ball_idx[ball_ptr[i]:ball_ptr[i + 1]]``
+      (:func:`spring_balls`: all that can reach it within the refinement's force evaluations;
+      every body for a small system), into ``extreme_states[k, :, ball_ptr[i]:ball_ptr[i + 1]]``
+      -- O(1) per body for a chain, no (n, n) array.
+    * ``crossing`` (4,): upward zero crossings of the signal s = weights . (q - q_ref): their
+      count, the start times of the steps holding the first and the last, and the last value of
+      s; ``crossing_states`` (2, 2, n) the states at the start of those two steps.
+
+    ``before`` (2, n) receives the state at the start of the last step taken. Returns
+    (status, step, body, rows): for an event the step in which it happened and the body; the
+    number of output rows written (those before the event).
+    """
+    bodies = model[0]
+    n = q.shape[0]
+    scratch, gen, fx, fy = _workspace(model, n)
+    gen_before = np.empty(n)
+    # the force rates (jerks) at the step's ends, computed only for steps holding outputs
+    rate = np.empty(n)
+    rate_before = np.empty(n)
+    rate_valid = False  # rate holds the current state's
+    coef = np.empty((n, 15))  # the interpolant of the current step
+    rolling_forces(model, q, scratch, gen, fx, fy)
+    rows = 0
+    n_out = out_times.shape[0]
+    for step in range(1, n_steps + 1):
+        for i in range(n):
+            before[0, i] = q[i]
+            before[1, i] = v[i]
+            gen_before[i] = gen[i]
+            rate_before[i] = rate[i]
+        before_valid = rate_valid
+        _stages(model, coeffs, h, q, v, scratch, gen, fx, fy)
+        rate_valid = False
+        event = -1
+        event_body = -1
+        for i in range(n):
+            if not (math.isfinite(q[i]) and math.isfinite(v[i])):
+                return STATUS_NONFINITE, step, i, rows
+            if not check_contacts:
+                continue
+            friction, normal = _contact(model, i, gen[i], fx[i], fy[i])
+            if normal < 0.0:
+                event = STATUS_LIFTOFF
+                event_body = i
+                break
+            if bodies[i, ROLLS] > 0.0 and abs(friction) > bodies[i, MU_S] * normal:
+                event = STATUS_SLIP
+                event_body = i
+                break
+        if event >= 0:  # the state after this step is past the event: not an extreme
+            return event, step, event_body, rows
+        t_start = t0 + (step - 1) * h
+        # outputs inside this step; the last step also takes any left by rounding
+        t_end = t_start + h if step < n_steps else np.inf
+        # the interpolant, for a step holding an output before its end (outputs on step ends,
+        # the only ones of some runs, need none); theta grows with the sorted outputs, so the
+        # first output's tells
+        if rows < n_out and out_times[rows] <= t_end and (out_times[rows] - t_start) / h < 1.0:
+            if not before_valid:
+                force_rates(model, before[0], before[1], rate_before)
+            force_rates(model, q, v, rate)
+            rate_valid = True
+            _hermite_coefficients(
+                model, h, before[0], before[1], gen_before, rate_before, q, v, gen, rate, coef
+            )
+        while rows < n_out and out_times[rows] <= t_end:
+            theta = min(max((out_times[rows] - t_start) / h, 0.0), 1.0)
+            if theta < 1.0:
+                _hermite(coef, theta, rows, out_q, out_v)
+            else:  # the step end itself
+                for i in range(n):
+                    out_q[rows, i] = q[i]
+                    out_v[rows, i] = v[i]
+            rows += 1
+        for i in range(n):
+            friction, normal = _contact(model, i, gen[i], fx[i], fy[i])
+            if normal < extremes[2, i]:
+                extremes[2, i] = normal
+                extremes[3, i] = t_start
+                for p in range(ball_ptr[i], ball_ptr[i + 1]):
+                    extreme_states[1, 0, p] = before[0, ball_idx[p]]
+                    extreme_states[1, 1, p] = before[1, ball_idx[p]]
+            # |f|/N > best  <=>  |f| > best N (N > 0): no division in the common case
+            if bodies[i, ROLLS] > 0.0 and normal > 0.0 and abs(friction) > extremes[0, i] * normal:
+                extremes[0, i] = abs(friction) / normal
+                extremes[1, i] = t_start
+                for p in range(ball_ptr[i], ball_ptr[i + 1]):
+                    extreme_states[0, 0, p] = before[0, ball_idx[p]]
+                    extreme_states[0, 1, p] = before[1, ball_idx[p]]
+        signal = 0.0
+        for i in range(n):
+            signal += weights[i] * (q[i] - q_ref[i])
+        if crossing[3] < 0.0 <= signal:
+            slot = 0 if crossing[0] == 0 else 1
+            crossing[0] += 1
+            crossing[1 + slot] = t_start
+            if slot == 0:
+                crossing[2] = t_start
+            for j in range(n):
+                crossing_states[slot, 0, j] = before[0, j]
+                crossing_states[slot, 1, j] = before[1, j]
+                if slot == 0:
+                    crossing_states[1, 0, j] = before[0, j]
+                    crossing_states[1, 1, j] = before[1, j]
+        crossing[3] = signal
+    return STATUS_FINISHED, n_steps, -1, rows
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _advance_into(model, coeffs, h, q0, v0, span, q, v, scratch, gen, fx, fy):
+    """``advance`` without allocations: (q, v) and the loads after ``span`` from (q0, v0), in
+    ceil(span/h) equal steps."""
+    for i in range(q0.shape[0]):
+        q[i] = q0[i]
+        v[i] = v0[i]
+    rolling_forces(model, q, scratch, gen, fx, fy)
+    if span > 0.0:
+        pieces = max(1, math.ceil(span / h * (1.0 - 1e-12)))
+        for _ in range(pieces):
+            _stages(model, coeffs, span / pieces, q, v, scratch, gen, fx, fy)

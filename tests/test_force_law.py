@@ -193,7 +193,7 @@ def _symbolic_forces(name: str) -> tuple[Callable[..., list[float]], np.ndarray]
     """-dV/dq of the SymPy derivation, as a function of the coordinates from its reference."""
     import sympy as sp
 
-    from rollspring.analysis.derivation.symbolic import symbolic_system
+    from rollspring.analysis.derivation import symbolic_system
 
     sym = symbolic_system(name)
     forces = [-sp.diff(sym.potential, qi) for qi in sym.q]

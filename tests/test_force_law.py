@@ -14,6 +14,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -274,3 +275,35 @@ def test_the_law_is_every_kernel_force_expression() -> None:
         for written_out in ("* (dist - springs[s, REST])", "MASS] * g - fy", "MU_K] * normal"):
             assert written_out not in text, (module.__name__, written_out)
     assert math.isclose(law.level_pull.py_func(2.0, 0.5, -1.5), -2.0)
+
+
+def test_an_edit_to_any_kernel_source_drops_the_cached_kernels(tmp_path: Path) -> None:
+    """Numba checks a cached kernel against its own file only: an edit to law.py alone must
+    still recompile the kernels that inline it (kernels/_cache.py)."""
+    from rollspring.simulate.kernels import _cache
+
+    package = tmp_path / "kernels"
+    package.mkdir()
+    (package / "law.py").write_text("A = 1\n")
+    (package / "forces.py").write_text("B = 2\n")
+    cache = package / "__pycache__"
+    assert _cache.sync_cache(package)  # no digest yet: the cache is (re)started
+    kernels = [cache / "forces.f-1.py311.nbi", cache / "forces.f-1.py311.1.nbc"]
+    for compiled in kernels:
+        compiled.write_bytes(b"machine code")
+    (cache / "forces.cpython-311.pyc").write_bytes(b"bytecode")
+    assert not _cache.sync_cache(package)  # the same sources keep every cached kernel
+    assert all(compiled.exists() for compiled in kernels)
+    (package / "law.py").write_text("A = 2\n")  # the law edited alone
+    assert _cache.sync_cache(package)
+    assert not any(compiled.exists() for compiled in kernels)
+    assert (cache / "forces.cpython-311.pyc").exists()  # Python's own cache is not Numba's
+    assert (cache / _cache.STAMP).read_text() == _cache.source_digest(package)
+
+
+def test_the_package_cache_was_built_from_its_current_sources() -> None:
+    import rollspring.simulate.kernels as kernels
+    from rollspring.simulate.kernels import _cache
+
+    package = Path(kernels.__file__).resolve().parent
+    assert (package / "__pycache__" / _cache.STAMP).read_text() == _cache.source_digest(package)

@@ -23,15 +23,16 @@ source file):
 * :mod:`.observation` -- the general (slipping) state's derivative and what is observed of rows;
 * :mod:`.linear_setup` -- :func:`level_setup`, the compiled setup of small level systems.
 
-Numba's cache checks only the file of the function it compiled: a kernel that inlines the law
-or reads :mod:`.model`'s columns keeps its cached machine code when those files change alone. An
-edit to ``law.py`` or ``model.py`` in a source tree therefore goes with clearing this package's
-``__pycache__`` (an installed version is cached per file stamp, so a new release recompiles; the
-batch kernels carry the law's hash in their source).
+Numba's cache checks only the file of the function it compiled, while a kernel here inlines the
+law, reads :mod:`.model`'s columns and calls the other modules' kernels: :mod:`._cache`, imported
+first, drops the package's cached kernels whenever any of its sources changed (the batch kernels
+carry the law's hash in their generated source).
 """
 
 from __future__ import annotations
 
+# first: the cached kernels are checked against every source of the package before any loads
+from rollspring.simulate.kernels import _cache  # noqa: F401
 from rollspring.simulate.kernels.forces import (
     body_loads,
     force_rates,

@@ -3,7 +3,6 @@ physics read back from the store (paper eq. QQQ1, the measured period, the first
 
 from __future__ import annotations
 
-import importlib
 import math
 
 import numpy as np
@@ -19,11 +18,10 @@ SYSTEM = "hoop-cylinder"
 
 
 def cli_app():
-    """The rollspring app with the sweep command (registered here until cli/app.py lists it)."""
-    module = importlib.import_module("rollspring.cli.app")
-    if not any(c.name == "sweep" for c in module.app.registered_commands):
-        importlib.import_module("rollspring.cli.commands.sweep").register(module.app)
-    return module.app
+    """The rollspring app (the sweep command is one of its commands)."""
+    from rollspring.cli.app import app
+
+    return app
 
 
 def same(a: xr.Dataset, b: xr.Dataset) -> None:

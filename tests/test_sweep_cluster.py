@@ -43,14 +43,11 @@ SPECS = [
 ]
 DURATION = 10.0
 CHUNK = 40  # 50 chunks
-#: The rollspring command with the sweep command registered (until cli/app.py lists it).
+#: The rollspring command.
 CLI = [
     sys.executable,
     "-c",
-    "import importlib, sys; m = importlib.import_module('rollspring.cli.app'); "
-    "s = importlib.import_module('rollspring.cli.commands.sweep'); "
-    "any(c.name == 'sweep' for c in m.app.registered_commands) or s.register(m.app); "
-    "m.app(args=sys.argv[1:])",
+    "import sys; from rollspring.cli.app import app; app(args=sys.argv[1:])",
 ]
 
 

@@ -1,4 +1,5 @@
-"""The status of a run: one enum, with a message, for single runs, batches and sweep stores.
+"""The status of a run, with a message, for single runs, batches and sweep stores: one set of
+statuses, spelled as stable codes (:class:`Status`) and as labels (:class:`RunStatus`).
 
 :class:`Status` holds the stable codes: ``BatchResult.status`` is an int8 array of its values
 and a sweep store's ``status`` variable the same codes with the CF attributes ``flag_values`` /

@@ -1,4 +1,6 @@
-r"""The symbolic form of a system (SymPy): the :class:`SymbolicSystem` and what it offers.
+r"""The symbolic form of a system (SymPy): the :class:`SymbolicSystem` and what it offers (made
+by :func:`~rollspring.analysis.derivation.build.symbolic_system`; its parts, energies and body
+forces are built in :mod:`.parts`, :mod:`.energies` and :mod:`.body_forces`).
 
 Public API (stable; :mod:`rollspring.analysis.derivation` re-exports it)::
 

@@ -1,4 +1,5 @@
-r"""The force law of the compiled kernels: attachment points, spring tensions, loads, contact.
+r"""The loads of the compiled kernels, composed from the force law (:mod:`.law`): attachment
+points, spring tensions, loads, contact.
 
 An attachment at distance :math:`r` and angle :math:`\alpha` (clockwise from up) on body
 :math:`i` is at (M1)

@@ -5,9 +5,10 @@ columns), compiled with ``inline="always"`` so that it becomes part of the calle
 the single-run kernels (:mod:`.forces`, :mod:`.observation`, :mod:`.linear_setup` through
 :func:`~.forces.generalized_forces`) and the generated batch kernels
 (:mod:`rollspring.simulate.batch.codegen`, which imports this module into every kernel it writes)
-call them; the NumPy physics (:mod:`rollspring.physics.mechanics`), the SymPy derivation and
-:mod:`rollspring.analysis.batch_linear` are checked against them, row by row, in
-``tests/test_force_law.py``. An inlined call is the same operations on the same numbers as the
+call them; the NumPy physics (:mod:`rollspring.physics.mechanics`) and the SymPy derivation are
+checked against them, row by row, in ``tests/test_force_law.py`` (the linear part over many runs,
+:mod:`rollspring.analysis.batch_linear`, is checked against ``analyze`` in
+``tests/test_batch_linear.py``). An inlined call is the same operations on the same numbers as the
 expression written out, so the callers' results are the same bits; the callers keep their loops,
 loads and stores (a shared helper that writes the loads into arrays made the stepping 2.5 times
 slower). docs/force-law.md lists the places a new force term touches.
@@ -23,7 +24,6 @@ The terms, with the equations they implement:
 * :func:`elastic_tension` -- :math:`T = k(l - L_0)`; :func:`damping_tension` -- :math:`c\,\dot l`;
 * :func:`pull` -- the force :math:`T e` on end a (:math:`-T e` on end b);
   :func:`level_pull` -- the same for a level spring, :math:`k(d_x - L_0\,\mathrm{sign}\,d_x)`;
-  :func:`spring_pull` -- the undamped force, level or not (the stepping's);
 * :func:`torque` -- the clockwise torque of a force at a point whose velocity per unit angular
   velocity is (ox, oy); :func:`arm_torque` -- the same from the arm :math:`P - C`;
 * :func:`generalized_force` -- :math:`Q_i = s_i F_{ix} + \tau_i` (M7); :func:`reduced_force`
@@ -62,7 +62,6 @@ __all__ = [
     "rolling_friction",
     "spring_energy",
     "spring_length",
-    "spring_pull",
     "torque",
     "work",
 ]
@@ -148,16 +147,6 @@ def level_pull(k, rest, dx):
     \mathrm{sign}\,d_x)`: neither a square root nor a division (the same number as
     :math:`k(|d_x| - L_0)\,\mathrm{sign}\,d_x` for :math:`d_x \ne 0`)."""
     return k * (dx - math.copysign(rest, dx))
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def spring_pull(k, rest, dx, dy):
-    """The undamped force on end a, ``(tx, ty)``: :func:`level_pull` for a level spring, else
-    :func:`pull` of :func:`elastic_tension` (the stepping's)."""
-    if is_level(dx, dy):
-        return level_pull(k, rest, dx), 0.0
-    length = distance(dx, dy)
-    return pull(elastic_tension(k, rest, length), dx, dy, length)
 
 
 @njit(cache=True, inline="always", error_model="numpy")

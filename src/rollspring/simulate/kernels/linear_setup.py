@@ -1,4 +1,4 @@
-"""The compiled linear setup of small level systems (``rollspring.simulate.run``'s
+"""The compiled linear setup of small level systems (``rollspring.simulate.setup``'s
 ``_small_level_equilibrium``): equilibrium, stiffness and normal modes in one call, the same
 operations on the same numbers as :mod:`rollspring.analysis.linear`'s level branch.
 """

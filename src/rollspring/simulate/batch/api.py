@@ -293,6 +293,27 @@ def simulate_batch(
         result = simulate_batch(system, {"springs.0.stiffness": k,
                                          "bodies.hoop.mu_static": 0.04}, 10.0)
         result.period_measured, result.first_slip_time, result.status_names
+
+    Parameters
+    ----------
+    system
+        A :class:`~rollspring.model.System`, its JSON form, a file path or a preset name.
+    parameters
+        ``{path: value or 1-D array}``, broadcast to one count of runs.
+    duration
+        The simulated time of every run (s).
+    rtol, integrator, step
+        The accuracy, the scheme (``auto``, ``verlet``, ``yoshida4``, ``yoshida6``) and a fixed
+        step (s) for the whole batch.
+    keep_trajectories, n_output
+        Keep every run's angles at ``n_output`` evenly spaced times.
+    stop_on_slip, metric_every
+        End a run at its first slip; sample the metrics every so many steps.
+
+    Returns
+    -------
+    BatchResult
+        Per run: status, periods, extremes, friction needed, first slip and lift-off times.
     """
     from rollspring.model import as_system
 

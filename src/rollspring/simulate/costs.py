@@ -23,7 +23,7 @@ from typing import Any
 from rollspring.analysis.costs import Cost
 from rollspring.model import System
 from rollspring.simulate.integrators import INTEGRATORS as SCHEMES
-from rollspring.simulate.integrators import choose_scheme, refinement_radius
+from rollspring.simulate.integrators import pick_scheme, refinement_radius
 from rollspring.simulate.request import SimulationRequest, simulation_request
 
 __all__ = ["API_SMALLER", "CLI_SMALLER", "request_cost", "simulation_cost"]
@@ -101,19 +101,16 @@ def request_cost(
         setup = 0.05 + _SETUP_PER_SQUARED_THOUSAND * (n / 1000.0) ** 2
     else:
         setup = 0.05 + _SETUP_PER_BODY * n
-    if damped or integrator == "dop853":
-        name = "dop853"
+    name, chosen = pick_scheme(integrator, step, damped, omega, duration, rtol)
+    if name == "dop853":
         radians = max(omega * duration, 2 * math.pi)
         steps = radians * _DOP853_STEPS_PER_RADIAN * (1e-8 / rtol) ** (1.0 / _DOP853_ORDER)
         # an explicit scheme is stable only for steps below ~3.3/rate of the fastest damping
         steps = max(steps, rate * duration / _DOP853_STABILITY)
         seconds = setup + steps * (_DOP853_STEP + _DOP853_BODY_STEP * n)
     else:
-        if step is None:
-            name, step = choose_scheme(omega, duration, rtol, integrator)
-        else:  # a fixed step: "auto" means Yoshida-4
-            name = "yoshida4" if integrator == "auto" else integrator
-        steps = max(1.0, duration / step)
+        assert chosen is not None  # a symplectic scheme has its step
+        steps = max(1.0, duration / chosen)
         stages = SCHEMES[name].stages / SCHEMES["kahanli8"].stages  # measured on kahanli8
         step_seconds = stages * (_SYMPLECTIC_STEP + _SYMPLECTIC_BODY_STEP * (n + springs))
         # each body's extremes (|f|/N and N) refined over the bodies and springs of its ball:

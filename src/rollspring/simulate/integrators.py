@@ -208,3 +208,23 @@ def choose_scheme(
             best = (name, step, cost)
     assert best is not None  # names is never empty
     return best[0], best[1]
+
+
+def pick_scheme(
+    integrator: str,
+    step: float | None,
+    damped: bool,
+    omega: float,
+    duration: float,
+    rtol: float,
+    n_output: int | None = None,
+) -> tuple[str, float | None]:
+    """The integrator and step of a run: DOP853 (no fixed step) when a spring is damped or it is
+    asked for; a fixed ``step`` with ``auto`` means Yoshida-4; else :func:`choose_scheme` for
+    the fastest linear frequency ``omega`` (and the ``n_output`` output times). The run's set-up
+    and its cost estimate both choose here."""
+    if damped or integrator == "dop853":
+        return "dop853", None
+    if step is not None:
+        return ("yoshida4" if integrator == "auto" else integrator), step
+    return choose_scheme(omega, duration, rtol, integrator, n_output)

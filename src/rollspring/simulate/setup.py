@@ -31,7 +31,7 @@ from rollspring.analysis.linear import (
 from rollspring.physics import SystemArrays, stiffness_matrix
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import kernels
-from rollspring.simulate.integrators import choose_scheme
+from rollspring.simulate.integrators import pick_scheme
 from rollspring.simulate.request import SimulationRequest
 
 __all__ = ["KernelModel", "Linear", "Plan", "linear_setup", "plan"]
@@ -232,15 +232,15 @@ def plan(
     windowed = n > DENSE_LIMIT
     linear = linear_setup(arrays, packed, sparse=windowed)
     damped = bool((arrays.damping > 0).any())
-    integrator, step = request.integrator, request.step
-    if damped or integrator == "dop853":
-        name, step = "dop853", None
-    elif step is not None:
-        name = "yoshida4" if integrator == "auto" else integrator
-    else:  # the step suits the outputs (on step ends or between)
-        name, step = choose_scheme(
-            linear.omega_max, request.duration, request.rtol, integrator, request.outputs
-        )
+    name, step = pick_scheme(  # the step suits the outputs (on step ends or between)
+        request.integrator,
+        request.step,
+        damped,
+        linear.omega_max,
+        request.duration,
+        request.rtol,
+        request.outputs,
+    )
     if linear.oscillating and linear.equilibrium.found:  # the lowest mode's coordinate
         mode_weights = arrays.inertia * linear.vectors[:, linear.oscillating[0]]
         q_ref = np.ascontiguousarray(linear.equilibrium.q, dtype=float)

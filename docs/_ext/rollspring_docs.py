@@ -16,7 +16,6 @@ Files are rewritten only when their text changes, so an unchanged page is not re
 from __future__ import annotations
 
 import inspect
-from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -137,8 +136,9 @@ def _words(text: str | None) -> str:
 
 
 def paper_check_page() -> str:
+    from rollspring.analysis.paper import verdict_counts
+
     checks = rollspring.check_paper()
-    counts = Counter(check.verdict for check in checks)
     lines = [
         "# The paper, claim by claim",
         "",
@@ -148,10 +148,7 @@ def paper_check_page() -> str:
         "compared by the derivation engine with what it derives from the exact model. Generated "
         "at build time from `rollspring.check_paper()` (the same records "
         "`rollspring paper-check` prints): "
-        f"**{len(checks)} claims: {counts.get('verified', 0)} verified, "
-        f"{counts.get('holds-under-stated-assumption', 0)} hold under an assumption the paper "
-        f"states, {counts.get('holds-only-if', 0)} hold only under a condition the paper does "
-        f"not state, {counts.get('wrong', 0)} wrong.**",
+        f"**{len(checks)} claims: {verdict_counts(c.verdict for c in checks)}.**",
         "",
         "Verdicts: *verified* — the paper's expression equals the derived one; *holds under the "
         "paper's stated assumption* — it holds under an assumption the paper itself states "
@@ -161,16 +158,10 @@ def paper_check_page() -> str:
         "does not hold, and the correction is the right expression in the paper's own terms.",
         "",
     ]
-    marks = {
-        "verified": "✔ verified",
-        "holds-under-stated-assumption": "☑ holds under the paper's stated assumption",
-        "holds-only-if": "◐ holds only if",
-        "wrong": "✘ wrong",
-    }
     for check in checks:
         claim = check.claim
         lines += [
-            f"* **{_words(claim.location)}** — *{marks.get(check.verdict, check.verdict)}*. "
+            f"* **{_words(claim.location)}** — *{check.verdict.mark} {check.verdict.words}*. "
             f"{_words(claim.statement)}: {{math}}`{_cell(claim.latex)}`",
             "",
             f"  The paper: “{_words(claim.quote)}”",

@@ -62,6 +62,7 @@ from rollspring.analysis.paper.types import (
     Derived,
     Verdict,
     quote_key,
+    verdict_counts,
 )
 
 __all__ = [
@@ -83,4 +84,5 @@ __all__ = [
     "paper_figure",
     "paper_system",
     "quote_key",
+    "verdict_counts",
 ]

@@ -8,7 +8,8 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
+from collections import Counter
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import TYPE_CHECKING, Any
@@ -28,6 +29,41 @@ class Verdict(StrEnum):
     """It holds only under a condition the paper does not state (named in the reason)."""
     WRONG = "wrong"
     """It does not hold; the correction gives the derived value."""
+
+    @property
+    def mark(self) -> str:
+        """The verdict's sign: ✔ ☑ ⚠ ✘."""
+        return _MARKS[self]
+
+    @property
+    def words(self) -> str:
+        """The verdict in words ("holds under the paper's stated assumption", ...)."""
+        return _WORDS[self]
+
+
+_MARKS = {
+    Verdict.VERIFIED: "✔",
+    Verdict.HOLDS_STATED: "☑",
+    Verdict.HOLDS_ONLY_IF: "⚠",
+    Verdict.WRONG: "✘",
+}
+_WORDS = {
+    Verdict.VERIFIED: "verified",
+    Verdict.HOLDS_STATED: "holds under the paper's stated assumption",
+    Verdict.HOLDS_ONLY_IF: "holds only if",
+    Verdict.WRONG: "wrong",
+}
+
+
+def verdict_counts(verdicts: Iterable[str]) -> str:
+    """'a verified, b hold under an assumption the paper states, c hold only under a condition
+    the paper does not state, d wrong' (the words of every summary of the paper check)."""
+    counts = Counter(Verdict(v) for v in verdicts)
+    return (
+        f"{counts[Verdict.VERIFIED]} verified, {counts[Verdict.HOLDS_STATED]} hold under an "
+        f"assumption the paper states, {counts[Verdict.HOLDS_ONLY_IF]} hold only under a "
+        f"condition the paper does not state, {counts[Verdict.WRONG]} wrong"
+    )
 
 
 # The verdicts by name (a Verdict compares and hashes as its word: the command line, which does

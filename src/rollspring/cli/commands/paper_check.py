@@ -15,7 +15,6 @@ from __future__ import annotations
 import json
 import re
 import sys
-from collections import Counter
 from typing import TYPE_CHECKING, Annotated
 
 import typer
@@ -28,7 +27,6 @@ if TYPE_CHECKING:
 
 __all__ = [
     "FORMATS",
-    "HOLDS_STATED",
     "PaperCheckError",
     "markdown_table",
     "paper_check",
@@ -38,21 +36,17 @@ __all__ = [
     "summary",
 ]
 
-# the verdicts of rollspring.analysis.paper (imported when the command runs: SymPy)
-VERIFIED, WRONG, HOLDS_ONLY_IF = "verified", "wrong", "holds-only-if"
-HOLDS_STATED = "holds-under-stated-assumption"
-
 #: Formats ``--format`` accepts.
 FORMATS = ("text", "markdown")
 
-_MARK = {VERIFIED: "✔", HOLDS_STATED: "☑", HOLDS_ONLY_IF: "⚠", WRONG: "✘"}
-_WORDS = {
-    VERIFIED: "verified",
-    HOLDS_STATED: "holds under the paper's stated assumption",
-    HOLDS_ONLY_IF: "holds only if",
-    WRONG: "wrong",
+#: The terminal colour of each verdict (by its word: rollspring.analysis.paper, SymPy, is
+#: imported when the command runs).
+_STYLE = {
+    "verified": "green",
+    "holds-under-stated-assumption": "cyan",
+    "holds-only-if": "yellow",
+    "wrong": "red",
 }
-_STYLE = {VERIFIED: "green", HOLDS_STATED: "cyan", HOLDS_ONLY_IF: "yellow", WRONG: "red"}
 
 
 def paper_check(
@@ -85,12 +79,9 @@ def paper_check(
 def summary(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
     """'N claims: a verified, b hold under an assumption the paper states, c hold only under a
     condition the paper does not state, d wrong'."""
-    counts = Counter(str(c.verdict) for c in checks)  # by the words (a Verdict is its word)
-    return (
-        f"{len(checks)} claims: {counts[VERIFIED]} verified, {counts[HOLDS_STATED]} hold under "
-        f"an assumption the paper states, {counts[HOLDS_ONLY_IF]} hold only under a condition "
-        f"the paper does not state, {counts[WRONG]} wrong"
-    )
+    from rollspring.analysis.paper import verdict_counts
+
+    return f"{len(checks)} claims: {verdict_counts(c.verdict for c in checks)}"
 
 
 def quote_text(quote: str) -> str:
@@ -116,9 +107,9 @@ def markdown_table(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
     for check in checks:
         correction = f"${_cell_math(check.correction)}$" if check.correction else ""
         lines.append(
-            f"| {_MARK[check.verdict]} | {_cell(check.claim.location)} | "
+            f"| {check.verdict.mark} | {_cell(check.claim.location)} | "
             f"“{_cell(quote_text(check.claim.quote))}” | ${_cell_math(check.claim.latex)}$ | "
-            f"{_WORDS[check.verdict]} | {correction} | {_cell(check.reason)} |"
+            f"{check.verdict.words} | {correction} | {_cell(check.reason)} |"
         )
     return "\n".join(lines) + "\n"
 
@@ -135,6 +126,8 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
     from rich.table import Table
     from rich.text import Text
 
+    from rollspring.analysis.paper import Verdict
+
     table = Table(
         title="The paper's statements, checked by the derivation engine",
         title_justify="left",
@@ -145,22 +138,22 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
     table.add_column("claim", ratio=4, overflow="fold")
     table.add_column("verdict", ratio=4, overflow="fold")
     for check in checks:
-        verdict = _WORDS[check.verdict]
-        if check.verdict in (HOLDS_STATED, HOLDS_ONLY_IF):
+        verdict = check.verdict.words
+        if check.verdict in (Verdict.HOLDS_STATED, Verdict.HOLDS_ONLY_IF):
             verdict = check.reason
-        elif check.verdict == WRONG:
+        elif check.verdict == Verdict.WRONG:
             verdict = f"wrong: {check.reason}"
-        if check.verdict != VERIFIED:
+        if check.verdict != Verdict.VERIFIED:
             for assumption in check.claim.assumptions:
                 verdict += f"\nstated ({assumption.location}): “{quote_text(assumption.quote)}”"
         if check.correction:
             verdict += f"\ncorrect: {plain(check.correction)}"
-        mark = f"[{_STYLE[check.verdict]}]{_MARK[check.verdict]}[/]"
+        mark = f"[{_STYLE[check.verdict]}]{check.verdict.mark}[/]"
         table.add_row(
             mark,
             Text(check.claim.location),
             Text(f"{plain(check.claim.latex)}\n“{quote_text(check.claim.quote)}”"),
-            Text(verdict, style=_STYLE[check.verdict] if check.verdict != VERIFIED else ""),
+            Text(verdict, style=_STYLE[check.verdict] if check.verdict != Verdict.VERIFIED else ""),
         )
     console = stdout_console()
     console.print(table)

@@ -15,10 +15,10 @@ from rollspring.analysis.derivation import Derivation, Section
 from rollspring.analysis.paper import (
     HOLDS_ONLY_IF,
     HOLDS_STATED,
-    VERDICTS,
     VERIFIED,
     WRONG,
     ClaimCheck,
+    verdict_counts,
 )
 from rollspring.outputs.report._html import Markup, esc, table
 from rollspring.outputs.report._page import Page, _json_script, _verdict
@@ -104,15 +104,10 @@ def _derivation_parts(page: Page, derivation: Derivation) -> list[object]:
 
 
 def section_paper_check(page: Page, label: str, checks: Sequence[ClaimCheck]) -> Markup:
-    words = {
-        VERIFIED: ("✔ verified", "ok"),
-        HOLDS_STATED: ("☑ holds under the paper's stated assumption", "ok"),
-        HOLDS_ONLY_IF: ("⚠ holds only if", "other"),
-        WRONG: ("✘ wrong", "bad"),
-    }
+    css_class = {VERIFIED: "ok", HOLDS_STATED: "ok", HOLDS_ONLY_IF: "other", WRONG: "bad"}
     rows = []
     for check in checks:
-        text, css = words[check.verdict]
+        text, css = f"{check.verdict.mark} {check.verdict.words}", css_class[check.verdict]
         rows.append(
             [
                 check.claim.location,
@@ -133,15 +128,12 @@ def section_paper_check(page: Page, label: str, checks: Sequence[ClaimCheck]) ->
                 check.reason,
             ]
         )
-    counts = {v: sum(1 for c in checks if c.verdict == v) for v in VERDICTS}
     intro = Markup(
         f"<p>This system is the paper's {esc(label)}. Each quantitative statement the paper "
         "makes about it (quoted from its source) is derived again by rollspring's derivation "
         "engine, on the paper's system with its parameters as symbols (m₁, m₂, R, k …), and "
         "compared with <code>simplify(paper − derived) == 0</code>: "
-        f"{counts[VERIFIED]} verified, {counts[HOLDS_STATED]} hold under an assumption the "
-        f"paper states, {counts[HOLDS_ONLY_IF]} hold only under a condition the paper does "
-        f"not state, {counts[WRONG]} wrong. "
+        f"{verdict_counts(c.verdict for c in checks)}. "
         "(<code>rollspring paper-check</code> lists every statement of the paper.)</p>"
     )
     return page.section(

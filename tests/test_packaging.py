@@ -121,11 +121,11 @@ def test_the_wheel_holds_presets_page_and_uplot_and_no_tests(wheel) -> None:
         f"rollspring/web/static/{p}" for p in (*UPLOT, "node_modules/uplot/LICENSE")
     }
     assert "rollspring/py.typed" in names
-    # the report's style sheet and player, inlined into every report (with the page's geometry.js)
+    # the report's style sheet and player, inlined into every report (with the shared geometry.js)
     assets = {p.name for p in (ROOT / "src/rollspring/outputs/report/assets").iterdir()}
     assert {"player.js", "report.css"} <= assets
     assert {f"rollspring/outputs/report/assets/{a}" for a in assets} <= names
-    assert "rollspring/web/static/js/geometry.js" in names
+    assert "rollspring/outputs/js/geometry.js" in names
     assert "rollspring/analysis/paper/claims.toml" in names  # the paper check's words
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     assert not [

@@ -342,9 +342,9 @@ def test_the_page_fetches_nothing(report: Report, page: Page) -> None:
 
 def test_style_and_player_are_the_front_end_files_inlined(report: Report) -> None:
     """The style sheet and the player live in ``outputs/report/assets`` (the player draws its
-    springs with the page's geometry.js); the page carries them as one inline style and one
-    classic script, without a module's import or export (a module script could not fetch its
-    import)."""
+    springs with the shared outputs/js/geometry.js); the page carries them as one inline style
+    and one classic script, without a module's import or export (a module script could not
+    fetch its import)."""
     package = Path(report_assets.__file__).parent
     css = (package / "assets" / "report.css").read_text(encoding="utf-8")
     assert f"<style>{css}</style>" in report.html
@@ -353,7 +353,7 @@ def test_style_and_player_are_the_front_end_files_inlined(report: Report) -> Non
     assert not re.search(r"^\s*(import|export)\b", script, re.M)
     assert "function zigzag(" in script and "function startPlayer(" in script
     assert script.rstrip().endswith("startPlayer(document, window);\n})();")
-    geometry = package.parents[1] / "web" / "static" / "js" / "geometry.js"
+    geometry = package.parent / "js" / "geometry.js"
     assert "export function zigzag(" in geometry.read_text(encoding="utf-8")
     node = shutil.which("node")
     if node is not None:  # its syntax as a classic script (test_report_browser runs it)

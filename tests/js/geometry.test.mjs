@@ -1,7 +1,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { attachmentFromPoint, attachmentPolar, bodyPoint, makeView, snapDrag, springEnds, zigzag, worldBounds }
-  from "../../src/rollspring/web/static/js/geometry.js";
+  from "../../src/rollspring/outputs/js/geometry.js";
 
 const close = (a, b, tol = 1e-12) => assert.ok(Math.abs(a - b) <= tol, `${a} vs ${b}`);
 const hoop = { id: "hoop", shape: "hoop", mass: 1, radius: 0.1, x: 0 };

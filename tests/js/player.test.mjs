@@ -1,5 +1,5 @@
 // The report's animation player (src/rollspring/outputs/report/assets/player.js): its pure parts
-// (interpolation, spring ends and zigzags drawn with the page's geometry.js, markers, the view)
+// (interpolation, spring ends and zigzags drawn with the shared geometry.js, markers, the view)
 // and, on a small stand-in for the DOM, what startPlayer draws and how its controls act.
 import { test } from "node:test";
 import assert from "node:assert/strict";

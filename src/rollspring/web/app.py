@@ -41,6 +41,10 @@ DEFAULT_BUDGET = 10.0
 
 STATIC = Path(__file__).resolve().parent / "static"
 UPLOT = STATIC / "node_modules" / "uplot" / "dist"
+#: The drawing of the scene, the outputs layer's (its report player inlines the same module),
+#: served to the page as /static/js/geometry.js (a path: importing rollspring.outputs would load
+#: NumPy into the server's start-up)
+GEOMETRY_JS = Path(__file__).resolve().parents[1] / "outputs" / "js" / "geometry.js"
 
 
 # ---------------------------------------------------------------- request and response models
@@ -291,6 +295,10 @@ def create_app(
         if not index.is_file():
             return JSONResponse({"detail": "the page is not installed"}, status_code=404)
         return FileResponse(index, media_type="text/html")
+
+    @app.get("/static/js/geometry.js", include_in_schema=False)
+    def geometry() -> Response:
+        return FileResponse(GEOMETRY_JS, media_type="text/javascript")
 
     @app.get("/api/presets", response_model=list[Preset], summary="The built-in systems")
     def presets() -> Any:

@@ -4,7 +4,7 @@ the fixed force-arrow scales.
 A body point is drawn from the centre position ``x`` and the rotation ``phi``
 (docs/physics.md (M1)): this is geometry, not physics; nothing here computes a force.
 :func:`_zigzag` is the one zigzag spring of the Matplotlib drawings (the report's player and the
-page draw theirs with ``web/static/js/geometry.js``).
+page draw theirs with ``outputs/js/geometry.js``).
 """
 
 from __future__ import annotations

@@ -2,8 +2,8 @@
 
 The files are package data: ``assets/report.css`` (the style sheet, print layout included) and
 ``assets/player.js`` (the player, an ES module: see its opening comment), which draws bodies and
-springs with the web page's ``web/static/js/geometry.js`` (one drawing of zigzag springs for the
-page and the report; the page imports the module, Node's tests import both). The report is one
+springs with ``outputs/js/geometry.js`` (one drawing of zigzag springs for the report and the web
+page, which is served the module; Node's tests import both). The report is one
 file that fetches nothing, so :func:`player_script` joins the two modules into one classic
 script: their ``export`` keywords and the player's import of geometry.js are removed, the rest
 is kept as written, wrapped in a function that calls ``startPlayer(document, window)``.
@@ -15,16 +15,13 @@ import functools
 import re
 from importlib.resources import files
 
-__all__ = ["player_script", "style_sheet"]
+__all__ = ["GEOMETRY_JS", "player_script", "style_sheet"]
 
 _ASSETS = files("rollspring.outputs.report") / "assets"
-#: The page's geometry module, shared with the player (package data of rollspring.web; read as a
-#: file, rollspring.web is not imported).
-_GEOMETRY = files("rollspring") / "web" / "static" / "js" / "geometry.js"
+#: The drawing of the scene, shared by the player and the web page (package data of this layer).
+GEOMETRY_JS = files("rollspring.outputs") / "js" / "geometry.js"
 #: The one import the player may have: geometry.js's names, on one line.
-_IMPORT = re.compile(
-    r'^import \{[\w, ]+\} from "\.\./\.\./\.\./web/static/js/geometry\.js";\n', re.M
-)
+_IMPORT = re.compile(r'^import \{[\w, ]+\} from "\.\./\.\./js/geometry\.js";\n', re.M)
 _EXPORT = re.compile(r"^export (?=(?:async )?function |const |let |class )", re.M)
 
 
@@ -50,7 +47,7 @@ def style_sheet() -> str:
 def player_script() -> str:
     """The player as one classic script for the report's ``<script>`` element: geometry.js and
     ``assets/player.js`` inlined in a function that starts the player."""
-    geometry = _inline(_GEOMETRY.read_text(encoding="utf-8"), "geometry.js")
+    geometry = _inline(GEOMETRY_JS.read_text(encoding="utf-8"), "geometry.js")
     player = _inline((_ASSETS / "player.js").read_text(encoding="utf-8"), "player.js")
     return (
         '\n(function () {\n  "use strict";\n'

@@ -12,7 +12,7 @@
 // this file into one classic script that calls startPlayer(document, window)
 // (rollspring.outputs.report._assets), so the page stays one file that fetches nothing.
 
-import { bodyPoint, zigzag } from "../../../web/static/js/geometry.js";
+import { bodyPoint, zigzag } from "../../js/geometry.js";
 
 const NS = "http://www.w3.org/2000/svg";
 

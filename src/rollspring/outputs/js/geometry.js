@@ -1,8 +1,10 @@
 // Pure geometry of the drawn scene (no DOM): attachment points, spring zigzags and the
 // world-to-canvas view. World: x right, y up, metres; angles clockwise from straight up
-// (docs/physics.md (M1)); canvas: x right, y down, CSS pixels. Shared with the report's player
-// (rollspring/outputs/report/assets/player.js), which inlines this module into the report page:
-// keep it free of imports and of anything but top-level `export function` / `export const`.
+// (docs/physics.md (M1)); canvas: x right, y down, CSS pixels. The outputs layer's, shared by the
+// report's player (rollspring/outputs/report/assets/player.js), which inlines this module into
+// the report page, and the web page, which is served it as /static/js/geometry.js
+// (rollspring.web.app): keep it free of imports and of anything but top-level
+// `export function` / `export const`.
 
 const DEG = Math.PI / 180;
 

@@ -115,6 +115,18 @@ def _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _load_forces(bodies, forces, force_body, x, phi, fx, fy, tau):
+    """Add each constant external force to its body: the force and its clockwise torque about
+    the centre (docs/physics.md §2)."""
+    for j in range(forces.shape[0]):
+        i = force_body[j]
+        _, _, ox, oy = _point(bodies, i, forces[j, FR], forces[j, FALPHA], x, phi)
+        fx[i] += forces[j, FX]
+        fy[i] += forces[j, FY]
+        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
     r"""Resultant force and clockwise torque about each centre of springs and constant forces;
     each spring's length and tension :math:`T = k(l - L_0) + c\,\dot l` (``damped``: include
@@ -145,12 +157,7 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
         length[s] = dist
         tension[s] = t
         _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau)
-    for j in range(forces.shape[0]):
-        i = force_body[j]
-        _, _, ox, oy = _point(bodies, i, forces[j, FR], forces[j, FALPHA], x, phi)
-        fx[i] += forces[j, FX]
-        fy[i] += forces[j, FY]
-        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
+    _load_forces(bodies, forces, force_body, x, phi, fx, fy, tau)
 
 
 @njit(cache=True, inline="always", error_model="numpy")

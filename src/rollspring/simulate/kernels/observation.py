@@ -9,7 +9,13 @@ import math
 import numpy as np
 from numba import njit
 
-from rollspring.simulate.kernels.forces import _load_ends, _point, _spring_geometry, body_loads
+from rollspring.simulate.kernels.forces import (
+    _load_ends,
+    _load_forces,
+    _point,
+    _spring_geometry,
+    body_loads,
+)
 from rollspring.simulate.kernels.law import (
     elastic_tension,
     generalized_force,
@@ -17,7 +23,6 @@ from rollspring.simulate.kernels.law import (
     needed_friction,
     normal_force,
     spring_energy,
-    torque,
     work,
 )
 from rollspring.simulate.kernels.model import (
@@ -261,12 +266,7 @@ def observe_rolling(
                     tau[ib] -= obx * tx
             else:
                 _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau)
-        for j in range(forces.shape[0]):
-            i = force_body[j]
-            px, py, ox, oy = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)
-            fx[i] += forces[j, FX]
-            fy[i] += forces[j, FY]
-            tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
+        _load_forces(b, forces, force_body, x, phi, fx, fy, tau)
         for j in range(forces.shape[0]):
             i = force_body[j]
             px, py, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)

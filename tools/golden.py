@@ -1,15 +1,15 @@
 """Golden outputs: record what the command line prints and writes, and compare two records.
 
-The redesign of issue 23 moves code, never results: this script records, with the ``rollspring``
-found on ``PATH`` (or ``--rollspring``), ``analyze --json``, ``simulate --json`` and its written
-trajectory for every preset, ``paper-check --json``, ``derive`` LaTeX for three presets and the
-analysis of a 1000-body chain, then compares two records byte for byte (``.npz`` archives array by
-array: a zip stores its members' dates; the paper check's JSON without the claims' ``key``
-fields, which the redesign added).
+The redesign of issue 23 moves code, never results: this script records, with the rollspring
+package of the Python that runs it (or the command ``--rollspring``), ``analyze --json``,
+``simulate --json`` and its written trajectory for every preset, ``paper-check --json``,
+``derive`` LaTeX for three presets and the analysis of a 1000-body chain, then compares two
+records byte for byte (``.npz`` archives array by array: a zip stores its members' dates; the
+paper check's JSON without the claims' ``key`` fields, which the redesign added).
 
-    python tools/golden.py record build/golden/after
-    python tools/golden.py compare build/golden/before build/golden/after
-    python tools/golden.py against REV   # records REV (a git worktree) and the checkout
+    .venv/bin/python tools/golden.py record build/golden/after
+    .venv/bin/python tools/golden.py compare build/golden/before build/golden/after
+    .venv/bin/python tools/golden.py against REV   # records REV (a git worktree) and the checkout
 
 Exit code 0 when the two records are identical, 1 with the differing files listed otherwise.
 """
@@ -103,6 +103,10 @@ def compare(before: Path, after: Path) -> list[str]:
     return differ
 
 
+#: The rollspring command of the Python that runs this script (the package on its path).
+_CLI = [sys.executable, "-c", "import sys; from rollspring.cli import main; sys.exit(main())"]
+
+
 def _without_keys(document: object) -> object:
     """The paper check's JSON without the claims' ``key`` fields."""
     if isinstance(document, dict):
@@ -127,7 +131,7 @@ def main() -> int:
     sub = parser.add_subparsers(dest="verb", required=True)
     rec = sub.add_parser("record")
     rec.add_argument("where", type=Path)
-    rec.add_argument("--rollspring", default="rollspring")
+    rec.add_argument("--rollspring", help="a rollspring command (default: this Python's package)")
     cmp_ = sub.add_parser("compare")
     cmp_.add_argument("before", type=Path)
     cmp_.add_argument("after", type=Path)
@@ -136,13 +140,12 @@ def main() -> int:
     against.add_argument("--keep", type=Path, default=Path("build/golden"))
     args = parser.parse_args()
     if args.verb == "record":
-        record(args.where.resolve(), [args.rollspring])
+        record(args.where.resolve(), [args.rollspring] if args.rollspring else _CLI)
         return 0
     if args.verb == "compare":
         return _report(compare(args.before, args.after))
     # against REV: the revision's source on PYTHONPATH ahead of the editable install
     top = Path(__file__).resolve().parents[1]
-    cli = [sys.executable, "-c", "import sys; from rollspring.cli import main; sys.exit(main())"]
     keep = args.keep.resolve()
     with tempfile.TemporaryDirectory() as tmp:
         tree = Path(tmp) / "base"
@@ -151,12 +154,12 @@ def main() -> int:
         )
         try:
             env = dict(os.environ, PYTHONPATH=str(tree / "src"))
-            record(keep / "before", cli, env)
+            record(keep / "before", _CLI, env)
         finally:
             subprocess.run(
                 ["git", "-C", str(top), "worktree", "remove", "--force", str(tree)], check=True
             )
-    record(keep / "after", cli, dict(os.environ, PYTHONPATH=str(top / "src")))
+    record(keep / "after", _CLI, dict(os.environ, PYTHONPATH=str(top / "src")))
     return _report(compare(keep / "before", keep / "after"))
 
 

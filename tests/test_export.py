@@ -21,6 +21,7 @@ from rollspring.outputs.mjcf import (
     MAX_TRACKS,
     ExportError,
     body_joint_names,
+    export_mjcf,
     mjcf_warnings,
     spring_site_name,
     system_to_mjcf,
@@ -312,6 +313,33 @@ def test_write_mjcf_writes_the_text(tmp_path: Path) -> None:
     path = tmp_path / "sub" / "model.xml"
     write_mjcf(system, path)
     assert path.read_text(encoding="utf-8") == system_to_mjcf(system)
+
+
+def test_export_mjcf_returns_the_text_and_writes_it_when_given_a_path(tmp_path: Path) -> None:
+    system = SYSTEMS["three-bodies"]
+    assert export_mjcf(system) == system_to_mjcf(system)
+    path = tmp_path / "model.xml"
+    assert export_mjcf(system, path) == path.read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("kind", ["fifo", "directory"])
+def test_export_mjcf_refuses_a_place_a_rename_would_destroy(tmp_path: Path, kind: str) -> None:
+    """A FIFO (or a device) renamed over would be replaced by a regular file: refused, in one
+    line naming the argument, and left as it was."""
+    from rollspring.errors import OutputError
+
+    place = tmp_path / "place"
+    if kind == "fifo":
+        os.mkfifo(place)
+    else:
+        place.mkdir()
+    with pytest.raises(
+        OutputError,
+        match=r"^path .*place: cannot write there \(it is (not a "
+        r"regular file|a directory)",
+    ):
+        export_mjcf("hoop-cylinder", place)
+    assert place.is_fifo() if kind == "fifo" else place.is_dir()
 
 
 @pytest.mark.parametrize("existing", [False, True])

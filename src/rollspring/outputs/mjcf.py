@@ -75,7 +75,7 @@ from typing import Any
 
 from rollspring.errors import ExportError
 from rollspring.model import Body, System, as_system
-from rollspring.outputs.atomic import atomic_write_text
+from rollspring.outputs.atomic import atomic_write_text, writable_file
 from rollspring.physics import system_arrays
 
 __all__ = [
@@ -351,7 +351,9 @@ def export_mjcf(
     timestep: float | None = None,
 ) -> str:
     """The system as a MuJoCo model (MJCF; module docstring), written atomically to ``path``
-    when one is given (``rollspring export SYSTEM --format mjcf -o PATH``).
+    when one is given (``rollspring export SYSTEM --format mjcf -o PATH``). A ``path`` that
+    cannot be written (a directory, a device, a FIFO, a socket, a missing or read-only folder)
+    is a one-line :class:`~rollspring.errors.OutputError`, raised before any work.
 
     Parameters
     ----------
@@ -367,9 +369,10 @@ def export_mjcf(
     str
         The MJCF document.
     """
+    target = None if path is None else writable_file(path, "path")
     text = system_to_mjcf(system, timestep=timestep)
-    if path is not None:
-        atomic_write_text(path, text)
+    if target is not None:
+        atomic_write_text(target, text)
     return text
 
 

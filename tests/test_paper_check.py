@@ -46,8 +46,7 @@ from rollspring.analysis.paper import (
     paper_claims,
     quote_key,
 )
-from rollspring.analysis.paper.catalogue import entries
-from rollspring.analysis.paper.catalogue.entry import restates
+from rollspring.analysis.paper.catalogue import claim_tables, paper_value, recipe
 from rollspring.cli import app
 from rollspring.cli.commands import paper_check as cli_paper_check
 
@@ -1334,32 +1333,66 @@ def test_verdicts_are_an_enum_written_as_their_words() -> None:
     assert json.dumps([Verdict.HOLDS_ONLY_IF]) == '["holds-only-if"]'
 
 
-def test_the_words_file_and_the_catalogue_join_by_key() -> None:
+def test_the_catalogue_is_the_claims_file_a_table_per_claim_in_the_papers_order() -> None:
     words = tomllib.loads(
         (resources.files("rollspring.analysis.paper") / "claims.toml").read_text(encoding="utf-8")
     )
-    found = entries()
-    assert [entry.key for entry in found] == [claim.key for claim in paper_claims()]
-    assert set(words) == {entry.key for entry in found}
+    assert words == claim_tables()
+    assert list(words) == [claim.key for claim in paper_claims()]
     claims = {claim.key: claim for claim in paper_claims()}
     seen: set[str] = set()
     restated = 0
-    for entry in found:
-        table = words[entry.key]
-        if entry.restates is None:  # a claim of its own: all (LaTeX: else the quote)
-            assert set(table) - {"latex"} == {"location", "quote", "statement"}, entry.key
-            assert table.get("latex") != table["quote"], entry.key
-            assert None not in (entry.quantity, entry.paper, entry.system, entry.derive)
+    for key, table in words.items():
+        if "restates" not in table:  # a claim of its own: all (LaTeX: else the quote)
+            words_and_code = {"location", "quote", "statement", "quantity", "paper", "system"}
+            assert (
+                words_and_code | {"recipe"}
+                <= set(table)
+                <= words_and_code
+                | {
+                    "recipe",
+                    "latex",
+                    "assumptions",
+                }
+            ), key
+            assert table.get("latex") != table["quote"], key
         else:  # a restatement gives only what differs from the claim it repeats, an earlier one
             restated += 1
-            assert entry.restates in seen, entry.key
-            original = claims[entry.restates]
-            assert all(table[name] != getattr(original, name) for name in table), entry.key
-            for name in ("quantity", "paper", "system", "derive", "assumptions"):
-                value = getattr(entry, name)
-                assert value is None or value != getattr(original, name), (entry.key, name)
-        seen.add(entry.key)
+            assert table["restates"] in seen, key
+            original = words[table["restates"]]
+            for name, value in table.items():
+                assert name == "restates" or value != original.get(name), (key, name)
+        seen.add(key)
     assert restated >= 20  # the abstract's claims again in Sec. 7, the equations again in App. A-C
+    steiner = (2 * m1 * R**2, 2 * m1 * R**2, sp.Rational(3, 2) * m2 * R**2)
+    assert claims["sec3.steiner"].paper == (*steiner, steiner[2])  # I'_i = I_i + m_i R^2
+
+
+def test_the_papers_values_are_read_in_the_engines_symbols() -> None:
+    from rollspring.analysis.paper.notation import Omega, q1
+    from rollspring.analysis.paper.symbols import phi1
+
+    assert paper_value("3*R**2*m_2/2") == sp.Rational(3, 2) * m2 * R**2
+    assert paper_value(["True", "0"]) == (sp.true, sp.Integer(0))
+    assert paper_value("Omega**2*phi_1 + q_1") == Omega**2 * phi1 + q1
+    assert paper_value("m_1").assumptions0 == m1.assumptions0  # the symbol, not a new one
+    for claim in paper_claims():  # every value printed and read again is the same expression
+        values = claim.paper if isinstance(claim.paper, tuple) else (claim.paper,)
+        for value in values:
+            assert paper_value(sp.sstr(value, order=None)) == value, claim.key
+
+
+def test_a_recipe_is_a_name_or_a_factory_call_with_literal_arguments() -> None:
+    from rollspring.analysis.paper.recipes.sec3 import steiner
+
+    assert recipe("steiner") is steiner
+    assert callable(recipe("app_a_friction(1, middle=True)"))
+    with pytest.raises(ValueError, match="no recipe of that name"):
+        recipe("print")
+    with pytest.raises(ValueError, match="no recipe of that name"):
+        recipe("os.system('x')")
+    with pytest.raises(ValueError, match="arguments must be literals"):
+        recipe("app_a_friction(steiner)")
 
 
 def test_a_restatement_takes_what_it_does_not_give_from_the_claim_it_repeats() -> None:
@@ -1373,4 +1406,4 @@ def test_a_restatement_takes_what_it_does_not_give_from_the_claim_it_repeats() -
         first.latex,
     )
     assert again.location == "Sec. 7, sentence 3" and again.quote != first.quote
-    assert restates("abstract.fig3", key="x").restates == "abstract.fig3"
+    assert claim_tables()["sec7.fig3"]["restates"] == "abstract.fig3"

@@ -43,8 +43,8 @@ engine's symbols and the paper's own), :mod:`~.systems` (the paper's systems), :
 (their symbolic forms and derived objects, built once), :mod:`~.algebra` (the exact comparisons),
 :mod:`~.decide` (the verdict), :mod:`~.assumptions` (the assumptions the paper states),
 :mod:`~.recipes` (the derivations, one module per section or group of sections) and
-:mod:`~.catalogue` (the claims in the paper's order, written with keyword arguments; their words
-in ``claims.toml``).
+:mod:`~.catalogue` (reads the claims, in the paper's order, from ``claims.toml``: the paper's
+words and values, the systems, the recipe and the stated assumptions, by claim key).
 """
 
 from rollspring.analysis.paper.catalogue import paper_claims

@@ -1,6 +1,6 @@
 """The assumptions the paper itself states, each with its words (verbatim) and where it says them.
 
-A claim that relies on one names it (``assumptions=`` in the catalogue); the verdict
+A claim that relies on one names it (``assumptions`` in its table of ``claims.toml``); the verdict
 "holds under a stated assumption" quotes it.
 """
 

@@ -53,6 +53,10 @@ def potential_q(key: str, qs: tuple[Any, ...], ps: tuple[Any, ...]) -> Callable[
     return derive
 
 
+#: App. C (k01): the Fig. 2 potential in q_1, q_2.
+potential_fig2 = potential_q("fig2", (q1, q2), (p1, p2))
+
+
 def potential_fig3(b: Bench) -> Derived:
     """App. C (k02): the Fig. 3 potential in q_3, q_4: exact (the spring turns with the bodies)
     and quadratic (the paper's small angles)."""

@@ -12,10 +12,18 @@ from typing import Any
 
 import sympy as sp
 
-from rollspring.analysis.paper.algebra import tidy
+from rollspring.analysis.paper.algebra import substitute, tidy
 from rollspring.analysis.paper.bench import Bench
-from rollspring.analysis.paper.notation import p1, pd1, q1, q3
+from rollspring.analysis.paper.notation import P0, p1, pd1, q1, q3
 from rollspring.analysis.paper.symbols import phi1, phid1, phidd1, y
+from rollspring.analysis.paper.types import Derived
+
+
+def from_rest(value: Any, how: str, **more: Any) -> Derived:
+    """What a recipe derives in general (``value``) and, under the paper's stated start from
+    rest, with the conserved momentum P_0 = 0 (M14) (``assumed``); ``more`` as
+    :class:`~rollspring.analysis.paper.types.Derived` takes it."""
+    return Derived(value, how, assumed=substitute(value, {P0: 0}), **more)
 
 
 def flip_first(expr: Any) -> Any:

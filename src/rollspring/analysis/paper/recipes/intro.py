@@ -11,9 +11,10 @@ from collections.abc import Callable
 
 import sympy as sp
 
-from rollspring.analysis.paper.algebra import same, substitute, tidy
+from rollspring.analysis.paper.algebra import same, tidy
 from rollspring.analysis.paper.bench import Bench
 from rollspring.analysis.paper.notation import P0
+from rollspring.analysis.paper.recipes.common import from_rest
 from rollspring.analysis.paper.symbols import m2
 from rollspring.analysis.paper.types import Derived
 
@@ -107,7 +108,7 @@ def cm_velocity(key: str, how: str, *, small: bool = False) -> Callable[[Bench],
                 "; beyond first order the frictions are O(a³) (the attachment points leave the "
                 "percussion heights as the bodies turn) and the centre of mass drifts"
             )
-        return Derived(value, how, why=why, assumed=substitute(value, {P0: 0}))
+        return from_rest(value, how, why=why)
 
     return derive
 

@@ -12,10 +12,10 @@ from typing import Any
 
 import sympy as sp
 
-from rollspring.analysis.paper.algebra import same, substitute, tidy
+from rollspring.analysis.paper.algebra import same, tidy
 from rollspring.analysis.paper.bench import Bench
 from rollspring.analysis.paper.notation import P0
-from rollspring.analysis.paper.recipes.common import mode_ratio
+from rollspring.analysis.paper.recipes.common import from_rest, mode_ratio
 from rollspring.analysis.paper.symbols import R, m1, m2, phid1, phid2
 from rollspring.analysis.paper.types import Derived
 
@@ -87,10 +87,9 @@ def momentum(b: Bench) -> Derived:
     J = [body.J for body in sym.bodies]
     scaled = [tidy(ci * J[0] / c[0]) for ci in c]
     value = P0 if same(scaled, J) else J[0] * phid1 + J[1] * phid2
-    return Derived(
+    return from_rest(
         value,
         "the zero mode v0 of K gives the conserved v0^T M phidot (M14)",
-        assumed=substitute(value, {P0: 0}),
         why="I'₁φ̇₁ + I'₂φ̇₂ = P₀ is conserved (zero mode v₀ = (1, 1) of K, M14), its value fixed "
         "by the initial velocities",
     )
@@ -158,11 +157,10 @@ def stationary_point(b: Bench) -> Derived:
         value = (
             sp.Add(*[t_ * body.qd for t_, body in zip(rate_terms, sym.bodies, strict=True)]) / total
         )
-    return Derived(
+    return from_rest(
         value,
         "d/dt of (I'_1 x_1 + I'_2 x_2)/(I'_1 + I'_2), with the engine's conserved "
         "combination v0^T M phidot = P_0 (M14)",
-        assumed=substitute(value, {P0: 0}),
         why="the weights I'ᵢ are those of the conserved combination, so X̂ moves uniformly, "
         "at rest only for a start from rest",
     )

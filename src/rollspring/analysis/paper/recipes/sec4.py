@@ -21,7 +21,7 @@ from rollspring.analysis.paper.recipes.common import (
     pulled_friction,
     zero_friction_height,
 )
-from rollspring.analysis.paper.symbols import R1, R2, F, R, y
+from rollspring.analysis.paper.symbols import R1, R2, F, R, m1, m2, y
 from rollspring.analysis.paper.systems import paper_system
 from rollspring.analysis.paper.types import Derived
 
@@ -133,6 +133,32 @@ def fig3_combination(
         )
 
     return derive
+
+
+_J31, _J32 = 2 * m1 * R1**2, sp.Rational(3, 2) * m2 * R2**2  # the paper's I'_1, I'_2 of Fig. 3
+
+#: Eq. (fig3) divided by the lever arms: I'_i phiddot_i over 2R_1 and 3R_2/2 (Sec. 4).
+fig3_forces = fig3_combination(
+    lambda sym: [
+        (sym.bodies[0].J / (2 * R1), 0),
+        (0, sym.bodies[1].J / (sp.Rational(3, 2) * R2)),
+    ],
+    "I'_i phiddot_i over the lever arms 2R_1, 3R_2/2, with the engine's equations of "
+    "motion (exact, and linearised)",
+)
+#: The sum of the two, with the engine's inertias and with the paper's (Sec. 4).
+fig3_sum = fig3_combination(
+    lambda sym: [
+        (sym.bodies[0].J / (2 * R1), sym.bodies[1].J / (sp.Rational(3, 2) * R2)),
+        (_J31 / (2 * R1), _J32 / (sp.Rational(3, 2) * R2)),
+    ],
+    "the two sums with the engine's equations of motion (exact, and linearised)",
+)
+#: The centre of mass's acceleration times the mass: sum m_i R_i phiddot_i (Sec. 4).
+fig3_cm_acceleration = fig3_combination(
+    lambda sym: [(sym.bodies[0].m * R1, sym.bodies[1].m * R2)],
+    "sum m_i R_i phiddot_i with the engine's equations of motion (exact, and linearised)",
+)
 
 
 def fig3_x(b: Bench) -> Derived:

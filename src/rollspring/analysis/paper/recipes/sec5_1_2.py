@@ -14,7 +14,7 @@ import sympy as sp
 from rollspring.analysis.paper.algebra import same, substitute, tidy
 from rollspring.analysis.paper.bench import Bench
 from rollspring.analysis.paper.notation import D0, P0, A, Omega, Phid1, beta0, omega0, t, xi, xid
-from rollspring.analysis.paper.recipes.common import ORIENTATION, flip_first, mode_ratio
+from rollspring.analysis.paper.recipes.common import ORIENTATION, flip_first, from_rest, mode_ratio
 from rollspring.analysis.paper.symbols import m1, m2, phi1, phi2
 from rollspring.analysis.paper.types import Derived
 
@@ -26,11 +26,10 @@ def qq2(b: Bench) -> Derived:
     norm = sp.Add(*[ci * v0[i] for i, ci in enumerate(c)])
     drift = (P0 * t + D0) / norm  # the zero-mode coordinate: c . phi = P_0 t + D_0
     value = tidy(w2 * drift * v0[0])
-    return Derived(
+    return from_rest(
         value,
         "phiddot_1 + Omega^2 phi_1 for the general motion: zero mode (P_0 t + D_0) v0 plus "
         "the oscillating mode",
-        assumed=substitute(value, {P0: 0}),
         condition="the coordinate is measured from its equilibrium value (the paper's x₁, x₂ "
         "are the centres' positions, and the angles have no stated origin before Sec. 5.2)",
         value_if=substitute(value, {P0: 0, D0: 0}),
@@ -40,27 +39,37 @@ def qq2(b: Bench) -> Derived:
     )
 
 
-def phi_relation(b: Bench, *, flip: bool) -> Derived:
+def _phi2_of_phi1(b: Bench) -> sp.Expr:
+    """phi_2 from integrating the conserved c . phidot = P_0 twice: (P_0 t + D_0 - c_1 phi_1) /
+    c_2."""
     c = b.conserved("fig2")
-    value = tidy((P0 * t + D0 - c[0] * phi1) / c[1])
-    if flip:  # Sec. 5.3: X-hat is the origin (stated): both constants vanish
-        return Derived(
-            value,
-            "integrating the conserved c . phidot = P_0 (zero mode of K) twice",
-            assumed=substitute(value, {P0: 0, D0: 0}),
-            condition=ORIENTATION,
-            paper_if=flip_first,
-            why="in general c · φ = P₀t + D₀ with c = v₀ᵀM = (I'₁, I'₂)",
-        )
-    return Derived(
+    return tidy((P0 * t + D0 - c[0] * phi1) / c[1])
+
+
+def phi_relation(b: Bench) -> Derived:
+    """Sec. 5.1: phi_2 in terms of phi_1 (the integration constant taken as zero, unstated)."""
+    value = _phi2_of_phi1(b)
+    return from_rest(
         value,
         "integrating the conserved c . phidot = P_0 (zero mode of K) twice",
-        assumed=substitute(value, {P0: 0}),
         condition="the integration constant is zero: the angles measured from the equilibrium "
         "about X̂ (the paper takes X̂ as origin only from Sec. 5.2 on)",
         value_if=substitute(value, {P0: 0, D0: 0}),
         why="in general c · φ = P₀t + D₀ with c = v₀ᵀM = (I'₁, I'₂)",
         correction=r"2m_1\varphi_1+\frac{3}{2}m_2\varphi_2=\text{const}",
+    )
+
+
+def phi_relation_about_origin(b: Bench) -> Derived:
+    """Sec. 5.3: phi_2 in terms of phi_1 with X-hat the origin (stated): both constants vanish."""
+    value = _phi2_of_phi1(b)
+    return Derived(
+        value,
+        "integrating the conserved c . phidot = P_0 (zero mode of K) twice",
+        assumed=substitute(value, {P0: 0, D0: 0}),
+        condition=ORIENTATION,
+        paper_if=flip_first,
+        why="in general c · φ = P₀t + D₀ with c = v₀ᵀM = (I'₁, I'₂)",
     )
 
 
@@ -270,11 +279,10 @@ def relative_rates(b: Bench) -> Derived:
         xhat_rate.subs(sym.bodies[0].qd, (P0 - c[1] * sym.bodies[1].qd) / c[0]), scale * P0
     ):
         raise RuntimeError("fig2: X-hat is expected to move at s P_0 / sum c")
-    return Derived(
+    return from_rest(
         value,
         "d/dt (x_i - X-hat) with the rolling constraint x_i = R phi_i (M2) and X-hat's velocity "
         "from the engine's conserved combination (M14)",
-        assumed=substitute(value, {P0: 0}),
         why="X̂ moves uniformly at RP₀/(I'₁ + I'₂); it is the stationary origin only for a start "
         "from rest",
     )

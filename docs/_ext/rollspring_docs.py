@@ -42,7 +42,7 @@ SECTIONS: list[tuple[str, str, tuple[str, ...]]] = [
     (
         "Analysis",
         "Equilibrium, normal modes, the stationary point, the linear response.",
-        ("rollspring.analysis.linear", "rollspring.analysis.equilibrium", "rollspring.analysis"),
+        ("rollspring.analysis.linear", "rollspring.analysis"),
     ),
     (
         "Simulation",

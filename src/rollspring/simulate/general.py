@@ -94,8 +94,12 @@ class GeneralSegments(RunState):
             self.status = RunStatus.NONFINITE
             self.message = f"the adaptive integrator failed: {solution.message}"
             return self.grid[-1], state, slipping, sign
-        if solution.t.size:
-            self._record_block(solution.t, solution.y.T, slipping, sign)
+        # SciPy leaves t and y as empty lists when no output time falls before the first event
+        # (a body that slips at once, an early slip): arrays of no columns then
+        times = np.asarray(solution.t, dtype=float)
+        values = np.asarray(solution.y, dtype=float).reshape(state.size, times.size)
+        if times.size:
+            self._record_block(times, values.T, slipping, sign)
         dense = solution.sol
         t_end = float(
             solution.t_events
@@ -119,7 +123,7 @@ class GeneralSegments(RunState):
         )
         self._report(t_end)
         if solution.status != 1:
-            return self.grid[-1], solution.y[:, -1] if solution.y.size else state, slipping, sign
+            return self.grid[-1], values[:, -1] if times.size else state, slipping, sign
         which = next(j for j, te in enumerate(solution.t_events) if len(te))
         kind, body = labels[which]
         y_event = np.asarray(solution.y_events[which][0], dtype=float)

@@ -1,0 +1,105 @@
+"""Trust at the edges (issue 24): the reproducers a hostile user found, each on the surface where
+it was found (the command line, the Python API, HTTP).
+
+``--on-slip continue`` when a body slips at once or early: before, SciPy's empty output lists
+reached the stick-slip segment and every surface failed with ``'list' object has no attribute
+'size'`` (CLI exit 1, a raw ``AttributeError`` from the API, HTTP 500).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+from typer.testing import CliRunner
+
+import rollspring
+from rollspring.cli import app
+from rollspring.model import load_system, preset_path, system_to_json
+from rollspring.outputs.trajectory import summary_json
+from rollspring.web import create_app
+
+runner = CliRunner()
+GOOD = preset_path("hoop-cylinder").read_text(encoding="utf-8")
+
+#: Systems in which a body slips at t = 0 or soon after (issue 24, point 2), with the status
+#: the run ends in and the first body to slip.
+EARLY_SLIPS: dict[str, tuple[str, str, str]] = {
+    # no gravity: N = 0, so any friction exceeds mu_s N at once; the bodies also leave the track
+    "gravity-0": (GOOD.replace("gravity = 9.81", "gravity = 0.0"), "liftoff", "hoop"),
+    # a light, stiff pair: the needed friction is about 5e5 N at once
+    "light-stiff": (
+        GOOD.replace("stiffness = 100.0", "stiffness = 1e6").replace("mass = 1.0", "mass = 1e-3"),
+        "finished",
+        "hoop",
+    ),
+    # a pull of 1e9 N on the cylinder's centre
+    "force-1e9": (GOOD + '\n[[forces]]\nbody = "cylinder"\nfx = 1e9\n', "finished", "cylinder"),
+    # a hoop rolling through the anchor its spring is fixed to
+    "through-anchor": (
+        'name = "through"\ngravity = 9.81\n'
+        '[[anchors]]\nid = "post"\nx = 0.3\ny = 0.1\n'
+        '[[bodies]]\nid = "hoop"\nshape = "hoop"\nmass = 1.0\nradius = 0.1\nx = 0.0\nv = 2.0\n'
+        "mu_static = 1.0\n"
+        '[[springs]]\nends = ["post", "hoop"]\nstiffness = 100.0\nrest_length = 0.0\n',
+        "finished",
+        "hoop",
+    ),
+}
+
+
+@pytest.fixture(scope="module")
+def client() -> Iterator[TestClient]:
+    with TestClient(create_app(workers=1, budget=600.0)) as test_client:
+        yield test_client
+
+
+def _system(text: str, tmp_path: Path) -> rollspring.System:
+    path = tmp_path / "system.toml"
+    path.write_text(text, encoding="utf-8")
+    return load_system(path)
+
+
+def _check(summary: dict[str, Any], status: str, body: str) -> None:
+    """A clean end: the expected status, the first slip at the right body, finite energy."""
+    assert summary["status"] == status, summary["message"]
+    assert summary["first_slip"]["body"] == body
+    assert np.isfinite(summary["energy"])
+
+
+@pytest.mark.parametrize("case", sorted(EARLY_SLIPS))
+def test_on_slip_continue_from_an_early_slip_on_the_command_line(case: str, tmp_path: Path) -> None:
+    text, status, body = EARLY_SLIPS[case]
+    path = tmp_path / f"{case}.toml"
+    path.write_text(text, encoding="utf-8")
+    result = runner.invoke(
+        app, ["simulate", str(path), "-T", "0.01", "--on-slip", "continue", "--json"]
+    )
+    assert result.exit_code == 0, result.output
+    _check(json.loads(result.stdout), status, body)
+
+
+@pytest.mark.parametrize("case", sorted(EARLY_SLIPS))
+def test_on_slip_continue_from_an_early_slip_in_python(case: str, tmp_path: Path) -> None:
+    text, status, body = EARLY_SLIPS[case]
+    run = rollspring.simulate(_system(text, tmp_path), 0.01, on_slip="continue")
+    _check(summary_json(run), status, body)
+    assert run.t[0] == 0.0 and np.all(np.isfinite(run.x))
+
+
+@pytest.mark.parametrize("case", sorted(EARLY_SLIPS))
+def test_on_slip_continue_from_an_early_slip_over_http(
+    case: str, client: TestClient, tmp_path: Path
+) -> None:
+    text, status, body = EARLY_SLIPS[case]
+    system = system_to_json(_system(text, tmp_path))
+    answer = client.post(
+        "/api/simulate", json={"system": system, "duration": 0.01, "on_slip": "continue"}
+    )
+    assert answer.status_code == 200, answer.text
+    _check(answer.json()["summary"], status, body)

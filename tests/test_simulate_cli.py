@@ -119,12 +119,14 @@ def load_system_text() -> str:
 
 
 @pytest.mark.parametrize("failing_call", range(1, 7))
-def test_a_write_that_fails_midway_leaves_the_earlier_set_whole(
+def test_a_write_interrupted_in_its_swap_leaves_a_whole_set(
     tmp_path, monkeypatch, failing_call
 ) -> None:
     """The three files are one set: interrupted at any rename (the earlier set moving out, the
-    new one moving in), the folder holds the earlier run's three files, unchanged, and nothing
-    else (no temporary file, no staging folder)."""
+    new one moving in), the new set is already whole and marked in its staging folder, so the
+    swap is finished before the interruption goes on: the folder holds the new run's three
+    files and nothing else (no temporary file, no staging folder). A kill that no handler sees
+    is tests/test_write_faults.py's."""
     trajectory = simulate(load_system("hoop-cylinder"), 0.5, n_output=11)
     write_trajectory(trajectory, tmp_path)
     before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
@@ -143,7 +145,10 @@ def test_a_write_that_fails_midway_leaves_the_earlier_set_whole(
     with pytest.raises(KeyboardInterrupt):
         write_trajectory(longer, tmp_path)
     after = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
-    assert after == before
+    monkeypatch.undo()
+    fresh = tmp_path / "fresh"
+    write_trajectory(longer, fresh)
+    assert after == {p.name: p.read_bytes() for p in fresh.iterdir()} != before
 
 
 def test_a_writer_that_fails_leaves_the_earlier_set_and_no_staging(tmp_path, monkeypatch) -> None:

@@ -3,10 +3,13 @@ of files (a run's ``trajectory.csv``, ``trajectory.npz`` and ``summary.json``) w
 
 A run killed at any moment leaves either the previous file or the complete new one, never a
 half-written file (``os.replace`` is atomic on POSIX and Windows within one filesystem), and a
-folder never holds a new run's files beside an earlier run's (:func:`write_file_set`). Every
-temporary name carries the writer's process id: one left by a process that was killed outright
-(SIGKILL, a power cut) is removed by the next write to the same place, never one of a process
-still running.
+folder never holds a new run's files beside an earlier run's (:func:`write_file_set`). A set
+replacing another is journalled: staged whole and marked complete before the first rename, so a
+writer killed at any instant (SIGKILL, a power cut) leaves a complete set, the earlier one in
+place or the new one staged with its mark, and the next write into the folder finishes or drops
+what it left (tests/test_write_faults.py kills a writer before each of its file operations).
+Every temporary name carries the writer's process id: the leftovers of a process that no longer
+runs are finished or removed, never those of a process still running.
 """
 
 from __future__ import annotations
@@ -36,6 +39,9 @@ __all__ = [
 #: Folders :func:`write_file_set` stages a set in (new files) and parks the set it replaces in
 #: (old files), inside the target folder; a folder that does not exist yet is staged beside it.
 _STAGING, _PARKED = ".rollspring-part-", ".rollspring-old-"
+#: The journal's mark in a staging folder: written when the staged set is complete; a staged set
+#: with it is finished by the next write, one without it dropped.
+_COMPLETE = ".complete"
 
 
 def _alive(pid: int) -> bool:
@@ -64,16 +70,18 @@ def _stale(rest: str) -> bool:
 
 
 def remove_leftovers(folder: str | os.PathLike[str], names: tuple[str, ...] = ()) -> list[Path]:
-    """Remove what killed writers left in ``folder``: staging folders of
-    :func:`write_file_set` and temporary files of :func:`atomic_path` for ``names`` (and every
-    ``.part`` of the set names), whose process no longer runs. Returns what was removed; a
-    folder that cannot be listed is left alone."""
+    """Finish or undo what killed writers left in ``folder``, then remove it: a set that
+    :func:`write_file_set` had staged completely (its journal mark written) is moved in, one that
+    was not is dropped, and a parked earlier set is removed once the new one is whole; temporary
+    files of :func:`atomic_path` for ``names`` (and every ``.part`` of the set names) are
+    removed. Only leftovers of processes that no longer run are touched. Returns what was
+    removed; a folder that cannot be listed is left alone."""
     removed: list[Path] = []
     try:
-        entries = list(os.scandir(folder))
+        entries = sorted(os.scandir(folder), key=lambda entry: not entry.name.startswith(_STAGING))
     except OSError:
         return removed
-    for entry in entries:
+    for entry in entries:  # the staged sets first: a parked set goes only after its new one
         name = entry.name
         stale = False
         for prefix in (_STAGING, _PARKED):
@@ -87,6 +95,12 @@ def remove_leftovers(folder: str | os.PathLike[str], names: tuple[str, ...] = ()
             continue
         path = Path(entry.path)
         with contextlib.suppress(OSError):
+            if name.startswith(_STAGING) and (path / _COMPLETE).exists():
+                _move_in(path, Path(folder))  # the killed writer's new set was whole: finish
+            if name.startswith(_PARKED):  # an earlier file with no new one in its place returns
+                for parked in os.listdir(path):
+                    if not os.path.lexists(Path(folder) / parked):
+                        os.replace(path / parked, Path(folder) / parked)
             if entry.is_dir(follow_symlinks=False):
                 shutil.rmtree(path)
             else:
@@ -182,37 +196,72 @@ def _fsync(path: Path) -> None:
         os.close(descriptor)
 
 
+def _fsync_folder(folder: Path) -> None:
+    """Make the renames inside ``folder`` durable (where the platform allows opening a folder)."""
+    with contextlib.suppress(OSError):
+        descriptor = os.open(folder, os.O_RDONLY)
+        try:
+            os.fsync(descriptor)
+        finally:
+            os.close(descriptor)
+
+
+def _move_in(staging: Path, target: Path) -> None:
+    """Move every file of a completely staged set into ``target`` (each rename replaces the
+    earlier file of its name); the journal mark stays last, so a move interrupted here is
+    finished by the next one."""
+    for name in sorted(os.listdir(staging)):  # what is still staged (a second call: the rest)
+        if name != _COMPLETE:
+            os.replace(staging / name, target / name)
+    _fsync_folder(target)
+
+
 def _replace_set(target: Path, writers: Mapping[str, Callable[[Path], None]]) -> list[Path]:
+    """The set replaces the files of its names in the existing folder ``target``.
+
+    The journal is the staging folder itself: until every new file is written and flushed it
+    holds no mark, and a kill leaves the earlier set untouched (the next write drops the
+    staging folder). Then the mark :data:`_COMPLETE` is written, and from that instant the new
+    set is the one that counts: the earlier files are parked, the new ones moved in; a kill at
+    any point of that is finished by the next write into the folder
+    (:func:`remove_leftovers`), an exception here (Ctrl-C) finishes it first, then goes on.
+    The parked set is
+    removed only when the new one is whole. So at every instant a complete set exists: the
+    earlier one (in place) or the new one (staged with its mark, or in place)."""
     remove_leftovers(target, tuple(writers))
     staging = Path(tempfile.mkdtemp(prefix=f"{_STAGING}{os.getpid()}-", dir=target))
-    parked: Path | None = None
-    moved_old: list[str] = []
-    moved_new: list[str] = []
     try:
         for name, write in writers.items():
             write(staging / name)
             _fsync(staging / name)
-        parked = Path(tempfile.mkdtemp(prefix=f"{_PARKED}{os.getpid()}-", dir=target))
-        for name in writers:  # the earlier set leaves first ...
-            if os.path.lexists(target / name):
-                os.replace(target / name, parked / name)
-                moved_old.append(name)
-        for name in writers:  # ... then the new one arrives
-            os.replace(staging / name, target / name)
-            moved_new.append(name)
+        with open(staging / _COMPLETE, "wb") as mark:  # the new set is whole: the journal's mark
+            os.fsync(mark.fileno())
+        _fsync_folder(staging)
     except BaseException:
-        for name in moved_new:  # back to the earlier set, as far as it goes
-            with contextlib.suppress(OSError):
-                os.unlink(target / name)
-        if parked is not None:
-            for name in moved_old:
-                with contextlib.suppress(OSError):
-                    os.replace(parked / name, target / name)
-            shutil.rmtree(parked, ignore_errors=True)
         shutil.rmtree(staging, ignore_errors=True)
         raise
-    shutil.rmtree(parked, ignore_errors=True)
-    shutil.rmtree(staging, ignore_errors=True)
+    parked: Path | None = None
+    interrupted: BaseException | None = None
+    try:
+        parked = Path(tempfile.mkdtemp(prefix=f"{_PARKED}{os.getpid()}-", dir=target))
+        for name in writers:  # the earlier set leaves first (a reader never sees a mix) ...
+            if os.path.lexists(target / name):
+                os.replace(target / name, parked / name)
+    except BaseException as exc:  # noqa: BLE001 - an interruption waits until the new set is in place
+        interrupted = exc
+    for attempt in (1, 2):  # ... then the new one arrives, whatever happened to the parking
+        try:
+            _move_in(staging, target)
+            break
+        except BaseException as exc:
+            if attempt == 2:  # left, marked, to the next write's recovery
+                raise
+            interrupted = interrupted or exc
+    for folder in (parked, staging):  # the new set is whole: the earlier one can go
+        if folder is not None:
+            shutil.rmtree(folder, ignore_errors=True)
+    if interrupted is not None:
+        raise interrupted
     return [target / name for name in writers]
 
 

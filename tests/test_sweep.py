@@ -93,6 +93,52 @@ def test_resume_runs_only_unfinished_chunks(system, tmp_path):
     same(first, again)
 
 
+def test_resume_reruns_a_marked_chunk_whose_file_is_gone_and_drops_partial_files(system, tmp_path):
+    """A resume checks the chunks its markers vouch for: one deleted from the store (here every
+    variable's file of chunk 3, and one variable's of chunk 5) runs again instead of staying
+    fill values; a ``.partial`` file a killed Zarr write left and a half-made marker go."""
+    vary = {"springs.0.stiffness": np.linspace(50, 200, 6), "bodies.hoop.mass": [0.5, 1.0]}
+    out = tmp_path / "r.zarr"
+    first = sweep(system, vary, 2.0, chunk=2, out=out).load()
+    chunk_files = sorted(p for p in out.rglob("c/*") if p.is_file())
+    assert chunk_files  # every chunk is on disk, fill-valued ones included
+    import zarr
+
+    group = zarr.open_group(str(out), mode="r")
+    gone = 0
+    for name, array in group.arrays():
+        if array.shape[:2] != (6, 2):
+            continue
+        for index, drop in ((3, True), (5, name == "status")):
+            starts = [r.start for r in _grid_region(out, index)] + [0] * (array.ndim - 2)
+            coords = tuple(a // c for a, c in zip(starts, array.chunks, strict=True))
+            key = array.metadata.encode_chunk_key(coords)
+            if drop:
+                (out / name / key).unlink()
+                gone += 1
+    assert gone > 10
+    (out / "status" / "c" / "stray.0123abcd.partial").write_bytes(b"half")
+    (out / ".rollspring-done" / ".7.4242.tmp").touch()
+    seen = []
+    again = sweep(system, vary, 2.0, chunk=2, out=out, progress=seen.append).load()
+    assert seen[0].chunks_skipped == 4 and seen[0].chunks_to_run == 2
+    same(first, again)
+    assert not list(out.rglob("*.partial")) and not list(out.rglob(".*.tmp"))
+
+
+def _grid_region(out, index):
+    """Chunk ``index``'s region in the store at ``out`` (chunks of 2 runs along the first axis,
+    whole along the second: the store's own chunk shape)."""
+    from rollspring.service.sweeps.store import read_attrs
+
+    shape = read_attrs(out)["chunk_shape"]
+    per_row = 2 // shape[1]
+    return (
+        slice((index // per_row) * shape[0], (index // per_row + 1) * shape[0]),
+        slice((index % per_row) * shape[1], (index % per_row + 1) * shape[1]),
+    )
+
+
 def test_fingerprint_mismatch_is_refused(system, tmp_path):
     out = tmp_path / "f.zarr"
     sweep(system, {"springs.0.stiffness": [50.0, 100.0]}, 1.0, out=out)

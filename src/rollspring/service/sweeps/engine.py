@@ -45,6 +45,7 @@ from rollspring.service.sweeps.store import (
     mark_done,
     read_attrs,
     remove,
+    verified_done,
     write_regions,
     write_template,
 )
@@ -241,7 +242,7 @@ def sweep(
                 remove(path)
             else:
                 stored = attrs
-                done = done_chunks(path)
+                done = verified_done(path, grid, done_chunks(path))
         elif path.exists():
             if not overwrite:
                 raise StoreMismatchError(

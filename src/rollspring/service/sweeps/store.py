@@ -4,9 +4,11 @@ The template (every variable's metadata, the coordinates and the attrs) is writt
 ``xarray.Dataset.to_zarr(compute=False)`` from lazy Dask arrays (nothing of the grid's size is
 built in memory); each finished chunk is then written into its own region with Zarr directly
 (the regions are the Zarr chunks, so concurrent writers never share a chunk) and followed by its
-done marker ``<store>/.rollspring-done/<chunk index>``, an empty file created atomically. A
-rerun trusts the markers, never the chunks on disk (Zarr skips chunks equal to the fill value,
-and a killed writer can leave a partial chunk).
+done marker ``<store>/.rollspring-done/<chunk index>``, an empty file created atomically. Every
+chunk is written to disk, even one equal to the fill value (Zarr's ``write_empty_chunks``), so a
+resume checks the chunks its markers vouch for (:func:`verified_done`): a marked chunk whose file
+is gone is run again, and what killed writers left (Zarr's ``.partial`` files, half-made
+markers) is removed first.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ __all__ = [
     "fingerprint",
     "mark_done",
     "read_attrs",
+    "verified_done",
     "write_region",
     "write_regions",
     "write_template",
@@ -163,10 +166,11 @@ def write_region(path: Path, grid: Grid, index: int, arrays: dict[str, np.ndarra
 
     group = zarr.open_group(str(path), mode="r+")
     region = grid.region(index)
-    for name, values in arrays.items():
-        array = group[name]
-        assert isinstance(array, zarr.Array)  # the store's variables are arrays
-        array[region] = values
+    with zarr.config.set({"array.write_empty_chunks": True}):  # every chunk on disk: checkable
+        for name, values in arrays.items():
+            array = group[name]
+            assert isinstance(array, zarr.Array)  # the store's variables are arrays
+            array[region] = values
 
 
 def write_regions(path: Path, grid: Grid, items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
@@ -188,6 +192,19 @@ def write_regions(path: Path, grid: Grid, items: list[tuple[int, dict[str, np.nd
     import zarr
 
     group = zarr.open_group(str(path), mode="r+")
+    with zarr.config.set({"array.write_empty_chunks": True}):  # every chunk on disk: checkable
+        _write_box(group, box, regions, items)
+
+
+def _write_box(
+    group: Any,
+    box: tuple[slice, ...],
+    regions: list[tuple[slice, ...]],
+    items: list[tuple[int, dict[str, np.ndarray]]],
+) -> None:
+    """The chunks ``items`` (at ``regions``) as one write per variable into the box they tile."""
+    import zarr
+
     for name, first in items[0][1].items():
         whole = np.empty(
             (*(s.stop - s.start for s in box), *first.shape[len(box) :]), dtype=first.dtype
@@ -218,3 +235,43 @@ def done_chunks(path: Path) -> set[int]:
     if not folder.is_dir():
         return set()
     return {int(p.name) for p in folder.iterdir() if p.name.isdigit()}
+
+
+def verified_done(path: Path, grid: Grid, done: set[int]) -> set[int]:
+    """The chunks of ``done`` (their markers exist) whose chunk files are all in the store; the
+    marker of any other is removed, so the chunk runs again. Stale writes are removed first:
+    Zarr's ``*.partial`` files (a writer killed inside a chunk's write) and half-made markers."""
+    import zarr
+
+    for leftover in [*path.rglob("*.partial"), *(path / MARKERS).glob(".*.tmp")]:
+        leftover.unlink(missing_ok=True)
+    group = zarr.open_group(str(path), mode="r")
+    dims = len(grid.shape)
+    arrays = [
+        (name, array)
+        for name, array in group.arrays()
+        if array.shape[:dims] == tuple(grid.shape) and array.ndim > 0
+    ]
+    kept: set[int] = set()
+    for index in sorted(done):
+        starts = [region.start for region in grid.region(index)]
+        present = all(
+            (
+                path
+                / name
+                / array.metadata.encode_chunk_key(
+                    tuple(
+                        start // size
+                        for start, size in zip(
+                            starts + [0] * (array.ndim - dims), array.chunks, strict=True
+                        )
+                    )
+                )
+            ).is_file()
+            for name, array in arrays
+        )
+        if present:
+            kept.add(index)
+        else:
+            (path / MARKERS / str(index)).unlink(missing_ok=True)
+    return kept

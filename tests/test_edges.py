@@ -26,6 +26,7 @@ from rollspring.web import create_app
 
 runner = CliRunner()
 GOOD = preset_path("hoop-cylinder").read_text(encoding="utf-8")
+HOOP_CYLINDER = load_system("hoop-cylinder")
 
 #: Systems in which a body slips at t = 0 or soon after (issue 24, point 2), with the status
 #: the run ends in and the first body to slip.
@@ -103,3 +104,24 @@ def test_on_slip_continue_from_an_early_slip_over_http(
     )
     assert answer.status_code == 200, answer.text
     _check(answer.json()["summary"], status, body)
+
+
+# -- energy_tolerance has a floor (issue 24, point 8) --------------------------------------------
+
+
+@pytest.mark.parametrize("tolerance", [1e-300, 1e-13, 5e-324])
+def test_an_energy_tolerance_below_double_precision_is_refused_with_the_attainable_value(
+    tolerance: float,
+) -> None:
+    """Before, 1e-300 hung: every retry shrank the step again and never passed."""
+    with pytest.raises(rollspring.SimulationError) as raised:
+        rollspring.simulate(HOOP_CYLINDER, 1.0, energy_tolerance=tolerance)
+    message = str(raised.value)
+    assert message.startswith(f"energy_tolerance: {tolerance!r} is below what double precision")
+    assert message.endswith("the attainable relative energy error is about 1e-12")
+    assert "\n" not in message
+
+
+def test_the_energy_tolerance_floor_itself_is_accepted() -> None:
+    run = rollspring.simulate(HOOP_CYLINDER, 0.5, energy_tolerance=1e-12)
+    assert run.status in ("finished", "energy_error")

@@ -131,6 +131,26 @@ def check_choice(name: str, value: Any, choices: Iterable[str], what: str) -> st
     return value
 
 
+#: The smallest relative energy error a run can be held to: double precision rounds every step
+#: at about 1e-16, and a run of 1e4 to 1e8 steps accumulates that to about 1e-12 (the constant
+#: floor of the default tolerance, 100 rtol + 1e-12). A smaller tolerance would only shrink the
+#: step again and again, each retry longer, and never pass.
+ENERGY_TOLERANCE_FLOOR = 1e-12
+
+
+def check_energy_tolerance(value: Any) -> float | None:
+    """None (the default, 100 rtol + 1e-12), or a relative energy error of at least
+    :data:`ENERGY_TOLERANCE_FLOOR` (what double precision can give over a run)."""
+    number = check_positive("energy_tolerance", value, optional=True)
+    if number is not None and number < ENERGY_TOLERANCE_FLOOR:
+        raise _bad(
+            "energy_tolerance",
+            f"{value!r} is below what double precision can hold a run to; the attainable "
+            f"relative energy error is about {ENERGY_TOLERANCE_FLOOR:g}",
+        )
+    return number
+
+
 def check_positive(name: str, value: Any, *, optional: bool = False) -> float | None:
     """A positive number (None if ``optional``)."""
     if value is None and optional:

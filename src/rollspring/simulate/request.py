@@ -71,7 +71,7 @@ def simulation_request(
     arguments.check_choice("integrator", integrator, INTEGRATORS, "integrator")
     arguments.check_choice("on_slip", on_slip, ON_SLIP, "on_slip")
     count = arguments.check_count("n_output", n_output, 2, optional=True)
-    arguments.check_positive("energy_tolerance", energy_tolerance, optional=True)
+    arguments.check_energy_tolerance(energy_tolerance)
     return SimulationRequest(
         duration=duration,
         rtol=rtol,

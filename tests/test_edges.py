@@ -125,3 +125,26 @@ def test_an_energy_tolerance_below_double_precision_is_refused_with_the_attainab
 def test_the_energy_tolerance_floor_itself_is_accepted() -> None:
     run = rollspring.simulate(HOOP_CYLINDER, 0.5, energy_tolerance=1e-12)
     assert run.status in ("finished", "energy_error")
+
+
+# -- numbers too large to print (issue 24, point 10) ---------------------------------------------
+
+
+def test_an_integer_of_5000_digits_in_a_dict_is_a_one_line_error_naming_the_field() -> None:
+    """Before, the error's own formatter failed (Python converts at most 4300 digits)."""
+    data = system_to_json(HOOP_CYLINDER)
+    data["gravity"] = 10**5000
+    with pytest.raises(rollspring.ModelError) as raised:
+        rollspring.system_from_dict(data)
+    assert str(raised.value) == (
+        "system: gravity: must be a number (got an integer of about 5001 digits)"
+    )
+
+
+def test_a_json_number_of_5000_digits_shows_no_python_advice(tmp_path: Path) -> None:
+    path = tmp_path / "big.json"
+    text = json.dumps(system_to_json(HOOP_CYLINDER))
+    path.write_text(text.replace('"gravity": 9.81', '"gravity": ' + "9" * 5000))
+    result = runner.invoke(app, ["analyze", str(path)])
+    assert result.exit_code == 2
+    assert result.stderr == f"error: {path}: a number has too many digits (at most 4300 are read)\n"

@@ -7,6 +7,7 @@ import math
 import os
 import re
 import stat
+import sys
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -91,9 +92,7 @@ def load_system(source: str | os.PathLike[str]) -> System:
     except ValueError as exc:  # e.g. an integer with more digits than Python converts
         if isinstance(exc, ModelError):
             raise
-        raise ModelError(
-            f"{_shown(path)}: a number has too many digits ({_oneline(exc)})"
-        ) from None
+        raise _too_many_digits(_shown(path)) from None
     return system_from_dict(data, source=_shown(path))
 
 
@@ -290,7 +289,7 @@ def system_from_text(
     except ValueError as exc:
         if isinstance(exc, ModelError):
             raise
-        raise ModelError(f"{source}: a number has too many digits ({_oneline(exc)})") from None
+        raise _too_many_digits(source) from None
     return system_from_dict(data, source=source)
 
 
@@ -414,12 +413,29 @@ def _show(value: Any) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int) and abs(value) >= 10**20:
-        return f"an integer of {len(str(abs(value)))} digits"
+        return f"an integer of {_digits(value)} digits"
     if isinstance(value, float):
         return repr(value) if math.isfinite(value) else str(value)
     if isinstance(value, str):
         return _quoted(value)
     return _shortened(_oneline(repr(value)))
+
+
+def _too_many_digits(source: str) -> ModelError:
+    """The error for an integer longer than Python converts (its own message advises a
+    function call, which a file's author cannot act on)."""
+    return ModelError(
+        f"{source}: a number has too many digits (at most {sys.get_int_max_str_digits()} are read)"
+    )
+
+
+def _digits(value: int) -> str:
+    """How many decimal digits ``value`` has, "about" that many beyond what Python converts to
+    text (4300 digits by default: ``str`` would raise)."""
+    try:
+        return str(len(str(abs(value))))
+    except ValueError:
+        return f"about {int(abs(value).bit_length() * math.log10(2)) + 1}"
 
 
 def _path(loc: list[Any]) -> str:

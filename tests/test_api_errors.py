@@ -289,8 +289,8 @@ def test_a_fixed_step_counts_in_the_estimate(system, monkeypatch) -> None:
     from rollspring.simulate import run
 
     monkeypatch.setattr(run, "system_arrays", _never)
-    message = api_error(lambda: rollspring.simulate(system, 1e4, step=1e-9), CostTooHigh)
-    assert "1e+13 yoshida4 steps" in message
+    message = api_error(lambda: rollspring.simulate(system, 1e3, step=1e-9), CostTooHigh)
+    assert "1e+12 yoshida4 steps" in message
 
 
 def test_a_confirmed_run_runs(system, monkeypatch) -> None:

@@ -148,3 +148,42 @@ def test_a_json_number_of_5000_digits_shows_no_python_advice(tmp_path: Path) -> 
     result = runner.invoke(app, ["analyze", str(path)])
     assert result.exit_code == 2
     assert result.stderr == f"error: {path}: a number has too many digits (at most 4300 are read)\n"
+
+
+# -- durations beyond double precision, bad callbacks and patterns (issue 24, points 6 and 10) ----
+
+
+@pytest.mark.parametrize(
+    ("duration", "confirm"), [(1e308, False), (1e300, True), (1e15, True), (1e12, False)]
+)
+def test_a_duration_double_precision_cannot_resolve_is_refused_even_when_confirmed(
+    duration: float, confirm: bool
+) -> None:
+    """Before: 1e308 a ZeroDivisionError, 1e300 with confirm an OverflowError."""
+    with pytest.raises(rollspring.SimulationError) as raised:
+        rollspring.simulate(HOOP_CYLINDER, duration, confirm=confirm)
+    message = str(raised.value)
+    assert message.startswith(f"duration: {duration:.3g} s needs ")
+    assert message.endswith("whose times double precision resolves; a shorter duration")
+
+
+def test_a_fixed_step_too_fine_for_the_duration_is_refused_even_when_confirmed() -> None:
+    with pytest.raises(rollspring.SimulationError, match=r"about 1e\+15 steps of 0.001 s"):
+        rollspring.simulate(HOOP_CYLINDER, 1e12, step=1e-3, confirm=True)
+
+
+def test_progress_that_is_not_a_function_is_refused_before_the_run() -> None:
+    """Before, ``simulate(progress=5)`` failed mid-run ('int' object is not callable)."""
+    with pytest.raises(rollspring.SimulationError) as raised:
+        rollspring.simulate(HOOP_CYLINDER, 0.1, progress=5)
+    assert str(raised.value) == "progress: must be a function or None, got int"
+    with pytest.raises(rollspring.RollspringError, match="progress: must be a function"):
+        rollspring.sweep(HOOP_CYLINDER, {"springs.0.stiffness": [50.0]}, 0.1, progress="yes")
+
+
+@pytest.mark.parametrize("pattern", [None, 3, {"hoop": 1}])
+def test_a_chain_pattern_of_the_wrong_type_is_a_one_line_error(pattern: Any) -> None:
+    """Before, ``chain(pattern=None)``: 'NoneType' object is not iterable."""
+    with pytest.raises(rollspring.ModelError) as raised:
+        rollspring.chain(pattern=pattern)
+    assert str(raised.value).startswith("pattern: give one or more shapes, e.g. hoop,cylinder")

@@ -588,7 +588,17 @@ OPTIONS: list[Hostile] = [
     _case("simulate-T-text", lambda f: ["simulate", "-T", "abc"], "--duration"),
     _case("simulate-T-empty", lambda f: ["simulate", "-T", ""], "--duration"),
     _case("simulate-T-1e9", lambda f: ["simulate", "-T", "1e9"], "days", "--yes"),
-    _case("simulate-T-1e300", lambda f: ["simulate", "-T", "1e300"], "years", "--yes"),
+    # beyond what double precision time resolves: refused even with --yes (issue 24: 1e308 was a
+    # ZeroDivisionError, 1e300 --yes "about inf years" then an OverflowError)
+    _case("simulate-T-1e300", lambda f: ["simulate", "-T", "1e300"], "duration", "precision"),
+    _case(
+        "simulate-T-1e300-yes",
+        lambda f: ["simulate", "-T", "1e300", "--yes"],
+        "duration",
+        "precision",
+    ),
+    _case("simulate-T-1e308", lambda f: ["simulate", "-T", "1e308"], "duration", "precision"),
+    _case("simulate-T-1e12-yes", lambda f: ["simulate", "-T", "1e12", "--yes"], "1.7e+15 steps"),
     _case("simulate-rtol-0", lambda f: ["simulate", "--rtol", "0"], "rtol"),
     _case("simulate-rtol-1", lambda f: ["simulate", "--rtol", "1"], "rtol"),
     _case("simulate-rtol-1e-300", lambda f: ["simulate", "--rtol", "1e-300"], "rtol", "1e-14"),

@@ -259,6 +259,10 @@ def chain(
 
 
 def _pattern(pattern: str | Sequence[str]) -> list[str]:
+    if not isinstance(pattern, str | list | tuple):
+        raise ModelError(
+            f"pattern: give one or more shapes, e.g. hoop,cylinder (got {type(pattern).__name__})"
+        )
     shapes = [s.strip() for s in pattern.split(",")] if isinstance(pattern, str) else list(pattern)
     if not shapes or any(not isinstance(s, str) or not s for s in shapes):
         raise ModelError("pattern: give one or more shapes, e.g. hoop,cylinder")

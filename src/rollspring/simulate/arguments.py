@@ -151,6 +151,13 @@ def check_energy_tolerance(value: Any) -> float | None:
     return number
 
 
+def check_callback(name: str, value: Any) -> Any:
+    """None or a function (``progress``): checked before the run, not when first called."""
+    if value is not None and not callable(value):
+        raise _bad(name, f"must be a function or None, got {type(value).__name__}")
+    return value
+
+
 def check_positive(name: str, value: Any, *, optional: bool = False) -> float | None:
     """A positive number (None if ``optional``)."""
     if value is None and optional:

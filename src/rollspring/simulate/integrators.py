@@ -30,6 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rollspring.errors import SimulationError
+
 __all__ = [
     "CONTRACT_SHARE",
     "HERMITE_POSITION",
@@ -201,6 +203,8 @@ def choose_scheme(
     for name in names:
         scheme = INTEGRATORS[name]
         step = scheme.contract_step(omega, duration, rtol, n_output)
+        if not step > 0:  # a duration so long that the contract's step underflows
+            return name, step
         per_output = duration / (n_output - 1) / step if n_output and n_output > 1 else 0.5
         on_step_ends = abs(per_output - round(per_output)) <= 1e-9 * per_output
         cost = (scheme.stages + (0 if on_step_ends else 1)) * duration / step
@@ -226,5 +230,25 @@ def pick_scheme(
     if damped or integrator == "dop853":
         return "dop853", None
     if step is not None:
-        return ("yoshida4" if integrator == "auto" else integrator), step
-    return choose_scheme(omega, duration, rtol, integrator, n_output)
+        return ("yoshida4" if integrator == "auto" else integrator), _resolved(duration, step)
+    name, chosen = choose_scheme(omega, duration, rtol, integrator, n_output)
+    return name, _resolved(duration, chosen)
+
+
+#: The most fixed steps a run may take: beyond about 2^52 / 1024, the time t = n h rounds by more
+#: than a thousandth of a step in double precision (its spacing at t is t 2^-52), and the steps
+#: no longer follow each other as the scheme assumes.
+MAX_STEPS = 2.0**52 / 1024
+
+
+def _resolved(duration: float, step: float) -> float:
+    """``step``, when ``duration`` takes at most :data:`MAX_STEPS` of it; else the one-line
+    error (even with ``--yes``: no run of that length can be computed in double precision)."""
+    steps = duration / step if step > 0 else math.inf
+    if not steps <= MAX_STEPS:
+        count = f"about {steps:.2g}" if math.isfinite(steps) else "more than 1e308"
+        raise SimulationError(
+            f"duration: {duration:.3g} s needs {count} steps of {step:.3g} s, beyond the "
+            f"{MAX_STEPS:.2g} whose times double precision resolves; a shorter duration"
+        )
+    return step

@@ -135,7 +135,7 @@ def simulate(
     )
     cost = request_cost(system, request, smaller=API_SMALLER)
     check_cost(cost, confirmed=arguments.check_flag("confirm", confirm), flag=CONFIRM)
-    return run_request(system, request, progress)
+    return run_request(system, request, arguments.check_callback("progress", progress))
 
 
 def run_request(

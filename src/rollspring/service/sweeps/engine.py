@@ -194,6 +194,8 @@ def sweep(
     """
     system = as_system(system)
     _check_arguments(duration, rtol, on_slip, chunk, step)
+    if progress is not None and not callable(progress):
+        raise SweepError(f"progress: must be a function or None, got {type(progress).__name__}")
     if integrator not in ("auto", "verlet", "yoshida4", "yoshida6"):
         raise SweepError(
             f"--integrator: unknown integrator {integrator!r} (auto, verlet, yoshida4, yoshida6)"

@@ -28,7 +28,7 @@ from rollspring.errors import RollspringError
 from rollspring.model import System, system_to_json, validation_errors
 from rollspring.model.files import system_json_schema
 from rollspring.service.systems import preset_catalogue, resolve_system, system_forms
-from rollspring.web.workers import ComputePool, JobFailed, OverBudget, Overloaded
+from rollspring.web.workers import ComputePool, JobFailed, OverBudget, Overloaded, check_pool
 
 __all__ = ["MAX_BODIES", "MAX_DURATION", "MAX_OUTPUTS", "MAX_REQUEST_BYTES", "create_app"]
 
@@ -231,9 +231,9 @@ def create_app(
     system, preset
         The system the page opens on (default: the preset ``preset``, or the default preset).
     budget
-        Seconds each computation may take before it is answered with 503.
+        Seconds each computation may take before it is answered with 503 (at most a day).
     workers
-        Worker processes (default: one per core).
+        Worker processes (default: one per core; at most four per core).
 
     Returns
     -------
@@ -242,6 +242,7 @@ def create_app(
     """
     from rollspring.model import DEFAULT_PRESET, load_system
 
+    workers, budget = check_pool(workers, budget)  # before anything starts
     if system is None:
         preset = preset or DEFAULT_PRESET
         system = load_system(preset)

@@ -23,15 +23,55 @@ import threading
 from multiprocessing.connection import Connection
 from typing import Any
 
-from rollspring.errors import JobFailed, OverBudget, Overloaded
+from rollspring.errors import JobFailed, OverBudget, Overloaded, ServeError
 
-__all__ = ["PRELOAD", "ComputePool", "JobFailed", "OverBudget", "Overloaded"]
+__all__ = [
+    "MAX_BUDGET",
+    "PRELOAD",
+    "ComputePool",
+    "JobFailed",
+    "OverBudget",
+    "Overloaded",
+    "check_pool",
+    "max_workers",
+]
 
 #: Modules the forkserver imports once, so that every worker starts with them loaded and with
 #: the compiled kernels warm (:mod:`rollspring.web.warm`).
 PRELOAD = ["rollspring.web.warm"]
 #: How long a new worker may take to become ready (a cold Numba cache compiles the kernels).
 READY_TIMEOUT = 300.0
+#: The longest time budget of one computation (s): a day; an unbounded one is no budget.
+MAX_BUDGET = 86400.0
+#: Worker processes per core at the most (a computation keeps a core busy: more only queue).
+WORKERS_PER_CORE = 4
+
+
+def max_workers() -> int:
+    """The most worker processes a pool may have: :data:`WORKERS_PER_CORE` per core."""
+    return WORKERS_PER_CORE * (os.cpu_count() or 1)
+
+
+def check_pool(workers: Any, budget: Any, *, option: str = "") -> tuple[int | None, float]:
+    """``workers`` (None or 0: one per core; at most :func:`max_workers`) and ``budget``
+    (seconds, positive, at most :data:`MAX_BUDGET`) checked: one-line
+    :class:`~rollspring.errors.ServeError` naming ``option + name`` (``--`` on the command
+    line) before a process starts."""
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)):
+        raise ServeError(f"{option}workers: must be a whole number, got {workers!r}")
+    if workers is not None and not 0 <= workers <= max_workers():
+        raise ServeError(
+            f"{option}workers: must be 0 (one per core) to {max_workers()} "
+            f"({WORKERS_PER_CORE} per core), got {workers}"
+        )
+    if isinstance(budget, bool) or not isinstance(budget, int | float):
+        raise ServeError(f"{option}budget: must be a number of seconds, got {budget!r}")
+    if not 0 < budget <= MAX_BUDGET:
+        raise ServeError(
+            f"{option}budget: must be a positive number of seconds up to {MAX_BUDGET:g} "
+            f"(a day), got {budget:g}"
+        )
+    return workers or None, float(budget)
 
 
 class _Worker:
@@ -63,8 +103,7 @@ class ComputePool:
     """``size`` worker processes; :meth:`run` runs one job with a time budget (s)."""
 
     def __init__(self, size: int | None = None, budget: float = 10.0) -> None:
-        if not budget > 0:
-            raise ValueError(f"budget: must be a positive number of seconds, got {budget!r}")
+        size, budget = check_pool(size, budget)
         self.size = max(1, size or os.cpu_count() or 1)
         self.budget = float(budget)
         self._context = multiprocessing.get_context("forkserver")
@@ -74,12 +113,15 @@ class ComputePool:
         self._lock = threading.Lock()
         self._closed = False
         self.replaced = 0  # workers killed for running past the budget (or dying)
-        starting = [self._start() for _ in range(self.size)]
-        for worker in starting:  # serve only once warm: no request pays for a compilation
-            if not worker.wait_ready():
-                self.close()
-                raise RuntimeError("a worker process did not start (see its error above)")
-            self._idle.put(worker)
+        try:
+            starting = [self._start() for _ in range(self.size)]
+            for worker in starting:  # serve only once warm: no request pays for a compilation
+                if not worker.wait_ready():
+                    raise RuntimeError("a worker process did not start (see its error above)")
+                self._idle.put(worker)
+        except BaseException:  # a failure, Ctrl-C or SIGTERM while starting: no worker is left
+            self.close()
+            raise
 
     def _start(self) -> _Worker:
         worker = _Worker(self._context)

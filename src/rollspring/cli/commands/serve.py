@@ -51,10 +51,9 @@ def serve(
     """Serve the interactive page: drag the bodies, move the sliders, watch every force."""
     if not 0 <= port <= 65535:
         raise ServeError(f"--port: must be 0 to 65535, got {port}")
-    if not budget > 0:
-        raise ServeError(f"--budget: must be a positive number of seconds, got {budget:g}")
-    if workers < 0:
-        raise ServeError(f"--workers: must be 0 or more, got {workers}")
+    from rollspring.web.workers import check_pool
+
+    check_pool(workers, budget, option="--")
     if limit_concurrency < 1:
         raise ServeError(f"--limit-concurrency: must be at least 1, got {limit_concurrency}")
     from rollspring.model import load_system  # pydantic: not for --help

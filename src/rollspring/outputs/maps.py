@@ -55,7 +55,12 @@ from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from rollspring.errors import MapError, ModelError
 from rollspring.model import system_from_text
-from rollspring.outputs.atomic import atomic_path, atomic_write_bytes, atomic_write_text
+from rollspring.outputs.atomic import (
+    atomic_path,
+    atomic_write_bytes,
+    atomic_write_text,
+    writable_file,
+)
 from rollspring.outputs.figures import BODY_COLORS, figure_png, figure_svg, new_figure, theme
 
 __all__ = [
@@ -63,6 +68,7 @@ __all__ = [
     "SLIP_METRICS",
     "MapData",
     "MapError",
+    "check_map_output",
     "open_sweep",
     "plot_map",
     "prepare_map",
@@ -697,11 +703,31 @@ def sweep_map(
     )
 
 
+#: The finest resolution of a PNG map, dots per inch (a 6.4-inch map: 7680 pixels wide).
+MAX_DPI = 1200.0
+
+
+def check_map_output(path: str | Path, dpi: Any = 150.0, option: str = "-o") -> Path:
+    """The checks of :func:`write_map`, for a caller to make before any work: ``dpi`` a number in
+    (0, :data:`MAX_DPI`], the suffix .png, .svg or .pdf, and ``path`` a place a regular file can
+    be written (:func:`~rollspring.outputs.atomic.writable_file`: no device, FIFO or folder)."""
+    number = dpi if isinstance(dpi, int | float) and not isinstance(dpi, bool) else math.nan
+    if not 0 < number <= MAX_DPI:
+        raise MapError(f"--dpi: must be a number > 0 up to {MAX_DPI:g}, got {dpi!r}")
+    path = Path(path)
+    if path.suffix.lower() not in (".png", ".svg", ".pdf"):
+        raise MapError(
+            f"{option} {path}: unknown image format '{path.suffix}' (.png, .svg or .pdf)"
+        )
+    return writable_file(path, option)
+
+
 def write_map(target: Axes | Figure, path: str | Path, *, dpi: float = 150.0) -> Path:
-    """Write the map's figure to ``path`` (by its suffix: .png, .svg or .pdf), atomically."""
+    """Write the map's figure to ``path`` (by its suffix: .png, .svg or .pdf), atomically, after
+    :func:`check_map_output`."""
     fig = target.figure if isinstance(target, Axes) else target
     assert isinstance(fig, Figure)  # a map is drawn on a figure's own axes
-    path = Path(path)
+    path = check_map_output(path, dpi)
     suffix = path.suffix.lower()
     if suffix == ".png":
         atomic_write_bytes(path, figure_png(fig, dpi=dpi))
@@ -714,6 +740,4 @@ def write_map(target: Axes | Figure, path: str | Path, *, dpi: float = 150.0) ->
                 format="pdf",
                 metadata={"Creator": None, "Producer": None, "CreationDate": None},
             )
-    else:
-        raise MapError(f"-o {path}: unknown image format '{path.suffix}' (.png, .svg or .pdf)")
     return path

@@ -187,3 +187,40 @@ def test_a_chain_pattern_of_the_wrong_type_is_a_one_line_error(pattern: Any) -> 
     with pytest.raises(rollspring.ModelError) as raised:
         rollspring.chain(pattern=pattern)
     assert str(raised.value).startswith("pattern: give one or more shapes, e.g. hoop,cylinder")
+
+
+# -- chain starts (issue 24, point 10) ----------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("options", "expected"),
+    [
+        (  # was a pydantic message with its URL (an internal error)
+            ["--pluck", "1", "--amplitude", "1e6"],
+            "error: --amplitude: 1e+06 m moves the chain out of what a system file may hold "
+            "(bodies[0].x: must be between -10000 and 10000 m",
+        ),
+        (  # was an OverflowError
+            ["--packet", "1,1e308"],
+            "error: --packet width: must be from 0.0005 m (a thousandth of the spacing; "
+            "narrower is a pluck) to 20000 m, got 1e+308",
+        ),
+        (  # was a RuntimeWarning, then a chain with no initial condition and exit 0
+            ["--packet", "1,1e-300"],
+            "error: --packet width: must be from 0.0005 m",
+        ),
+    ],
+)
+def test_a_chain_start_out_of_range_is_a_one_line_error(
+    options: list[str], expected: str, tmp_path: Path
+) -> None:
+    out = tmp_path / "c.toml"
+    result = runner.invoke(app, ["chain", "--n", "8", *options, "--out", str(out)])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(expected) and result.stderr.count("\n") == 1
+    assert "pydantic" not in result.stderr and not out.exists()
+
+
+def test_a_packet_width_within_range_still_makes_its_chain(tmp_path: Path) -> None:
+    system = rollspring.chain(n=8, packet=(1.0, 2.0))
+    assert any(body.x != 0.5 * i for i, body in enumerate(system.bodies))

@@ -255,7 +255,13 @@ def chain(
             scale[:p],
             inertia[:p],
         )
-    return rolled(system, shift / scale, velocities=velocity)
+    try:
+        return rolled(system, shift / scale, velocities=velocity)
+    except ModelError as exc:
+        raise ModelError(
+            f"amplitude: {amplitude:g} m moves the chain out of what a system file may hold "
+            f"({str(exc).removeprefix('rolled: ')})"
+        ) from None
 
 
 def _pattern(pattern: str | Sequence[str]) -> list[str]:
@@ -351,6 +357,10 @@ def _mode_shape(
     return result
 
 
+#: The widest Gaussian packet (m): the span of positions a system file may hold.
+_WIDEST_PACKET = 2e4
+
+
 def _packet(
     packet: Sequence[float],
     branch: int,
@@ -374,6 +384,11 @@ def _packet(
         raise ModelError("packet: give the wavenumber and the width, q,width")
     q = _number("packet", packet[0])
     width = _positive("packet width", packet[1])
+    if not a0 * 1e-3 <= width <= _WIDEST_PACKET:
+        raise ModelError(
+            f"packet width: must be from {a0 * 1e-3:g} m (a thousandth of the spacing; "
+            f"narrower is a pluck) to {_WIDEST_PACKET:g} m, got {width:g}"
+        )
     cell = p * a0
     if abs(q) * cell > math.pi * (1 + 1e-12):
         raise ModelError(

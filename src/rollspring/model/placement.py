@@ -21,6 +21,7 @@ from rollspring.errors import ModelError
 if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import NDArray
+from rollspring.model.files import system_from_dict
 from rollspring.model.schema import Attachment, Body, System
 
 __all__ = ["rolled"]
@@ -70,7 +71,7 @@ def rolled(
     data["bodies"] = [b.model_dump(mode="python", exclude_none=True) for b in bodies]
     data["springs"] = [s.model_dump(mode="python", exclude_none=True) for s in springs]
     data["forces"] = [f.model_dump(mode="python", exclude_none=True) for f in forces]
-    return System.model_validate(data)
+    return system_from_dict(data, source="rolled")  # a one-line error if a value leaves its range
 
 
 def _turned(at: Attachment, body: Body | None, angle: float) -> Attachment:

@@ -224,3 +224,25 @@ def test_a_chain_start_out_of_range_is_a_one_line_error(
 def test_a_packet_width_within_range_still_makes_its_chain(tmp_path: Path) -> None:
     system = rollspring.chain(n=8, packet=(1.0, 2.0))
     assert any(body.x != 0.5 * i for i, body in enumerate(system.bodies))
+
+
+# -- batches (issue 24, points 3 and 10) --------------------------------------------------------
+
+
+def test_a_batch_step_too_fine_for_its_duration_is_a_one_line_error() -> None:
+    """Before: 'Int value is too large' from the compiled kernel's step count."""
+    with pytest.raises(rollspring.SimulationError) as raised:
+        rollspring.simulate_batch(
+            HOOP_CYLINDER, {"springs.0.stiffness": [100.0, 200.0]}, 1.0, step=1e-300
+        )
+    assert str(raised.value) == (
+        "step: 1e-300 s takes about 1e+300 steps over 1 s; a batch takes at most 1e+08 "
+        "(a longer step, or a shorter duration)"
+    )
+
+
+@pytest.mark.parametrize("values", [[True], True, [1.0, False], np.array([True, False])])
+def test_a_batch_takes_no_bools_for_numbers(values: Any) -> None:
+    with pytest.raises(rollspring.ModelError) as raised:
+        rollspring.simulate_batch(HOOP_CYLINDER, {"bodies.hoop.mass": values}, 0.1)
+    assert str(raised.value) == "parameters['bodies.hoop.mass']: must be numbers, not true/false"

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from rollspring.errors import ModelError
+from rollspring.errors import ModelError, SimulationError
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import arguments
 from rollspring.simulate.batch import cache
@@ -323,6 +323,11 @@ def simulate_batch(
     rtol = arguments.check_rtol(rtol)
     arguments.check_choice("integrator", integrator, INTEGRATORS, "integrator")
     step = arguments.check_step(step, duration)
+    if step is not None and not duration / step <= MAX_STEPS:
+        raise SimulationError(
+            f"step: {step:g} s takes about {duration / step:.3g} steps over {duration:g} s; a "
+            f"batch takes at most {MAX_STEPS:.0e} (a longer step, or a shorter duration)"
+        )
     n_output = arguments.check_count("n_output", n_output, 2)
     metric_every = arguments.check_count("metric_every", metric_every, 1, optional=True)
     arguments.check_flag("keep_trajectories", keep_trajectories)

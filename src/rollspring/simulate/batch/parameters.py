@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -103,6 +104,8 @@ def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Run
         ]
         if same:
             raise _bad(key, f"names the same parameter as {same[0]!r}")
+        if _has_bool(raw):  # NumPy would take True as 1.0
+            raise _bad(key, "must be numbers, not true/false")
         try:
             array = np.asarray(raw, dtype=np.float64)
         except (TypeError, ValueError):
@@ -151,6 +154,18 @@ def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Run
             f"({runs.mu_static[run, i]:g}) in run {run}",
         )
     return runs
+
+
+def _has_bool(raw: Any) -> bool:
+    """Whether ``raw`` (a value or a sequence of them) holds a bool: a bool array, a bool, or a
+    list with one (NumPy would convert them to 0.0 and 1.0 without a word)."""
+    if isinstance(raw, np.ndarray):
+        return raw.dtype == np.bool_ or (
+            raw.dtype == object and any(isinstance(v, bool | np.bool_) for v in raw.flat)
+        )
+    if isinstance(raw, list | tuple):
+        return any(_has_bool(v) for v in raw)
+    return isinstance(raw, bool | np.bool_)
 
 
 def system_runs(system: System, n_runs: int) -> Runs:

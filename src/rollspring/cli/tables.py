@@ -177,7 +177,10 @@ def print_simulation(console: Console, trajectory, written) -> None:
         "integrator",
         integrator_words(summary["steps_by_integrator"], summary["step"], summary["integrator"]),
     )
-    head.add_row("energy (J)", f"{_g(summary['energy'])}, error {summary['energy_error']:.2e}")
+    energy = f"{_g(summary['energy'])}, error {summary['energy_error']:.2e}"
+    if summary.get("energy_dissipated"):  # damping, kinetic friction: E + W = E0 is checked
+        energy += f", dissipated {_g(summary['energy_dissipated'])}"
+    head.add_row("energy (J)", energy)
     if summary["period_linear"] is not None:
         measured = summary["period_measured"]
         head.add_row(

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from rollspring.analysis import stationary_weights
+from rollspring.simulate.dissipation import dissipated_energy
 from rollspring.simulate.extremes import continuous_extremes, measured_period
 from rollspring.simulate.run_state import RunState
 from rollspring.simulate.trajectory import Trajectory
@@ -44,10 +45,16 @@ def summary(trajectory: Trajectory, run: RunState) -> dict[str, Any]:
     # relative to the energy at release, as the run's own check (a blow-up to 385 E0 is an
     # error of 384, not ~1); the largest |E| only when E0 is 0
     scale = abs(e0) or max(max(abs(high), abs(low)) if high == high else math.nan, 1e-300)
+    # what damping and kinetic friction turned into heat (0 for a conservative run)
+    dissipated = dissipated_energy(run, trajectory.t)
     if conservative:  # the largest |E - E0|: at the largest or the smallest E
         energy_error = (max(high - e0, e0 - low) if high == high else math.nan) / scale
-    else:  # spurious growth above the running minimum
-        energy_error = float(np.max(energy - np.minimum.accumulate(energy))) / scale
+    else:  # the balance E + W = E0 at every output time, relative to the energies exchanged
+        exchanged = max(
+            scale, float(np.max(trajectory.kinetic)), float(np.max(np.abs(trajectory.potential)))
+        )
+        balance = float(np.max(np.abs(energy + dissipated.sum(axis=1) - e0)))
+        energy_error = balance / exchanged if math.isfinite(exchanged) else math.nan
     # weights of the stationary point (M14) at equilibrium, from the normal modes there (None
     # when the zero modes are not all known: more zero and unstable modes than were computed)
     weights = stationary_weights(arrays, *modes) if modes is not None else None
@@ -84,6 +91,11 @@ def summary(trajectory: Trajectory, run: RunState) -> dict[str, Any]:
         "retries": run.plan.retries,
         "energy": e0,
         "energy_error": energy_error,
+        "energy_dissipated": float(dissipated[-1].sum()),
+        "dissipated_by": {
+            "damping": float(dissipated[-1, 0]),
+            "kinetic_friction": float(dissipated[-1, 1]),
+        },
         "period_measured": period,
         "period_linear": period_linear,
         "max_friction_ratio": {

@@ -41,10 +41,7 @@ from rollspring.simulate.kernels.law import (
 from rollspring.simulate.kernels.model import (
     AAX,
     AAY,
-    ABX,
-    ABY,
     ALPHA_A,
-    ALPHA_B,
     CY,
     DAMP,
     FALPHA,
@@ -54,7 +51,6 @@ from rollspring.simulate.kernels.model import (
     INERTIA,
     MASS,
     RA,
-    RB,
     REST,
     ROLLS,
     SCALE,
@@ -72,46 +68,57 @@ def _point(bodies, i, r, alpha, x, phi):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _end(bodies, springs, i, s, e, x, phi):
+    """End ``e`` (0: a, 1: b) of spring ``s``, on body ``i`` (-1: an anchor): its position and
+    its velocity per unit angular velocity of the body at a fixed centre (0 for an anchor), (M1).
+    An end's columns are end a's plus ``2 e`` (:mod:`.model`)."""
+    if i < 0:
+        return springs[s, AAX + 2 * e], springs[s, AAY + 2 * e], 0.0, 0.0
+    return _point(bodies, i, springs[s, RA + 2 * e], springs[s, ALPHA_A + 2 * e], x, phi)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _spring_geometry(bodies, springs, ends, s, x, phi):
     """Spring ``s``: the vector from its end a to its end b (dx, dy), its length, and each
     end's velocity per unit angular velocity of its body at a fixed centre (oax, oay, obx, oby;
     0 for an anchor), (M1)."""
-    ia = ends[s, 0]
-    ib = ends[s, 1]
-    oax = 0.0
-    oay = 0.0
-    obx = 0.0
-    oby = 0.0
-    if ia >= 0:
-        pax, pay, oax, oay = _point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], x, phi)
-    else:
-        pax = springs[s, AAX]
-        pay = springs[s, AAY]
-    if ib >= 0:
-        pbx, pby, obx, oby = _point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], x, phi)
-    else:
-        pbx = springs[s, ABX]
-        pby = springs[s, ABY]
+    pax, pay, oax, oay = _end(bodies, springs, ends[s, 0], s, 0, x, phi)
+    pbx, pby, obx, oby = _end(bodies, springs, ends[s, 1], s, 1, x, phi)
     dx = pbx - pax
     dy = pby - pay
     return dx, dy, spring_length(dx, dy), oax, oay, obx, oby
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _end_velocity(u, w, i, ox, oy):
+    """The velocity of a point of body ``i`` (centre velocity u, angular velocity w; an anchor
+    for -1) whose velocity per unit angular velocity at a fixed centre is (ox, oy)."""
+    if i < 0:
+        return 0.0, 0.0
+    return u[i] + ox * w[i], oy * w[i]
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _load(fx, fy, tau, i, sign, tx, ty, ox, oy):
+    """Add ``sign`` times the force (tx, ty) at a point of body ``i`` whose velocity per unit
+    angular velocity is (ox, oy), and its clockwise torque about the centre (``sign`` 1.0 or
+    -1.0: the same bits as adding or subtracting). The caller skips an anchor (``i`` -1): with
+    that test inside this inlined helper the stepping ran 1.8 times slower
+    (bench_offcentre.py: 0.44 -> 0.82 s)."""
+    fx[i] += sign * tx
+    fy[i] += sign * ty
+    tau[i] += sign * torque(ox, oy, tx, ty)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau):
     """Add spring ``s``'s tension ``t`` to its bodies: :math:`+T e` on end a, :math:`-T e` on
     end b, and their clockwise torques about the centres."""
-    ia = ends[s, 0]
-    ib = ends[s, 1]
     tx, ty = pull(t, dx, dy, dist)
-    if ia >= 0:
-        fx[ia] += tx
-        fy[ia] += ty
-        tau[ia] += torque(oax, oay, tx, ty)
-    if ib >= 0:
-        fx[ib] -= tx
-        fy[ib] -= ty
-        tau[ib] -= torque(obx, oby, tx, ty)
+    if ends[s, 0] >= 0:
+        _load(fx, fy, tau, ends[s, 0], 1.0, tx, ty, oax, oay)
+    if ends[s, 1] >= 0:
+        _load(fx, fy, tau, ends[s, 1], -1.0, tx, ty, obx, oby)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -121,9 +128,7 @@ def _load_forces(bodies, forces, force_body, x, phi, fx, fy, tau):
     for j in range(forces.shape[0]):
         i = force_body[j]
         _, _, ox, oy = _point(bodies, i, forces[j, FR], forces[j, FALPHA], x, phi)
-        fx[i] += forces[j, FX]
-        fy[i] += forces[j, FY]
-        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
+        _load(fx, fy, tau, i, 1.0, forces[j, FX], forces[j, FY], ox, oy)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -141,18 +146,8 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
         dx, dy, dist, oax, oay, obx, oby = _spring_geometry(bodies, springs, ends, s, x, phi)
         t = elastic_tension(springs[s, STIFF], springs[s, REST], dist)
         if damped and springs[s, DAMP] != 0.0:
-            ia = ends[s, 0]
-            ib = ends[s, 1]
-            vax = 0.0
-            vay = 0.0
-            vbx = 0.0
-            vby = 0.0
-            if ia >= 0:
-                vax = u[ia] + oax * w[ia]
-                vay = oay * w[ia]
-            if ib >= 0:
-                vbx = u[ib] + obx * w[ib]
-                vby = oby * w[ib]
+            vax, vay = _end_velocity(u, w, ends[s, 0], oax, oay)
+            vbx, vby = _end_velocity(u, w, ends[s, 1], obx, oby)
             t += damping_tension(springs[s, DAMP], dx, dy, vbx - vax, vby - vay, dist)
         length[s] = dist
         tension[s] = t
@@ -177,20 +172,8 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
     for s in range(springs.shape[0]):
         ia = ends[s, 0]
         ib = ends[s, 1]
-        oax = 0.0
-        oay = 0.0
-        obx = 0.0
-        oby = 0.0
-        if ia >= 0:
-            pax, pay, oax, oay = _rolling_point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], q)
-        else:
-            pax = springs[s, AAX]
-            pay = springs[s, AAY]
-        if ib >= 0:
-            pbx, pby, obx, oby = _rolling_point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], q)
-        else:
-            pbx = springs[s, ABX]
-            pby = springs[s, ABY]
+        pax, pay, oax, oay = _rolling_end(bodies, springs, ia, s, 0, q)
+        pbx, pby, obx, oby = _rolling_end(bodies, springs, ib, s, 1, q)
         dx = pbx - pax
         dy = pby - pay
         if is_level(dx, dy):
@@ -201,22 +184,14 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
         else:
             dist = distance(dx, dy)
             tx, ty = pull(elastic_tension(springs[s, STIFF], springs[s, REST], dist), dx, dy, dist)
-        # _load_ends's writes, written out here: a shared inlined helper for them made the
-        # whole integration 2.5 times slower (bench_hoop_cylinder.py: 0.19 -> 0.47 ms)
         if ia >= 0:
-            fx[ia] += tx
-            fy[ia] += ty
-            tau[ia] += torque(oax, oay, tx, ty)
+            _load(fx, fy, tau, ia, 1.0, tx, ty, oax, oay)
         if ib >= 0:
-            fx[ib] -= tx
-            fy[ib] -= ty
-            tau[ib] -= torque(obx, oby, tx, ty)
+            _load(fx, fy, tau, ib, -1.0, tx, ty, obx, oby)
     for j in range(forces.shape[0]):
         i = force_body[j]
         _, _, ox, oy = _rolling_point(bodies, i, forces[j, FR], forces[j, FALPHA], q)
-        fx[i] += forces[j, FX]
-        fy[i] += forces[j, FY]
-        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
+        _load(fx, fy, tau, i, 1.0, forces[j, FX], forces[j, FY], ox, oy)
     for i in range(q.shape[0]):
         gen[i] = generalized_force(bodies[i, SCALE], fx[i], tau[i])
 
@@ -226,6 +201,14 @@ def _rolling_point(bodies, i, r, alpha, q):
     """:func:`_point` of an all-rolling state q: centre x = x0 + s q, rotation q."""
     x = bodies[i, X0] + bodies[i, SCALE] * q[i]
     return attachment(x, bodies[i, CY], bodies[i, ROLLS], r, alpha, q[i])
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _rolling_end(bodies, springs, i, s, e, q):
+    """:func:`_end` of an all-rolling state q."""
+    if i < 0:
+        return springs[s, AAX + 2 * e], springs[s, AAY + 2 * e], 0.0, 0.0
+    return _rolling_point(bodies, i, springs[s, RA + 2 * e], springs[s, ALPHA_A + 2 * e], q)
 
 
 @njit(cache=True, error_model="numpy")
@@ -272,6 +255,18 @@ def _rolling_lever(bodies, i, r, alpha, q, v):
     )
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _lever_end(bodies, springs, i, s, e, q, v):
+    """:func:`_rolling_lever` of end ``e`` of spring ``s`` on body ``i`` (:func:`_end`), and the
+    end's velocity: (px, py, lx, ly, dlx, dly, vx, vy), the lever 0 for an anchor."""
+    if i < 0:
+        return springs[s, AAX + 2 * e], springs[s, AAY + 2 * e], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    px, py, lx, ly, dlx, dly = _rolling_lever(
+        bodies, i, springs[s, RA + 2 * e], springs[s, ALPHA_A + 2 * e], q, v
+    )
+    return px, py, lx, ly, dlx, dly, lx * v[i], ly * v[i]
+
+
 @njit(cache=True, error_model="numpy")
 def force_rates(model, q, v, rate):
     r"""The rates :math:`\dot Q = (\partial Q/\partial q)\,\dot q = -K(q)\,\dot q` of the
@@ -291,29 +286,8 @@ def force_rates(model, q, v, rate):
     for s in range(springs.shape[0]):
         ia = ends[s, 0]
         ib = ends[s, 1]
-        # the two ends written out: one inlined helper for both made the run's stepping kernel
-        # (which calls this every step) 12% slower (349 steps of the paper's system: 154 ->
-        # 172 us)
-        lax = lay = dlax = dlay = lbx = lby = dlbx = dlby = 0.0
-        vax = vay = vbx = vby = 0.0
-        if ia >= 0:
-            pax, pay, lax, lay, dlax, dlay = _rolling_lever(
-                bodies, ia, springs[s, RA], springs[s, ALPHA_A], q, v
-            )
-            vax = lax * v[ia]
-            vay = lay * v[ia]
-        else:
-            pax = springs[s, AAX]
-            pay = springs[s, AAY]
-        if ib >= 0:
-            pbx, pby, lbx, lby, dlbx, dlby = _rolling_lever(
-                bodies, ib, springs[s, RB], springs[s, ALPHA_B], q, v
-            )
-            vbx = lbx * v[ib]
-            vby = lby * v[ib]
-        else:
-            pbx = springs[s, ABX]
-            pby = springs[s, ABY]
+        pax, pay, lax, lay, dlax, dlay, vax, vay = _lever_end(bodies, springs, ia, s, 0, q, v)
+        pbx, pby, lbx, lby, dlbx, dlby, vbx, vby = _lever_end(bodies, springs, ib, s, 1, q, v)
         dx = pbx - pax
         dy = pby - pay
         ddx = vbx - vax

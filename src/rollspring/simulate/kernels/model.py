@@ -45,6 +45,8 @@ __all__ = [
 
 # columns of the packed per-body, per-spring and per-force arrays of the kernel model
 X0, SCALE, ROLLS, CY, INERTIA, MASS, MU_S, CENTRAL, MU_K, RADIUS, INV_INERTIA = range(11)
+# a spring's end b has its columns two after end a's (RB = RA + 2, ..., ABY = AAY + 2): the
+# kernels read end e (0: a, 1: b) at RA + 2 e, ALPHA_A + 2 e, AAX + 2 e, AAY + 2 e
 RA, ALPHA_A, RB, ALPHA_B, AAX, AAY, ABX, ABY, STIFF, REST, DAMP = range(11)
 FR, FALPHA, FX, FY = range(4)
 

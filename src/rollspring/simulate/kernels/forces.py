@@ -18,11 +18,10 @@ on end a, :math:`-T e` on end b) and the constant forces. A rolling body's gener
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
+from rollspring.simulate.kernels import model as col
 from rollspring.simulate.kernels.law import (
     attachment,
     attachment_lever,
@@ -35,27 +34,9 @@ from rollspring.simulate.kernels.law import (
     needed_friction,
     normal_force,
     pull,
+    pull_rate,
     spring_length,
     torque,
-)
-from rollspring.simulate.kernels.model import (
-    AAX,
-    AAY,
-    ALPHA_A,
-    CY,
-    DAMP,
-    FALPHA,
-    FR,
-    FX,
-    FY,
-    INERTIA,
-    MASS,
-    RA,
-    REST,
-    ROLLS,
-    SCALE,
-    STIFF,
-    X0,
 )
 
 __all__ = ["body_loads", "force_rates", "generalized_forces", "rolling_forces"]
@@ -64,7 +45,7 @@ __all__ = ["body_loads", "force_rates", "generalized_forces", "rolling_forces"]
 @njit(cache=True, inline="always", error_model="numpy")
 def _point(bodies, i, r, alpha, x, phi):
     """Attachment position (M1) and its velocity per unit angular velocity at fixed centre."""
-    return attachment(x[i], bodies[i, CY], bodies[i, ROLLS], r, alpha, phi[i])
+    return attachment(x[i], bodies[i, col.CY], bodies[i, col.ROLLS], r, alpha, phi[i])
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -73,8 +54,8 @@ def _end(bodies, springs, i, s, e, x, phi):
     its velocity per unit angular velocity of the body at a fixed centre (0 for an anchor), (M1).
     An end's columns are end a's plus ``2 e`` (:mod:`.model`)."""
     if i < 0:
-        return springs[s, AAX + 2 * e], springs[s, AAY + 2 * e], 0.0, 0.0
-    return _point(bodies, i, springs[s, RA + 2 * e], springs[s, ALPHA_A + 2 * e], x, phi)
+        return springs[s, col.AAX + 2 * e], springs[s, col.AAY + 2 * e], 0.0, 0.0
+    return _point(bodies, i, springs[s, col.RA + 2 * e], springs[s, col.ALPHA_A + 2 * e], x, phi)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -127,8 +108,8 @@ def _load_forces(bodies, forces, force_body, x, phi, fx, fy, tau):
     the centre (docs/physics.md §2)."""
     for j in range(forces.shape[0]):
         i = force_body[j]
-        _, _, ox, oy = _point(bodies, i, forces[j, FR], forces[j, FALPHA], x, phi)
-        _load(fx, fy, tau, i, 1.0, forces[j, FX], forces[j, FY], ox, oy)
+        _, _, ox, oy = _point(bodies, i, forces[j, col.FR], forces[j, col.FALPHA], x, phi)
+        _load(fx, fy, tau, i, 1.0, forces[j, col.FX], forces[j, col.FY], ox, oy)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -144,11 +125,11 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
         tau[i] = 0.0
     for s in range(springs.shape[0]):
         dx, dy, dist, oax, oay, obx, oby = _spring_geometry(bodies, springs, ends, s, x, phi)
-        t = elastic_tension(springs[s, STIFF], springs[s, REST], dist)
-        if damped and springs[s, DAMP] != 0.0:
+        t = elastic_tension(springs[s, col.STIFF], springs[s, col.REST], dist)
+        if damped and springs[s, col.DAMP] != 0.0:
             vax, vay = _end_velocity(u, w, ends[s, 0], oax, oay)
             vbx, vby = _end_velocity(u, w, ends[s, 1], obx, oby)
-            t += damping_tension(springs[s, DAMP], dx, dy, vbx - vax, vby - vay, dist)
+            t += damping_tension(springs[s, col.DAMP], dx, dy, vbx - vax, vby - vay, dist)
         length[s] = dist
         tension[s] = t
         _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau)
@@ -179,36 +160,38 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
         if is_level(dx, dy):
             # a level spring (both ends at one height): T e_x = k (|dx| - L0) sign(dx), without
             # the square root and the division on the stepping's chain
-            tx = level_pull(springs[s, STIFF], springs[s, REST], dx)
+            tx = level_pull(springs[s, col.STIFF], springs[s, col.REST], dx)
             ty = 0.0
         else:
             dist = distance(dx, dy)
-            tx, ty = pull(elastic_tension(springs[s, STIFF], springs[s, REST], dist), dx, dy, dist)
+            tx, ty = pull(
+                elastic_tension(springs[s, col.STIFF], springs[s, col.REST], dist), dx, dy, dist
+            )
         if ia >= 0:
             _load(fx, fy, tau, ia, 1.0, tx, ty, oax, oay)
         if ib >= 0:
             _load(fx, fy, tau, ib, -1.0, tx, ty, obx, oby)
     for j in range(forces.shape[0]):
         i = force_body[j]
-        _, _, ox, oy = _rolling_point(bodies, i, forces[j, FR], forces[j, FALPHA], q)
-        _load(fx, fy, tau, i, 1.0, forces[j, FX], forces[j, FY], ox, oy)
+        _, _, ox, oy = _rolling_point(bodies, i, forces[j, col.FR], forces[j, col.FALPHA], q)
+        _load(fx, fy, tau, i, 1.0, forces[j, col.FX], forces[j, col.FY], ox, oy)
     for i in range(q.shape[0]):
-        gen[i] = generalized_force(bodies[i, SCALE], fx[i], tau[i])
+        gen[i] = generalized_force(bodies[i, col.SCALE], fx[i], tau[i])
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _rolling_point(bodies, i, r, alpha, q):
     """:func:`_point` of an all-rolling state q: centre x = x0 + s q, rotation q."""
-    x = bodies[i, X0] + bodies[i, SCALE] * q[i]
-    return attachment(x, bodies[i, CY], bodies[i, ROLLS], r, alpha, q[i])
+    x = bodies[i, col.X0] + bodies[i, col.SCALE] * q[i]
+    return attachment(x, bodies[i, col.CY], bodies[i, col.ROLLS], r, alpha, q[i])
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _rolling_end(bodies, springs, i, s, e, q):
     """:func:`_end` of an all-rolling state q."""
     if i < 0:
-        return springs[s, AAX + 2 * e], springs[s, AAY + 2 * e], 0.0, 0.0
-    return _rolling_point(bodies, i, springs[s, RA + 2 * e], springs[s, ALPHA_A + 2 * e], q)
+        return springs[s, col.AAX + 2 * e], springs[s, col.AAY + 2 * e], 0.0, 0.0
+    return _rolling_point(bodies, i, springs[s, col.RA + 2 * e], springs[s, col.ALPHA_A + 2 * e], q)
 
 
 @njit(cache=True, error_model="numpy")
@@ -236,11 +219,11 @@ def _contact(model, i, gen_i, fx_i, fy_i):
     """(M8), (M9): friction needed to roll and the normal force."""
     b = model[0]
     friction = (
-        needed_friction(b[i, MASS], b[i, SCALE], b[i, INERTIA], gen_i, fx_i)
-        if b[i, ROLLS] > 0.0
+        needed_friction(b[i, col.MASS], b[i, col.SCALE], b[i, col.INERTIA], gen_i, fx_i)
+        if b[i, col.ROLLS] > 0.0
         else 0.0
     )
-    return friction, normal_force(b[i, MASS] * model[5], fy_i)
+    return friction, normal_force(b[i, col.MASS] * model[5], fy_i)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -249,9 +232,9 @@ def _rolling_lever(bodies, i, r, alpha, q, v):
     its lever :math:`\ell = \partial p/\partial q_i` and the lever's rate
     :math:`\dot\ell = \dot q_i\,\partial\ell/\partial q_i` (M1):
     (px, py, lx, ly, dlx, dly)."""
-    x = bodies[i, X0] + bodies[i, SCALE] * q[i]
+    x = bodies[i, col.X0] + bodies[i, col.SCALE] * q[i]
     return attachment_lever(
-        x, bodies[i, CY], bodies[i, SCALE], bodies[i, ROLLS], r, alpha, q[i], v[i]
+        x, bodies[i, col.CY], bodies[i, col.SCALE], bodies[i, col.ROLLS], r, alpha, q[i], v[i]
     )
 
 
@@ -260,9 +243,10 @@ def _lever_end(bodies, springs, i, s, e, q, v):
     """:func:`_rolling_lever` of end ``e`` of spring ``s`` on body ``i`` (:func:`_end`), and the
     end's velocity: (px, py, lx, ly, dlx, dly, vx, vy), the lever 0 for an anchor."""
     if i < 0:
-        return springs[s, AAX + 2 * e], springs[s, AAY + 2 * e], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        px, py = springs[s, col.AAX + 2 * e], springs[s, col.AAY + 2 * e]
+        return px, py, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     px, py, lx, ly, dlx, dly = _rolling_lever(
-        bodies, i, springs[s, RA + 2 * e], springs[s, ALPHA_A + 2 * e], q, v
+        bodies, i, springs[s, col.RA + 2 * e], springs[s, col.ALPHA_A + 2 * e], q, v
     )
     return px, py, lx, ly, dlx, dly, lx * v[i], ly * v[i]
 
@@ -292,26 +276,22 @@ def force_rates(model, q, v, rate):
         dy = pby - pay
         ddx = vbx - vax
         ddy = vby - vay
-        k = springs[s, STIFF]
-        if dy == 0.0 and ddy == 0.0 and 1e-150 < abs(dx) < 1e150:
+        k = springs[s, col.STIFF]
+        if ddy == 0.0 and is_level(dx, dy):
             # a level spring staying level: F_x = k (|dx| - L0) sign(dx), dF_x/dt = k ddx
-            force_x = level_pull(k, springs[s, REST], dx)
+            force_x = level_pull(k, springs[s, col.REST], dx)
             force_y = 0.0
             rate_x = k * ddx
             rate_y = 0.0
         else:
-            length = math.sqrt(dx * dx + dy * dy)
-            stretch = k * (1.0 - springs[s, REST] / length)
-            along = k * springs[s, REST] * (dx * ddx + dy * ddy) / (length * length * length)
-            force_x = stretch * dx
-            force_y = stretch * dy
-            rate_x = stretch * ddx + along * dx
-            rate_y = stretch * ddy + along * dy
+            force_x, force_y, rate_x, rate_y = pull_rate(k, springs[s, col.REST], dx, dy, ddx, ddy)
         if ia >= 0:
             rate[ia] += dlax * force_x + dlay * force_y + lax * rate_x + lay * rate_y
         if ib >= 0:
             rate[ib] -= dlbx * force_x + dlby * force_y + lbx * rate_x + lby * rate_y
     for j in range(forces.shape[0]):
         i = force_body[j]
-        _, _, _, _, dlx, dly = _rolling_lever(bodies, i, forces[j, FR], forces[j, FALPHA], q, v)
-        rate[i] += dlx * forces[j, FX] + dly * forces[j, FY]
+        _, _, _, _, dlx, dly = _rolling_lever(
+            bodies, i, forces[j, col.FR], forces[j, col.FALPHA], q, v
+        )
+        rate[i] += dlx * forces[j, col.FX] + dly * forces[j, col.FY]

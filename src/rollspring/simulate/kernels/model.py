@@ -2,7 +2,9 @@
 
 :func:`kernel_model` packs :class:`~rollspring.physics.SystemArrays` into one row per body, per
 spring and per constant force; the column constants below name those rows' entries, and every
-kernel module reads the model through them. Few packed arrays keep the compiled calls cheap.
+kernel module reads the model through them (``from rollspring.simulate.kernels import model as
+col``, then ``springs[s, col.STIFF]``: Numba takes a module's integer attribute as a compile-time
+constant, as it takes an imported name). Few packed arrays keep the compiled calls cheap.
 """
 
 from __future__ import annotations

@@ -49,22 +49,28 @@ def _point(bodies, i, r, alpha, x, phi):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _end(bodies, springs, i, s, e, x, phi):
-    """End ``e`` (0: a, 1: b) of spring ``s``, on body ``i`` (-1: an anchor): its position and
-    its velocity per unit angular velocity of the body at a fixed centre (0 for an anchor), (M1).
-    An end's columns are end a's plus ``2 e`` (:mod:`.model`)."""
-    if i < 0:
-        return springs[s, col.AAX + 2 * e], springs[s, col.AAY + 2 * e], 0.0, 0.0
-    return _point(bodies, i, springs[s, col.RA + 2 * e], springs[s, col.ALPHA_A + 2 * e], x, phi)
-
-
-@njit(cache=True, inline="always", error_model="numpy")
 def _spring_geometry(bodies, springs, ends, s, x, phi):
     """Spring ``s``: the vector from its end a to its end b (dx, dy), its length, and each
     end's velocity per unit angular velocity of its body at a fixed centre (oax, oay, obx, oby;
-    0 for an anchor), (M1)."""
-    pax, pay, oax, oay = _end(bodies, springs, ends[s, 0], s, 0, x, phi)
-    pbx, pby, obx, oby = _end(bodies, springs, ends[s, 1], s, 1, x, phi)
+    0 for an anchor), (M1). The two ends written out: with one inlined helper for both (as
+    :func:`_rolling_end`) the whole simulate() call of the paper's system with 2001 outputs,
+    which observes every row through this, took 8% longer (0.58 -> 0.63 ms)."""
+    ia = ends[s, 0]
+    ib = ends[s, 1]
+    oax = 0.0
+    oay = 0.0
+    obx = 0.0
+    oby = 0.0
+    if ia >= 0:
+        pax, pay, oax, oay = _point(bodies, ia, springs[s, col.RA], springs[s, col.ALPHA_A], x, phi)
+    else:
+        pax = springs[s, col.AAX]
+        pay = springs[s, col.AAY]
+    if ib >= 0:
+        pbx, pby, obx, oby = _point(bodies, ib, springs[s, col.RB], springs[s, col.ALPHA_B], x, phi)
+    else:
+        pbx = springs[s, col.ABX]
+        pby = springs[s, col.ABY]
     dx = pbx - pax
     dy = pby - pay
     return dx, dy, spring_length(dx, dy), oax, oay, obx, oby
@@ -188,7 +194,9 @@ def _rolling_point(bodies, i, r, alpha, q):
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _rolling_end(bodies, springs, i, s, e, q):
-    """:func:`_end` of an all-rolling state q."""
+    """End ``e`` (0: a, 1: b) of spring ``s`` in the all-rolling state q, on body ``i`` (-1: an
+    anchor): its position and its velocity per unit angular velocity of the body at a fixed
+    centre (0 for an anchor), (M1). An end's columns are end a's plus ``2 e`` (:mod:`.model`)."""
     if i < 0:
         return springs[s, col.AAX + 2 * e], springs[s, col.AAY + 2 * e], 0.0, 0.0
     return _rolling_point(bodies, i, springs[s, col.RA + 2 * e], springs[s, col.ALPHA_A + 2 * e], q)
@@ -240,8 +248,9 @@ def _rolling_lever(bodies, i, r, alpha, q, v):
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _lever_end(bodies, springs, i, s, e, q, v):
-    """:func:`_rolling_lever` of end ``e`` of spring ``s`` on body ``i`` (:func:`_end`), and the
-    end's velocity: (px, py, lx, ly, dlx, dly, vx, vy), the lever 0 for an anchor."""
+    """:func:`_rolling_lever` of end ``e`` of spring ``s`` on body ``i`` (as
+    :func:`_rolling_end`), and the end's velocity: (px, py, lx, ly, dlx, dly, vx, vy), the lever
+    0 for an anchor."""
     if i < 0:
         px, py = springs[s, col.AAX + 2 * e], springs[s, col.AAY + 2 * e]
         return px, py, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0

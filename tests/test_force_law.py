@@ -272,7 +272,16 @@ def test_the_law_is_every_kernel_force_expression() -> None:
     for module in (forces, observation):
         text = inspect.getsource(module)
         assert "from rollspring.simulate.kernels.law import" in text
-        for written_out in ("* (dist - springs[s, REST])", "MASS] * g - fy", "MU_K] * normal"):
+        for written_out in (
+            "* (dist - springs[s, REST])",
+            "MASS] * g - fy",
+            "MU_K] * normal",
+            # the columns as the kernels name them (``col``, the model module)
+            "* (dist - springs[s, col.REST])",
+            "col.MASS] * g - fy",
+            "col.MU_K] * normal",
+            "/ (length * length * length)",
+        ):
             assert written_out not in text, (module.__name__, written_out)
     assert math.isclose(law.level_pull.py_func(2.0, 0.5, -1.5), -2.0)
 

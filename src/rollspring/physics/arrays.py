@@ -127,6 +127,24 @@ class SystemArrays:
         return dense
 
 
+#: The fields of :class:`SystemArrays` that :func:`system_arrays` gathers as the rows of one
+#: array per body and one per spring, in the rows' order.
+_PER_BODY = (
+    "mass",
+    "radius",
+    "gamma",
+    "track",
+    "x0",
+    "v0",
+    "scale",
+    "rolls",
+    "inertia",
+    "mu_static",
+    "mu_kinetic",
+)
+_PER_SPRING = ("stiffness", "rest_length", "damping")
+
+
 def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> SystemArrays:
     """Flatten a validated :class:`~rollspring.model.System` into :class:`SystemArrays` (or
     the system that its JSON form, a file path or a preset name describes:
@@ -215,26 +233,12 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
         for name in names:
             counts[name] += 1
             unique.append(name if total[name] == 1 else f"{name}#{counts[name]}")
-    mass, radius, gamma, track, x0, v0, scale, rolls, inertia, mu_static, mu_kinetic = per_body
-    stiffness, rest_length, damping = per_spring
+    bodies_rows = dict(zip(_PER_BODY, per_body, strict=True))
+    spring_rows = dict(zip(_PER_SPRING, per_spring, strict=True))
     return SystemArrays(
         ids=tuple(index),
         spring_names=tuple(unique),
-        mass=mass,
-        radius=radius,
-        gamma=gamma,
-        track=track,
-        x0=x0,
-        v0=v0,
-        scale=scale,
-        rolls=rolls,
-        inertia=inertia,
-        mu_static=mu_static,
-        mu_kinetic=mu_kinetic,
         gravity=float(system.gravity),
-        stiffness=stiffness,
-        rest_length=rest_length,
-        damping=damping,
         end_body=end_body,
         end_r=end_r,
         end_alpha=end_alpha,
@@ -243,4 +247,6 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
         force_r=per_force[0],
         force_alpha=per_force[1],
         force=force,
+        **bodies_rows,
+        **spring_rows,
     )

@@ -23,7 +23,7 @@ from rollspring.errors import SimulationError
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import kernels
 from rollspring.simulate.run_state import NO_SAMPLES, Handover, Observed, RunState, Segment, Start
-from rollspring.simulate.status import RunStatus
+from rollspring.simulate.status import RunStatus, Status
 
 __all__ = ["RollingSegments"]
 
@@ -93,6 +93,10 @@ class RollingSegments(RunState):
         crossing = np.array([0.0, 0.0, 0.0, float(self.plan.mode_weights @ (q - self.plan.q_ref))])
         crossing_states = np.zeros((2, 2, n))
         before = np.empty((2, n))
+        # what the kernel keeps across the chunks (run_fixed_step's docstring), seeded above;
+        # the period signal is weights . (q - q_ref)
+        signal = (self.plan.mode_weights, self.plan.q_ref)
+        kept = (extremes, extreme_states, ball_ptr, ball_idx, *signal, crossing, crossing_states)
         q, qdot = q.copy(), qdot.copy()
         done = 0
         while done < n_total:
@@ -110,28 +114,10 @@ class RollingSegments(RunState):
                 block_q[0] = q
                 block_v[0] = qdot
             out_q, out_v = block_q[lead:], block_v[lead:]
+            outputs = (out_times, out_q, out_v)
             began = time.perf_counter()
             status, taken, body, filled = kernels.run_fixed_step(
-                model,
-                self.coeffs,
-                q,
-                qdot,
-                t_chunk,
-                h,
-                steps,
-                True,
-                out_times,
-                out_q,
-                out_v,
-                extremes,
-                extreme_states,
-                ball_ptr,
-                ball_idx,
-                self.plan.mode_weights,
-                self.plan.q_ref,
-                crossing,
-                crossing_states,
-                before,
+                model, self.coeffs, q, qdot, t_chunk, h, steps, True, *outputs, *kept, before
             )
             self.integrate_time += time.perf_counter() - began
             self._count_steps(self.plan.scheme, taken)
@@ -151,14 +137,14 @@ class RollingSegments(RunState):
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
                 self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
                 return float(self.times[-1][-1]), self.rows[-1][-1], slipping, sign
-            if status != kernels.STATUS_FINISHED:
+            if status != Status.FINISHED:
                 t_before = t_chunk + (taken - 1) * h
                 row_times.append(np.array([t_before]))
                 row_q.append(before[0][None, :].copy())
                 row_v.append(before[1][None, :].copy())
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
                 self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
-                if status == kernels.STATUS_NONFINITE:
+                if status == Status.NONFINITE:
                     self.status = RunStatus.NONFINITE
                     self.message = (
                         f"the state became non-finite at t = {t_before + h:.6g} s "

@@ -63,6 +63,12 @@ from rollspring.simulate.batch.plan import (
     run_cost,
 )
 from rollspring.simulate.integrators import INTEGRATORS as _REGISTRY
+from rollspring.simulate.kernels.stepping import (
+    STATUS_FINISHED,
+    STATUS_LIFTOFF,
+    STATUS_NONFINITE,
+    STATUS_SLIP,
+)
 from rollspring.simulate.status import Status
 
 __all__ = [
@@ -88,12 +94,8 @@ __all__ = [
     "simulate_batch",
 ]
 
-STATUS_FINISHED = int(Status.FINISHED)
-STATUS_NONFINITE = int(Status.NONFINITE)
-STATUS_SLIP = int(Status.SLIP)
-STATUS_LIFTOFF = int(Status.LIFTOFF)
-STATUS_UNRESOLVED = int(Status.UNRESOLVED)
-STATUS_INVALID = int(Status.INVALID)
+# the batch's own codes; the others are the single-run kernels' (kernels.stepping)
+STATUS_UNRESOLVED, STATUS_INVALID = int(Status.UNRESOLVED), int(Status.INVALID)
 #: Status code -> name (every :class:`~rollspring.simulate.status.Status` a batch reports).
 STATUS_NAMES = {int(s): s.label for s in Status}
 

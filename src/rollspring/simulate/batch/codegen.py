@@ -21,17 +21,13 @@ from pathlib import Path
 
 from rollspring.simulate.batch.plan import Plan
 from rollspring.simulate.kernels import law
-from rollspring.simulate.status import Status
+from rollspring.simulate.kernels.stepping import STATUS_LIFTOFF, STATUS_NONFINITE, STATUS_SLIP
 
 __all__ = ["BLOCK", "OUT_BODY", "OUT_COLUMNS", "OUT_EVENT_TIME", "SINCOS", "Source"]
 
 #: Runs per block (lanes of the vectorised inner loops).
 BLOCK = 256
 _RS = BLOCK + 8  # row stride of the block-local arrays; padding avoids 4 KiB store/load aliasing
-
-STATUS_NONFINITE = int(Status.NONFINITE)
-STATUS_SLIP = int(Status.SLIP)
-STATUS_LIFTOFF = int(Status.LIFTOFF)
 
 # columns of OUT: event time, E0, max |E - E0|, CM and X-hat extremes, crossings, then per body
 # (best |f|, its N, min N, final x, final v)
@@ -630,13 +626,9 @@ class Source:
                 lines.append(
                     f"{S(f'FB{i}')} = abs({F(f'm_{i}')} * {F(f'xa_{i}')} - 1.0) * {S(f'TM{k}')}"
                 )
-            lines += [
-                f"OUT[lo + {lane}, {base}] = {S(f'FB{i}')}",
-                f"OUT[lo + {lane}, {base + 1}] = {S(f'NB{i}')}",
-                f"OUT[lo + {lane}, {base + 2}] = {S(f'NMIN{i}')}",
-                f"OUT[lo + {lane}, {base + 3}] = {F(f'x0_{i}')} + y{i}",
-                f"OUT[lo + {lane}, {base + 4}] = ve{i}",
-            ]
+            # the body's five columns: max |f|/N and its N, min N, final position and velocity
+            body = (S(f"FB{i}"), S(f"NB{i}"), S(f"NMIN{i}"), f"{F(f'x0_{i}')} + y{i}", f"ve{i}")
+            lines += [f"OUT[lo + {lane}, {base + c}] = {value}" for c, value in enumerate(body)]
         return lines
 
     def epilogue(self) -> list[str]:

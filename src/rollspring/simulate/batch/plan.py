@@ -104,6 +104,22 @@ def _attachment_polar(at: Attachment, radius: FloatArray) -> tuple[FloatArray, F
     return np.zeros_like(radius), np.zeros_like(radius)
 
 
+def _placed(
+    at: Attachment, radius: FloatArray, rolls: bool, where: str, body: str
+) -> tuple[FloatArray, FloatArray, bool]:
+    """:func:`_attachment_polar` of an attachment on ``body`` (radius per run), and whether it is
+    off the centre in any run: a slider's may not be (:class:`ModelError` naming ``where``)."""
+    r, alpha = _attachment_polar(at, radius)
+    off = bool(np.any(r != 0.0))
+    if off and not rolls:
+        run = int(np.flatnonzero(r != 0.0)[0])
+        raise ModelError(
+            f"{where}: '{body}' is a slider (it does not rotate) and this height is off its "
+            f"centre in run {run} (radius {float(radius[run])!r})"
+        )
+    return r, alpha, off
+
+
 def make_plan(system: System, runs: Runs, topology: Plan | None = None) -> Plan:
     """The fields of every run and the topology the kernel is generated for. The topology's
     choices (an end off its centre, a spring that stays horizontal, a body whose slip is checked)
@@ -142,15 +158,7 @@ def make_plan(system: System, runs: Runs, topology: Plan | None = None) -> Plan:
         for e, (end, at) in enumerate(zip(spring.ends, spring.attachments, strict=True)):
             if end in index:
                 i = index[end]
-                r, alpha = _attachment_polar(at, R[:, i])
-                off = bool(np.any(r != 0.0))
-                if off and not rolls[i]:
-                    run = int(np.flatnonzero(r != 0.0)[0])
-                    raise ModelError(
-                        f"springs[{k}].at[{e}]: '{end}' is a slider (it does not rotate) and "
-                        f"this height is off its centre in run {run} (radius "
-                        f"{float(R[run, i])!r})"
-                    )
+                r, alpha, off = _placed(at, R[:, i], rolls[i], f"springs[{k}].at[{e}]", end)
                 if topology is not None and topology.springs[k].kinds[e] == "off" and rolls[i]:
                     off = True
                 kinds.append("off" if off else "centre")
@@ -197,17 +205,9 @@ def make_plan(system: System, runs: Runs, topology: Plan | None = None) -> Plan:
     efy = np.zeros((runs.n_runs, n))
     for j, force in enumerate(system.forces):
         i = index[force.body]
-        r, alpha = _attachment_polar(force.at, R[:, i])
-        off = bool(np.any(r != 0.0))
+        r, alpha, off = _placed(force.at, R[:, i], rolls[i], f"forces[{j}].at", force.body)
         if topology is not None and topology.forces[j][1] and rolls[i]:
             off = True
-        if off and not rolls[i]:
-            run = int(np.flatnonzero(r != 0.0)[0])
-            raise ModelError(
-                f"forces[{j}].at: '{force.body}' is a slider (it does not rotate) "
-                f"and this height is off its centre in run {run} (radius "
-                f"{float(R[run, i])!r})"
-            )
         forces.append((i, off))
         f[f"Fx_{j}"] = np.full(runs.n_runs, float(force.fx))
         f[f"Fy_{j}"] = np.full(runs.n_runs, float(force.fy))

@@ -62,10 +62,6 @@ from rollspring.simulate.kernels.refine import (
 )
 from rollspring.simulate.kernels.stepping import (
     SCHEMES,
-    STATUS_FINISHED,
-    STATUS_LIFTOFF,
-    STATUS_NONFINITE,
-    STATUS_SLIP,
     advance,
     advance_many,
     run_fixed_step,
@@ -77,10 +73,6 @@ __all__ = [
     "LEVEL",
     "MOST_BODIES",
     "SCHEMES",
-    "STATUS_FINISHED",
-    "STATUS_LIFTOFF",
-    "STATUS_NONFINITE",
-    "STATUS_SLIP",
     "advance",
     "advance_many",
     "body_links",

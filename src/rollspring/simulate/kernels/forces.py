@@ -18,11 +18,10 @@ on end a, :math:`-T e` on end b) and the constant forces. A rolling body's gener
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
+from rollspring.simulate.kernels import model as col
 from rollspring.simulate.kernels.law import (
     attachment,
     attachment_lever,
@@ -35,31 +34,9 @@ from rollspring.simulate.kernels.law import (
     needed_friction,
     normal_force,
     pull,
+    pull_rate,
     spring_length,
     torque,
-)
-from rollspring.simulate.kernels.model import (
-    AAX,
-    AAY,
-    ABX,
-    ABY,
-    ALPHA_A,
-    ALPHA_B,
-    CY,
-    DAMP,
-    FALPHA,
-    FR,
-    FX,
-    FY,
-    INERTIA,
-    MASS,
-    RA,
-    RB,
-    REST,
-    ROLLS,
-    SCALE,
-    STIFF,
-    X0,
 )
 
 __all__ = ["body_loads", "force_rates", "generalized_forces", "rolling_forces"]
@@ -68,14 +45,16 @@ __all__ = ["body_loads", "force_rates", "generalized_forces", "rolling_forces"]
 @njit(cache=True, inline="always", error_model="numpy")
 def _point(bodies, i, r, alpha, x, phi):
     """Attachment position (M1) and its velocity per unit angular velocity at fixed centre."""
-    return attachment(x[i], bodies[i, CY], bodies[i, ROLLS], r, alpha, phi[i])
+    return attachment(x[i], bodies[i, col.CY], bodies[i, col.ROLLS], r, alpha, phi[i])
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _spring_geometry(bodies, springs, ends, s, x, phi):
     """Spring ``s``: the vector from its end a to its end b (dx, dy), its length, and each
     end's velocity per unit angular velocity of its body at a fixed centre (oax, oay, obx, oby;
-    0 for an anchor), (M1)."""
+    0 for an anchor), (M1). The two ends written out: with one inlined helper for both (as
+    :func:`_rolling_end`) the whole simulate() call of the paper's system with 2001 outputs,
+    which observes every row through this, took 8% longer (0.58 -> 0.63 ms)."""
     ia = ends[s, 0]
     ib = ends[s, 1]
     oax = 0.0
@@ -83,35 +62,50 @@ def _spring_geometry(bodies, springs, ends, s, x, phi):
     obx = 0.0
     oby = 0.0
     if ia >= 0:
-        pax, pay, oax, oay = _point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], x, phi)
+        pax, pay, oax, oay = _point(bodies, ia, springs[s, col.RA], springs[s, col.ALPHA_A], x, phi)
     else:
-        pax = springs[s, AAX]
-        pay = springs[s, AAY]
+        pax = springs[s, col.AAX]
+        pay = springs[s, col.AAY]
     if ib >= 0:
-        pbx, pby, obx, oby = _point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], x, phi)
+        pbx, pby, obx, oby = _point(bodies, ib, springs[s, col.RB], springs[s, col.ALPHA_B], x, phi)
     else:
-        pbx = springs[s, ABX]
-        pby = springs[s, ABY]
+        pbx = springs[s, col.ABX]
+        pby = springs[s, col.ABY]
     dx = pbx - pax
     dy = pby - pay
     return dx, dy, spring_length(dx, dy), oax, oay, obx, oby
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _end_velocity(u, w, i, ox, oy):
+    """The velocity of a point of body ``i`` (centre velocity u, angular velocity w; an anchor
+    for -1) whose velocity per unit angular velocity at a fixed centre is (ox, oy)."""
+    if i < 0:
+        return 0.0, 0.0
+    return u[i] + ox * w[i], oy * w[i]
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _load(fx, fy, tau, i, sign, tx, ty, ox, oy):
+    """Add ``sign`` times the force (tx, ty) at a point of body ``i`` whose velocity per unit
+    angular velocity is (ox, oy), and its clockwise torque about the centre (``sign`` 1.0 or
+    -1.0: the same bits as adding or subtracting). The caller skips an anchor (``i`` -1): with
+    that test inside this inlined helper the stepping ran 1.8 times slower
+    (bench_offcentre.py: 0.44 -> 0.82 s)."""
+    fx[i] += sign * tx
+    fy[i] += sign * ty
+    tau[i] += sign * torque(ox, oy, tx, ty)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau):
     """Add spring ``s``'s tension ``t`` to its bodies: :math:`+T e` on end a, :math:`-T e` on
     end b, and their clockwise torques about the centres."""
-    ia = ends[s, 0]
-    ib = ends[s, 1]
     tx, ty = pull(t, dx, dy, dist)
-    if ia >= 0:
-        fx[ia] += tx
-        fy[ia] += ty
-        tau[ia] += torque(oax, oay, tx, ty)
-    if ib >= 0:
-        fx[ib] -= tx
-        fy[ib] -= ty
-        tau[ib] -= torque(obx, oby, tx, ty)
+    if ends[s, 0] >= 0:
+        _load(fx, fy, tau, ends[s, 0], 1.0, tx, ty, oax, oay)
+    if ends[s, 1] >= 0:
+        _load(fx, fy, tau, ends[s, 1], -1.0, tx, ty, obx, oby)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -120,10 +114,8 @@ def _load_forces(bodies, forces, force_body, x, phi, fx, fy, tau):
     the centre (docs/physics.md §2)."""
     for j in range(forces.shape[0]):
         i = force_body[j]
-        _, _, ox, oy = _point(bodies, i, forces[j, FR], forces[j, FALPHA], x, phi)
-        fx[i] += forces[j, FX]
-        fy[i] += forces[j, FY]
-        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
+        _, _, ox, oy = _point(bodies, i, forces[j, col.FR], forces[j, col.FALPHA], x, phi)
+        _load(fx, fy, tau, i, 1.0, forces[j, col.FX], forces[j, col.FY], ox, oy)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -139,21 +131,11 @@ def body_loads(model, x, phi, u, w, damped, fx, fy, tau, length, tension):
         tau[i] = 0.0
     for s in range(springs.shape[0]):
         dx, dy, dist, oax, oay, obx, oby = _spring_geometry(bodies, springs, ends, s, x, phi)
-        t = elastic_tension(springs[s, STIFF], springs[s, REST], dist)
-        if damped and springs[s, DAMP] != 0.0:
-            ia = ends[s, 0]
-            ib = ends[s, 1]
-            vax = 0.0
-            vay = 0.0
-            vbx = 0.0
-            vby = 0.0
-            if ia >= 0:
-                vax = u[ia] + oax * w[ia]
-                vay = oay * w[ia]
-            if ib >= 0:
-                vbx = u[ib] + obx * w[ib]
-                vby = oby * w[ib]
-            t += damping_tension(springs[s, DAMP], dx, dy, vbx - vax, vby - vay, dist)
+        t = elastic_tension(springs[s, col.STIFF], springs[s, col.REST], dist)
+        if damped and springs[s, col.DAMP] != 0.0:
+            vax, vay = _end_velocity(u, w, ends[s, 0], oax, oay)
+            vbx, vby = _end_velocity(u, w, ends[s, 1], obx, oby)
+            t += damping_tension(springs[s, col.DAMP], dx, dy, vbx - vax, vby - vay, dist)
         length[s] = dist
         tension[s] = t
         _load_ends(ends, s, t, dx, dy, dist, oax, oay, obx, oby, fx, fy, tau)
@@ -177,55 +159,47 @@ def rolling_forces(model, q, scratch, gen, fx, fy):
     for s in range(springs.shape[0]):
         ia = ends[s, 0]
         ib = ends[s, 1]
-        oax = 0.0
-        oay = 0.0
-        obx = 0.0
-        oby = 0.0
-        if ia >= 0:
-            pax, pay, oax, oay = _rolling_point(bodies, ia, springs[s, RA], springs[s, ALPHA_A], q)
-        else:
-            pax = springs[s, AAX]
-            pay = springs[s, AAY]
-        if ib >= 0:
-            pbx, pby, obx, oby = _rolling_point(bodies, ib, springs[s, RB], springs[s, ALPHA_B], q)
-        else:
-            pbx = springs[s, ABX]
-            pby = springs[s, ABY]
+        pax, pay, oax, oay = _rolling_end(bodies, springs, ia, s, 0, q)
+        pbx, pby, obx, oby = _rolling_end(bodies, springs, ib, s, 1, q)
         dx = pbx - pax
         dy = pby - pay
         if is_level(dx, dy):
             # a level spring (both ends at one height): T e_x = k (|dx| - L0) sign(dx), without
             # the square root and the division on the stepping's chain
-            tx = level_pull(springs[s, STIFF], springs[s, REST], dx)
+            tx = level_pull(springs[s, col.STIFF], springs[s, col.REST], dx)
             ty = 0.0
         else:
             dist = distance(dx, dy)
-            tx, ty = pull(elastic_tension(springs[s, STIFF], springs[s, REST], dist), dx, dy, dist)
-        # _load_ends's writes, written out here: a shared inlined helper for them made the
-        # whole integration 2.5 times slower (bench_hoop_cylinder.py: 0.19 -> 0.47 ms)
+            tx, ty = pull(
+                elastic_tension(springs[s, col.STIFF], springs[s, col.REST], dist), dx, dy, dist
+            )
         if ia >= 0:
-            fx[ia] += tx
-            fy[ia] += ty
-            tau[ia] += torque(oax, oay, tx, ty)
+            _load(fx, fy, tau, ia, 1.0, tx, ty, oax, oay)
         if ib >= 0:
-            fx[ib] -= tx
-            fy[ib] -= ty
-            tau[ib] -= torque(obx, oby, tx, ty)
+            _load(fx, fy, tau, ib, -1.0, tx, ty, obx, oby)
     for j in range(forces.shape[0]):
         i = force_body[j]
-        _, _, ox, oy = _rolling_point(bodies, i, forces[j, FR], forces[j, FALPHA], q)
-        fx[i] += forces[j, FX]
-        fy[i] += forces[j, FY]
-        tau[i] += torque(ox, oy, forces[j, FX], forces[j, FY])
+        _, _, ox, oy = _rolling_point(bodies, i, forces[j, col.FR], forces[j, col.FALPHA], q)
+        _load(fx, fy, tau, i, 1.0, forces[j, col.FX], forces[j, col.FY], ox, oy)
     for i in range(q.shape[0]):
-        gen[i] = generalized_force(bodies[i, SCALE], fx[i], tau[i])
+        gen[i] = generalized_force(bodies[i, col.SCALE], fx[i], tau[i])
 
 
 @njit(cache=True, inline="always", error_model="numpy")
 def _rolling_point(bodies, i, r, alpha, q):
     """:func:`_point` of an all-rolling state q: centre x = x0 + s q, rotation q."""
-    x = bodies[i, X0] + bodies[i, SCALE] * q[i]
-    return attachment(x, bodies[i, CY], bodies[i, ROLLS], r, alpha, q[i])
+    x = bodies[i, col.X0] + bodies[i, col.SCALE] * q[i]
+    return attachment(x, bodies[i, col.CY], bodies[i, col.ROLLS], r, alpha, q[i])
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _rolling_end(bodies, springs, i, s, e, q):
+    """End ``e`` (0: a, 1: b) of spring ``s`` in the all-rolling state q, on body ``i`` (-1: an
+    anchor): its position and its velocity per unit angular velocity of the body at a fixed
+    centre (0 for an anchor), (M1). An end's columns are end a's plus ``2 e`` (:mod:`.model`)."""
+    if i < 0:
+        return springs[s, col.AAX + 2 * e], springs[s, col.AAY + 2 * e], 0.0, 0.0
+    return _rolling_point(bodies, i, springs[s, col.RA + 2 * e], springs[s, col.ALPHA_A + 2 * e], q)
 
 
 @njit(cache=True, error_model="numpy")
@@ -253,11 +227,11 @@ def _contact(model, i, gen_i, fx_i, fy_i):
     """(M8), (M9): friction needed to roll and the normal force."""
     b = model[0]
     friction = (
-        needed_friction(b[i, MASS], b[i, SCALE], b[i, INERTIA], gen_i, fx_i)
-        if b[i, ROLLS] > 0.0
+        needed_friction(b[i, col.MASS], b[i, col.SCALE], b[i, col.INERTIA], gen_i, fx_i)
+        if b[i, col.ROLLS] > 0.0
         else 0.0
     )
-    return friction, normal_force(b[i, MASS] * model[5], fy_i)
+    return friction, normal_force(b[i, col.MASS] * model[5], fy_i)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -266,10 +240,24 @@ def _rolling_lever(bodies, i, r, alpha, q, v):
     its lever :math:`\ell = \partial p/\partial q_i` and the lever's rate
     :math:`\dot\ell = \dot q_i\,\partial\ell/\partial q_i` (M1):
     (px, py, lx, ly, dlx, dly)."""
-    x = bodies[i, X0] + bodies[i, SCALE] * q[i]
+    x = bodies[i, col.X0] + bodies[i, col.SCALE] * q[i]
     return attachment_lever(
-        x, bodies[i, CY], bodies[i, SCALE], bodies[i, ROLLS], r, alpha, q[i], v[i]
+        x, bodies[i, col.CY], bodies[i, col.SCALE], bodies[i, col.ROLLS], r, alpha, q[i], v[i]
     )
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _lever_end(bodies, springs, i, s, e, q, v):
+    """:func:`_rolling_lever` of end ``e`` of spring ``s`` on body ``i`` (as
+    :func:`_rolling_end`), and the end's velocity: (px, py, lx, ly, dlx, dly, vx, vy), the lever
+    0 for an anchor."""
+    if i < 0:
+        px, py = springs[s, col.AAX + 2 * e], springs[s, col.AAY + 2 * e]
+        return px, py, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    px, py, lx, ly, dlx, dly = _rolling_lever(
+        bodies, i, springs[s, col.RA + 2 * e], springs[s, col.ALPHA_A + 2 * e], q, v
+    )
+    return px, py, lx, ly, dlx, dly, lx * v[i], ly * v[i]
 
 
 @njit(cache=True, error_model="numpy")
@@ -291,53 +279,28 @@ def force_rates(model, q, v, rate):
     for s in range(springs.shape[0]):
         ia = ends[s, 0]
         ib = ends[s, 1]
-        # the two ends written out: one inlined helper for both made the run's stepping kernel
-        # (which calls this every step) 12% slower (349 steps of the paper's system: 154 ->
-        # 172 us)
-        lax = lay = dlax = dlay = lbx = lby = dlbx = dlby = 0.0
-        vax = vay = vbx = vby = 0.0
-        if ia >= 0:
-            pax, pay, lax, lay, dlax, dlay = _rolling_lever(
-                bodies, ia, springs[s, RA], springs[s, ALPHA_A], q, v
-            )
-            vax = lax * v[ia]
-            vay = lay * v[ia]
-        else:
-            pax = springs[s, AAX]
-            pay = springs[s, AAY]
-        if ib >= 0:
-            pbx, pby, lbx, lby, dlbx, dlby = _rolling_lever(
-                bodies, ib, springs[s, RB], springs[s, ALPHA_B], q, v
-            )
-            vbx = lbx * v[ib]
-            vby = lby * v[ib]
-        else:
-            pbx = springs[s, ABX]
-            pby = springs[s, ABY]
+        pax, pay, lax, lay, dlax, dlay, vax, vay = _lever_end(bodies, springs, ia, s, 0, q, v)
+        pbx, pby, lbx, lby, dlbx, dlby, vbx, vby = _lever_end(bodies, springs, ib, s, 1, q, v)
         dx = pbx - pax
         dy = pby - pay
         ddx = vbx - vax
         ddy = vby - vay
-        k = springs[s, STIFF]
-        if dy == 0.0 and ddy == 0.0 and 1e-150 < abs(dx) < 1e150:
+        k = springs[s, col.STIFF]
+        if ddy == 0.0 and is_level(dx, dy):
             # a level spring staying level: F_x = k (|dx| - L0) sign(dx), dF_x/dt = k ddx
-            force_x = level_pull(k, springs[s, REST], dx)
+            force_x = level_pull(k, springs[s, col.REST], dx)
             force_y = 0.0
             rate_x = k * ddx
             rate_y = 0.0
         else:
-            length = math.sqrt(dx * dx + dy * dy)
-            stretch = k * (1.0 - springs[s, REST] / length)
-            along = k * springs[s, REST] * (dx * ddx + dy * ddy) / (length * length * length)
-            force_x = stretch * dx
-            force_y = stretch * dy
-            rate_x = stretch * ddx + along * dx
-            rate_y = stretch * ddy + along * dy
+            force_x, force_y, rate_x, rate_y = pull_rate(k, springs[s, col.REST], dx, dy, ddx, ddy)
         if ia >= 0:
             rate[ia] += dlax * force_x + dlay * force_y + lax * rate_x + lay * rate_y
         if ib >= 0:
             rate[ib] -= dlbx * force_x + dlby * force_y + lbx * rate_x + lby * rate_y
     for j in range(forces.shape[0]):
         i = force_body[j]
-        _, _, _, _, dlx, dly = _rolling_lever(bodies, i, forces[j, FR], forces[j, FALPHA], q, v)
-        rate[i] += dlx * forces[j, FX] + dly * forces[j, FY]
+        _, _, _, _, dlx, dly = _rolling_lever(
+            bodies, i, forces[j, col.FR], forces[j, col.FALPHA], q, v
+        )
+        rate[i] += dlx * forces[j, col.FX] + dly * forces[j, col.FY]

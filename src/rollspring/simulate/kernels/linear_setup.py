@@ -11,21 +11,8 @@ import numpy as np
 from numba import njit
 
 from rollspring.analysis import linear as _linear
+from rollspring.simulate.kernels import model as col
 from rollspring.simulate.kernels.forces import generalized_forces
-from rollspring.simulate.kernels.model import (
-    AAX,
-    AAY,
-    ABX,
-    ABY,
-    CY,
-    FX,
-    FY,
-    INERTIA,
-    INV_INERTIA,
-    SCALE,
-    STIFF,
-    X0,
-)
 
 __all__ = ["GENERAL", "KIND_NAMES", "LEVEL", "MOST_BODIES", "level_setup"]
 
@@ -49,7 +36,7 @@ def _residual(model, q):
     force = generalized_forces(model, q)
     total = 0.0
     for i in range(q.shape[0]):
-        total += force[i] * force[i] * model[0][i, INV_INERTIA]
+        total += force[i] * force[i] * model[0][i, col.INV_INERTIA]
     return math.sqrt(total), force
 
 
@@ -154,16 +141,16 @@ def level_setup(model, tolerance, zero_tolerance, eps):
     few = springs.shape[0] <= _IN_ORDER and 2 * model[3].shape[0] <= _IN_ORDER
     if n > MOST_BODIES or n == 0 or not few:
         return GENERAL, q, 0.0, stiffness, np.zeros(n), np.zeros((n, n)), np.zeros(n, np.int64)
-    inertia = bodies[:, INERTIA].copy()
+    inertia = bodies[:, col.INERTIA].copy()
     for i in range(n):
         if not (inertia[i] > 0.0 and inertia[i] < math.inf):
             return GENERAL, q, 0.0, stiffness, np.zeros(n), np.zeros((n, n)), np.zeros(n, np.int64)
     initial, force_0 = _residual(model, q)
     # linear._force_scale: the springs' and forces' typical generalised force
-    biggest = bodies[0, SCALE]
+    biggest = bodies[0, col.SCALE]
     smallest_inertia = inertia[0]
     for i in range(1, n):
-        biggest = max(biggest, bodies[i, SCALE])
+        biggest = max(biggest, bodies[i, col.SCALE])
         smallest_inertia = min(smallest_inertia, inertia[i])
     spring_scale = 0.0
     n_springs = springs.shape[0]
@@ -171,37 +158,37 @@ def level_setup(model, tolerance, zero_tolerance, eps):
     lengths = np.empty(n_springs)
     for s in range(n_springs):
         a, b = ends[s, 0], ends[s, 1]
-        xa = bodies[a, X0] if a >= 0 else springs[s, AAX]
-        ya = bodies[a, CY] if a >= 0 else springs[s, AAY]
-        xb = bodies[b, X0] if b >= 0 else springs[s, ABX]
-        yb = bodies[b, CY] if b >= 0 else springs[s, ABY]
+        xa = bodies[a, col.X0] if a >= 0 else springs[s, col.AAX]
+        ya = bodies[a, col.CY] if a >= 0 else springs[s, col.AAY]
+        xb = bodies[b, col.X0] if b >= 0 else springs[s, col.ABX]
+        yb = bodies[b, col.CY] if b >= 0 else springs[s, col.ABY]
         dx[s] = xb - xa
         if dx[s] == 0.0:  # ends one above the other: not linear._level_centre_springs
             return GENERAL, q, 0.0, stiffness, np.zeros(n), np.zeros((n, n)), np.zeros(n, np.int64)
         lengths[s] = math.sqrt(dx[s] ** 2 + (yb - ya) ** 2)
-        spring_scale += springs[s, STIFF] * lengths[s] * biggest
+        spring_scale += springs[s, col.STIFF] * lengths[s] * biggest
     forces = model[3]
     applied = 0.0
     for f in range(forces.shape[0]):
-        applied += abs(forces[f, FX])
-        applied += abs(forces[f, FY])
+        applied += abs(forces[f, col.FX])
+        applied += abs(forces[f, col.FY])
     applied *= biggest  # forces at centres: force_r is 0
     scale = max(initial, max(spring_scale, applied, 1e-300) / math.sqrt(smallest_inertia))
     target = tolerance * scale
     # linear._level_stiffness: K = sum_s k_s b_s b_s^T, summed in its order
     for s in range(n_springs):
         direction = dx[s] / lengths[s]
-        k = springs[s, STIFF]
+        k = springs[s, col.STIFF]
         for j in range(2):
             i = ends[s, j]
             if i < 0:
                 continue
-            b_i = direction * ((-1.0 if j == 0 else 1.0) * bodies[i, SCALE])
+            b_i = direction * ((-1.0 if j == 0 else 1.0) * bodies[i, col.SCALE])
             for other in range(2):
                 m = ends[s, other]
                 if m < 0:
                     continue
-                b_m = direction * ((-1.0 if other == 0 else 1.0) * bodies[m, SCALE])
+                b_m = direction * ((-1.0 if other == 0 else 1.0) * bodies[m, col.SCALE])
                 stiffness[i, m] += k * (b_i * b_m)
     ok, values, vectors, kinds = _modes(inertia, stiffness, zero_tolerance, eps)
     has_zero = has_oscillating = False

@@ -2,7 +2,9 @@
 
 :func:`kernel_model` packs :class:`~rollspring.physics.SystemArrays` into one row per body, per
 spring and per constant force; the column constants below name those rows' entries, and every
-kernel module reads the model through them. Few packed arrays keep the compiled calls cheap.
+kernel module reads the model through them (``from rollspring.simulate.kernels import model as
+col``, then ``springs[s, col.STIFF]``: Numba takes a module's integer attribute as a compile-time
+constant, as it takes an imported name). Few packed arrays keep the compiled calls cheap.
 """
 
 from __future__ import annotations
@@ -45,6 +47,8 @@ __all__ = [
 
 # columns of the packed per-body, per-spring and per-force arrays of the kernel model
 X0, SCALE, ROLLS, CY, INERTIA, MASS, MU_S, CENTRAL, MU_K, RADIUS, INV_INERTIA = range(11)
+# a spring's end b has its columns two after end a's (RB = RA + 2, ..., ABY = AAY + 2): the
+# kernels read end e (0: a, 1: b) at RA + 2 e, ALPHA_A + 2 e, AAX + 2 e, AAY + 2 e
 RA, ALPHA_A, RB, ALPHA_B, AAX, AAY, ABX, ABY, STIFF, REST, DAMP = range(11)
 FR, FALPHA, FX, FY = range(4)
 

@@ -9,6 +9,7 @@ import math
 import numpy as np
 from numba import njit
 
+from rollspring.simulate.kernels import model as col
 from rollspring.simulate.kernels.forces import (
     _load_ends,
     _load_forces,
@@ -19,28 +20,12 @@ from rollspring.simulate.kernels.forces import (
 from rollspring.simulate.kernels.law import (
     elastic_tension,
     generalized_force,
+    is_level,
     kinetic_friction,
     needed_friction,
     normal_force,
     spring_energy,
     work,
-)
-from rollspring.simulate.kernels.model import (
-    CENTRAL,
-    FALPHA,
-    FR,
-    FX,
-    FY,
-    INERTIA,
-    MASS,
-    MU_K,
-    MU_S,
-    RADIUS,
-    REST,
-    ROLLS,
-    SCALE,
-    STIFF,
-    X0,
 )
 
 __all__ = ["observe", "observe_rolling", "row_extremes", "slipping_derivatives"]
@@ -71,16 +56,18 @@ def slipping_derivatives(model, state, slipping, sign, damped, out):
     for i in range(n):
         out[i] = u[i]
         out[n + i] = w[i]
-        if b[i, ROLLS] == 0.0:
-            out[2 * n + i] = fx[i] / b[i, MASS]
+        if b[i, col.ROLLS] == 0.0:
+            out[2 * n + i] = fx[i] / b[i, col.MASS]
             out[3 * n + i] = 0.0
         elif slipping[i]:
-            friction = kinetic_friction(b[i, MU_K], normal_force(b[i, MASS] * g, fy[i]), sign[i])
-            out[2 * n + i] = (fx[i] + friction) / b[i, MASS]
-            out[3 * n + i] = (tau[i] - b[i, RADIUS] * friction) / b[i, CENTRAL]
+            friction = kinetic_friction(
+                b[i, col.MU_K], normal_force(b[i, col.MASS] * g, fy[i]), sign[i]
+            )
+            out[2 * n + i] = (fx[i] + friction) / b[i, col.MASS]
+            out[3 * n + i] = (tau[i] - b[i, col.RADIUS] * friction) / b[i, col.CENTRAL]
         else:
-            alpha = generalized_force(b[i, SCALE], fx[i], tau[i]) / b[i, INERTIA]
-            out[2 * n + i] = b[i, SCALE] * alpha
+            alpha = generalized_force(b[i, col.SCALE], fx[i], tau[i]) / b[i, col.INERTIA]
+            out[2 * n + i] = b[i, col.SCALE] * alpha
             out[3 * n + i] = alpha
 
 
@@ -114,7 +101,7 @@ def observe(
     fx = np.empty(n)
     fy = np.empty(n)
     tau = np.empty(n)
-    zero_x = b[:, X0].copy()
+    zero_x = b[:, col.X0].copy()
     zero_phi = np.zeros(n)
     for row in range(states.shape[0]):
         state = states[row]
@@ -135,37 +122,39 @@ def observe(
         )
         energy = 0.0
         for s in range(springs.shape[0]):
-            energy += spring_energy(springs[s, STIFF], springs[s, REST], length[row, s])
+            energy += spring_energy(springs[s, col.STIFF], springs[s, col.REST], length[row, s])
         for j in range(forces.shape[0]):
             i = force_body[j]
-            px, py, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)
-            p0x, p0y, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], zero_x, zero_phi)
-            energy -= work(forces[j, FX], forces[j, FY], px - p0x, py - p0y)
+            px, py, _, _ = _point(b, i, forces[j, col.FR], forces[j, col.FALPHA], x, phi)
+            p0x, p0y, _, _ = _point(
+                b, i, forces[j, col.FR], forces[j, col.FALPHA], zero_x, zero_phi
+            )
+            energy -= work(forces[j, col.FX], forces[j, col.FY], px - p0x, py - p0y)
         potential[row] = energy
         for i in range(n):
-            normal[row, i] = normal_force(b[i, MASS] * g, fy[i])
-            if b[i, ROLLS] == 0.0:
+            normal[row, i] = normal_force(b[i, col.MASS] * g, fy[i])
+            if b[i, col.ROLLS] == 0.0:
                 friction[row, i] = 0.0
             elif slipping[row, i]:
-                friction[row, i] = kinetic_friction(b[i, MU_K], normal[row, i], sign[row, i])
+                friction[row, i] = kinetic_friction(b[i, col.MU_K], normal[row, i], sign[row, i])
             else:
-                gen = generalized_force(b[i, SCALE], fx[i], tau[i])
+                gen = generalized_force(b[i, col.SCALE], fx[i], tau[i])
                 friction[row, i] = needed_friction(
-                    b[i, MASS], b[i, SCALE], b[i, INERTIA], gen, fx[i]
+                    b[i, col.MASS], b[i, col.SCALE], b[i, col.INERTIA], gen, fx[i]
                 )
         moving = 0.0
         for i in range(n):
             u = state[2 * n + i]
             w = state[3 * n + i]
-            moving += 0.5 * (b[i, MASS] * u * u + central[i] * w * w)
-            if b[i, ROLLS] == 0.0:
+            moving += 0.5 * (b[i, col.MASS] * u * u + central[i] * w * w)
+            if b[i, col.ROLLS] == 0.0:
                 ratio[row, i] = 0.0
             elif normal[row, i] <= 0.0:
                 ratio[row, i] = np.inf
-            elif math.isinf(b[i, MU_S]):
+            elif math.isinf(b[i, col.MU_S]):
                 ratio[row, i] = 0.0
             else:
-                ratio[row, i] = abs(friction[row, i]) / (b[i, MU_S] * normal[row, i])
+                ratio[row, i] = abs(friction[row, i]) / (b[i, col.MU_S] * normal[row, i])
         kinetic[row] = moving
 
 
@@ -210,12 +199,12 @@ def observe_rolling(
     fy = np.empty(n)
     tau = np.empty(n)
     # each constant force's point of application at the model's reference positions
-    zero_x = b[:, X0].copy()
+    zero_x = b[:, col.X0].copy()
     zero_phi = np.zeros(n)
     p0 = np.empty((forces.shape[0], 2))
     for j in range(forces.shape[0]):
         p0x, p0y, _, _ = _point(
-            b, force_body[j], forces[j, FR], forces[j, FALPHA], zero_x, zero_phi
+            b, force_body[j], forces[j, col.FR], forces[j, col.FALPHA], zero_x, zero_phi
         )
         p0[j, 0] = p0x
         p0[j, 1] = p0y
@@ -231,8 +220,8 @@ def observe_rolling(
         for i in range(n):
             qi = q_rows[row, i]
             vi = v_rows[row, i]
-            scale = b[i, SCALE]
-            rolls = b[i, ROLLS]
+            scale = b[i, col.SCALE]
+            rolls = b[i, col.ROLLS]
             x[i] = x0[i] + scale * qi
             phi[i] = rolls * qi
             u = scale * vi
@@ -241,18 +230,18 @@ def observe_rolling(
             states[row, n + i] = phi[i]
             states[row, 2 * n + i] = u
             states[row, 3 * n + i] = w
-            moving += 0.5 * (b[i, MASS] * u * u + central[i] * w * w)
+            moving += 0.5 * (b[i, col.MASS] * u * u + central[i] * w * w)
             fx[i] = 0.0
             fy[i] = 0.0
             tau[i] = 0.0
         energy = 0.0
         for s in range(springs.shape[0]):  # body_loads without damping
             dx, dy, dist, oax, oay, obx, oby = _spring_geometry(b, springs, ends, s, x, phi)
-            t = elastic_tension(springs[s, STIFF], springs[s, REST], dist)
+            t = elastic_tension(springs[s, col.STIFF], springs[s, col.REST], dist)
             length[row, s] = dist
             tension[row, s] = t
-            energy += spring_energy(springs[s, STIFF], springs[s, REST], dist)
-            if dy == 0.0 and 1e-150 < abs(dx) < 1e150:
+            energy += spring_energy(springs[s, col.STIFF], springs[s, col.REST], dist)
+            if is_level(dx, dy):
                 # a level spring (dist is |dx|): T e_x = T sign(dx) (the stepping's force,
                 # without the division of _load_ends, which gives it to the last bit or two)
                 tx = t if dx > 0.0 else -t
@@ -269,25 +258,25 @@ def observe_rolling(
         _load_forces(b, forces, force_body, x, phi, fx, fy, tau)
         for j in range(forces.shape[0]):
             i = force_body[j]
-            px, py, _, _ = _point(b, i, forces[j, FR], forces[j, FALPHA], x, phi)
-            energy -= work(forces[j, FX], forces[j, FY], px - p0[j, 0], py - p0[j, 1])
+            px, py, _, _ = _point(b, i, forces[j, col.FR], forces[j, col.FALPHA], x, phi)
+            energy -= work(forces[j, col.FX], forces[j, col.FY], px - p0[j, 0], py - p0[j, 1])
         potential[row] = energy
         kinetic[row] = moving
         for i in range(n):
-            nn = normal_force(b[i, MASS] * g, fy[i])
+            nn = normal_force(b[i, col.MASS] * g, fy[i])
             normal[row, i] = nn
-            if b[i, ROLLS] == 0.0:
+            if b[i, col.ROLLS] == 0.0:
                 f = 0.0
                 ratio[row, i] = 0.0
             else:
-                gen = generalized_force(b[i, SCALE], fx[i], tau[i])
-                f = needed_friction(b[i, MASS], b[i, SCALE], b[i, INERTIA], gen, fx[i])
+                gen = generalized_force(b[i, col.SCALE], fx[i], tau[i])
+                f = needed_friction(b[i, col.MASS], b[i, col.SCALE], b[i, col.INERTIA], gen, fx[i])
                 if nn <= 0.0:
                     ratio[row, i] = np.inf
-                elif math.isinf(b[i, MU_S]):
+                elif math.isinf(b[i, col.MU_S]):
                     ratio[row, i] = 0.0
                 else:
-                    ratio[row, i] = abs(f) / (b[i, MU_S] * nn)
+                    ratio[row, i] = abs(f) / (b[i, col.MU_S] * nn)
             friction[row, i] = f
             # row_extremes: the first largest |f|/N (inf where N <= 0), the first smallest N
             value = abs(f) / nn if nn > 0.0 else np.inf

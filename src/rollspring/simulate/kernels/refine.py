@@ -160,6 +160,22 @@ def spring_balls(n, ends, spring_ptr, spring_ids, radius):
 
 
 @njit(cache=True, error_model="numpy")
+def _listed(ball, ptr, ids):
+    """The entries ``ids[ptr[i] : ptr[i + 1]]`` of the bodies ``i`` of ``ball``, one body's
+    after another's."""
+    total = 0
+    for a in range(ball.shape[0]):
+        total += ptr[ball[a] + 1] - ptr[ball[a]]
+    out = np.empty(total, dtype=np.int64)
+    c = 0
+    for a in range(ball.shape[0]):
+        for p in range(ptr[ball[a]], ptr[ball[a] + 1]):
+            out[c] = ids[p]
+            c += 1
+    return out
+
+
+@njit(cache=True, error_model="numpy")
 def _window_model(model, ball, local, spring_ptr, spring_ids, force_ptr, force_ids, stamp, tag):
     """The model of the bodies ``ball`` (ascending; ``local`` maps them to 0, 1, ... and every
     other body to -1): their springs whose other end is in the ball or an anchor, and their
@@ -168,22 +184,17 @@ def _window_model(model, ball, local, spring_ptr, spring_ids, force_ptr, force_i
     reaches the ball's centre only after as many force evaluations as the ball's radius."""
     bodies, springs, ends, forces, force_body, g = model
     w = ball.shape[0]
-    links = 0
-    for a in range(w):
-        links += spring_ptr[ball[a] + 1] - spring_ptr[ball[a]]
-    picked = np.empty(links, dtype=np.int64)
+    links = _listed(ball, spring_ptr, spring_ids)
+    picked = np.empty(links.shape[0], dtype=np.int64)
     count = 0
-    for a in range(w):
-        i = ball[a]
-        for p in range(spring_ptr[i], spring_ptr[i + 1]):
-            s = spring_ids[p]
-            if stamp[s] == tag:
-                continue
-            stamp[s] = tag
-            ia, ib = ends[s, 0], ends[s, 1]
-            if (ia < 0 or local[ia] >= 0) and (ib < 0 or local[ib] >= 0):
-                picked[count] = s
-                count += 1
+    for s in links:
+        if stamp[s] == tag:
+            continue
+        stamp[s] = tag
+        ia, ib = ends[s, 0], ends[s, 1]
+        if (ia < 0 or local[ia] >= 0) and (ib < 0 or local[ib] >= 0):
+            picked[count] = s
+            count += 1
     chosen = np.sort(picked[:count])
     sub_springs = np.empty((count, springs.shape[1]))
     sub_ends = np.empty((count, 2), dtype=np.int64)
@@ -192,16 +203,8 @@ def _window_model(model, ball, local, spring_ptr, spring_ids, force_ptr, force_i
         sub_springs[c] = springs[s]
         for e in range(2):
             sub_ends[c, e] = local[ends[s, e]] if ends[s, e] >= 0 else ends[s, e]
-    n_forces = 0
-    for a in range(w):
-        n_forces += force_ptr[ball[a] + 1] - force_ptr[ball[a]]
-    listed = np.empty(n_forces, dtype=np.int64)
-    c = 0
-    for a in range(w):
-        for p in range(force_ptr[ball[a]], force_ptr[ball[a] + 1]):
-            listed[c] = force_ids[p]
-            c += 1
-    listed = np.sort(listed)
+    listed = np.sort(_listed(ball, force_ptr, force_ids))
+    n_forces = listed.shape[0]
     sub_forces = np.empty((n_forces, forces.shape[1]))
     sub_force_body = np.empty(n_forces, dtype=np.int64)
     for c in range(n_forces):

@@ -21,8 +21,8 @@ import numpy as np
 from numba import njit
 
 from rollspring.simulate.integrators import INTEGRATORS
+from rollspring.simulate.kernels import model as col
 from rollspring.simulate.kernels.forces import _contact, _workspace, force_rates, rolling_forces
-from rollspring.simulate.kernels.model import INV_INERTIA, MU_S, ROLLS
 from rollspring.simulate.status import Status
 
 __all__ = [
@@ -58,7 +58,7 @@ def _stages(model, coeffs, h, q, v, scratch, gen, fx, fy):
     m = coeffs.shape[0]
     kick = 0.5 * h * coeffs[0]
     for i in range(n):
-        v[i] += kick * gen[i] * bodies[i, INV_INERTIA]
+        v[i] += kick * gen[i] * bodies[i, col.INV_INERTIA]
     for k in range(m):
         hw = h * coeffs[k]
         for i in range(n):
@@ -66,7 +66,7 @@ def _stages(model, coeffs, h, q, v, scratch, gen, fx, fy):
         rolling_forces(model, q, scratch, gen, fx, fy)
         kick = 0.5 * h * (coeffs[k] + coeffs[k + 1]) if k + 1 < m else 0.5 * hw
         for i in range(n):  # kick / J off the chain force -> velocity -> position
-            v[i] += gen[i] * (kick * bodies[i, INV_INERTIA])
+            v[i] += gen[i] * (kick * bodies[i, col.INV_INERTIA])
 
 
 @njit(cache=True, error_model="numpy")
@@ -127,7 +127,7 @@ def _hermite_coefficients(model, h, q0, v0, g0, r0, q1, v1, g1, r1, coef):
     inv_h = 1.0 / h
     sixth = 1.0 / 6.0
     for i in range(q0.shape[0]):
-        inv = bodies[i, INV_INERTIA]
+        inv = bodies[i, col.INV_INERTIA]
         d = q1[i] - q0[i]
         w0 = h * v0[i]
         w1 = h * v1[i]
@@ -257,7 +257,7 @@ def run_fixed_step(
                 event = STATUS_LIFTOFF
                 event_body = i
                 break
-            if bodies[i, ROLLS] > 0.0 and abs(friction) > bodies[i, MU_S] * normal:
+            if bodies[i, col.ROLLS] > 0.0 and abs(friction) > bodies[i, col.MU_S] * normal:
                 event = STATUS_SLIP
                 event_body = i
                 break
@@ -295,7 +295,11 @@ def run_fixed_step(
                     extreme_states[1, 0, p] = before[0, ball_idx[p]]
                     extreme_states[1, 1, p] = before[1, ball_idx[p]]
             # |f|/N > best  <=>  |f| > best N (N > 0): no division in the common case
-            if bodies[i, ROLLS] > 0.0 and normal > 0.0 and abs(friction) > extremes[0, i] * normal:
+            if (
+                bodies[i, col.ROLLS] > 0.0
+                and normal > 0.0
+                and abs(friction) > extremes[0, i] * normal
+            ):
                 extremes[0, i] = abs(friction) / normal
                 extremes[1, i] = t_start
                 for p in range(ball_ptr[i], ball_ptr[i + 1]):

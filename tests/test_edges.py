@@ -20,6 +20,7 @@ from typer.testing import CliRunner
 
 import rollspring
 from rollspring.cli import app
+from rollspring.errors import CostTooHigh
 from rollspring.model import load_system, preset_path, system_to_json
 from rollspring.outputs.trajectory import summary_json
 from rollspring.web import create_app
@@ -246,3 +247,22 @@ def test_a_batch_takes_no_bools_for_numbers(values: Any) -> None:
     with pytest.raises(rollspring.ModelError) as raised:
         rollspring.simulate_batch(HOOP_CYLINDER, {"bodies.hoop.mass": values}, 0.1)
     assert str(raised.value) == "parameters['bodies.hoop.mass']: must be numbers, not true/false"
+
+
+def test_a_billion_run_batch_is_refused_before_any_array_of_its_size() -> None:
+    """Before: NumPy's raw _ArrayMemoryError (range: nothing of 1e9 numbers is made here)."""
+    with pytest.raises(rollspring.ModelError) as raised:
+        rollspring.simulate_batch(HOOP_CYLINDER, {"bodies.hoop.mass": range(1, 10**9 + 1)}, 1.0)
+    assert str(raised.value) == (
+        "parameters['bodies.hoop.mass']: 1e+09 runs, more than one batch holds (1e+08); "
+        "split the batch"
+    )
+
+
+def test_a_batch_above_the_bound_is_estimated_and_needs_confirming() -> None:
+    with pytest.raises(CostTooHigh) as raised:
+        rollspring.simulate_batch(HOOP_CYLINDER, {"bodies.hoop.mass": [1.0, 2.0]}, 1e9)
+    message = str(raised.value)
+    assert message.startswith("this batch would take about ")
+    assert "2 runs × about 7.2e+11 kahanli8 steps × 2 bodies" in message
+    assert message.endswith("or confirm it with confirm=True")

@@ -65,17 +65,23 @@ class Cost:
     integrator: str = ""
     #: how to make it smaller (for the message)
     smaller: str = "fewer bodies"
+    #: runs of a batch or sweep (``steps`` then counts a run's steps)
+    runs: int | None = None
+    #: what the memory holds ("outputs"; "a store" for a sweep written to disk)
+    holds: str = "outputs"
 
     def describe(self) -> str:
-        """One line: the time, then what it comes from (steps × bodies) and the memory."""
+        """One line: the time, then what it comes from (steps × bodies, runs) and the memory."""
         bodies = f"{self.bodies} bod{'y' if self.bodies == 1 else 'ies'}"
         line = f"about {_duration(self.seconds)}: "
+        if self.runs is not None:
+            line += f"{_count(self.runs)} runs × "
         if self.steps is not None:
             line += f"about {_count(self.steps)} {self.integrator} steps × {bodies}"
         else:
             line += bodies
         if self.memory:
-            line += f", {_bytes(self.memory)} of outputs"
+            line += f", {_bytes(self.memory)} of {self.holds}"
         return line
 
     @property

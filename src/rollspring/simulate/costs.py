@@ -26,7 +26,18 @@ from rollspring.simulate.integrators import INTEGRATORS as SCHEMES
 from rollspring.simulate.integrators import pick_scheme, refinement_radius
 from rollspring.simulate.request import SimulationRequest, simulation_request
 
-__all__ = ["API_SMALLER", "CLI_SMALLER", "request_cost", "simulation_cost"]
+__all__ = [
+    "API_SMALLER",
+    "CLI_SMALLER",
+    "MAX_RUNS",
+    "batch_cost",
+    "request_cost",
+    "simulation_cost",
+]
+
+#: The most runs one batch or sweep holds: beyond, its per-run arrays alone (a few dozen numbers
+#: a run) pass tens of GiB; a larger grid is several sweeps.
+MAX_RUNS = 10**8
 
 #: how to make a simulation smaller, in the command line's words and in Python's
 CLI_SMALLER = "a shorter --duration, fewer --outputs"
@@ -183,3 +194,41 @@ def _largest(values: list[float]) -> float:
     if any(v != v for v in values):
         return math.nan
     return max(values)
+
+
+def batch_cost(
+    system: System,
+    runs: int,
+    duration: Any,
+    *,
+    rtol: Any = 1e-8,
+    integrator: Any = "auto",
+    numbers_per_run: int = 40,
+    what: str = "this batch",
+    smaller: str = "fewer runs, a shorter duration",
+    holds: str = "outputs",
+) -> Cost:
+    r"""The estimated cost of ``runs`` runs of ``system`` for ``duration`` s in the compiled
+    batch kernels (:func:`rollspring.simulate_batch`, a sweep): each run takes the steps a single
+    run of the system takes (:func:`simulation_cost`), each step costs the per-body part of a
+    compiled step, :math:`(n + S)\,t_{\text{body}}`, with no per-step overhead (the batch
+    loops inside the kernel), and each run keeps ``numbers_per_run`` numbers (8 bytes each)."""
+    one = simulation_cost(
+        system, duration, rtol=rtol, integrator=integrator, outputs=2, what=what, smaller=smaller
+    )
+    size = len(system.bodies) + len(system.springs)
+    name = one.integrator if one.integrator in SCHEMES else "yoshida4"
+    stages = SCHEMES[name].stages / SCHEMES["kahanli8"].stages
+    steps = float(one.steps or 1.0)
+    seconds = runs * steps * stages * _SYMPLECTIC_BODY_STEP * size
+    return Cost(
+        what,
+        len(system.bodies),
+        seconds,
+        float(runs) * numbers_per_run * 8,
+        steps,
+        name,
+        smaller,
+        runs=runs,
+        holds=holds,
+    )

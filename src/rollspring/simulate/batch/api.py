@@ -11,12 +11,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from rollspring.analysis.costs import CONFIRM, check_cost
 from rollspring.errors import ModelError, SimulationError
+from rollspring.model import System
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import arguments
 from rollspring.simulate.batch import cache
 from rollspring.simulate.batch.codegen import BLOCK, OUT_BODY, OUT_EVENT_TIME, Source
-from rollspring.simulate.batch.parameters import parse_parameters
+from rollspring.simulate.batch.parameters import count_runs, parse_parameters
 from rollspring.simulate.batch.plan import (
     MAX_STEPS,
     Plan,
@@ -29,6 +31,7 @@ from rollspring.simulate.batch.plan import (
     run_omegas,
     steps_needed,
 )
+from rollspring.simulate.costs import batch_cost
 from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
 from rollspring.simulate.integrators import MAX_OMEGA_STEP
 from rollspring.simulate.status import Status
@@ -236,6 +239,7 @@ def simulate_batch(
     n_output: int = 201,
     stop_on_slip: bool = True,
     metric_every: int | None = None,
+    confirm: bool = False,
 ) -> BatchResult:
     r"""Run ``system`` once per set of parameter values, all runs in parallel, for ``duration`` s.
 
@@ -309,6 +313,9 @@ def simulate_batch(
         Keep every run's angles at ``n_output`` evenly spaced times.
     stop_on_slip, metric_every
         End a run at its first slip; sample the metrics every so many steps.
+    confirm
+        Start even when the estimate (:func:`~rollspring.simulate.costs.batch_cost`) is above
+        the bound; at most :data:`~rollspring.simulate.costs.MAX_RUNS` runs either way.
 
     Returns
     -------
@@ -338,6 +345,17 @@ def simulate_batch(
             f"springs[{damped[0]}].damping: batch runs need undamped springs "
             "(symplectic integrators); use rollspring.simulate"
         )
+    n_runs = count_runs(parameters)  # before any array of the runs' size is made
+    cost = batch_cost(
+        system,
+        n_runs,
+        duration,
+        rtol=rtol,
+        integrator=integrator,
+        numbers_per_run=_numbers_per_run(system, n_output if keep_trajectories else 0),
+        smaller="fewer runs, a shorter duration",
+    )
+    check_cost(cost, confirmed=arguments.check_flag("confirm", confirm), flag=CONFIRM)
     with np.errstate(all="ignore"):  # extreme values are found below, run by run
         runs = parse_parameters(system, parameters)
         topology, given = probe(system, runs.targets)
@@ -484,3 +502,10 @@ def simulate_batch(
         omega=omegas,
         messages=messages,
     )
+
+
+def _numbers_per_run(system: System, n_output: int) -> int:
+    """The numbers a run of a batch keeps: its parameters, metrics and status (about 12 per
+    body, 4 per spring), and ``n_output`` rows of 4 per body with trajectories."""
+    bodies, springs = len(system.bodies), len(system.springs)
+    return 16 + 12 * bodies + 4 * springs + n_output * 4 * bodies

@@ -3,7 +3,7 @@ to one run count, and the per-run values of every quantity (:class:`Runs`)."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sized
 from dataclasses import dataclass
 from typing import Any
 
@@ -154,6 +154,34 @@ def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Run
             f"({runs.mu_static[run, i]:g}) in run {run}",
         )
     return runs
+
+
+def count_runs(parameters: Mapping[str, ArrayLike]) -> int:
+    """How many runs ``parameters`` broadcast to, from their lengths alone (no array of the
+    runs' size is made); :class:`ModelError` above :data:`~rollspring.simulate.costs.MAX_RUNS`.
+    The values themselves are checked by :func:`parse_parameters`."""
+    from rollspring.simulate.costs import MAX_RUNS
+
+    if not isinstance(parameters, Mapping):
+        return 1  # parse_parameters says what is wrong
+    lengths = {
+        key: len(raw)
+        for key, raw in parameters.items()
+        if isinstance(raw, Sized) and not isinstance(raw, str | bytes) and _sized_axis(raw)
+    }
+    runs = max(lengths.values(), default=1)
+    if runs > MAX_RUNS:
+        key = max(lengths, key=lambda name: lengths[name])
+        raise _bad(
+            key,
+            f"{runs:.3g} runs, more than one batch holds ({MAX_RUNS:.0e}); split the batch",
+        )
+    return runs
+
+
+def _sized_axis(raw: Sized) -> bool:
+    """Whether ``raw`` is a sequence of values (not a 0-d array), told without converting it."""
+    return bool(getattr(raw, "ndim", 1))
 
 
 def _has_bool(raw: Any) -> bool:

@@ -266,3 +266,41 @@ def test_a_batch_above_the_bound_is_estimated_and_needs_confirming() -> None:
     assert message.startswith("this batch would take about ")
     assert "2 runs × about 7.2e+11 kahanli8 steps × 2 bodies" in message
     assert message.endswith("or confirm it with confirm=True")
+
+
+# -- sweeps: counted, estimated and confirmed before any run (issue 24, points 3 and 4) ----------
+
+
+def test_a_billion_run_grid_is_refused_before_anything_is_made() -> None:
+    """Before: a raw MemoryError (the API) or a store growing past 12 GB (the CLI)."""
+    with pytest.raises(rollspring.RollspringError) as raised:
+        rollspring.sweep(HOOP_CYLINDER, {"bodies.hoop.mass": range(1, 10**9 + 1)}, 1.0)
+    assert str(raised.value) == (
+        "--vary bodies.hoop.mass: the grid reaches 1e+09 runs, more than a sweep holds (1e+08); "
+        "sweep it in parts"
+    )
+
+
+@pytest.mark.parametrize("count", ["1000000000", "99999999999999999999"])
+def test_a_range_of_too_many_values_is_refused_on_the_command_line(
+    count: str, tmp_path: Path
+) -> None:
+    out = tmp_path / "s.zarr"
+    spec = f"bodies.hoop.mass=1:2:{count}"
+    result = runner.invoke(
+        app, ["sweep", "hoop-cylinder", "-T", "1", "--vary", spec, "--out", str(out)]
+    )
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: --vary {spec}: ")
+    assert "more than a sweep holds (1e+08 runs)" in result.stderr
+    assert not out.exists()
+
+
+def test_a_sweep_above_the_bound_is_estimated_and_needs_confirming(tmp_path: Path) -> None:
+    """Before, ``sweep -T 1e9`` started silently."""
+    with pytest.raises(CostTooHigh) as raised:
+        rollspring.sweep(HOOP_CYLINDER, {"springs.0.stiffness": [50.0, 100.0]}, 1e5)
+    message = str(raised.value)
+    assert message.startswith("this sweep would take about ")
+    assert "2 runs × about 5.1e+09 yoshida4 steps × 2 bodies" in message
+    assert message.endswith("or confirm it with confirm=True")

@@ -6,7 +6,13 @@ the plan and the chunk index, the task a worker runs), ``store`` (template, regi
 markers, fingerprint) and ``engine`` (:func:`sweep`: the plan, resuming, in-process or Dask).
 """
 
-from rollspring.service.sweeps.engine import DEFAULT_CHUNK, METRICS, SweepProgress, sweep
+from rollspring.service.sweeps.engine import (
+    DEFAULT_CHUNK,
+    METRICS,
+    SweepProgress,
+    sweep,
+    sweep_cost,
+)
 from rollspring.service.sweeps.grid import SweepError, parse_vary_spec
 from rollspring.service.sweeps.store import StoreMismatchError
 
@@ -18,4 +24,5 @@ __all__ = [
     "SweepProgress",
     "parse_vary_spec",
     "sweep",
+    "sweep_cost",
 ]

@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from rollspring.analysis.costs import CONFIRM, Cost, check_cost
 from rollspring.model import System, as_system, system_to_json, system_to_toml
 from rollspring.service.sweeps.compute import (
     STATUS_CODES,
@@ -36,7 +37,14 @@ from rollspring.service.sweeps.compute import (
     plan_omega,
     warm_up,
 )
-from rollspring.service.sweeps.grid import Grid, SweepError, check_grid, chunk_shape, path_kind
+from rollspring.service.sweeps.grid import (
+    Grid,
+    SweepError,
+    check_grid,
+    chunk_shape,
+    count_grid,
+    path_kind,
+)
 from rollspring.service.sweeps.store import (
     VARIABLES,
     StoreMismatchError,
@@ -49,6 +57,7 @@ from rollspring.service.sweeps.store import (
     write_regions,
     write_template,
 )
+from rollspring.simulate.costs import batch_cost
 from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 
 __all__ = ["DEFAULT_CHUNK", "METRICS", "SweepProgress", "sweep"]
@@ -136,6 +145,36 @@ def _metrics(metrics: Sequence[str] | None, on_slip: str) -> tuple[str, ...]:
     return tuple(m for m in METRICS if m in chosen)
 
 
+def sweep_cost(
+    system: System,
+    vary: Mapping[str, Sequence[float]],
+    duration: float,
+    *,
+    rtol: float = 1e-8,
+    integrator: str = "auto",
+    out: str | os.PathLike[str] | None = None,
+    what: str = "this sweep",
+    smaller: str = "fewer values to vary, a shorter duration",
+) -> Cost:
+    """The estimated cost of :func:`sweep` (before any run: the grid counted from its lengths,
+    :func:`~rollspring.service.sweeps.grid.count_grid`): its runs in the batch kernels
+    (:func:`~rollspring.simulate.costs.batch_cost`) and the metrics they keep, in the store
+    (``out``) or in memory. The arguments are checked as :func:`sweep` checks them."""
+    runs = count_grid(vary)
+    bodies = len(system.bodies)
+    return batch_cost(
+        system,
+        runs,
+        duration,
+        rtol=rtol,
+        integrator=integrator if integrator != "auto" else "yoshida4",
+        numbers_per_run=24 + 16 * bodies,  # the metrics, per body and the modes' frequencies
+        what=what,
+        smaller=smaller,
+        holds="a store" if out is not None else "memory",
+    )
+
+
 def sweep(
     system: System | str,
     vary: Mapping[str, Sequence[float]],
@@ -152,6 +191,7 @@ def sweep(
     step: float | None = None,
     integrator: str = "auto",
     refine_slip: bool = True,
+    confirm: bool = False,
 ) -> Any:
     r"""Run ``system`` once per point of the grid ``vary`` (``{PATH: values}``, the outer
     product in the given order) for ``duration`` s and return the metrics as an
@@ -186,6 +226,9 @@ def sweep(
         None (this process), a Dask scheduler address or a ``distributed.Client``.
     progress
         Called with a :class:`SweepProgress` after each chunk.
+    confirm
+        Start even when the estimate (:func:`sweep_cost`: the runs × a run's steps, the store)
+        is above the bound; at most :data:`~rollspring.simulate.costs.MAX_RUNS` runs either way.
 
     Returns
     -------
@@ -206,6 +249,8 @@ def sweep(
             "batch integrators are symplectic"
         )
     chosen = _metrics(metrics, on_slip)
+    cost = sweep_cost(system, vary, duration, rtol=rtol, integrator=integrator, out=out)
+    check_cost(cost, confirmed=bool(confirm), flag=CONFIRM)  # before the grid's values
     paths, values = check_grid(system, vary)
     _check_modes(system, paths)
     grid = Grid(paths, values, chunk_shape(tuple(len(v) for v in values), chunk or DEFAULT_CHUNK))

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping, Sequence, Sized
 from dataclasses import dataclass
 from typing import Any
 
@@ -25,6 +25,7 @@ import numpy as np
 
 from rollspring.errors import RollspringError, SweepError
 from rollspring.model import System, system_from_dict, system_to_json
+from rollspring.simulate.costs import MAX_RUNS
 
 __all__ = [
     "BATCH_BODY_QUANTITIES",
@@ -169,6 +170,10 @@ def parse_vary_spec(spec: str) -> tuple[str, list[float]]:
                 f"--vary {spec}: NUM must be a whole number >= 1, got '{parts[2].strip()}'"
             )
         num = int(parts[2])
+        if num > MAX_RUNS:  # before an array of that many values is made
+            raise SweepError(
+                f"--vary {spec}: {num:.3g} values, more than a sweep holds ({MAX_RUNS:.0e} runs)"
+            )
         if not (math.isfinite(start) and math.isfinite(stop)):
             raise SweepError(f"--vary {spec}: a range needs finite ends")
         if len(parts) == 4:
@@ -330,6 +335,23 @@ def _part_valid(part: dict[str, Any], path: str, value: float) -> bool:
     except (ValidationError, ValueError):
         return False
     return True
+
+
+def count_grid(vary: Mapping[str, Sequence[float]]) -> int:
+    """The runs of the grid ``vary`` (the product of its lengths, in Python integers: nothing of
+    the grid's size is made); :class:`SweepError` above :data:`MAX_RUNS`."""
+    if not isinstance(vary, Mapping):
+        return 1  # check_grid says what is wrong
+    runs = 1
+    for path, raw in vary.items():
+        count = len(raw) if isinstance(raw, Sized) and not isinstance(raw, str | bytes) else 1
+        runs *= count
+        if runs > MAX_RUNS:
+            raise SweepError(
+                f"--vary {path}: the grid reaches {runs:.3g} runs, more than a sweep holds "
+                f"({MAX_RUNS:.0e}); sweep it in parts"
+            )
+    return runs
 
 
 def check_grid(

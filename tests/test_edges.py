@@ -304,3 +304,25 @@ def test_a_sweep_above_the_bound_is_estimated_and_needs_confirming(tmp_path: Pat
     assert message.startswith("this sweep would take about ")
     assert "2 runs × about 5.1e+09 yoshida4 steps × 2 bodies" in message
     assert message.endswith("or confirm it with confirm=True")
+
+
+# -- the web takes numbers as numbers (issue 24, point 10) ----------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "words"),
+    [
+        ("duration", True, "duration: must be a number (got true)"),
+        ("duration", "1", "duration: must be a number (got '1')"),
+        ("outputs", 11.5, "outputs: must be a whole number (got 11.5)"),
+        ("linear", 1, "linear: must be a bool (got 1)"),
+    ],
+)
+def test_the_web_refuses_a_bool_or_text_for_a_number_with_422(
+    client: TestClient, field: str, value: Any, words: str
+) -> None:
+    """Before, ``"duration": true`` was taken as 1 s."""
+    request = {"system": system_to_json(HOOP_CYLINDER), "duration": 0.5, field: value}
+    answer = client.post("/api/simulate", json=request)
+    assert answer.status_code == 422
+    assert answer.json()["message"] == words

@@ -389,7 +389,8 @@ def _describe(error: ErrorDetails | dict[str, Any]) -> str:
             .replace("model", "table")
             .replace("dict", "table")
         )
-        msg = f"must be a {'number' if expected in ('float', 'int') else expected}"
+        word = {"float": "number", "int": "whole number"}.get(expected, expected)
+        msg = f"must be a {word}"
     elif kind == "string_pattern_mismatch":
         msg = "must start with a letter or '_' and hold only letters, digits, '_' or '-'"
     elif kind in ("too_short", "too_long") and loc and loc[-1] in ("ends", "at"):

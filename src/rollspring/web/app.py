@@ -70,9 +70,13 @@ class ModeStartRequest(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
 
-    mode: int = Field(ge=0, le=MAX_BODIES, description="Index into analyze's `modes`.")
+    mode: int = Field(ge=0, le=MAX_BODIES, strict=True, description="Index into analyze's `modes`.")
     amplitude: float = Field(
-        allow_inf_nan=False, ge=-1.0, le=1.0, description="Largest centre displacement (m)."
+        allow_inf_nan=False,
+        ge=-1.0,
+        le=1.0,
+        strict=True,  # a number: true is not 1.0
+        description="Largest centre displacement (m).",
     )
 
 
@@ -80,21 +84,26 @@ class SimulateRequest(SystemRequest):
     """What to simulate and how."""
 
     duration: float = Field(
-        gt=0, le=MAX_DURATION, allow_inf_nan=False, description="Simulated time (s)."
+        gt=0, le=MAX_DURATION, allow_inf_nan=False, strict=True, description="Simulated time (s)."
     )
     rtol: float = Field(
         default=1e-8,
         gt=0,
         le=0.1,
         allow_inf_nan=False,
+        strict=True,
         description="Relative accuracy of the motion over the run.",
     )
-    outputs: int = Field(default=601, ge=2, le=MAX_OUTPUTS, description="Output times.")
+    outputs: int = Field(
+        default=601, ge=2, le=MAX_OUTPUTS, strict=True, description="Output times."
+    )
     on_slip: Literal["stop", "continue"] = Field(
         default="stop", description="stop at the first slip, or continue (stick-slip)."
     )
     start: ModeStartRequest | None = None
-    linear: bool = Field(default=False, description="Also return the linear modal solution.")
+    linear: bool = Field(
+        default=False, strict=True, description="Also return the linear modal solution."
+    )
 
 
 class DeriveRequest(SystemRequest):
@@ -111,7 +120,9 @@ class DeriveRequest(SystemRequest):
 class ReportRequest(SystemRequest):
     """The report's simulated time (default: four periods of the slowest mode)."""
 
-    duration: float | None = Field(default=None, gt=0, le=MAX_DURATION, allow_inf_nan=False)
+    duration: float | None = Field(
+        default=None, gt=0, le=MAX_DURATION, allow_inf_nan=False, strict=True
+    )
 
 
 class Problem(BaseModel):

@@ -300,9 +300,13 @@ def _count(n: Any, walls: Any) -> int:
 def _number(label: str, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
         raise ModelError(f"{label}: must be a number (got {value!r})")
-    number = float(value)
+    try:
+        number = float(value)
+    except OverflowError:  # an integer beyond double precision
+        number = math.inf
     if not math.isfinite(number):
-        raise ModelError(f"{label}: must be a finite number (got {value!r})")
+        shown = "an integer beyond double precision" if isinstance(value, int) else repr(value)
+        raise ModelError(f"{label}: must be a finite number (got {shown})")
     return number
 
 

@@ -50,7 +50,10 @@ def _real(value: Any) -> float | None:
     """``value`` as a float if it is a real number (not a bool), else None."""
     if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real):
         return None
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:  # an integer beyond double precision: an infinity, refused as one
+        return math.inf if int(value) > 0 else -math.inf
 
 
 def check_duration(duration: Any) -> float:

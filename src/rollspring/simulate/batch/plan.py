@@ -404,8 +404,12 @@ def choose_step(
 
 
 def metric_every_for(omega: float, h: float, n_steps: int) -> int:
-    """Steps between metric samples: the fastest mode turns by at most METRIC_PHASE."""
-    return max(1, int(METRIC_PHASE / (omega * h))) if omega > 0 else n_steps
+    """Steps between metric samples: the fastest mode turns by at most METRIC_PHASE; never
+    more than ``n_steps + 1`` (sampled at the start alone, as any larger count: an integer the
+    kernel takes however short ``h``, even 1e-300 s)."""
+    if not omega > 0:
+        return n_steps
+    return max(1, min(n_steps + 1, int(min(METRIC_PHASE / (omega * h), 2.0**62))))
 
 
 def run_cost(integrator: str, n_steps: int, metric_every: int) -> float:

@@ -50,10 +50,11 @@ def _real(value: Any) -> float | None:
     """``value`` as a float if it is a real number (not a bool), else None."""
     if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real):
         return None
+    number: Any = value  # a Real: float() takes it, and an integer compares with 0
     try:
-        return float(value)
+        return float(number)
     except OverflowError:  # an integer beyond double precision: an infinity, refused as one
-        return math.inf if int(value) > 0 else -math.inf
+        return math.inf if number > 0 else -math.inf
 
 
 def check_duration(duration: Any) -> float:

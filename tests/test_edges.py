@@ -326,3 +326,25 @@ def test_the_web_refuses_a_bool_or_text_for_a_number_with_422(
     answer = client.post("/api/simulate", json=request)
     assert answer.status_code == 422
     assert answer.json()["message"] == words
+
+
+# -- a long chain's mode start: seconds, not minutes (issue 24, point 4) --------------------------
+
+
+@pytest.mark.parametrize(("mode", "walls"), [(1, "none"), (299, "none"), (150, "both")])
+def test_a_long_chains_mode_from_the_tridiagonal_solver_is_the_dense_ones(
+    mode: int, walls: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Beyond 500 bodies a chain's mode comes from the tridiagonal eigensolver, one vector
+    (before: K assembled as a sum of n x n outer products and a dense eigh: --n 3000 took 75 s,
+    --n 20000 over two minutes; now 1 s and 4 s)."""
+    from rollspring.model import chains
+
+    options = {"n": 600, "pattern": "hoop,cylinder", "walls": walls, "mode": mode}
+    fast = rollspring.chain(**options)
+    monkeypatch.setattr(chains, "_DENSE_MODES", 10**9)
+    dense = rollspring.chain(**options)
+    x_fast = np.array([b.x for b in fast.bodies])
+    x_dense = np.array([b.x for b in dense.bodies])
+    assert np.max(np.abs(x_fast - x_dense)) < 1e-10 * 0.01  # of the 0.01 m amplitude
+    assert np.max(np.abs(x_fast - x_fast.round(1))) > 1e-3  # displaced along the mode

@@ -330,6 +330,38 @@ def _per_element(label: str, value: Any, p: int) -> list[float]:
     return [_positive(label, v) for v in values]
 
 
+#: Up to this many bodies a chain's mode comes from the dense eigensolver (as it always did);
+#: beyond, from the tridiagonal one (a 20 000-body chain: seconds, not hours).
+_DENSE_MODES = 500
+
+
+def _tridiagonal_modes(diagonal: np.ndarray, beside: np.ndarray) -> tuple[np.ndarray, Any]:
+    """The eigenvalues (ascending; those above the zero-mode threshold stand as the largest) of
+    the symmetric tridiagonal matrix of ``diagonal`` and ``beside``, and its eigenvectors on
+    demand: ``vector((slice(None), k))`` computes the one
+    of index k, never the n x n matrix (SciPy's ``eigvalsh_tridiagonal`` and
+    ``eigh_tridiagonal``, LAPACK ``stebz``/``stein``)."""
+    # on demand: only a long chain's mode needs SciPy
+    from scipy.linalg import eigh_tridiagonal, eigvalsh_tridiagonal
+
+    def vector(key: tuple[slice, int]) -> np.ndarray:
+        k = key[1]
+        _, found = eigh_tridiagonal(diagonal, beside, select="i", select_range=(k, k))
+        return np.asarray(found[:, 0])
+
+    # not all n eigenvalues (O(n^2)): the largest, and those below the zero-mode threshold; the
+    # rest stand for "above it" (only which are oscillating, and their order, is used)
+    count = diagonal.size
+    (largest,) = eigvalsh_tridiagonal(
+        diagonal, beside, select="i", select_range=(count - 1, count - 1)
+    )
+    threshold = 1e-10 * abs(float(largest))
+    low = eigvalsh_tridiagonal(diagonal, beside, select="v", select_range=(-np.inf, threshold))
+    values = np.full(count, float(largest))
+    values[: low.size] = low
+    return values, vector
+
+
 def _mode_shape(
     system: System, n: int, lever: np.ndarray, scale: np.ndarray, inertia: np.ndarray
 ) -> np.ndarray:
@@ -337,24 +369,43 @@ def _mode_shape(
     :math:`K v = \omega^2 M v`, :math:`K = \sum_s k_s b_s b_s^{\mathsf T}` (module docstring)."""
     index = {b.id: i for i, b in enumerate(system.bodies)}
     count = len(system.bodies)
-    stiffness = np.zeros((count, count))
-    for spring in system.springs:
-        (xa, ya), (xb, yb) = (
-            system.end_point_at_rest(end, end_at)
-            for end, end_at in zip(spring.ends, spring.attachments, strict=True)
-        )
+    # K's entries spring by spring: each spring's b has at most two entries, so each adds
+    # k b_i b_j to at most four (the same products, in the same order, as k outer(b, b))
+    diagonal, beside = np.zeros(count), np.zeros(max(count - 1, 0))
+    entries: list[tuple[int, int, float]] = []
+    for spring, ((xa, ya), (xb, yb)) in zip(
+        system.springs, system.spring_ends_at_rest(), strict=True
+    ):
         ex = (xb - xa) / math.hypot(xb - xa, yb - ya)
-        b = np.zeros(count)
-        for sign, end in zip((-1.0, 1.0), spring.ends, strict=True):
-            if end in index:
-                b[index[end]] = sign * ex * lever[index[end]]
-        stiffness += spring.stiffness * np.outer(b, b)
+        ends = [
+            (index[end], sign * ex * lever[index[end]])
+            for sign, end in zip((-1.0, 1.0), spring.ends, strict=True)
+            if end in index
+        ]
+        for i, bi in ends:
+            for j, bj in ends:
+                entries.append((i, j, spring.stiffness * (bi * bj)))
     root = np.sqrt(inertia)
-    eigenvalues, vectors = np.linalg.eigh(stiffness / np.outer(root, root))
+    if all(abs(i - j) <= 1 for i, j, _ in entries) and count > _DENSE_MODES:
+        # a chain's K is tridiagonal: its eigenpairs in O(n^2) (LAPACK's stemr), not O(n^3)
+        for i, j, value in entries:
+            if i == j:
+                diagonal[i] += value
+            elif j == i + 1:
+                beside[i] += value
+        eigenvalues, vector = _tridiagonal_modes(
+            diagonal / inertia, beside / (root[:-1] * root[1:])
+        )
+    else:
+        stiffness = np.zeros((count, count))
+        for i, j, value in entries:
+            stiffness[i, j] += value
+        eigenvalues, vectors = np.linalg.eigh(stiffness / np.outer(root, root))
+        vector = vectors.__getitem__  # vector((slice(None), k)): the dense path has them all
     oscillating = np.flatnonzero(eigenvalues > 1e-10 * float(np.abs(eigenvalues).max()))
     if not 1 <= n <= oscillating.size:
         raise ModelError(f"mode: must be from 1 to {oscillating.size}, the oscillating modes")
-    shape = scale * vectors[:, oscillating[n - 1]] / root
+    shape = scale * vector((slice(None), int(oscillating[n - 1]))) / root
     size = np.abs(shape)
     biggest = int(np.argmax(size >= (1.0 - 1e-9) * size.max()))  # the leftmost of the largest
     result: np.ndarray = shape / shape[biggest]

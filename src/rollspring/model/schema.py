@@ -442,6 +442,18 @@ class System(_Strict):
         """Position of a spring end (body attachment or anchor) in the initial placement."""
         return _end_point(end, at, self.body_map, self.anchor_map)
 
+    def spring_ends_at_rest(self) -> list[tuple[tuple[float, float], tuple[float, float]]]:
+        """Both ends' positions of every spring in the initial placement (the bodies and anchors
+        looked up once: O(S), where a call of :meth:`end_point_at_rest` per end is O(S n))."""
+        bodies, anchors = self.body_map, self.anchor_map
+        return [
+            (
+                _end_point(spring.ends[0], spring.attachments[0], bodies, anchors),
+                _end_point(spring.ends[1], spring.attachments[1], bodies, anchors),
+            )
+            for spring in self.springs
+        ]
+
     def _initial_length(self, spring: Spring) -> float:
         return _initial_length(spring, self.body_map, self.anchor_map)
 

@@ -1,6 +1,7 @@
 """What every ``rollspring`` command shares, written once: the SYSTEM argument and the common
-options (``--json``, ``--yes``, ``--out``, ``--format``), the one-line error handling and the
-check for an optional extra, the progress bar on stderr, and the console helpers.
+options (``--json``, ``--yes``, ``--out``, the ``--format`` a command accepts), the cost guard's
+confirmation, the one-line error handling and the check for an optional extra, the progress bar
+on stderr, and the console helpers (text or JSON on stdout, a file written atomically).
 
 The command modules (:mod:`rollspring.cli.commands`) import from here, never from
 :mod:`rollspring.cli.app`, which builds the application and registers them: the imports run one
@@ -29,28 +30,34 @@ from rollspring.errors import RollspringError, require_extra
 from rollspring.model import preset_names
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from rich.console import Console
     from rich.progress import Progress, ProgressColumn, TaskID
 
+    from rollspring.analysis.costs import Cost
     from rollspring.model import System
 
 __all__ = [
     "SYSTEM_HELP",
+    "Formats",
     "JsonOpt",
     "ProgressBar",
     "SystemArg",
     "YesOpt",
     "add_command",
-    "format_option",
+    "confirm_cost",
     "friendly_errors",
     "json_option",
     "load",
     "needs_extra",
     "out_option",
     "print_json",
+    "print_text",
     "say",
     "stdout_console",
     "system_argument",
+    "write_text",
     "yes_option",
 ]
 
@@ -73,8 +80,8 @@ def json_option(text: str = "Print one JSON object on stdout.") -> Any:
 
 
 def yes_option(bound: str = "time or memory", note: str = "") -> Any:
-    """``--yes``/``-y`` of a command with a cost guard (:func:`rollspring.service.costs.check_cost`
-    refuses a run whose estimated ``bound`` is above the bound, unless confirmed)."""
+    """``--yes``/``-y`` of a command with a cost guard (:func:`confirm_cost` refuses a run whose
+    estimated ``bound`` is above the bound, unless confirmed)."""
     return typer.Option(
         "--yes", "-y", help=f"Start even when the estimated {bound} is above the bound{note}."
     )
@@ -85,9 +92,27 @@ def out_option(text: str, *, show_default: bool = False) -> Any:
     return typer.Option("--out", "-o", help=text, show_default=show_default)
 
 
-def format_option(text: str, *, show_default: bool = True) -> Any:
-    """``--format``/``-f``: the output format (``text`` its help, naming the formats)."""
-    return typer.Option("--format", "-f", help=text, show_default=show_default)
+class Formats(tuple[str, ...]):
+    """The formats a command's ``--format``/``-f`` accepts, in the order its help names them:
+    the option's declaration (:meth:`option`) and the check of its value (:meth:`check`) in one
+    place. A tuple of the names (``Formats("text", "markdown") == ("text", "markdown")``)."""
+
+    def __new__(cls, *names: str) -> Formats:
+        return super().__new__(cls, names)
+
+    def option(self, note: str = "", *, text: str | None = None, show_default: bool = True) -> Any:
+        """``--format``/``-f``, its help "Output format: a, b (``note``)." unless ``text`` words
+        it otherwise."""
+        if text is None:
+            text = f"Output format: {', '.join(self)}" + (f" ({note})." if note else ".")
+        return typer.Option("--format", "-f", help=text, show_default=show_default)
+
+    def check(self, value: str, error: type[RollspringError]) -> str:
+        """``value`` if it is one of the formats, else ``error`` with the one line
+        ``--format: unknown format 'X' (formats: a, b)``."""
+        if value not in self:
+            raise error(f"--format: unknown format '{value}' (formats: {', '.join(self)})")
+        return value
 
 
 #: A system file or a preset name.
@@ -187,6 +212,38 @@ def print_json(data: Any) -> None:
     """``data`` as one JSON document on stdout (indented; NaN and infinity refused)."""
     sys.stdout.write(json.dumps(data, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
     sys.stdout.flush()
+
+
+def print_text(text: str) -> None:
+    """``text`` on stdout as it is (a document: Markdown, LaTeX, XML)."""
+    sys.stdout.write(text)
+    sys.stdout.flush()
+
+
+def write_text(path: str | Path, text: str, error: type[RollspringError]) -> None:
+    """``text`` written to ``--out`` ``path`` atomically (:mod:`rollspring.outputs.atomic`),
+    then ``wrote PATH`` on stderr; a failure is ``error`` with the one line ``--out: PATH:
+    cannot write (why)``."""
+    from rollspring.outputs.atomic import atomic_write_text
+
+    try:
+        atomic_write_text(path, text)
+    except OSError as exc:
+        raise error(f"--out: {path}: cannot write ({exc.strerror or exc})") from None
+    say(f"wrote {path}")
+
+
+def confirm_cost(cost: Cost, *, yes: bool, stoppable: bool = True) -> None:
+    """The cost guard of a command with ``--yes``: ``cost`` (estimated once, by the command)
+    refused above the bound unless ``yes`` (:func:`rollspring.analysis.costs.check_cost`), and a
+    long one announced on stderr (``note: the derivation will take about 6 min: ...``, with
+    ``; Ctrl-C stops it`` for a ``stoppable`` run)."""
+    from rollspring.analysis.costs import check_cost
+
+    check_cost(cost, confirmed=yes)
+    if cost.long:
+        stop = "; Ctrl-C stops it" if stoppable else ""
+        say(f"note: {cost.what} will take {cost.describe()}{stop}")
 
 
 def load(system: str) -> System:

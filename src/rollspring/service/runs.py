@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rollspring.analysis import LinearAnalysis, analyze, linear_motion
+from rollspring.analysis.modal import AnalysisRequest, analysis_request, run_analysis
 from rollspring.errors import SimulationError
 from rollspring.model import System, rolled
 
@@ -35,11 +36,13 @@ __all__ = [
 
 
 def analysis_payload(
-    system: System, modes: int | tuple[int, int] | None = None
+    system: System, request: AnalysisRequest | None = None
 ) -> tuple[dict[str, Any], list[str]]:
-    """The linear analysis of ``system`` (its ``modes``: :func:`rollspring.analyze`) as JSON
-    (``analyze --json``) and its warnings."""
-    result = analyze(system, confirm=True, modes=modes)  # the interfaces check the cost
+    """The linear analysis of ``system`` as JSON (``analyze --json``) and its warnings.
+    ``request``: its arguments checked already
+    (:func:`~rollspring.analysis.modal.analysis_request`; None: the default modes); the cost is
+    not estimated (the interfaces check it themselves: ``--yes``, the web's bounds)."""
+    result = run_analysis(system, analysis_request(system) if request is None else request)
     return result.to_dict(), list(result.warnings)
 
 

@@ -17,6 +17,7 @@ from rollspring.cli.common import (
     ProgressBar,
     SystemArg,
     add_command,
+    confirm_cost,
     load,
     out_option,
     say,
@@ -57,7 +58,7 @@ def animate(
     the CM and X-hat on the floor, and a clock."""
     target = _check(out, duration, speed, fps, dpi, on_slip)
     from rollspring.outputs.animation import AnimationError, frame_times, write_animation
-    from rollspring.service.costs import check_cost, request_cost
+    from rollspring.service.costs import request_cost
     from rollspring.service.runs import run_request
     from rollspring.simulate.request import simulation_request
 
@@ -65,10 +66,7 @@ def animate(
     frames = math.floor(duration / speed * fps) + 1
     # the arguments checked once, the cost estimated once: the run checks nothing again
     request = simulation_request(duration, on_slip=on_slip, n_output=max(2001, 2 * frames))
-    cost = request_cost(model, request, what="the simulation")
-    check_cost(cost, confirmed=yes)
-    if cost.long:
-        say(f"note: the simulation will take {cost.describe()}; Ctrl-C stops it")
+    confirm_cost(request_cost(model, request, what="the simulation"), yes=yes)
     with ProgressBar(delay=0.0, columns=_columns) as bar:  # shown at once
         bar.start("simulating")
         trajectory = run_request(model, request, progress=bar).trajectory

@@ -1,13 +1,15 @@
-"""What every ``rollspring`` command shares, written once: the SYSTEM argument and the common
-options (``--json``, ``--yes``, ``--out``, the ``--format`` a command accepts), the cost guard's
-confirmation, the one-line error handling and the check for an optional extra, the progress bar
-on stderr, and the console helpers (text or JSON on stdout, a file written atomically).
+"""What every ``rollspring`` command does alike when it runs, written once: adding it to the
+app with the one-line error handling and the check for an optional extra, loading its system,
+the cost guard's confirmation (``--yes``), the progress bar on stderr, and the console helpers
+(text or JSON on stdout, a file written atomically). What the commands declare alike (the
+SYSTEM argument, ``--json``, ``--yes``, ``--out``, ``--format``) is
+:mod:`rollspring.cli.options`.
 
-The command modules (:mod:`rollspring.cli.commands`) import from here, never from
-:mod:`rollspring.cli.app`, which builds the application and registers them: the imports run one
-way (app -> commands -> common). Only Typer and the presets' names are imported at the top;
-everything heavier (pydantic, Rich, the computations) when a command runs, so ``--help`` and the
-light commands start fast.
+The command modules (:mod:`rollspring.cli.commands`) import from here and from
+:mod:`~rollspring.cli.options`, never from :mod:`rollspring.cli.app`, which builds the
+application and registers them: the imports run one way (app -> commands -> common, options).
+Only Typer is imported at the top; everything heavier (pydantic, Rich, the computations) when a
+command runs, so ``--help`` and the light commands start fast.
 
 Every error rollspring raises on purpose is printed as one line on stderr, with exit code 2;
 with ``--json``, stdout holds exactly one JSON object and everything else goes to stderr.
@@ -21,13 +23,12 @@ import os
 import sys
 import time
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Annotated, Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import typer
 
 from rollspring.cli.text import say
 from rollspring.errors import RollspringError, require_extra
-from rollspring.model import preset_names
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -39,89 +40,20 @@ if TYPE_CHECKING:
     from rollspring.model import System
 
 __all__ = [
-    "SYSTEM_HELP",
-    "Formats",
-    "JsonOpt",
     "ProgressBar",
-    "SystemArg",
-    "YesOpt",
     "add_command",
     "confirm_cost",
     "friendly_errors",
-    "json_option",
     "load",
     "needs_extra",
-    "out_option",
     "print_json",
     "print_text",
     "say",
     "stdout_console",
-    "system_argument",
     "write_text",
-    "yes_option",
 ]
 
 F = TypeVar("F", bound=Callable[..., Any])
-
-# -- arguments and options --------------------------------------------------------------------
-
-#: The help of the SYSTEM argument: a file, or one of the presets (named).
-SYSTEM_HELP = f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())})."
-
-
-def system_argument(text: str = SYSTEM_HELP) -> Any:
-    """The SYSTEM argument (a system file or a preset name; ``text`` its help)."""
-    return typer.Argument(help=text, show_default=False)
-
-
-def json_option(text: str = "Print one JSON object on stdout.") -> Any:
-    """``--json``: the result as JSON on stdout (``text`` its help)."""
-    return typer.Option("--json", help=text)
-
-
-def yes_option(bound: str = "time or memory", note: str = "") -> Any:
-    """``--yes``/``-y`` of a command with a cost guard (:func:`confirm_cost` refuses a run whose
-    estimated ``bound`` is above the bound, unless confirmed)."""
-    return typer.Option(
-        "--yes", "-y", help=f"Start even when the estimated {bound} is above the bound{note}."
-    )
-
-
-def out_option(text: str, *, show_default: bool = False) -> Any:
-    """``--out``/``-o``: where a command writes (``text`` its help)."""
-    return typer.Option("--out", "-o", help=text, show_default=show_default)
-
-
-class Formats(tuple[str, ...]):
-    """The formats a command's ``--format``/``-f`` accepts, in the order its help names them:
-    the option's declaration (:meth:`option`) and the check of its value (:meth:`check`) in one
-    place. A tuple of the names (``Formats("text", "markdown") == ("text", "markdown")``)."""
-
-    def __new__(cls, *names: str) -> Formats:
-        return super().__new__(cls, names)
-
-    def option(self, note: str = "", *, text: str | None = None, show_default: bool = True) -> Any:
-        """``--format``/``-f``, its help "Output format: a, b (``note``)." unless ``text`` words
-        it otherwise."""
-        if text is None:
-            text = f"Output format: {', '.join(self)}" + (f" ({note})." if note else ".")
-        return typer.Option("--format", "-f", help=text, show_default=show_default)
-
-    def check(self, value: str, error: type[RollspringError]) -> str:
-        """``value`` if it is one of the formats, else ``error`` with the one line
-        ``--format: unknown format 'X' (formats: a, b)``."""
-        if value not in self:
-            raise error(f"--format: unknown format '{value}' (formats: {', '.join(self)})")
-        return value
-
-
-#: A system file or a preset name.
-SystemArg = Annotated[str, system_argument()]
-#: ``--json`` (one JSON object on stdout).
-JsonOpt = Annotated[bool, json_option()]
-#: ``--yes`` of the runs a cost estimate can refuse (analyze, simulate).
-YesOpt = Annotated[bool, yes_option(note=" (a larger run is refused with its estimate)")]
-
 
 # -- errors -------------------------------------------------------------------------------------
 

@@ -12,17 +12,8 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import (
-    JsonOpt,
-    SystemArg,
-    YesOpt,
-    add_command,
-    confirm_cost,
-    load,
-    print_json,
-    say,
-    stdout_console,
-)
+from rollspring.cli.common import add_command, confirm_cost, load, print_json, say, stdout_console
+from rollspring.cli.options import JsonOpt, SystemArg, YesOpt
 from rollspring.model import DEFAULT_PRESET
 
 __all__ = ["analyze", "register"]

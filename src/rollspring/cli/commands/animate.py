@@ -13,16 +13,8 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.cli.common import (
-    ProgressBar,
-    SystemArg,
-    add_command,
-    confirm_cost,
-    load,
-    out_option,
-    say,
-    yes_option,
-)
+from rollspring.cli.common import ProgressBar, add_command, confirm_cost, load, say
+from rollspring.cli.options import SystemArg, out_option, yes_option
 
 if TYPE_CHECKING:
     from rich.progress import ProgressColumn

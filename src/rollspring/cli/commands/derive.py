@@ -12,18 +12,8 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import (
-    Formats,
-    SystemArg,
-    add_command,
-    confirm_cost,
-    load,
-    out_option,
-    print_text,
-    say,
-    write_text,
-    yes_option,
-)
+from rollspring.cli.common import add_command, confirm_cost, load, print_text, say, write_text
+from rollspring.cli.options import Formats, SystemArg, out_option, yes_option
 
 # The derivation engine (SymPy) is imported when the command runs, not when the CLI starts.
 #: The names of the methods and formats, for the help text (a test checks them against the

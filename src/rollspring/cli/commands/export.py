@@ -11,7 +11,8 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import Formats, SystemArg, add_command, load, out_option, print_text, say
+from rollspring.cli.common import add_command, load, print_text, say
+from rollspring.cli.options import Formats, SystemArg, out_option
 
 __all__ = ["FORMATS", "export", "register"]
 

@@ -18,7 +18,8 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.cli.common import Formats, add_command, json_option, print_text, stdout_console
+from rollspring.cli.common import add_command, print_text, stdout_console
+from rollspring.cli.options import Formats, json_option
 from rollspring.errors import PaperCheckError
 
 if TYPE_CHECKING:

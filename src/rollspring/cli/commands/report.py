@@ -14,17 +14,8 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import (
-    Formats,
-    ProgressBar,
-    SystemArg,
-    add_command,
-    confirm_cost,
-    load,
-    out_option,
-    say,
-    yes_option,
-)
+from rollspring.cli.common import ProgressBar, add_command, confirm_cost, load, say
+from rollspring.cli.options import Formats, SystemArg, out_option, yes_option
 from rollspring.model import DEFAULT_PRESET
 
 __all__ = ["FORMATS", "register", "report"]

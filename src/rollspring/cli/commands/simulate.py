@@ -15,18 +15,15 @@ from typing import Annotated
 import typer
 
 from rollspring.cli.common import (
-    JsonOpt,
     ProgressBar,
-    SystemArg,
-    YesOpt,
     add_command,
     confirm_cost,
     load,
-    out_option,
     print_json,
     say,
     stdout_console,
 )
+from rollspring.cli.options import JsonOpt, SystemArg, YesOpt, out_option
 from rollspring.model import DEFAULT_PRESET
 
 __all__ = ["register", "simulate"]

@@ -15,7 +15,8 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import Formats, add_command, out_option, print_text, write_text
+from rollspring.cli.common import add_command, print_text, write_text
+from rollspring.cli.options import Formats, out_option
 from rollspring.errors import WorksheetOptionError
 
 __all__ = [

@@ -110,3 +110,16 @@ def test_the_library_estimates_once_too(estimates: Counter[str]) -> None:
     estimates.clear()
     rollspring.build_report(system, duration=0.5, derivation=False)
     assert estimates == {"report_cost": 1, "analysis_cost": 1, "request_cost": 1}
+
+
+def test_a_checked_run_estimates_nothing(estimates: Counter[str]) -> None:
+    """service.runs.run_request (what simulate, animate and the web page run) estimates
+    nothing, nor the analyses of a run from a mode or beside the linear motion."""
+    from rollspring.service.runs import ModeStart, run_request
+    from rollspring.simulate.request import simulation_request
+
+    system = rollspring.load_system("hoop-cylinder")
+    request = simulation_request(0.5, n_output=51)
+    run = run_request(system, request, start=ModeStart(1, 0.01), linear=True)
+    assert run.linear is not None
+    assert estimates == {}

@@ -130,15 +130,21 @@ def run_request(
     :func:`~rollspring.simulate.costs.request_cost`): nothing is checked or estimated again."""
     from rollspring.simulate.run import run_request as run
 
-    analysis = analyze(system, confirm=True) if start is not None or linear else None
+    analysis = _analysis(system) if start is not None or linear else None
     if start is not None:
         system = mode_start(system, start, analysis)
-        analysis = analyze(system, confirm=True) if linear else None
+        analysis = _analysis(system) if linear else None
     trajectory = run(system, request, progress)
     line = None
     if linear and analysis is not None and analysis.equilibrium.found:
         line = linear_motion(analysis, trajectory.t)
     return SimulationRun(system=system, trajectory=trajectory, linear=line)
+
+
+def _analysis(system: System) -> LinearAnalysis:
+    """The analysis a run starts from or is compared with (every mode by size): not estimated,
+    as the run it serves is not."""
+    return run_analysis(system, analysis_request(system))
 
 
 def simulation_payload(run: SimulationRun) -> dict[str, Any]:

@@ -5,7 +5,9 @@ and the physics checks on the result.
 The motion about the equilibrium is a sum of normal modes (:mod:`rollspring.analysis.linear`);
 every quantity that depends linearly on the state (centre positions, the CM, friction, normal
 forces, spring lengths) is then a constant plus a sum of sinusoids, whose amplitudes are
-reported here.
+reported here. :func:`analyze` is :func:`analysis_request` (the arguments checked once), the cost
+guard, then :func:`run_analysis`, which an interface that estimated the cost itself calls
+directly.
 """
 
 from __future__ import annotations

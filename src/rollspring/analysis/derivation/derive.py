@@ -1,7 +1,9 @@
 r"""``derive(system, method=...)``: the symbolic system, every method's derivation, the forces and
 the cross-check, as one :class:`Derivation` (rendered as text, Markdown or LaTeX, and as math in
 Jupyter); :func:`run_method` runs one method (:mod:`.newton`, :mod:`.conservation`,
-:mod:`.lagrange`, :mod:`.natural_frequencies`, :mod:`.hamilton`) by name."""
+:mod:`.lagrange`, :mod:`.natural_frequencies`, :mod:`.hamilton`) by name. :func:`derive` is
+:func:`derivation_request` (the arguments checked once), the cost guard, then
+:func:`run_derivation`, which an interface that estimated the cost itself calls directly."""
 
 from __future__ import annotations
 
@@ -265,8 +267,8 @@ def derive(
     from rollspring.model import as_system
 
     system = as_system(system)
-    _check_flag("confirm", confirm)
     request = derivation_request(method, symbols=symbols, budget=budget)
+    _check_flag("confirm", confirm)
     check_cost(derivation_cost(system), confirmed=bool(confirm), flag=CONFIRM)
     return run_derivation(system, request)
 

@@ -431,7 +431,7 @@ def test_the_clis_yes_reaches_the_analysis(tmp_path, monkeypatch) -> None:
     ("args", "module", "name"),
     [
         (["simulate", "hoop-cylinder", "-T", "1e9"], "rollspring.simulate.run", "system_arrays"),
-        (["report", "hoop-cylinder", "-T", "1e9"], "rollspring.service.documents", "analyze"),
+        (["report", "hoop-cylinder", "-T", "1e9"], "rollspring.service.documents", "run_analysis"),
         (["derive", "CHAIN"], "rollspring.analysis.derivation.derive", "symbolic_system"),
     ],
     ids=["simulate", "report", "derive"],

@@ -337,7 +337,7 @@ def test_derive_checks_its_arguments_before_the_work(system, monkeypatch) -> Non
 def test_build_report_refuses_a_long_report_with_the_clis_estimate(system, tmp_path, monkeypatch):
     from rollspring.service import documents
 
-    monkeypatch.setattr(documents, "analyze", _never)  # the report's first work
+    monkeypatch.setattr(documents, "run_analysis", _never)  # the report's first work
     message = api_error(lambda: rollspring.build_report(system, duration=1e9), CostTooHigh)
     cli = cli_error("report", "hoop-cylinder", "-T", "1e9", "-o", str(tmp_path / "r.html"))
     assert message == in_api_words(cli)
@@ -348,7 +348,7 @@ def test_build_report_refuses_a_long_report_with_the_clis_estimate(system, tmp_p
 def test_build_report_checks_its_arguments_before_the_work(system, monkeypatch) -> None:
     from rollspring.service import documents
 
-    monkeypatch.setattr(documents, "analyze", _never)
+    monkeypatch.setattr(documents, "run_analysis", _never)
     for arguments, kind, start in [
         ({"duration": 0.0}, ReportError, "duration: must be a positive number of seconds"),
         ({"duration": True}, ReportError, "duration: must be a positive number of seconds"),
@@ -431,7 +431,7 @@ def test_the_clis_yes_reaches_the_analysis(tmp_path, monkeypatch) -> None:
     ("args", "module", "name"),
     [
         (["simulate", "hoop-cylinder", "-T", "1e9"], "rollspring.simulate.run", "system_arrays"),
-        (["report", "hoop-cylinder", "-T", "1e9"], "rollspring.service.documents", "analyze"),
+        (["report", "hoop-cylinder", "-T", "1e9"], "rollspring.service.documents", "run_analysis"),
         (["derive", "CHAIN"], "rollspring.analysis.derivation.derive", "symbolic_system"),
     ],
     ids=["simulate", "report", "derive"],

@@ -1061,7 +1061,7 @@ def test_corners_of_the_ranges_give_numbers_or_say_why(mass, stiffness, size) ->
             {"ends": ["hoop", "cyl"], "stiffness": stiffness, "rest_length": 0.5 * scale},
         ],
     }
-    from rollspring.service.costs import simulation_cost
+    from rollspring.simulate.costs import simulation_cost
 
     system = rollspring.system_from_dict(data)
     with warnings.catch_warnings():

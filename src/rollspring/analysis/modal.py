@@ -5,7 +5,9 @@ and the physics checks on the result.
 The motion about the equilibrium is a sum of normal modes (:mod:`rollspring.analysis.linear`);
 every quantity that depends linearly on the state (centre positions, the CM, friction, normal
 forces, spring lengths) is then a constant plus a sum of sinusoids, whose amplitudes are
-reported here.
+reported here. :func:`analyze` is :func:`analysis_request` (the arguments checked once), the cost
+guard, then :func:`run_analysis`, which an interface that estimated the cost itself calls
+directly.
 """
 
 from __future__ import annotations
@@ -42,7 +44,7 @@ from rollspring.physics import (
 )
 from rollspring.physics.arrays import FloatArray
 
-__all__ = ["analyze"]
+__all__ = ["AnalysisRequest", "analysis_request", "analyze", "run_analysis"]
 
 
 def analyze(
@@ -100,8 +102,36 @@ def analyze(
     system = as_system(system)
     if not isinstance(confirm, bool):
         raise AnalysisError(f"confirm: must be True or False, got {confirm!r}")
-    select = _selection(modes, len(system.bodies))  # a bad request fails before any work
+    request = analysis_request(system, modes=modes, sparse=sparse)  # fails before any work
     check_cost(analysis_cost(system, modes=modes), confirmed=confirm, flag=CONFIRM)
+    return run_analysis(system, request)
+
+
+@dataclass(frozen=True, slots=True)
+class AnalysisRequest:
+    """The checked arguments of one :func:`analyze` of a system (see there)."""
+
+    #: the ``modes`` asked for (what the estimate counts), None for the default
+    modes: int | tuple[int, int] | None
+    #: the 0-based inclusive range of modes computed, None for all
+    select: tuple[int, int] | None
+    #: the sparse (banded) path: True, False, or None to choose by size
+    sparse: bool | None
+
+
+def analysis_request(
+    system: System, *, modes: int | tuple[int, int] | None = None, sparse: bool | None = None
+) -> AnalysisRequest:
+    """The arguments of :func:`analyze` on ``system`` checked (``modes`` against its bodies:
+    one-line :class:`~rollspring.errors.AnalysisError` naming the argument)."""
+    return AnalysisRequest(modes, _selection(modes, len(system.bodies)), sparse)
+
+
+def run_analysis(system: System, request: AnalysisRequest) -> LinearAnalysis:
+    """The analysis :func:`analyze` makes of a request checked already
+    (:func:`analysis_request`), without estimating its cost (the caller's: :func:`analyze`, or
+    an interface that estimated it once)."""
+    modes, select, sparse = request.modes, request.select, request.sparse
     arrays = system_arrays(system)
     warnings: list[str] = []
     n = arrays.n_bodies

@@ -2,9 +2,9 @@
 
 A thin layer: each command (one module each under :mod:`rollspring.cli.commands`) parses its
 arguments, calls the library and formats the result, with the pieces they share in
-:mod:`rollspring.cli.common`. This module imports the commands, never the other way round. Usage
-errors (an unknown option, a missing value) are one line on stderr with exit code 2, like
-rollspring's own errors.
+:mod:`rollspring.cli.options` (declared) and :mod:`rollspring.cli.common` (run). This module
+imports the commands, never the other way round. Usage errors (an unknown option, a missing
+value) are one line on stderr with exit code 2, like rollspring's own errors.
 """
 
 from __future__ import annotations

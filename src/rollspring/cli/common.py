@@ -1,12 +1,15 @@
-"""What every ``rollspring`` command shares, written once: the SYSTEM argument and the common
-options (``--json``, ``--yes``, ``--out``, ``--format``), the one-line error handling and the
-check for an optional extra, the progress bar on stderr, and the console helpers.
+"""What every ``rollspring`` command does alike when it runs, written once: adding it to the
+app with the one-line error handling and the check for an optional extra, loading its system,
+the cost guard's confirmation (``--yes``), the progress bar on stderr, and the console helpers
+(text or JSON on stdout, a file written atomically). What the commands declare alike (the
+SYSTEM argument, ``--json``, ``--yes``, ``--out``, ``--format``) is
+:mod:`rollspring.cli.options`.
 
-The command modules (:mod:`rollspring.cli.commands`) import from here, never from
-:mod:`rollspring.cli.app`, which builds the application and registers them: the imports run one
-way (app -> commands -> common). Only Typer and the presets' names are imported at the top;
-everything heavier (pydantic, Rich, the computations) when a command runs, so ``--help`` and the
-light commands start fast.
+The command modules (:mod:`rollspring.cli.commands`) import from here and from
+:mod:`~rollspring.cli.options`, never from :mod:`rollspring.cli.app`, which builds the
+application and registers them: the imports run one way (app -> commands -> common, options).
+Only Typer is imported at the top; everything heavier (pydantic, Rich, the computations) when a
+command runs, so ``--help`` and the light commands start fast.
 
 Every error rollspring raises on purpose is printed as one line on stderr, with exit code 2;
 with ``--json``, stdout holds exactly one JSON object and everything else goes to stderr.
@@ -20,83 +23,37 @@ import os
 import sys
 import time
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Annotated, Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import typer
 
 from rollspring.cli.text import say
 from rollspring.errors import RollspringError, require_extra
-from rollspring.model import preset_names
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from rich.console import Console
     from rich.progress import Progress, ProgressColumn, TaskID
 
+    from rollspring.analysis.costs import Cost
     from rollspring.model import System
 
 __all__ = [
-    "SYSTEM_HELP",
-    "JsonOpt",
     "ProgressBar",
-    "SystemArg",
-    "YesOpt",
     "add_command",
-    "format_option",
+    "confirm_cost",
     "friendly_errors",
-    "json_option",
     "load",
     "needs_extra",
-    "out_option",
     "print_json",
+    "print_text",
     "say",
     "stdout_console",
-    "system_argument",
-    "yes_option",
+    "write_text",
 ]
 
 F = TypeVar("F", bound=Callable[..., Any])
-
-# -- arguments and options --------------------------------------------------------------------
-
-#: The help of the SYSTEM argument: a file, or one of the presets (named).
-SYSTEM_HELP = f"A system file (.toml or .json) or a preset name ({', '.join(preset_names())})."
-
-
-def system_argument(text: str = SYSTEM_HELP) -> Any:
-    """The SYSTEM argument (a system file or a preset name; ``text`` its help)."""
-    return typer.Argument(help=text, show_default=False)
-
-
-def json_option(text: str = "Print one JSON object on stdout.") -> Any:
-    """``--json``: the result as JSON on stdout (``text`` its help)."""
-    return typer.Option("--json", help=text)
-
-
-def yes_option(bound: str = "time or memory", note: str = "") -> Any:
-    """``--yes``/``-y`` of a command with a cost guard (:func:`rollspring.service.costs.check_cost`
-    refuses a run whose estimated ``bound`` is above the bound, unless confirmed)."""
-    return typer.Option(
-        "--yes", "-y", help=f"Start even when the estimated {bound} is above the bound{note}."
-    )
-
-
-def out_option(text: str, *, show_default: bool = False) -> Any:
-    """``--out``/``-o``: where a command writes (``text`` its help)."""
-    return typer.Option("--out", "-o", help=text, show_default=show_default)
-
-
-def format_option(text: str, *, show_default: bool = True) -> Any:
-    """``--format``/``-f``: the output format (``text`` its help, naming the formats)."""
-    return typer.Option("--format", "-f", help=text, show_default=show_default)
-
-
-#: A system file or a preset name.
-SystemArg = Annotated[str, system_argument()]
-#: ``--json`` (one JSON object on stdout).
-JsonOpt = Annotated[bool, json_option()]
-#: ``--yes`` of the runs a cost estimate can refuse (analyze, simulate).
-YesOpt = Annotated[bool, yes_option(note=" (a larger run is refused with its estimate)")]
-
 
 # -- errors -------------------------------------------------------------------------------------
 
@@ -187,6 +144,38 @@ def print_json(data: Any) -> None:
     """``data`` as one JSON document on stdout (indented; NaN and infinity refused)."""
     sys.stdout.write(json.dumps(data, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
     sys.stdout.flush()
+
+
+def print_text(text: str) -> None:
+    """``text`` on stdout as it is (a document: Markdown, LaTeX, XML)."""
+    sys.stdout.write(text)
+    sys.stdout.flush()
+
+
+def write_text(path: str | Path, text: str, error: type[RollspringError]) -> None:
+    """``text`` written to ``--out`` ``path`` atomically (:mod:`rollspring.outputs.atomic`),
+    then ``wrote PATH`` on stderr; a failure is ``error`` with the one line ``--out: PATH:
+    cannot write (why)``."""
+    from rollspring.outputs.atomic import atomic_write_text
+
+    try:
+        atomic_write_text(path, text)
+    except OSError as exc:
+        raise error(f"--out: {path}: cannot write ({exc.strerror or exc})") from None
+    say(f"wrote {path}")
+
+
+def confirm_cost(cost: Cost, *, yes: bool, stoppable: bool = True) -> None:
+    """The cost guard of a command with ``--yes``: ``cost`` (estimated once, by the command)
+    refused above the bound unless ``yes`` (:func:`rollspring.analysis.costs.check_cost`), and a
+    long one announced on stderr (``note: the derivation will take about 6 min: ...``, with
+    ``; Ctrl-C stops it`` for a ``stoppable`` run)."""
+    from rollspring.analysis.costs import check_cost
+
+    check_cost(cost, confirmed=yes)
+    if cost.long:
+        stop = "; Ctrl-C stops it" if stoppable else ""
+        say(f"note: {cost.what} will take {cost.describe()}{stop}")
 
 
 def load(system: str) -> System:

@@ -1,56 +1,8 @@
 """Exact rolling physics: pure, vectorised functions of a system (as arrays) and a state."""
 
+from rollspring.physics import mechanics
 from rollspring.physics.arrays import SystemArrays, system_arrays
-from rollspring.physics.mechanics import (
-    SpringState,
-    accelerations,
-    body_forces,
-    body_forces_jacobian,
-    centre_of_mass,
-    centre_positions,
-    contact_forces,
-    contact_forces_jacobian,
-    damping_matrix,
-    end_kinematics,
-    force_point_kinematics,
-    force_work,
-    generalized_forces,
-    kinetic_energy,
-    mass_matrix,
-    potential_energy,
-    spring_energies,
-    spring_pair_matrix,
-    spring_state,
-    springs_stay_level,
-    stiffness_entries,
-    stiffness_matrix,
-    total_energy,
-)
+from rollspring.physics.mechanics import *  # noqa: F403 - the names of mechanics.__all__
 
-__all__ = [
-    "SpringState",
-    "SystemArrays",
-    "accelerations",
-    "body_forces",
-    "body_forces_jacobian",
-    "centre_of_mass",
-    "centre_positions",
-    "contact_forces",
-    "contact_forces_jacobian",
-    "damping_matrix",
-    "end_kinematics",
-    "force_point_kinematics",
-    "force_work",
-    "generalized_forces",
-    "kinetic_energy",
-    "mass_matrix",
-    "potential_energy",
-    "spring_energies",
-    "spring_pair_matrix",
-    "spring_state",
-    "springs_stay_level",
-    "stiffness_entries",
-    "stiffness_matrix",
-    "system_arrays",
-    "total_energy",
-]
+#: the arrays of a system, and every function of mechanics (its ``__all__``)
+__all__ = ["SystemArrays", "system_arrays", *mechanics.__all__]

@@ -6,7 +6,7 @@ under a second, before any long work. The Python API refuses the same runs with 
 message, unless called with ``confirm=True``: the estimates live with what they estimate, and
 this module gathers them for the command line.
 
-* A simulation (:func:`simulation_cost`, :mod:`rollspring.simulate.costs`): its step comes from
+* A simulation (:func:`request_cost`, :mod:`rollspring.simulate.costs`): its step comes from
   the highest linear frequency at the initial placement and ``rtol``, exactly as
   :func:`rollspring.simulate.choose_scheme` chooses it (the compiled symplectic schemes); damped
   springs run DOP853, whose adaptive steps are estimated from the same frequency. Seconds
@@ -28,34 +28,23 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from rollspring.analysis.costs import (
-    CONFIRM,
-    MAX_MEMORY,
-    MAX_SECONDS,
-    RTOL_RANGE,
-    Cost,
-    analysis_cost,
-    check_cost,
-    derivation_cost,
-)
+from rollspring.analysis import costs as guard
+from rollspring.analysis.costs import CONFIRM as CONFIRM
+from rollspring.analysis.costs import MAX_MEMORY as MAX_MEMORY
+from rollspring.analysis.costs import MAX_SECONDS as MAX_SECONDS
+from rollspring.analysis.costs import RTOL_RANGE as RTOL_RANGE
+from rollspring.analysis.costs import Cost as Cost
+from rollspring.analysis.costs import analysis_cost as analysis_cost
+from rollspring.analysis.costs import check_cost as check_cost
+from rollspring.analysis.costs import derivation_cost as derivation_cost
 from rollspring.model import System
 
 if TYPE_CHECKING:
     from rollspring.simulate.request import SimulationRequest
 
-__all__ = [
-    "CONFIRM",
-    "MAX_MEMORY",
-    "MAX_SECONDS",
-    "RTOL_RANGE",
-    "Cost",
-    "analysis_cost",
-    "check_cost",
-    "derivation_cost",
-    "report_cost",
-    "request_cost",
-    "simulation_cost",
-]
+#: the cost guard's names (:mod:`rollspring.analysis.costs`), and the estimates gathered here
+__all__ = ["report_cost", "request_cost"]
+__all__ += guard.__all__
 
 #: the longest simulation a report makes by itself (its default duration), s
 _REPORT_DURATION = 20.0
@@ -66,40 +55,13 @@ _REPORT_SMALLER = {
 }
 
 
-def simulation_cost(
-    system: System,
-    duration: Any,
-    *,
-    rtol: Any = 1e-8,
-    integrator: Any = "auto",
-    outputs: Any = 2001,
-    written: bool = False,
-    what: str = "this run",
-) -> Cost:
-    """The estimated cost of ``simulate(system, duration, rtol=..., integrator=...,
-    n_output=outputs)``, its files too when ``written``, in the command line's words
-    (:func:`rollspring.simulate.costs.simulation_cost`, loaded on first use: the compiled
-    kernels are not for ``rollspring analyze``). The arguments are checked first, with the
-    messages of :func:`rollspring.simulate` (:class:`~rollspring.errors.SimulationError` naming
-    the argument); ``rtol`` must also be within :data:`RTOL_RANGE`."""
-    from rollspring.simulate.costs import simulation_cost as estimate
-
-    return estimate(
-        system,
-        duration,
-        rtol=rtol,
-        integrator=integrator,
-        outputs=outputs,
-        written=written,
-        what=what,
-    )
-
-
 def request_cost(
     system: System, request: SimulationRequest, *, written: bool = False, what: str = "this run"
 ) -> Cost:
-    """:func:`simulation_cost` of a request whose arguments are checked already
-    (:func:`rollspring.simulate.request.simulation_request`): nothing is checked again."""
+    """The estimated cost of a run whose arguments are checked already
+    (:func:`rollspring.simulate.request.simulation_request`), its files too when ``written``,
+    in the command line's words (:func:`rollspring.simulate.costs.request_cost`, loaded on first
+    use: the compiled kernels are not for ``rollspring analyze``): nothing is checked again."""
     from rollspring.simulate.costs import request_cost as estimate
 
     return estimate(system, request, written=written, what=what)
@@ -118,8 +80,11 @@ def report_cost(
     ``flag`` is how the run is confirmed (``--yes``, or ``confirm=True`` in Python): the words
     of the message that says how to make it smaller."""
     from rollspring.model.chains import LONG_CHAIN
+    from rollspring.simulate.request import simulation_request
 
-    run = simulation_cost(system, _REPORT_DURATION if duration is None else duration, what=what)
+    run = request_cost(
+        system, simulation_request(_REPORT_DURATION if duration is None else duration), what=what
+    )
     if len(system.bodies) > LONG_CHAIN:  # a long chain's summary: no analysis, no derivation
         seconds = 15.0 + run.seconds
         smaller = _REPORT_SMALLER.get(flag, _REPORT_SMALLER["--yes"])

@@ -8,6 +8,7 @@ computes nothing itself. The CLI (``rollspring report``, ``derive``, ``paper-che
 Public API::
 
     build_report(system, duration=None, derivation=True, progress=None)  # -> Report
+    run_report(system, report_request(duration=None), progress=None)  # checked, not estimated
     derivation_document(system, ["newton"], format="markdown")    # -> (text, CrossCheck)
     derivation_payload(system, "all")                             # the JSON of POST /api/derive
     paper_checks()                                                # every claim, with its verdict
@@ -24,11 +25,14 @@ import numbers
 import os
 import time
 from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from rollspring.analysis import analyze
 from rollspring.analysis.derivation import ALL, CrossCheck, derive
+from rollspring.analysis.derivation.derive import derivation_request, run_derivation
 from rollspring.analysis.exercises import LEVELS, Worksheet
+from rollspring.analysis.modal import analysis_request, run_analysis
 from rollspring.analysis.paper import (
     ClaimCheck,
     check_claims,
@@ -37,7 +41,7 @@ from rollspring.analysis.paper import (
     paper_figure,
 )
 from rollspring.analysis.waves import travelling_wave
-from rollspring.errors import RollspringError, WorksheetError
+from rollspring.errors import ReportError, RollspringError, WorksheetError
 from rollspring.model import System, as_system, system_from_dict
 from rollspring.service import exercises
 
@@ -48,12 +52,15 @@ if TYPE_CHECKING:
 # functions that use them: the worksheets and the paper's claims need neither.
 
 __all__ = [
+    "ReportRequest",
     "build_report",
     "claims_json",
     "derivation_document",
     "derivation_payload",
     "figure_claims",
     "paper_checks",
+    "report_request",
+    "run_report",
     "worksheet",
 ]
 
@@ -111,18 +118,39 @@ def build_report(
     Report
         The page (``html``), its parts and ``timings``; ``write_report`` saves it.
     """
-    from rollspring.model.chains import LONG_CHAIN
-    from rollspring.outputs.report import (
-        ReportError,
-        animation_frames,
-        default_duration,
-        render_report,
-    )
     from rollspring.service.costs import CONFIRM, check_cost, report_cost
-    from rollspring.simulate import simulate
-    from rollspring.simulate.arguments import check_rtol_range
 
     system = as_system(system)
+    request = report_request(duration=duration, rtol=rtol, derivation=derivation)
+    if not isinstance(confirm, bool):
+        raise ReportError(f"confirm: must be True or False, got {confirm!r}")
+    cost = report_cost(
+        system, duration=request.duration, derivation=request.derivation, flag=CONFIRM
+    )
+    check_cost(cost, confirmed=confirm, flag=CONFIRM)
+    return run_report(system, request, progress)
+
+
+@dataclass(frozen=True, slots=True)
+class ReportRequest:
+    """The checked arguments of one :func:`build_report` of a system (see there)."""
+
+    #: the simulated time (s, > 0 and finite), None for the default
+    duration: float | None
+    #: the run's relative accuracy, within :data:`~rollspring.analysis.costs.RTOL_RANGE`
+    rtol: float
+    #: include the derivations and the paper's claims
+    derivation: bool
+
+
+def report_request(
+    *, duration: Any = None, rtol: Any = 1e-8, derivation: Any = True
+) -> ReportRequest:
+    """The arguments of :func:`build_report` checked, in this order (the first bad one is the
+    error, a one-line :class:`~rollspring.errors.RollspringError` naming it): ``duration``,
+    ``rtol``, ``derivation``."""
+    from rollspring.simulate.arguments import check_rtol_range
+
     if duration is not None and (
         isinstance(duration, bool)
         or not isinstance(duration, numbers.Real)
@@ -130,12 +158,27 @@ def build_report(
         or duration <= 0
     ):
         raise ReportError(f"duration: must be a positive number of seconds, got {duration!r}")
-    check_rtol_range(rtol)
-    for name, flag in (("derivation", derivation), ("confirm", confirm)):
-        if not isinstance(flag, bool):
-            raise ReportError(f"{name}: must be True or False, got {flag!r}")
-    cost = report_cost(system, duration=duration, derivation=derivation, flag=CONFIRM)
-    check_cost(cost, confirmed=confirm, flag=CONFIRM)
+    rtol = check_rtol_range(rtol)
+    if not isinstance(derivation, bool):
+        raise ReportError(f"derivation: must be True or False, got {derivation!r}")
+    return ReportRequest(None if duration is None else float(duration), rtol, derivation)
+
+
+def run_report(
+    system: System,
+    request: ReportRequest,
+    progress: Callable[[float], None] | None = None,
+) -> Report:
+    """The report :func:`build_report` makes of a request checked already
+    (:func:`report_request`), without estimating its cost (the caller's: :func:`build_report`,
+    or an interface that estimated it once): the analysis, the run and the derivation inside
+    are not estimated again either."""
+    from rollspring.model.chains import LONG_CHAIN
+    from rollspring.outputs.report import animation_frames, default_duration, render_report
+    from rollspring.simulate.request import simulation_request
+    from rollspring.simulate.run import run_request
+
+    duration, rtol, derivation = request.duration, request.rtol, request.derivation
     timings: dict[str, float] = {}
     started = clock = time.perf_counter()
 
@@ -149,19 +192,19 @@ def build_report(
 
     if len(system.bodies) > LONG_CHAIN:
         return _chain_report(system, duration, rtol, done, timings, started)
-    analysis = analyze(system)
+    analysis = run_analysis(system, analysis_request(system))
     if duration is None:
         duration = default_duration(analysis)
     done("analyze", 0.05)
     frames, rows = animation_frames(float(duration))
-    # confirmed above, as a whole (report_cost)
-    trajectory = simulate(system, float(duration), rtol=rtol, n_output=rows, confirm=True)
+    run = simulation_request(float(duration), rtol=rtol, n_output=rows)
+    trajectory = run_request(system, run)
     computed = 0.2
     done("simulate", computed)
     derived = error = paper = None
     if derivation:
         try:
-            derived = derive(system, symbols=True, confirm=True)
+            derived = run_derivation(system, derivation_request(symbols=True))
         except RollspringError as exc:
             error = str(exc)
         done("derive", 0.5)
@@ -198,10 +241,12 @@ def _chain_report(
 ) -> Report:
     """A long chain's report: simulate, measure the waves, render the summary."""
     from rollspring.outputs.report import render_chain_report
-    from rollspring.simulate import simulate
+    from rollspring.simulate.request import simulation_request
+    from rollspring.simulate.run import run_request
 
     duration = CHAIN_DURATION if duration is None else float(duration)
-    trajectory = simulate(system, duration, rtol=rtol, n_output=CHAIN_ROWS, confirm=True)
+    run = simulation_request(duration, rtol=rtol, n_output=CHAIN_ROWS)
+    trajectory = run_request(system, run)
     done("simulate", 0.6)
     waves = travelling_wave(system, trajectory.t, trajectory.x, trajectory.v)
     done("waves", 0.7)

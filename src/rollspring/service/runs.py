@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rollspring.analysis import LinearAnalysis, analyze, linear_motion
+from rollspring.analysis.modal import AnalysisRequest, analysis_request, run_analysis
 from rollspring.errors import SimulationError
 from rollspring.model import System, rolled
 
@@ -35,11 +36,13 @@ __all__ = [
 
 
 def analysis_payload(
-    system: System, modes: int | tuple[int, int] | None = None
+    system: System, request: AnalysisRequest | None = None
 ) -> tuple[dict[str, Any], list[str]]:
-    """The linear analysis of ``system`` (its ``modes``: :func:`rollspring.analyze`) as JSON
-    (``analyze --json``) and its warnings."""
-    result = analyze(system, confirm=True, modes=modes)  # the interfaces check the cost
+    """The linear analysis of ``system`` as JSON (``analyze --json``) and its warnings.
+    ``request``: its arguments checked already
+    (:func:`~rollspring.analysis.modal.analysis_request`; None: the default modes); the cost is
+    not estimated (the interfaces check it themselves: ``--yes``, the web's bounds)."""
+    result = run_analysis(system, analysis_request(system) if request is None else request)
     return result.to_dict(), list(result.warnings)
 
 
@@ -127,15 +130,21 @@ def run_request(
     :func:`~rollspring.simulate.costs.request_cost`): nothing is checked or estimated again."""
     from rollspring.simulate.run import run_request as run
 
-    analysis = analyze(system, confirm=True) if start is not None or linear else None
+    analysis = _analysis(system) if start is not None or linear else None
     if start is not None:
         system = mode_start(system, start, analysis)
-        analysis = analyze(system, confirm=True) if linear else None
+        analysis = _analysis(system) if linear else None
     trajectory = run(system, request, progress)
     line = None
     if linear and analysis is not None and analysis.equilibrium.found:
         line = linear_motion(analysis, trajectory.t)
     return SimulationRun(system=system, trajectory=trajectory, linear=line)
+
+
+def _analysis(system: System) -> LinearAnalysis:
+    """The analysis a run starts from or is compared with (every mode by size): not estimated,
+    as the run it serves is not."""
+    return run_analysis(system, analysis_request(system))
 
 
 def simulation_payload(run: SimulationRun) -> dict[str, Any]:

@@ -33,22 +33,17 @@ def _load_blas_check_module() -> None:
         return
     try:
         import importlib.machinery
-        import importlib.util
 
         import scipy
+
+        from rollspring.simulate.modules import exec_spec
 
         spec = importlib.machinery.PathFinder.find_spec(
             name, [f"{path}/linalg" for path in scipy.__path__]
         )
         if spec is None or not isinstance(spec.loader, importlib.machinery.ExtensionFileLoader):
             return
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module
-        try:
-            spec.loader.exec_module(module)
-        except BaseException:
-            del sys.modules[name]
-            raise
+        exec_spec(spec)
     except Exception:  # noqa: BLE001 - an optimisation only: Numba imports it itself
         return
 

@@ -1,7 +1,9 @@
 r"""``derive(system, method=...)``: the symbolic system, every method's derivation, the forces and
 the cross-check, as one :class:`Derivation` (rendered as text, Markdown or LaTeX, and as math in
 Jupyter); :func:`run_method` runs one method (:mod:`.newton`, :mod:`.conservation`,
-:mod:`.lagrange`, :mod:`.natural_frequencies`, :mod:`.hamilton`) by name."""
+:mod:`.lagrange`, :mod:`.natural_frequencies`, :mod:`.hamilton`) by name. :func:`derive` is
+:func:`derivation_request` (the arguments checked once), the cost guard, then
+:func:`run_derivation`, which an interface that estimated the cost itself calls directly."""
 
 from __future__ import annotations
 
@@ -35,8 +37,11 @@ __all__ = [
     "ALL",
     "Derivation",
     "DerivationError",
+    "DerivationRequest",
+    "derivation_request",
     "derive",
     "parse_methods",
+    "run_derivation",
     "run_method",
     "setup_section",
 ]
@@ -262,9 +267,32 @@ def derive(
     from rollspring.model import as_system
 
     system = as_system(system)
+    request = derivation_request(method, symbols=symbols, budget=budget)
+    _check_flag("confirm", confirm)
+    check_cost(derivation_cost(system), confirmed=bool(confirm), flag=CONFIRM)
+    return run_derivation(system, request)
+
+
+@dataclass(frozen=True, slots=True)
+class DerivationRequest:
+    """The checked arguments of one :func:`derive` of a system (see there)."""
+
+    #: the method names, in the paper's order (every one for ``"all"``)
+    methods: tuple[str, ...]
+    #: parameters as symbols instead of exact numbers
+    symbols: bool
+    #: seconds for each open-ended symbolic step, None for no limit
+    budget: float | None
+
+
+def derivation_request(
+    method: str | Sequence[str] = ALL, *, symbols: bool = False, budget: float | None = 10.0
+) -> DerivationRequest:
+    """The arguments of :func:`derive` checked, in this order (the first bad one is the error,
+    a one-line :class:`~rollspring.errors.DerivationError` naming it): ``method``, ``symbols``,
+    ``budget``."""
     names = parse_methods(method)
     _check_flag("symbols", symbols)
-    _check_flag("confirm", confirm)
     if budget is not None and (
         isinstance(budget, bool)
         or not isinstance(budget, int | float)
@@ -274,7 +302,14 @@ def derive(
         raise DerivationError(
             f"budget: must be a positive number of seconds or None, got {budget!r}"
         )
-    check_cost(derivation_cost(system), confirmed=bool(confirm), flag=CONFIRM)
+    return DerivationRequest(tuple(names), symbols, budget)
+
+
+def run_derivation(system: System, request: DerivationRequest) -> Derivation:
+    """The derivation :func:`derive` makes of a request checked already
+    (:func:`derivation_request`), without estimating its cost (the caller's: :func:`derive`, or
+    an interface that estimated it once)."""
+    names, symbols, budget = list(request.methods), request.symbols, request.budget
     sym = symbolic_system(system, symbols=symbols)
     setup = setup_section(sym)
     frequencies = normal_frequencies(sym, budget=budget)

@@ -12,16 +12,8 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import (
-    JsonOpt,
-    SystemArg,
-    YesOpt,
-    add_command,
-    load,
-    print_json,
-    say,
-    stdout_console,
-)
+from rollspring.cli.common import add_command, confirm_cost, load, print_json, say, stdout_console
+from rollspring.cli.options import JsonOpt, SystemArg, YesOpt
 from rollspring.model import DEFAULT_PRESET
 
 __all__ = ["analyze", "register"]
@@ -42,26 +34,25 @@ def analyze(
     ] = None,
 ) -> None:
     """Linear analysis: equilibrium, M and K, normal modes, stationary point, friction needed."""
+    from rollspring.analysis.modal import analysis_request, run_analysis
     from rollspring.errors import AnalysisError
-    from rollspring.service.costs import analysis_cost, check_cost
+    from rollspring.service.costs import analysis_cost
     from rollspring.service.runs import analysis_payload
 
     chosen = _mode_selection(modes, AnalysisError)
     model = load(system)
-    cost = analysis_cost(model, modes=chosen)
-    check_cost(cost, confirmed=yes)
-    if cost.long:
-        say(f"note: the analysis will take {cost.describe()}")
+    request = analysis_request(model, modes=chosen)  # the arguments checked once
+    # estimated once: the analysis estimates nothing again
+    confirm_cost(analysis_cost(model, modes=chosen), yes=yes, stoppable=False)
     if as_json:
-        payload, warnings = analysis_payload(model, chosen)
+        payload, warnings = analysis_payload(model, request)
         for warning in warnings:
             say(f"warning: {warning}")
         print_json(payload)
         return
-    from rollspring.analysis import analyze as run_analysis
     from rollspring.model.chains import LONG_CHAIN
 
-    result = run_analysis(model, confirm=True, modes=chosen)  # checked above (--yes)
+    result = run_analysis(model, request)
     if len(model.bodies) > LONG_CHAIN:  # summaries, not a row per body
         from rollspring.cli.long_tables import print_long_analysis
 

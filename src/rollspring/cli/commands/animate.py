@@ -13,15 +13,8 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.cli.common import (
-    ProgressBar,
-    SystemArg,
-    add_command,
-    load,
-    out_option,
-    say,
-    yes_option,
-)
+from rollspring.cli.common import ProgressBar, add_command, confirm_cost, load, say
+from rollspring.cli.options import SystemArg, out_option, yes_option
 
 if TYPE_CHECKING:
     from rich.progress import ProgressColumn
@@ -57,7 +50,7 @@ def animate(
     the CM and X-hat on the floor, and a clock."""
     target = _check(out, duration, speed, fps, dpi, on_slip)
     from rollspring.outputs.animation import AnimationError, frame_times, write_animation
-    from rollspring.service.costs import check_cost, request_cost
+    from rollspring.service.costs import request_cost
     from rollspring.service.runs import run_request
     from rollspring.simulate.request import simulation_request
 
@@ -65,10 +58,7 @@ def animate(
     frames = math.floor(duration / speed * fps) + 1
     # the arguments checked once, the cost estimated once: the run checks nothing again
     request = simulation_request(duration, on_slip=on_slip, n_output=max(2001, 2 * frames))
-    cost = request_cost(model, request, what="the simulation")
-    check_cost(cost, confirmed=yes)
-    if cost.long:
-        say(f"note: the simulation will take {cost.describe()}; Ctrl-C stops it")
+    confirm_cost(request_cost(model, request, what="the simulation"), yes=yes)
     with ProgressBar(delay=0.0, columns=_columns) as bar:  # shown at once
         bar.start("simulating")
         trajectory = run_request(model, request, progress=bar).trajectory

@@ -15,7 +15,8 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import add_command, json_option, out_option, say
+from rollspring.cli.common import add_command, say
+from rollspring.cli.options import json_option, out_option
 from rollspring.errors import ModelError
 
 __all__ = ["chain", "register"]

@@ -8,26 +8,18 @@
 
 from __future__ import annotations
 
-import sys
 from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import (
-    SystemArg,
-    add_command,
-    format_option,
-    load,
-    out_option,
-    say,
-    yes_option,
-)
+from rollspring.cli.common import add_command, confirm_cost, load, print_text, say, write_text
+from rollspring.cli.options import Formats, SystemArg, out_option, yes_option
 
 # The derivation engine (SymPy) is imported when the command runs, not when the CLI starts.
 #: The names of the methods and formats, for the help text (a test checks them against the
 #: engine's METHODS, ALL and FORMATS).
 METHOD_NAMES = ("newton", "conservation", "lagrange", "natural-frequencies", "hamilton", "all")
-FORMAT_NAMES = ("text", "markdown", "latex")
+FORMAT_NAMES = Formats("text", "markdown", "latex")
 
 __all__ = ["derive_command", "register"]
 
@@ -43,9 +35,7 @@ def derive_command(
             show_default=False,
         ),
     ] = None,
-    format: Annotated[  # noqa: A002 - the option is called --format
-        str, format_option(f"Output format: {', '.join(FORMAT_NAMES)} (latex: a full document).")
-    ] = "text",
+    format: Annotated[str, FORMAT_NAMES.option("latex: a full document")] = "text",  # noqa: A002
     symbols: Annotated[
         bool,
         typer.Option(
@@ -63,42 +53,27 @@ def derive_command(
     subsystem frequencies and Hamilton; check that they agree (symbolically)."""
     # the derivation engine itself, not rollspring.service.documents: that module brings the
     # paper's claims and the worksheets, start-up this command never uses
-    from rollspring.analysis.derivation import ALL, FORMATS, METHODS, DerivationError, derive
+    from rollspring.analysis.derivation import ALL, DerivationError
+    from rollspring.analysis.derivation.derive import derivation_request, run_derivation
+    from rollspring.service.costs import derivation_cost
 
-    if format not in FORMATS:
-        raise DerivationError(
-            f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})"
-        )
-    methods = method or [ALL]
-    for name in methods:
-        if name != ALL and name not in METHODS:
-            raise DerivationError(
-                f"--method: unknown method '{name}' (methods: {', '.join(METHODS)}, {ALL})"
-            )
+    FORMAT_NAMES.check(format, DerivationError)
+    try:  # the arguments checked once, in the library; its words with the option's dashes
+        request = derivation_request(method or ALL, symbols=symbols)
+    except DerivationError as exc:
+        raise DerivationError(f"--{exc}") from None
     if out is not None:
         from rollspring.outputs.atomic import writable_file
 
         writable_file(out)  # an unwritable --out fails now, not after the derivation
-    from rollspring.service.costs import check_cost, derivation_cost
-
     model = load(system)
-    cost = derivation_cost(model)
-    check_cost(cost, confirmed=yes)
-    if cost.long:
-        say(f"note: the derivation will take {cost.describe()}; Ctrl-C stops it")
-    derivation = derive(model, methods, symbols=symbols, confirm=True)  # checked above (--yes)
+    confirm_cost(derivation_cost(model), yes=yes)  # estimated once: the run estimates nothing
+    derivation = run_derivation(model, request)
     rendered, check = derivation.render(format), derivation.cross_check
     if out is None:
-        sys.stdout.write(rendered)
-        sys.stdout.flush()
+        print_text(rendered)
     else:
-        from rollspring.outputs.atomic import atomic_write_text
-
-        try:
-            atomic_write_text(out, rendered)
-        except OSError as exc:
-            raise DerivationError(f"--out: {out}: cannot write ({exc.strerror or exc})") from None
-        say(f"wrote {out}")
+        write_text(out, rendered, DerivationError)
     if not check.agree:
         say(
             "warning: the methods do not all agree: "

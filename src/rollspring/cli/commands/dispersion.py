@@ -12,15 +12,8 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from rollspring.cli.common import (
-    JsonOpt,
-    add_command,
-    load,
-    print_json,
-    say,
-    stdout_console,
-    system_argument,
-)
+from rollspring.cli.common import add_command, load, print_json, say, stdout_console
+from rollspring.cli.options import JsonOpt, system_argument
 from rollspring.cli.text import markup
 from rollspring.model import preset_names
 

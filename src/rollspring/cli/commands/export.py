@@ -7,26 +7,24 @@ Only MuJoCo's MJCF for now (:mod:`rollspring.outputs.mjcf`). The command is adde
 from __future__ import annotations
 
 import math
-import sys
 from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import SystemArg, add_command, format_option, load, out_option, say
+from rollspring.cli.common import add_command, load, print_text, say
+from rollspring.cli.options import Formats, SystemArg, out_option
 
 __all__ = ["FORMATS", "export", "register"]
 
 #: Formats ``--format`` accepts.
-FORMATS = ("mjcf",)
+FORMATS = Formats("mjcf")
 #: The longest time step ``--timestep`` accepts, s.
 MAX_TIMESTEP = 0.1
 
 
 def export(
     system: SystemArg,
-    format: Annotated[  # noqa: A002 - the option is called --format
-        str, format_option(f"Output format: {', '.join(FORMATS)} (MuJoCo XML).")
-    ] = "mjcf",
+    format: Annotated[str, FORMATS.option("MuJoCo XML")] = "mjcf",  # noqa: A002
     out: Annotated[str | None, out_option("Output file (required); '-' prints to stdout.")] = None,
     timestep: Annotated[
         float | None,
@@ -41,8 +39,7 @@ def export(
     # here, not at the top: the writer needs the physics layer, which --help does not
     from rollspring.outputs.mjcf import ExportError, mjcf_warnings, system_to_mjcf, write_mjcf
 
-    if format not in FORMATS:
-        raise ExportError(f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})")
+    FORMATS.check(format, ExportError)
     if out is None:
         raise ExportError("--out/-o is required: a file path, or '-' for stdout")
     if timestep is not None and not (math.isfinite(timestep) and 0 < timestep <= MAX_TIMESTEP):
@@ -56,9 +53,7 @@ def export(
         writable_file(out)  # an unwritable --out fails now, before the system is read
     model = load(system)
     if out == "-":
-        text = system_to_mjcf(model, timestep=timestep)
-        sys.stdout.write(text)
-        sys.stdout.flush()
+        print_text(system_to_mjcf(model, timestep=timestep))
     else:
         try:
             write_mjcf(model, out, timestep=timestep)

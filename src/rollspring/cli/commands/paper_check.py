@@ -14,12 +14,12 @@ from __future__ import annotations
 
 import json
 import re
-import sys
 from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.cli.common import add_command, format_option, json_option, stdout_console
+from rollspring.cli.common import add_command, print_text, stdout_console
+from rollspring.cli.options import Formats, json_option
 from rollspring.errors import PaperCheckError
 
 if TYPE_CHECKING:
@@ -37,7 +37,7 @@ __all__ = [
 ]
 
 #: Formats ``--format`` accepts.
-FORMATS = ("text", "markdown")
+FORMATS = Formats("text", "markdown")
 
 #: The terminal colour of each verdict (by its word: rollspring.analysis.paper, SymPy, is
 #: imported when the command runs).
@@ -51,27 +51,20 @@ _STYLE = {
 
 def paper_check(
     as_json: Annotated[bool, json_option("Print one JSON list on stdout.")] = False,
-    format: Annotated[  # noqa: A002 - the option is called --format
-        str, format_option(f"Output format: {', '.join(FORMATS)}.")
-    ] = "text",
+    format: Annotated[str, FORMATS.option()] = "text",  # noqa: A002
 ) -> None:
     """Check every quantitative statement of the paper against the symbolic derivation: ✔
     verified, ☑ holds under an assumption the paper states, ⚠ holds only under a condition the
     paper does not state (named), ✘ wrong (with the correction); each with the paper's words."""
-    if format not in FORMATS:
-        raise PaperCheckError(
-            f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})"
-        )
+    FORMATS.check(format, PaperCheckError)
     from rollspring.service.documents import claims_json, paper_checks
 
     checks = paper_checks()
     if as_json:
-        sys.stdout.write(json.dumps(claims_json(checks), indent=2, ensure_ascii=False) + "\n")
-        sys.stdout.flush()
+        print_text(json.dumps(claims_json(checks), indent=2, ensure_ascii=False) + "\n")
         return
     if format == "markdown":
-        sys.stdout.write(markdown_table(checks))
-        sys.stdout.flush()
+        print_text(markdown_table(checks))
         return
     _print_table(checks)
 

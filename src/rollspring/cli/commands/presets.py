@@ -7,7 +7,8 @@ from typing import Any
 
 import typer
 
-from rollspring.cli.common import JsonOpt, add_command, print_json, stdout_console
+from rollspring.cli.common import add_command, print_json, stdout_console
+from rollspring.cli.options import JsonOpt
 from rollspring.model import DEFAULT_PRESET, preset_names, preset_path
 
 __all__ = ["presets", "register"]

@@ -9,29 +9,20 @@ headless Chromium prints the same page. The command is added to an app by
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import (
-    ProgressBar,
-    SystemArg,
-    add_command,
-    format_option,
-    load,
-    out_option,
-    say,
-    yes_option,
-)
+from rollspring.cli.common import ProgressBar, add_command, confirm_cost, load, say
+from rollspring.cli.options import Formats, SystemArg, out_option, yes_option
 from rollspring.model import DEFAULT_PRESET
 
 __all__ = ["FORMATS", "register", "report"]
 
 #: Formats ``--format`` accepts (as :data:`rollspring.outputs.report.FORMATS`, which is imported
 #: only when the command runs: it brings Matplotlib, and every other command starts faster).
-FORMATS = ("html", "pdf")
+FORMATS = Formats("html", "pdf")
 
 
 def report(
@@ -42,8 +33,9 @@ def report(
     ] = None,
     format: Annotated[  # noqa: A002 - the option is called --format
         str | None,
-        format_option(
-            "html (default; pdf when --out ends in .pdf) or pdf (printed by headless Chromium).",
+        FORMATS.option(
+            text="html (default; pdf when --out ends in .pdf) or pdf (printed by headless "
+            "Chromium).",
             show_default=False,
         ),
     ] = None,
@@ -77,32 +69,29 @@ def report(
     """Write a self-contained report (HTML, or PDF through headless Chromium): diagram,
     parameters, modes, X̂, friction needed vs μs, derivations, paper checks, plots, animation."""
     from rollspring.outputs.report import ReportError, find_chromium, write_report
-    from rollspring.service.documents import build_report
+    from rollspring.service.costs import report_cost
+    from rollspring.service.documents import report_request, run_report
 
     if format is None:
         format = "pdf" if out is not None and out.lower().endswith(".pdf") else "html"  # noqa: A001
-    if format not in FORMATS:
-        raise ReportError(f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})")
-    if duration is not None and not (math.isfinite(duration) and duration > 0):
-        raise ReportError(f"--duration: must be a positive number of seconds, got {duration:g}")
+    FORMATS.check(format, ReportError)
+    try:  # the arguments checked once, in the library; in the command line's words
+        request = report_request(duration=duration, derivation=derivation)
+    except ReportError:
+        raise ReportError(
+            f"--duration: must be a positive number of seconds, got {duration:g}"
+        ) from None
     target = Path(out if out is not None else f"report.{format}")
     from rollspring.outputs.atomic import writable_file
 
     writable_file(target)  # an unwritable --out fails now, not after the work
     if format == "pdf":
         find_chromium(chromium)  # fail before the work when Chromium is missing
-    from rollspring.service.costs import check_cost, report_cost
-
     model = load(system)
-    cost = report_cost(model, duration=duration, derivation=derivation)
-    check_cost(cost, confirmed=yes)
-    if cost.long:
-        say(f"note: the report will take {cost.describe()}; Ctrl-C stops it")
-
+    # estimated once, as a whole: the report's analysis, run and derivation estimate nothing
+    confirm_cost(report_cost(model, duration=duration, derivation=derivation), yes=yes)
     with ProgressBar("building the report") as progress:
-        built = build_report(
-            model, duration=duration, derivation=derivation, progress=progress, confirm=True
-        )  # checked above (--yes)
+        built = run_report(model, request, progress)
         written = write_report(built, target, format=format, chromium=chromium)
     for failure in built.math_failures:
         say(f"warning: shown as LaTeX source: {failure}")

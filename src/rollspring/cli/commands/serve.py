@@ -13,7 +13,8 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import add_command, say, system_argument
+from rollspring.cli.common import add_command, say
+from rollspring.cli.options import system_argument
 from rollspring.errors import ServeError
 from rollspring.model import DEFAULT_PRESET, preset_names
 

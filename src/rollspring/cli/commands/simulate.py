@@ -15,17 +15,15 @@ from typing import Annotated
 import typer
 
 from rollspring.cli.common import (
-    JsonOpt,
     ProgressBar,
-    SystemArg,
-    YesOpt,
     add_command,
+    confirm_cost,
     load,
-    out_option,
     print_json,
     say,
     stdout_console,
 )
+from rollspring.cli.options import JsonOpt, SystemArg, YesOpt, out_option
 from rollspring.model import DEFAULT_PRESET
 
 __all__ = ["register", "simulate"]
@@ -63,7 +61,7 @@ def simulate(
         from rollspring.outputs.atomic import writable_directory
 
         writable_directory(out)
-    from rollspring.service.costs import check_cost, request_cost
+    from rollspring.service.costs import request_cost
     from rollspring.service.runs import run_request
     from rollspring.simulate.request import simulation_request
 
@@ -72,10 +70,7 @@ def simulate(
     request = simulation_request(
         duration, rtol=rtol, integrator=integrator, on_slip=on_slip, n_output=outputs
     )
-    cost = request_cost(model, request, written=out is not None)
-    check_cost(cost, confirmed=yes)
-    if cost.long:
-        say(f"note: this run will take {cost.describe()}; Ctrl-C stops it")
+    confirm_cost(request_cost(model, request, written=out is not None), yes=yes)
     with ProgressBar("simulating") as progress:
         trajectory = run_request(model, request, progress=progress).trajectory
     written = []

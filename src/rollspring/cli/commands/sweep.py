@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.cli.common import ProgressBar, SystemArg, add_command, out_option, say
+from rollspring.cli.common import ProgressBar, add_command, say
+from rollspring.cli.options import SystemArg, out_option
 from rollspring.model import DEFAULT_PRESET
 
 if TYPE_CHECKING:

@@ -12,7 +12,8 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import add_command, out_option, say
+from rollspring.cli.common import add_command, say
+from rollspring.cli.options import out_option
 from rollspring.errors import SweepPlotError
 
 __all__ = ["SweepPlotError", "register", "sweep_plot"]

@@ -10,13 +10,13 @@ The command is added to an app by :func:`register`.
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import add_command, format_option, out_option, say
+from rollspring.cli.common import add_command, print_text, write_text
+from rollspring.cli.options import Formats, out_option
 from rollspring.errors import WorksheetOptionError
 
 __all__ = [
@@ -30,7 +30,7 @@ __all__ = [
 ]
 
 # as in rollspring.outputs.worksheet (imported when the command runs: SymPy, the engine)
-FORMATS = ("markdown", "latex")
+FORMATS = Formats("markdown", "latex")
 LEVELS = {
     1: "Two masses and a spring",
     2: "Two rolling bodies joined at their centres",
@@ -80,9 +80,7 @@ def worksheet_command(
             show_default=False,
         ),
     ] = None,
-    format: Annotated[  # noqa: A002 - the option is called --format
-        str, format_option(f"Output format: {', '.join(FORMATS)} (latex: documents for pdflatex).")
-    ] = "markdown",
+    format: Annotated[str, FORMATS.option("latex: documents for pdflatex")] = "markdown",  # noqa: A002
     out: Annotated[
         str | None,
         out_option(
@@ -100,10 +98,7 @@ def worksheet_command(
     value = _integer("--seed", seed, "a non-negative integer")
     if value < 0:
         raise WorksheetOptionError(f"--seed: must be a non-negative integer (got {value})")
-    if format not in FORMATS:
-        raise WorksheetOptionError(
-            f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})"
-        )
+    FORMATS.check(format, WorksheetOptionError)
     from rollspring.outputs.worksheet import render_sheet, render_solutions
     from rollspring.service.documents import worksheet
 
@@ -111,19 +106,10 @@ def worksheet_command(
     text = render_sheet(sheet, format)
     solutions = render_solutions(sheet, format)
     if out is None:
-        sys.stdout.write(text + SEPARATORS[format] + solutions)
-        sys.stdout.flush()
+        print_text(text + SEPARATORS[format] + solutions)
         return
-    from rollspring.outputs.atomic import atomic_write_text
-
     for path, content in ((Path(out), text), (solutions_path(out), solutions)):
-        try:
-            atomic_write_text(path, content)
-        except OSError as exc:
-            raise WorksheetOptionError(
-                f"--out: {path}: cannot write ({exc.strerror or exc})"
-            ) from None
-        say(f"wrote {path}")
+        write_text(path, content, WorksheetOptionError)
 
 
 def register(app: typer.Typer) -> None:

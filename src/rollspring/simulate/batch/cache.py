@@ -20,7 +20,6 @@ import importlib.util
 import os
 import re
 import shutil
-import sys
 import tempfile
 import threading
 from importlib import metadata
@@ -28,6 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from rollspring.errors import SimulationError
+from rollspring.simulate.modules import exec_spec
 
 __all__ = ["kernel_dir", "load_kernel", "load_module", "prune", "version_tag"]
 
@@ -137,14 +137,8 @@ def load_module(source: str) -> Any:
                 "directory (set ROLLSPRING_CACHE_DIR)"
             )
         spec = importlib.util.spec_from_file_location(name, path)
-        assert spec is not None and spec.loader is not None
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module
-        try:
-            spec.loader.exec_module(module)
-        except BaseException:
-            del sys.modules[name]
-            raise
+        assert spec is not None
+        module = exec_spec(spec)
         _KERNELS[digest] = module
         return module
 

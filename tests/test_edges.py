@@ -9,6 +9,8 @@ reached the stick-slip segment and every surface failed with ``'list' object has
 from __future__ import annotations
 
 import json
+import os
+import stat
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -348,3 +350,66 @@ def test_a_long_chains_mode_from_the_tridiagonal_solver_is_the_dense_ones(
     x_dense = np.array([b.x for b in dense.bodies])
     assert np.max(np.abs(x_fast - x_dense)) < 1e-10 * 0.01  # of the 0.01 m amplitude
     assert np.max(np.abs(x_fast - x_fast.round(1))) > 1e-3  # displaced along the mode
+
+
+# -- every output place decided by one function (issue 24, point 1) ------------------------------
+
+
+@pytest.mark.parametrize("which", ["sheet", "solutions"])
+def test_worksheet_out_refuses_a_fifo_and_writes_nothing(which: str, tmp_path: Path) -> None:
+    """Before, ``worksheet --out`` replaced a FIFO (or a device node) by a regular file."""
+    out = tmp_path / "sheet.md"
+    fifo = out if which == "sheet" else tmp_path / "sheet-solutions.md"
+    os.mkfifo(fifo)
+    result = runner.invoke(app, ["worksheet", "--level", "1", "--seed", "1", "--out", str(out)])
+    assert result.exit_code == 2, result.output
+    assert result.stderr == (
+        f"error: --out {fifo}: cannot write there (it is not a regular file: a device, FIFO "
+        "or socket)\n"
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == [fifo.name]
+    assert stat.S_ISFIFO(fifo.stat().st_mode)
+
+
+@pytest.fixture(scope="module")
+def small_store(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    store = tmp_path_factory.mktemp("store") / "s.zarr"
+    vary = {"springs.0.stiffness": [50.0, 100.0], "bodies.hoop.mass": [1.0, 2.0]}
+    rollspring.sweep(HOOP_CYLINDER, vary, 0.5, out=store)
+    return store
+
+
+@pytest.mark.parametrize(
+    ("options", "error"),
+    [
+        (["--dpi", "1e9"], "error: --dpi: must be a number > 0 up to 1200, got 1000000000.0\n"),
+        (["-o", "FIFO.png"], "cannot write there (it is not a regular file: a device, FIFO"),
+    ],
+)
+def test_sweep_plot_checks_dpi_and_its_place_first(
+    options: list[str], error: str, small_store: Path, tmp_path: Path
+) -> None:
+    """Before: --dpi 1e9 reached Matplotlib's renderer (an internal error), and -o replaced a
+    FIFO by a regular file."""
+    fifo = tmp_path / "FIFO.png"
+    os.mkfifo(fifo)
+    options = [str(fifo) if option == "FIFO.png" else option for option in options]
+    if "-o" not in options:
+        options += ["-o", str(tmp_path / "map.png")]
+    args = ["sweep-plot", str(small_store), "--x", "springs.0.stiffness"]
+    result = runner.invoke(app, [*args, "--y", "bodies.hoop.mass", "-m", "status", *options])
+    assert result.exit_code == 2, result.output
+    assert error in result.stderr and result.stderr.count("\n") == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["FIFO.png"]
+
+
+def test_sweep_estimates_and_asks_for_yes_on_the_command_line(tmp_path: Path) -> None:
+    out = tmp_path / "s.zarr"
+    args = ["sweep", "hoop-cylinder", "-T", "1e5", "--vary", "springs.0.stiffness=50,100"]
+    result = runner.invoke(app, [*args, "--out", str(out)])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith("error: this sweep would take about ")
+    assert result.stderr.endswith(
+        "make it smaller (fewer --vary values, a shorter --duration) or confirm it with --yes\n"
+    )
+    assert not out.exists()

@@ -155,9 +155,12 @@ def print_text(text: str) -> None:
 def write_text(path: str | Path, text: str, error: type[RollspringError]) -> None:
     """``text`` written to ``--out`` ``path`` atomically (:mod:`rollspring.outputs.atomic`),
     then ``wrote PATH`` on stderr; a failure is ``error`` with the one line ``--out: PATH:
-    cannot write (why)``."""
-    from rollspring.outputs.atomic import atomic_write_text
+    cannot write (why)``. The place is checked first, as for every output
+    (:func:`~rollspring.outputs.atomic.writable_file`: a device, FIFO, socket or folder is
+    refused, never replaced)."""
+    from rollspring.outputs.atomic import atomic_write_text, writable_file
 
+    writable_file(path, "--out")
     try:
         atomic_write_text(path, text)
     except OSError as exc:

@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.cli.common import ProgressBar, add_command, say
-from rollspring.cli.options import SystemArg, out_option
+from rollspring.cli.common import ProgressBar, add_command, confirm_cost, say
+from rollspring.cli.options import SystemArg, out_option, yes_option
 from rollspring.model import DEFAULT_PRESET
 
 if TYPE_CHECKING:
@@ -96,10 +96,11 @@ def sweep(
     overwrite: Annotated[
         bool, typer.Option("--overwrite", help="Replace a store that holds another sweep.")
     ] = False,
+    yes: Annotated[bool, yes_option("time or store size")] = False,
 ) -> None:
     """Run a grid of variations of a system (batched, in-process or on a Dask cluster) into a
     Zarr store: frequencies, X-hat weights, friction needed, periods, slip, lift-off."""
-    from rollspring.service.sweeps import SweepError, parse_vary_spec
+    from rollspring.service.sweeps import SweepError, parse_vary_spec, sweep_cost
     from rollspring.service.sweeps import sweep as run_sweep
 
     if not vary:
@@ -117,6 +118,16 @@ def sweep(
     from rollspring.model import load_system  # pydantic: not for --help
 
     model = load_system(system)
+    cost = sweep_cost(
+        model,
+        grid,
+        duration,
+        rtol=rtol,
+        integrator=integrator,
+        out=out,
+        smaller="fewer --vary values, a shorter --duration",
+    )
+    confirm_cost(cost, yes=yes)  # before the grid's values are checked one by one
     with ProgressBar(columns=_columns) as bar:
         reports = _Reports(bar)
         dataset = run_sweep(
@@ -134,6 +145,7 @@ def sweep(
             step=step,
             integrator=integrator,
             refine_slip=refine_slip,
+            confirm=True,  # confirmed above (--yes, or below the bound)
         )
     first = reports.first
     total = int(dataset.attrs["n_chunks"])

@@ -101,12 +101,15 @@ def sweep_plot(
 ) -> None:
     """Map one metric of a sweep over two varied PATHs (colour bar or legend, labelled axes
     with units), with the linear theory's prediction dashed where it has one."""
-    from rollspring.outputs.maps import open_sweep, plot_map, prepare_map, write_map
+    from rollspring.outputs.maps import (
+        check_map_output,
+        open_sweep,
+        plot_map,
+        prepare_map,
+        write_map,
+    )
 
-    if not dpi > 0:
-        raise SweepPlotError(f"--dpi: must be a positive number, got {dpi:g}")
-    if not out.lower().endswith((".png", ".svg", ".pdf")):
-        raise SweepPlotError(f"-o {out}: unknown image format (.png, .svg or .pdf)")
+    check_map_output(out, dpi)  # --dpi, the format and the place, before the store is read
     chosen = _parse_sel(sel or [])
     dataset = open_sweep(store)
     data = prepare_map(dataset, x, y, metric, sel=chosen, body=body, mode=mode, linear=linear)

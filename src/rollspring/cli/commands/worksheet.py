@@ -99,9 +99,13 @@ def worksheet_command(
     if value < 0:
         raise WorksheetOptionError(f"--seed: must be a non-negative integer (got {value})")
     FORMATS.check(format, WorksheetOptionError)
+    from rollspring.outputs.atomic import writable_file
     from rollspring.outputs.worksheet import render_sheet, render_solutions
     from rollspring.service.documents import worksheet
 
+    if out is not None:  # both places, before anything is made or written
+        for path in (Path(out), solutions_path(out)):
+            writable_file(path, "--out")
     sheet = worksheet(number, value)
     text = render_sheet(sheet, format)
     solutions = render_solutions(sheet, format)

@@ -130,6 +130,13 @@ def _check_arguments(duration: Any, rtol: Any, on_slip: Any, chunk: Any, step: A
         )
 
 
+def _check_integrator(integrator: Any) -> None:
+    if integrator not in ("auto", "verlet", "yoshida4", "yoshida6"):
+        raise SweepError(
+            f"--integrator: unknown integrator {integrator!r} (auto, verlet, yoshida4, yoshida6)"
+        )
+
+
 def _metrics(metrics: Sequence[str] | None, on_slip: str) -> tuple[str, ...]:
     available = [m for m in METRICS if on_slip == "continue" or m not in _CONTINUE_ONLY]
     if metrics is None:
@@ -160,13 +167,15 @@ def sweep_cost(
     :func:`~rollspring.service.sweeps.grid.count_grid`): its runs in the batch kernels
     (:func:`~rollspring.simulate.costs.batch_cost`) and the metrics they keep, in the store
     (``out``) or in memory. The arguments are checked as :func:`sweep` checks them."""
+    _check_arguments(duration, rtol, "stop", None, None)
+    _check_integrator(integrator)
     runs = count_grid(vary)
     bodies = len(system.bodies)
     return batch_cost(
         system,
         runs,
         duration,
-        rtol=rtol,
+        rtol=min(max(float(rtol), 1e-14), 0.1),  # the estimate's range (the sweep takes (0, 1))
         integrator=integrator if integrator != "auto" else "yoshida4",
         numbers_per_run=24 + 16 * bodies,  # the metrics, per body and the modes' frequencies
         what=what,
@@ -239,10 +248,7 @@ def sweep(
     _check_arguments(duration, rtol, on_slip, chunk, step)
     if progress is not None and not callable(progress):
         raise SweepError(f"progress: must be a function or None, got {type(progress).__name__}")
-    if integrator not in ("auto", "verlet", "yoshida4", "yoshida6"):
-        raise SweepError(
-            f"--integrator: unknown integrator {integrator!r} (auto, verlet, yoshida4, yoshida6)"
-        )
+    _check_integrator(integrator)
     if any(s.damping > 0 for s in system.springs) and on_slip == "stop":
         raise SweepError(
             "system: a damped spring needs --on-slip continue (single runs); the "

@@ -413,3 +413,16 @@ def test_sweep_estimates_and_asks_for_yes_on_the_command_line(tmp_path: Path) ->
         "make it smaller (fewer --vary values, a shorter --duration) or confirm it with --yes\n"
     )
     assert not out.exists()
+
+
+def test_analyze_takes_sparse_as_a_bool_or_none() -> None:
+    """Before, ``analyze(sparse="yes")`` took any truthy value."""
+    with pytest.raises(rollspring.AnalysisError) as raised:
+        rollspring.analyze(HOOP_CYLINDER, sparse="yes")
+    assert str(raised.value) == "sparse: must be True, False or None (by size), got 'yes'"
+
+
+def test_derive_needs_at_least_one_method() -> None:
+    """Before, ``derive(method=[])`` returned an empty derivation without a word."""
+    with pytest.raises(rollspring.RollspringError, match="method: give at least one method"):
+        rollspring.derive(HOOP_CYLINDER, method=[])

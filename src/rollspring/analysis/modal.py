@@ -124,6 +124,8 @@ def analysis_request(
 ) -> AnalysisRequest:
     """The arguments of :func:`analyze` on ``system`` checked (``modes`` against its bodies:
     one-line :class:`~rollspring.errors.AnalysisError` naming the argument)."""
+    if sparse is not None and not isinstance(sparse, bool | np.bool_):  # "yes" was taken as true
+        raise AnalysisError(f"sparse: must be True, False or None (by size), got {sparse!r}")
     return AnalysisRequest(modes, _selection(modes, len(system.bodies)), sparse)
 
 

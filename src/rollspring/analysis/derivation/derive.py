@@ -201,6 +201,10 @@ def parse_methods(method: str | Sequence[str]) -> list[str]:
             f"method: must be a method name or a list of them "
             f"(methods: {', '.join(METHODS)}, {ALL}), got {_shown(method)}"
         )
+    if not names:  # an empty list derived nothing, and said nothing
+        raise DerivationError(
+            f"method: give at least one method (methods: {', '.join(METHODS)}, {ALL})"
+        )
     if ALL in names:
         return list(METHODS)
     for name in names:

@@ -496,7 +496,7 @@ def _bad_cli_cases(store: Path, tmp: Path) -> list[tuple[list[str], str]]:
             f"error: --sel {KS}: expected PATH=VALUE",
         ),
         (["sweep-plot", str(store), *base, "-o", str(tmp / "map.gif")], "error: -o "),
-        (["sweep-plot", str(store), *base, "--dpi", "0"], "error: --dpi: must be a positive"),
+        (["sweep-plot", str(store), *base, "--dpi", "0"], "error: --dpi: must be a number > 0"),
     ]
 
 

@@ -251,36 +251,59 @@ def test_a_batch_takes_no_bools_for_numbers(values: Any) -> None:
     assert str(raised.value) == "parameters['bodies.hoop.mass']: must be numbers, not true/false"
 
 
-def test_a_billion_run_batch_is_refused_before_any_array_of_its_size() -> None:
-    """Before: NumPy's raw _ArrayMemoryError (range: nothing of 1e9 numbers is made here)."""
-    with pytest.raises(rollspring.ModelError) as raised:
-        rollspring.simulate_batch(HOOP_CYLINDER, {"bodies.hoop.mass": range(1, 10**9 + 1)}, 1.0)
-    assert str(raised.value) == (
-        "parameters['bodies.hoop.mass']: 1e+09 runs, more than one batch holds (1e+08); "
-        "split the batch"
-    )
-
-
-def test_a_batch_above_the_bound_is_estimated_and_needs_confirming() -> None:
-    with pytest.raises(CostTooHigh) as raised:
-        rollspring.simulate_batch(HOOP_CYLINDER, {"bodies.hoop.mass": [1.0, 2.0]}, 1e9)
-    message = str(raised.value)
-    assert message.startswith("this batch would take about ")
-    assert "2 runs × about 7.2e+11 kahanli8 steps × 2 bodies" in message
-    assert message.endswith("or confirm it with confirm=True")
-
-
 # -- sweeps: counted, estimated and confirmed before any run (issue 24, points 3 and 4) ----------
 
 
-def test_a_billion_run_grid_is_refused_before_anything_is_made() -> None:
-    """Before: a raw MemoryError (the API) or a store growing past 12 GB (the CLI)."""
+_BILLION = {"bodies.hoop.mass": range(1, 10**9 + 1)}  # a range: nothing of 1e9 numbers is made
+
+
+@pytest.mark.parametrize(
+    ("run", "expected"),
+    [
+        (  # was NumPy's raw _ArrayMemoryError
+            lambda: rollspring.simulate_batch(HOOP_CYLINDER, _BILLION, 1.0),
+            "parameters['bodies.hoop.mass']: 1e+09 runs, more than one batch holds (1e+08); "
+            "split the batch",
+        ),
+        (  # was a raw MemoryError (the API) or a store growing past 12 GB (the CLI)
+            lambda: rollspring.sweep(HOOP_CYLINDER, _BILLION, 1.0),
+            "--vary bodies.hoop.mass: the grid reaches 1e+09 runs, more than a sweep holds "
+            "(1e+08); sweep it in parts",
+        ),
+    ],
+    ids=["batch", "sweep"],
+)
+def test_a_billion_runs_are_refused_before_any_array_of_their_size(run: Any, expected: str) -> None:
     with pytest.raises(rollspring.RollspringError) as raised:
-        rollspring.sweep(HOOP_CYLINDER, {"bodies.hoop.mass": range(1, 10**9 + 1)}, 1.0)
-    assert str(raised.value) == (
-        "--vary bodies.hoop.mass: the grid reaches 1e+09 runs, more than a sweep holds (1e+08); "
-        "sweep it in parts"
-    )
+        run()
+    assert str(raised.value) == expected
+
+
+@pytest.mark.parametrize(
+    ("run", "what", "steps"),
+    [
+        (
+            lambda: rollspring.simulate_batch(HOOP_CYLINDER, {"bodies.hoop.mass": [1.0, 2.0]}, 1e9),
+            "batch",
+            "2 runs × about 7.2e+11 kahanli8 steps × 2 bodies",
+        ),
+        (  # was: sweep -T 1e9 started silently
+            lambda: rollspring.sweep(HOOP_CYLINDER, {"springs.0.stiffness": [50.0, 100.0]}, 1e5),
+            "sweep",
+            "2 runs × about 5.1e+09 yoshida4 steps × 2 bodies",
+        ),
+    ],
+    ids=["batch", "sweep"],
+)
+def test_runs_above_the_bound_are_estimated_and_need_confirming(
+    run: Any, what: str, steps: str
+) -> None:
+    with pytest.raises(CostTooHigh) as raised:
+        run()
+    message = str(raised.value)
+    assert message.startswith(f"this {what} would take about ")
+    assert steps in message
+    assert message.endswith("or confirm it with confirm=True")
 
 
 @pytest.mark.parametrize("count", ["1000000000", "99999999999999999999"])
@@ -296,16 +319,6 @@ def test_a_range_of_too_many_values_is_refused_on_the_command_line(
     assert result.stderr.startswith(f"error: --vary {spec}: ")
     assert "more than a sweep holds (1e+08 runs)" in result.stderr
     assert not out.exists()
-
-
-def test_a_sweep_above_the_bound_is_estimated_and_needs_confirming(tmp_path: Path) -> None:
-    """Before, ``sweep -T 1e9`` started silently."""
-    with pytest.raises(CostTooHigh) as raised:
-        rollspring.sweep(HOOP_CYLINDER, {"springs.0.stiffness": [50.0, 100.0]}, 1e5)
-    message = str(raised.value)
-    assert message.startswith("this sweep would take about ")
-    assert "2 runs × about 5.1e+09 yoshida4 steps × 2 bodies" in message
-    assert message.endswith("or confirm it with confirm=True")
 
 
 # -- the web takes numbers as numbers (issue 24, point 10) ----------------------------------------

@@ -88,18 +88,9 @@ def test_simulate_any_arguments(
     energy_tolerance: Any,
     step: Any,
 ) -> None:
-    run = _clean(
-        lambda: rollspring.simulate(
-            SYSTEMS[system],
-            duration,
-            rtol=rtol,
-            integrator=integrator,
-            on_slip=on_slip,
-            n_output=n_output,
-            energy_tolerance=energy_tolerance,
-            step=step,
-        )
-    )
+    options = {"rtol": rtol, "integrator": integrator, "on_slip": on_slip, "step": step}
+    options |= {"n_output": n_output, "energy_tolerance": energy_tolerance}
+    run = _clean(lambda: rollspring.simulate(SYSTEMS[system], duration, **options))
     if run is not None:
         assert run.status in ("finished", "slip", "liftoff", "energy_error", "nonfinite")
         assert run.t[0] == 0.0 and np.all(np.diff(run.t) > 0)

@@ -225,9 +225,8 @@ def _replace_set(target: Path, writers: Mapping[str, Callable[[Path], None]]) ->
     set is the one that counts: the earlier files are parked, the new ones moved in; a kill at
     any point of that is finished by the next write into the folder
     (:func:`remove_leftovers`), an exception here (Ctrl-C) finishes it first, then goes on.
-    The parked set is
-    removed only when the new one is whole. So at every instant a complete set exists: the
-    earlier one (in place) or the new one (staged with its mark, or in place)."""
+    The parked set is removed only when the new one is whole. So at every instant a complete
+    set exists: the earlier one (in place) or the new one (staged with its mark, or in place)."""
     remove_leftovers(target, tuple(writers))
     staging = Path(tempfile.mkdtemp(prefix=f"{_STAGING}{os.getpid()}-", dir=target))
     try:

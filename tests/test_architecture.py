@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 import rollspring
+from tests.code_reading import called_name
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -56,14 +57,7 @@ def test_outputs_render_results_and_interfaces_orchestrate() -> None:
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
             if not isinstance(node, ast.Call):
                 continue
-            function = node.func
-            name = (
-                function.id
-                if isinstance(function, ast.Name)
-                else function.attr
-                if isinstance(function, ast.Attribute)
-                else None
-            )
+            name = called_name(node)
             if name in COMPUTATIONS:
                 calls.append(f"{path.relative_to(ROOT)}:{node.lineno}: {name}()")
     assert not calls, "outputs must only render what rollspring.service computed:\n" + "\n".join(

@@ -17,6 +17,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.code_reading import called_name
+
 SRC = Path(__file__).resolve().parents[1] / "src"
 
 
@@ -28,14 +30,7 @@ def imported_by_name(call: ast.Call) -> tuple[str, bool] | None:
     """What a call of ``importlib.import_module``/``import_module``/``__import__`` imports:
     (the name, False) for a literal; (the literal prefix, True) for an f-string that starts
     with one; None for any other call (or a name made otherwise: a variable)."""
-    function = call.func
-    name = (
-        function.id
-        if isinstance(function, ast.Name)
-        else function.attr
-        if isinstance(function, ast.Attribute)
-        else None
-    )
+    name = called_name(call)
     if name not in _BY_NAME or not call.args:
         return None
     argument = call.args[0]
@@ -233,11 +228,7 @@ def test_only_the_composition_root_imports_rollspring_modules_by_name() -> None:
             if not isinstance(node, ast.Call):
                 continue
             by_name = imported_by_name(node)
-            function = node.func
-            called = (
-                function.id if isinstance(function, ast.Name) else getattr(function, "attr", "")
-            )
-            if by_name is None and called not in _BY_NAME:
+            if by_name is None and called_name(node) not in _BY_NAME:
                 continue
             text = by_name[0] if by_name is not None else None
             if text is None or text.startswith(("rollspring", ".")) or text == "":

@@ -264,6 +264,14 @@ def _replace_set(target: Path, writers: Mapping[str, Callable[[Path], None]]) ->
     return [target / name for name in writers]
 
 
+def _check_text(path: str | os.PathLike[str], option: str, shown: str, give: str) -> None:
+    """A path's text: not empty (the message says what to ``give``), no NUL character."""
+    if os.fspath(path) == "":
+        raise OutputError(f"{option}: must not be empty ({give})")
+    if "\x00" in str(os.fspath(path)):
+        raise OutputError(f"{option} {shown}: not a valid path (a NUL character)")
+
+
 def _name_too_long(folder: Path, parts: tuple[str, ...]) -> str | None:
     """The first of ``parts`` (names to be created under ``folder``) too long for its
     filesystem, or None."""
@@ -285,10 +293,7 @@ def writable_directory(
     created). Creates nothing; raises :class:`~rollspring.errors.OutputError` naming ``option``,
     the path (``named``, default ``path``) and the reason."""
     shown = _shown(path if named is None else named)
-    if os.fspath(path) == "":
-        raise OutputError(f"{option}: must not be empty (give a folder, or . for this one)")
-    if "\x00" in str(os.fspath(path)):
-        raise OutputError(f"{option} {shown}: not a valid path (a NUL character)")
+    _check_text(path, option, shown, "give a folder, or . for this one")
     try:
         directory = Path(path)
         probe = directory.absolute()
@@ -327,10 +332,7 @@ def writable_file(path: str | os.PathLike[str], option: str = "--out") -> Path:
     as :func:`writable_directory`; the path itself neither a directory nor a device, FIFO or
     socket, which a rename would replace)."""
     shown = _shown(path)
-    if os.fspath(path) == "":
-        raise OutputError(f"{option}: must not be empty (give a file name)")
-    if "\x00" in str(os.fspath(path)):
-        raise OutputError(f"{option} {shown}: not a valid path (a NUL character)")
+    _check_text(path, option, shown, "give a file name")
     try:
         target = Path(path)
         info = os.stat(target) if os.path.lexists(target) else None

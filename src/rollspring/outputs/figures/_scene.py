@@ -117,28 +117,8 @@ class SystemScene:
             self._make_force_artists(forces)
         self.clock = self.note = None
         if clock:  # above the scene on the right: the time, and above it the latest event
-            self.clock = ax.annotate(
-                "",
-                (1.0, 1.0),
-                xycoords="axes fraction",
-                xytext=(0, 3),
-                textcoords="offset points",
-                ha="right",
-                va="bottom",
-                fontsize=8.5,
-                family="DejaVu Sans Mono",
-            )
-            self.note = ax.annotate(
-                "",
-                (1.0, 1.0),
-                xycoords="axes fraction",
-                xytext=(0, 16),
-                textcoords="offset points",
-                ha="right",
-                va="bottom",
-                fontsize=7.5,
-                color=COLORS["applied"],
-            )
+            self.clock = _corner_text(ax, 3, fontsize=8.5, family="DejaVu Sans Mono")
+            self.note = _corner_text(ax, 16, fontsize=7.5, color=COLORS["applied"])
 
     # construction -------------------------------------------------------------------------
     def _draw_ground(self) -> None:
@@ -446,3 +426,17 @@ class SystemScene:
             points = g.force_points(x, phi)
             for f in range(a.force.shape[0]):
                 put(self.arrows["applied"][f], points[f], a.force[f] * scale.horizontal)
+
+
+def _corner_text(ax: Any, above: float, **style: Any) -> Any:
+    """An empty text ``above`` points over the axes' top right corner (the clock, the note)."""
+    return ax.annotate(
+        "",
+        (1.0, 1.0),
+        xycoords="axes fraction",
+        xytext=(0, above),
+        textcoords="offset points",
+        ha="right",
+        va="bottom",
+        **style,
+    )

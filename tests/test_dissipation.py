@@ -128,3 +128,29 @@ def test_a_conservative_run_dissipates_nothing_and_keeps_its_error() -> None:
     assert summary["dissipated_by"] == {"damping": 0.0, "kinetic_friction": 0.0}
     energy = run.energy
     assert summary["energy_error"] == np.max(np.abs(energy - energy[0])) / energy[0]
+
+
+@settings(max_examples=20, deadline=None)
+@given(
+    q=st.lists(st.floats(-0.5, 0.5), min_size=2, max_size=2),
+    qdot=st.lists(st.floats(-3.0, 3.0), min_size=2, max_size=2),
+    damping=st.floats(0.01, 5.0),
+)
+def test_the_damping_power_read_from_the_tension_is_c_times_the_length_rate_squared(
+    q: list[float], qdot: list[float], damping: float
+) -> None:
+    """physics.dissipated_power reads c l' back from the tension; the kinematics give l'
+    independently (the spring's lever arms times the velocities): P = c l'^2."""
+    from rollspring.model import system_from_dict, system_to_json
+    from rollspring.physics import spring_state, system_arrays
+    from rollspring.physics.mechanics import dissipated_power
+
+    data = system_to_json(load_system("hoop-cylinder"))
+    data["springs"][0]["damping"] = damping
+    data["springs"][0]["at"] = [{"height": 0.15}, {"height": 0.05}]  # off centre: l turns
+    arrays = system_arrays(system_from_dict(data))
+    state = spring_state(arrays, np.array(q), np.array(qdot))
+    rate = np.sum(state.end_lever * np.array(qdot)[arrays.end_index], axis=-1)
+    power = dissipated_power(arrays, state.length, state.tension, np.zeros(2), np.zeros(2))
+    assert power[0] == pytest.approx(damping * rate[0] ** 2, rel=1e-9, abs=1e-12)
+    assert power[1] == 0.0

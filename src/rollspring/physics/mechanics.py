@@ -32,6 +32,7 @@ __all__ = [
     "contact_forces",
     "contact_forces_jacobian",
     "damping_matrix",
+    "dissipated_power",
     "end_kinematics",
     "force_point_kinematics",
     "force_work",
@@ -517,6 +518,38 @@ def potential_energy(system: SystemArrays, q: FloatArray) -> FloatArray:
         energy = energy - np.sum(force_work(system, q), axis=-1)
     result: FloatArray = energy
     return result
+
+
+def dissipated_power(
+    system: SystemArrays,
+    length: FloatArray,
+    tension: FloatArray,
+    friction: FloatArray,
+    slip_velocity: FloatArray,
+) -> FloatArray:
+    r"""The power turned into heat, by spring damping and by kinetic friction (W; the last axis
+    of the result: ``[damping, friction]``), from a state's spring lengths and tensions (``(...,
+    S)``) and the bodies' friction forces and slip velocities :math:`v_{s,i} = \dot x_i -
+    R_i\dot\varphi_i` (``(..., n)``; zero for a rolling body):
+
+    .. math::
+        P_c = \sum_{s:\,c_s > 0} c_s \dot l_s^{\,2}
+            = \sum_{s:\,c_s > 0} \frac{\bigl(T_s - k_s(l_s - L_{0s})\bigr)^2}{c_s},
+        \qquad P_f = \sum_i \lvert f_i\, v_{s,i}\rvert,
+
+    the damping part :math:`c_s\dot l_s` of the tension (docs/physics.md section 2) read back
+    from the tension, and the kinetic friction (M19) opposing the slip. With :math:`W = \int
+    (P_c + P_f)\,dt` the exact motion keeps :math:`E + W = E_0`."""
+    length, tension = np.asarray(length, dtype=float), np.asarray(tension, dtype=float)
+    power = np.zeros((*length.shape[:-1], 2))
+    damped = system.damping > 0
+    if np.any(damped):
+        viscous = tension[..., damped] - system.stiffness[damped] * (
+            length[..., damped] - system.rest_length[damped]
+        )
+        power[..., 0] = np.sum(viscous**2 / system.damping[damped], axis=-1)
+    power[..., 1] = np.sum(np.abs(np.asarray(friction) * np.asarray(slip_velocity)), axis=-1)
+    return power
 
 
 def kinetic_energy(system: SystemArrays, qdot: FloatArray) -> FloatArray:

@@ -1,19 +1,14 @@
 r"""The energy a run dissipates, so that damped and slipping runs check their energy honestly.
 
-Spring damping and kinetic friction turn mechanical energy into heat at the rate
-
-.. math::
-    P(t) = \sum_s c_s\,\dot l_s^{\,2} + \sum_{i\ \text{slipping}} \lvert f_i\,(\dot x_i - R_i
-    \dot\varphi_i)\rvert, \qquad c_s \dot l_s = T_s - k_s (l_s - L_{0s}),
-
-(docs/physics.md (M19): the kinetic friction :math:`f_i = -\mu_k N_i \operatorname{sign}
-v_{s,i}` opposes the slip velocity, so its power is :math:`-|f_i v_{s,i}|`), and the exact motion
-keeps :math:`E(t) + W(t) = E_0` with :math:`W(t) = \int_0^t P\,dt`. :func:`dissipated_energy`
+Spring damping and kinetic friction turn mechanical energy into heat at the rate :math:`P`
+of :func:`rollspring.physics.mechanics.dissipated_power`, and the exact motion keeps
+:math:`E(t) + W(t) = E_0` with :math:`W(t) = \int_0^t P\,dt`. :func:`dissipated_energy`
 integrates :math:`P` along the computed motion itself: on every segment of the run that can
 dissipate (a damped spring, a slipping body), between the integrator's own step ends and the
 output times, by 5-point Gauss-Legendre quadrature on the integrator's dense output (exact for
 polynomials of degree 9, above DOP853's interpolant), so that the balance error
-:math:`\max_t |E + W - E_0| / |E_0|` measures the integration, not the quadrature.
+:math:`\max_t |E + W - E_0|` (relative to the energies exchanged) measures the integration, not
+the quadrature.
 """
 
 from __future__ import annotations
@@ -23,39 +18,30 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rollspring.physics.arrays import FloatArray
+from rollspring.physics.mechanics import dissipated_power
 
 if TYPE_CHECKING:
     from rollspring.simulate.run_state import RunState, Segment
 
-__all__ = ["dissipated_energy", "dissipated_power"]
+__all__ = ["dissipated_energy", "power_at"]
 
 #: Gauss-Legendre nodes and weights on [-1, 1]: 5 points, exact to degree 9.
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(5)
 
 
-def dissipated_power(
+def power_at(
     run: RunState, states: FloatArray, slipping: np.ndarray, sign: np.ndarray
 ) -> FloatArray:
-    r"""The power dissipated at rows of general states ``[x, phi, u, omega]`` (W, shape
-    ``(rows, 2)``: by spring damping, :math:`\sum_s (T_s - k_s(l_s - L_{0s}))^2 / c_s` over the
-    damped springs, and by kinetic friction, :math:`\sum_i |f_i (u_i - R_i\omega_i)|` over the
-    slipping bodies; module docstring)."""
+    """The power dissipated at rows of general states ``[x, phi, u, omega]`` of a segment with
+    ``slipping`` bodies (W, shape ``(rows, 2)``: by damping, by kinetic friction):
+    :func:`~rollspring.physics.mechanics.dissipated_power` of what the kernel observes there."""
     a, n = run.arrays, run.arrays.n_bodies
     rows = states.shape[0]
     slip = np.broadcast_to(slipping, (rows, n))
-    signs = np.broadcast_to(sign, (rows, n))
-    observed = run.observe(states, slip, signs)
-    power = np.zeros((rows, 2))
-    damped = a.damping > 0
-    if np.any(damped):
-        viscous = observed.tension[:, damped] - a.stiffness[damped] * (
-            observed.length[:, damped] - a.rest_length[damped]
-        )
-        power[:, 0] = np.sum(viscous**2 / a.damping[damped], axis=1)
-    if np.any(slipping):
-        slip_velocity = states[:, 2 * n : 3 * n] - a.radius * states[:, 3 * n : 4 * n]
-        power[:, 1] = np.sum(np.abs(observed.friction * slip_velocity) * slip, axis=1)
-    return power
+    observed = run.observe(states, slip, np.broadcast_to(sign, (rows, n)))
+    # a slipping body's slip velocity; a rolling body's is zero (its friction does no work)
+    slip_velocity = (states[:, 2 * n : 3 * n] - a.radius * states[:, 3 * n : 4 * n]) * slip
+    return dissipated_power(a, observed.length, observed.tension, observed.friction, slip_velocity)
 
 
 def _segment_work(
@@ -71,7 +57,7 @@ def _segment_work(
     half = 0.5 * (end - start)
     points = (0.5 * (start + end))[:, None] + half[:, None] * _NODES[None, :]
     states = np.atleast_2d(segment.evaluate(points.ravel()))
-    power = dissipated_power(run, states, segment.slipping, segment.sign)
+    power = power_at(run, states, segment.slipping, segment.sign)
     pieces = half[:, None] * np.einsum("rpc,p->rc", power.reshape(-1, _NODES.size, 2), _WEIGHTS)
     cumulative = np.concatenate([np.zeros((1, 2)), np.cumsum(pieces, axis=0)])
     return cumulative[np.searchsorted(nodes, times)], cumulative[-1]

@@ -124,46 +124,14 @@ class SystemScene:
     def _draw_ground(self) -> None:
         ax, e = self.ax, self.extent
         band = 0.22 * e.size
-        ax.add_patch(
-            Rectangle(
-                (e.xmin, e.floor - band),
-                e.xmax - e.xmin,
-                band,
-                facecolor="none",
-                edgecolor=COLORS["floor"],
-                hatch="////",
-                lw=0.0,
-                zorder=1,
-            )
-        )
+        _hatched(ax, (e.xmin, e.floor - band), e.xmax - e.xmin, band, "none", "floor", 0.0, 1)
         ax.plot([e.xmin, e.xmax], [e.floor, e.floor], color=COLORS["floor"], lw=1.4, zorder=2)
         for height, left, right in e.track_spans:
-            ax.add_patch(
-                Rectangle(
-                    (left, e.floor),
-                    right - left,
-                    height - e.floor,
-                    facecolor="white",
-                    edgecolor=COLORS["floor"],
-                    hatch="\\\\\\\\",
-                    lw=1.0,
-                    zorder=1.5,
-                )
-            )
+            raised = (left, e.floor), right - left, height - e.floor
+            _hatched(ax, *raised, "white", "floor", 1.0, 1.5, hatch="\\\\\\\\")
             ax.plot([left, right], [height, height], color=COLORS["floor"], lw=1.4, zorder=2)
         for x, y, width, height in e.walls:
-            ax.add_patch(
-                Rectangle(
-                    (x, y),
-                    width,
-                    height,
-                    facecolor="white",
-                    edgecolor=COLORS["wall"],
-                    hatch="////",
-                    lw=1.0,
-                    zorder=1.5,
-                )
-            )
+            _hatched(ax, (x, y), width, height, "white", "wall", 1.0, 1.5)
 
     def _make_body(self, i: int, shape: str) -> dict[str, Any]:
         ax, a = self.ax, self.geometry.arrays
@@ -439,4 +407,30 @@ def _corner_text(ax: Any, above: float, **style: Any) -> Any:
         ha="right",
         va="bottom",
         **style,
+    )
+
+
+def _hatched(
+    ax: Any,
+    corner: tuple[float, float],
+    width: float,
+    height: float,
+    face: str,
+    edge: str,
+    lw: float,
+    zorder: float,
+    hatch: str = "////",
+) -> None:
+    """A hatched rectangle (the floor's band, a raised track, a wall), edged in ``COLORS[edge]``."""
+    ax.add_patch(
+        Rectangle(
+            corner,
+            width,
+            height,
+            facecolor=face,
+            edgecolor=COLORS[edge],
+            hatch=hatch,
+            lw=lw,
+            zorder=zorder,
+        )
     )

@@ -18,6 +18,7 @@ line with ``--yes`` (:mod:`rollspring.service.costs`). :func:`request_cost` esti
 from __future__ import annotations
 
 import math
+import os
 from typing import Any
 
 from rollspring.analysis.costs import Cost
@@ -30,6 +31,7 @@ __all__ = [
     "API_SMALLER",
     "CLI_SMALLER",
     "MAX_RUNS",
+    "available_cores",
     "batch_cost",
     "request_cost",
     "simulation_cost",
@@ -47,6 +49,11 @@ API_SMALLER = "a shorter duration, fewer n_output"
 #: bodies, and per body (or spring) of it: 1.5e-6 per body or spring for the paper's two bodies
 #: and their spring, about 2e-7 for a long chain (bench/bench_chains.py)
 _SYMPLECTIC_STEP, _SYMPLECTIC_BODY_STEP = 3.75e-6, 2.5e-7
+#: core-seconds per run, body (or spring) and step (all the stages of Kahan-Li 8) in the batch
+#: kernels, which step many runs together in SIMD lanes: 4.4e-9 measured for the paper's pair
+#: (65 536 runs, bench/bench_sweep.py), the bound three times that for the off-centre springs'
+#: trigonometry
+_BATCH_BODY_STEP = 1.5e-8
 #: seconds per output row and body (or spring) observed (forces, energies, extremes)
 _OBSERVE_BODY_ROW = 1e-7
 #: steps of the scheme each refined extreme takes (three grids of 9 points over two steps)
@@ -210,9 +217,10 @@ def batch_cost(
 ) -> Cost:
     r"""The estimated cost of ``runs`` runs of ``system`` for ``duration`` s in the compiled
     batch kernels (:func:`rollspring.simulate_batch`, a sweep): each run takes the steps a single
-    run of the system takes (:func:`simulation_cost`), each step costs the per-body part of a
-    compiled step, :math:`(n + S)\,t_{\text{body}}`, with no per-step overhead (the batch
-    loops inside the kernel), and each run keeps ``numbers_per_run`` numbers (8 bytes each)."""
+    run of the system takes (:func:`simulation_cost`), each step costs
+    :math:`(n + S)\,t_{\text{batch}}` core-seconds (the runs stepped together in SIMD lanes,
+    with no per-step overhead), spread over the machine's cores, and each run keeps
+    ``numbers_per_run`` numbers (8 bytes each)."""
     one = simulation_cost(
         system, duration, rtol=rtol, integrator=integrator, outputs=2, what=what, smaller=smaller
     )
@@ -220,7 +228,7 @@ def batch_cost(
     name = one.integrator if one.integrator in SCHEMES else "yoshida4"
     stages = SCHEMES[name].stages / SCHEMES["kahanli8"].stages
     steps = float(one.steps or 1.0)
-    seconds = runs * steps * stages * _SYMPLECTIC_BODY_STEP * size
+    seconds = runs * steps * stages * _BATCH_BODY_STEP * size / available_cores()
     return Cost(
         what,
         len(system.bodies),
@@ -232,3 +240,11 @@ def batch_cost(
         runs=runs,
         holds=holds,
     )
+
+
+def available_cores() -> int:
+    """The cores this process may run on."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not on Linux
+        return max(1, os.cpu_count() or 1)

@@ -68,9 +68,22 @@ def sweep(
             show_default=False,
         ),
     ] = None,
+    threads: Annotated[
+        int | None,
+        typer.Option(
+            "--threads",
+            help="In this process: chunks computed at once, a thread each, while the finished "
+            "ones are written (default: one for each core).",
+            show_default=False,
+        ),
+    ] = None,
     chunk: Annotated[
         int | None,
-        typer.Option("--chunk", help="Runs per chunk (default 4096).", show_default=False),
+        typer.Option(
+            "--chunk",
+            help="Runs per chunk (default 16384, or the chunks of the store resumed).",
+            show_default=False,
+        ),
     ] = None,
     rtol: Annotated[float, typer.Option(help="Relative accuracy of each run.")] = 1e-8,
     step: Annotated[
@@ -146,6 +159,7 @@ def sweep(
             integrator=integrator,
             refine_slip=refine_slip,
             confirm=True,  # confirmed above (--yes, or below the bound)
+            threads=threads,
         )
     first = reports.first
     total = int(dataset.attrs["n_chunks"])

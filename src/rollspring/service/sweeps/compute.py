@@ -89,6 +89,9 @@ class SweepPlan:
     metric_every: int = 0
     omega_max: float = 0.0
     numba_threads: int = 0  # 0: leave Numba's thread count alone
+    #: the batch calls' ``threads``: None every Numba thread (a Dask worker), 1 the calling
+    #: thread with the GIL released (the in-process pool; the same numbers bit for bit)
+    batch_threads: int | None = None
 
 
 @functools.lru_cache(maxsize=8)
@@ -268,6 +271,8 @@ def _batch(
         step=step,
         metric_every=metric_every,
         stop_on_slip=True,
+        threads=plan.batch_threads,
+        confirm=True,  # the sweep's cost is checked once, for the whole grid
     )
 
 

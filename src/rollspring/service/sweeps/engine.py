@@ -6,18 +6,21 @@ Order of work: validate the grid; open the store (refuse another sweep's store u
 metric sampling for the whole grid (from the batch's linear frequencies of every run, computed
 once on the grid with its velocity and friction axes collapsed; a pass over the chunks with one
 cheap batch call each where that does not apply); write the template; run the chunks without a
-done marker — in this process consecutive chunks together, up to ``IN_PROCESS_RUNS`` runs a
-batch call (each call uses every core), or as tasks on a Dask cluster, a bounded number in
-flight — writing each into its region as it arrives, then its marker.
+done marker — in this process on a pool of threads (one a core by default), each taking a group
+of consecutive chunks as one batch call on the serial kernel, which releases the GIL, or as
+tasks on a Dask cluster, a bounded number in flight — writing each into its region as it arrives
+(in this thread, while the others step), then its marker.
 """
 
 from __future__ import annotations
 
 import logging
 import math
+import numbers
 import os
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -47,26 +50,32 @@ from rollspring.service.sweeps.grid import (
 )
 from rollspring.service.sweeps.store import (
     VARIABLES,
+    RegionWriter,
     StoreMismatchError,
     done_chunks,
     fingerprint,
-    mark_done,
     read_attrs,
     remove,
     verified_done,
-    write_regions,
     write_template,
 )
-from rollspring.simulate.costs import batch_cost
+from rollspring.simulate.costs import available_cores, batch_cost
 from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 
-__all__ = ["DEFAULT_CHUNK", "METRICS", "SweepProgress", "sweep"]
+__all__ = ["DEFAULT_CHUNK", "MAX_THREADS_PER_CORE", "METRICS", "SweepProgress", "sweep"]
 
-#: Runs per chunk unless ``chunk`` says otherwise.
-DEFAULT_CHUNK = 4096
+#: Runs per chunk unless ``chunk`` says otherwise (or a store resumed was made with another):
+#: 16384, a Zarr chunk of about 128 KiB a variable (4096 before 29 Nov 2026: four times the
+#: files, and a store's writes cost a third of the stepping).
+DEFAULT_CHUNK = 16384
 #: In-process, consecutive chunks are computed together, up to this many runs a batch call
 #: (fewer calls; every run's numbers are those it has alone).
 IN_PROCESS_RUNS = 1 << 16
+#: In-process, the grid is cut into about this many batch calls a thread (a finished one is
+#: written while the others step).
+TASKS_PER_THREAD = 8
+#: The in-process pool's threads, at most this many a core.
+MAX_THREADS_PER_CORE = 4
 #: On a cluster, a chunk whose key is cancelled under it (a worker lost with its result) is
 #: submitted again, up to this many submissions in all.
 CHUNK_ATTEMPTS = 4
@@ -176,7 +185,7 @@ def sweep_cost(
         runs,
         duration,
         rtol=min(max(float(rtol), 1e-14), 0.1),  # the estimate's range (the sweep takes (0, 1))
-        integrator=integrator if integrator != "auto" else "yoshida4",
+        integrator=integrator,
         numbers_per_run=24 + 16 * bodies,  # the metrics, per body and the modes' frequencies
         what=what,
         smaller=smaller,
@@ -201,6 +210,7 @@ def sweep(
     integrator: str = "auto",
     refine_slip: bool = True,
     confirm: bool = False,
+    threads: int | None = None,
 ) -> Any:
     r"""Run ``system`` once per point of the grid ``vary`` (``{PATH: values}``, the outer
     product in the given order) for ``duration`` s and return the metrics as an
@@ -211,7 +221,8 @@ def sweep(
     chunks without a done marker, and another sweep's store is refused
     (:class:`StoreMismatchError`) unless ``overwrite``. ``scheduler``: None (in this process,
     every core), a Dask scheduler address ``"tcp://host:port"`` or a ``distributed.Client``.
-    ``chunk``: runs per chunk (default :data:`DEFAULT_CHUNK`). ``step`` fixes the integration
+    ``chunk``: runs per chunk (default :data:`DEFAULT_CHUNK`, or the chunks of the store
+    resumed). ``step`` fixes the integration
     step of the whole grid (default: chosen from ``rtol`` and the grid's highest frequency);
     ``integrator``: the batch's (``auto``, ``verlet``, ``yoshida4``, ``yoshida6``; with
     ``step``, ``auto`` means Yoshida-4, as in :func:`rollspring.simulate_batch`);
@@ -238,6 +249,12 @@ def sweep(
     confirm
         Start even when the estimate (:func:`sweep_cost`: the runs × a run's steps, the store)
         is above the bound; at most :data:`~rollspring.simulate.costs.MAX_RUNS` runs either way.
+    threads
+        In this process: the chunks computed at once, each on a thread of its own (default:
+        every core this process may use; at most :data:`MAX_THREADS_PER_CORE` a core), while
+        this thread writes those finished. The numbers are the same bit for bit whatever the
+        threads, and the same as on a cluster. Not with ``scheduler`` (a cluster's workers
+        have their own threads).
 
     Returns
     -------
@@ -249,6 +266,7 @@ def sweep(
     if progress is not None and not callable(progress):
         raise SweepError(f"progress: must be a function or None, got {type(progress).__name__}")
     _check_integrator(integrator)
+    threads = _check_threads(threads, scheduler)
     if any(s.damping > 0 for s in system.springs) and on_slip == "stop":
         raise SweepError(
             "system: a damped spring needs --on-slip continue (single runs); the "
@@ -259,7 +277,10 @@ def sweep(
     check_cost(cost, confirmed=bool(confirm), flag=CONFIRM)  # before the grid's values
     paths, values = check_grid(system, vary)
     _check_modes(system, paths)
-    grid = Grid(paths, values, chunk_shape(tuple(len(v) for v in values), chunk or DEFAULT_CHUNK))
+    shape = tuple(len(v) for v in values)
+    grid = Grid(paths, values, chunk_shape(shape, chunk or DEFAULT_CHUNK))
+    if chunk is None and out is not None:
+        grid = _resumed_chunks(Path(out), grid)
     toml = system_to_toml(system)
     extra = {
         "engine": ENGINE_REVISION,
@@ -282,6 +303,7 @@ def sweep(
     path = None if out is None else Path(out)
     done: set[int] = set()
     stored = None
+    replace = False  # an earlier store at path, removed just before the template is written
     if path is not None:
         attrs = read_attrs(path)
         if attrs is not None:
@@ -291,8 +313,8 @@ def sweep(
                     f"{str(attrs.get('grid_fingerprint'))[:12]}…, this one {print_[:12]}…); "
                     "use --overwrite to replace it"
                 )
-            if overwrite and attrs.get("grid_fingerprint") != print_:
-                remove(path)
+            if overwrite:
+                replace = True
             else:
                 stored = attrs
                 done = verified_done(path, grid, done_chunks(path))
@@ -302,15 +324,7 @@ def sweep(
                     f"--out {path}: exists and is not a rollspring sweep "
                     "store; use --overwrite to replace it"
                 )
-            remove(path)
-    if (
-        path is not None
-        and stored is not None
-        and overwrite
-        and stored.get("grid_fingerprint") == print_
-    ):
-        remove(path)
-        stored, done = None, set()
+            replace = True
 
     client, own_client = _client(scheduler)
     try:
@@ -344,16 +358,24 @@ def sweep(
             "n_chunks": grid.n_chunks,
             "refine_slip": bool(refine_slip),
         }
-        if path is not None and stored is None:
-            write_template(path, grid, ids, len(ids), chosen, attrs)
         todo = [i for i in range(grid.n_chunks) if i not in done]
         memory = None if path is not None else _memory(grid, chosen, len(ids))
+        writer: list[RegionWriter] = []
+
+        def ready() -> None:
+            """The store made ready for the first write: run once, while the first chunks
+            step."""
+            if path is None or writer:
+                return
+            if stored is None:
+                if replace:
+                    remove(path)
+                write_template(path, grid, ids, len(ids), chosen, attrs)
+            writer.append(RegionWriter(path, grid))
 
         def store(items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
             if path is not None:  # each chunk's data written before its marker
-                write_regions(path, grid, items)
-                for index, _ in items:
-                    mark_done(path, index)
+                writer[0].write(items)
             else:
                 assert memory is not None  # kept in memory when there is no store
                 for index, arrays in items:
@@ -365,13 +387,14 @@ def sweep(
         if progress is not None:
             progress(SweepProgress(counted, grid.n_runs, 0, len(todo), len(done)))
         k = 0
-        for items in _results(plan, todo, client):
+        for items in _results(plan, todo, client, threads, ready):
             store(items)
             for index, _ in items:
                 counted += _runs_in(grid, index)
                 k += 1
                 if progress is not None:
                     progress(SweepProgress(counted, grid.n_runs, k, len(todo), len(done)))
+        ready()  # no chunk left to run
     finally:
         if own_client and client is not None:
             client.close()
@@ -381,6 +404,24 @@ def sweep(
         return xr.open_zarr(str(path))
     assert memory is not None  # kept in memory when there is no store
     return _dataset(grid, chosen, ids, memory, attrs)
+
+
+def _resumed_chunks(path: Path, grid: Grid) -> Grid:
+    """``grid`` chunked as the store at ``path`` is when it holds this grid's shape (a rerun
+    without ``chunk`` resumes a store whatever chunk size made it: an earlier default); else
+    ``grid``."""
+    try:
+        attrs = read_attrs(path)
+    except StoreMismatchError:
+        return grid  # refused below, with the other checks of the store
+    stored = None if attrs is None else attrs.get("chunk_shape")
+    if (
+        isinstance(stored, list)
+        and len(stored) == len(grid.shape)
+        and all(isinstance(c, int) and 1 <= c <= n for c, n in zip(stored, grid.shape, strict=True))
+    ):
+        return Grid(grid.paths, grid.values, tuple(stored))
+    return grid
 
 
 def _check_modes(system: System, paths: tuple[str, ...]) -> None:
@@ -442,6 +483,7 @@ def _choose_step(plan: SweepPlan, step: float | None) -> SweepPlan:
         integrator=plan.integrator,
         step=step,
         stop_on_slip=True,
+        confirm=True,  # the sweep's cost is checked once, for the whole grid
     )
     return copy_plan(
         plan,
@@ -483,22 +525,101 @@ def _threads_per_worker(client: Any) -> int:
     return min(shares) if shares else 1
 
 
-def _results(
-    plan: SweepPlan, todo: list[int], client: Any
+def _check_threads(threads: Any, scheduler: Any) -> int:
+    """The in-process pool's threads: a whole number from 1 to :data:`MAX_THREADS_PER_CORE`
+    a core (None: one a core); only without a scheduler."""
+    cores = available_cores()
+    if threads is None:
+        return cores
+    if scheduler is not None:
+        raise SweepError(
+            "--threads: only for a sweep in this process (a cluster's workers have their own "
+            "threads: dask worker --nthreads)"
+        )
+    most = MAX_THREADS_PER_CORE * cores
+    if (
+        isinstance(threads, bool | np.bool_)
+        or not isinstance(threads, numbers.Integral)
+        or not 1 <= int(threads) <= most
+    ):
+        raise SweepError(
+            f"--threads: must be a whole number from 1 to {most} ({MAX_THREADS_PER_CORE} for "
+            f"each of the {cores} cores), got {threads!r}"
+        )
+    return int(threads)
+
+
+def _tasks(grid: Grid, todo: list[int], threads: int) -> list[list[int]]:
+    """``todo`` as groups of consecutive chunks, one batch call each: about
+    :data:`TASKS_PER_THREAD` groups a thread (the threads kept busy, the writes of the first
+    overlapping the stepping of the next), each of at least one chunk and at most
+    :data:`IN_PROCESS_RUNS` runs."""
+    total = sum(_runs_in(grid, index) for index in todo)
+    size_bound = min(IN_PROCESS_RUNS, max(1, total // (TASKS_PER_THREAD * threads)))
+    groups: list[list[int]] = []
+    group: list[int] = []
+    size = 0
+    for index in todo:
+        runs = _runs_in(grid, index)
+        if group and (size + runs > size_bound or index != group[-1] + 1):
+            groups.append(group)
+            group, size = [], 0
+        group.append(index)
+        size += runs
+    if group:
+        groups.append(group)
+    return groups
+
+
+def _in_process(
+    plan: SweepPlan, todo: list[int], threads: int, ready: Callable[[], None]
 ) -> Iterator[list[tuple[int, dict[str, np.ndarray]]]]:
-    """Finished chunks, (index, arrays), a list at a time: in-process the chunks computed
-    together, on Dask one as each task completes."""
-    if client is None:  # consecutive chunks together, up to IN_PROCESS_RUNS runs a call
-        group: list[int] = []
-        size = 0
-        for position, index in enumerate(todo):
-            group.append(index)
-            size += _runs_in(plan.grid, index)
-            following = todo[position + 1] if position + 1 < len(todo) else None
-            if following is None or size + _runs_in(plan.grid, following) > IN_PROCESS_RUNS:
-                yield list(zip(group, compute_chunks(plan, group), strict=True))
-                group, size = [], 0
+    """The chunks of ``todo`` computed by a pool of ``threads`` threads, each group
+    (:func:`_tasks`) by one batch call on the serial kernel, which releases the GIL while it
+    steps; finished groups are yielded as they come (the caller writes them while the pool
+    steps the next), at most ``2 threads`` groups in flight; ``ready`` is called once the first
+    groups are stepping. The serial kernel is the parallel one's block code: the numbers do not
+    depend on the threads."""
+    serial = copy_plan(plan, batch_threads=1)
+    groups = iter(_tasks(plan.grid, todo, threads))
+    with ThreadPoolExecutor(threads, thread_name_prefix="rollspring-sweep") as pool:
+        pending: dict[Future[list[dict[str, np.ndarray]]], list[int]] = {}
+
+        def submit() -> None:
+            group = next(groups, None)
+            if group is not None:
+                pending[pool.submit(compute_chunks, serial, group)] = group
+
+        for _ in range(2 * threads):
+            submit()
+        try:
+            ready()  # the store's template written while the first groups step
+            while pending:
+                finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+                for future in sorted(finished, key=lambda f: pending[f][0]):
+                    group = pending.pop(future)
+                    arrays = future.result()
+                    submit()  # the pool kept full while this thread writes
+                    yield list(zip(group, arrays, strict=True))
+        finally:  # an error here or in the caller: nothing more is started
+            for future in pending:
+                future.cancel()
+
+
+def _results(
+    plan: SweepPlan,
+    todo: list[int],
+    client: Any,
+    threads: int,
+    ready: Callable[[], None],
+) -> Iterator[list[tuple[int, dict[str, np.ndarray]]]]:
+    """Finished chunks, (index, arrays), a list at a time: in-process a group of chunks as
+    each thread of the pool finishes it, on Dask one chunk as each task completes. ``ready``
+    (the store's template) is called before the first is yielded."""
+    if client is None:
+        yield from _in_process(plan, todo, threads, ready)
         return
+    ready()
     from distributed import KilledWorker, as_completed
     from distributed.client import FutureCancelledError
 

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import math
+import threading
 import time
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -240,6 +242,7 @@ def simulate_batch(
     stop_on_slip: bool = True,
     metric_every: int | None = None,
     confirm: bool = False,
+    threads: int | None = None,
 ) -> BatchResult:
     r"""Run ``system`` once per set of parameter values, all runs in parallel, for ``duration`` s.
 
@@ -316,6 +319,11 @@ def simulate_batch(
     confirm
         Start even when the estimate (:func:`~rollspring.simulate.costs.batch_cost`) is above
         the bound; at most :data:`~rollspring.simulate.costs.MAX_RUNS` runs either way.
+    threads
+        None: the runs on every Numba thread (``numba.get_num_threads()``); 1: on the calling
+        thread alone, with the GIL released, so that several Python threads can each run a
+        batch at once (what :func:`rollspring.sweep` does); k > 1: on k of Numba's threads.
+        The numbers are the same bit for bit whatever the threads.
 
     Returns
     -------
@@ -339,6 +347,7 @@ def simulate_batch(
     metric_every = arguments.check_count("metric_every", metric_every, 1, optional=True)
     arguments.check_flag("keep_trajectories", keep_trajectories)
     arguments.check_flag("stop_on_slip", stop_on_slip)
+    threads = _check_threads(threads)
     damped = [k for k, s in enumerate(system.springs) if s.damping > 0]
     if damped:
         raise ModelError(
@@ -420,7 +429,7 @@ def simulate_batch(
     stride = n_steps // (n_output - 1) if keep_trajectories else 0
     traj_live = np.full((n_pad, n_output, n) if keep_trajectories else (1, 1, 1), np.nan)
     if n_live:
-        kernel = cache.load_kernel(source)
+        kernel = cache.load_kernel(source, serial=threads == 1)
         args = (
             n_blocks,
             P,
@@ -441,7 +450,11 @@ def simulate_batch(
             # numba.typeof has no annotations in numba's own typing
             kernel.compile(tuple(numba.typeof(a) for a in args))  # type: ignore[no-untyped-call]
         compiled = time.perf_counter()
-        kernel(*args)
+        if threads == 1:
+            kernel(*args)
+        else:
+            with _numba_threads(threads):
+                kernel(*args)
     else:
         compiled = time.perf_counter()
     finished = time.perf_counter()
@@ -502,6 +515,45 @@ def simulate_batch(
         omega=omegas,
         messages=messages,
     )
+
+
+#: One launch of a parallel kernel at a time in this process: Numba's default threading layer
+#: (workqueue) aborts the process when two Python threads launch parallel kernels at once, and
+#: the kernels release the GIL, which no longer keeps them apart.
+_PARALLEL = threading.Lock()
+
+
+def _check_threads(threads: Any) -> int | None:
+    """None, or a whole number from 1 to Numba's thread count (``NUMBA_NUM_THREADS``)."""
+    count = arguments.check_count("threads", threads, 1, optional=True)
+    if count is not None and count > 1:
+        import numba
+
+        # numba.config sets NUMBA_NUM_THREADS at import: mypy cannot see it
+        limit = int(numba.config.NUMBA_NUM_THREADS)  # type: ignore[attr-defined]
+        if count > limit:
+            raise SimulationError(
+                f"threads: {count} is more than Numba's {limit} threads (NUMBA_NUM_THREADS)"
+            )
+    return count
+
+
+@contextlib.contextmanager
+def _numba_threads(threads: int | None) -> Iterator[None]:
+    """Hold the launch lock and, for ``threads`` k, run on k of Numba's threads (Numba's
+    count is per calling thread; restored after)."""
+    with _PARALLEL:
+        if threads is None:
+            yield
+            return
+        import numba
+
+        before = numba.get_num_threads()
+        numba.set_num_threads(threads)
+        try:
+            yield
+        finally:
+            numba.set_num_threads(before)
 
 
 def _numbers_per_run(system: System, n_output: int) -> int:

@@ -143,6 +143,9 @@ def load_module(source: str) -> Any:
         return module
 
 
-def load_kernel(source: str) -> Any:
-    """The compiled ``run`` of the generated module of ``source``."""
-    return load_module(source).run
+def load_kernel(source: str, *, serial: bool = False) -> Any:
+    """The compiled ``run`` of the generated module of ``source`` (every block on Numba's
+    threads), or with ``serial`` its ``run_serial`` (every block on the calling thread, the GIL
+    released)."""
+    module = load_module(source)
+    return module.run_serial if serial else module.run

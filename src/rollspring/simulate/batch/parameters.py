@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rollspring.errors import ModelError
-from rollspring.model import System
+from rollspring.model import RANGES, System
 from rollspring.physics import system_arrays
 from rollspring.physics.arrays import FloatArray
 
@@ -230,7 +230,25 @@ def fill_defaults(runs: Runs) -> None:
     runs.mu_kinetic = np.where(np.isnan(runs.mu_kinetic), default_k, runs.mu_kinetic)
 
 
+#: The batch quantities' ranges: those a system file has (``rollspring.model.RANGES``).
+_RANGE_OF = {
+    "mass": "mass",
+    "radius": "radius",
+    "mu_static": "friction",
+    "mu_kinetic": "friction",
+    "x": "position",
+    "v": "velocity",
+    "stiffness": "stiffness",
+    "rest_length": "rest_length",
+    "gravity": "gravity",
+}
+
+
 def _check_values(key: str, quantity: str, value: FloatArray) -> None:
+    """Every run's value of ``key`` a number in the range a system file takes
+    (``rollspring.model.RANGES``; ``mu_static`` may be inf), else a :class:`ModelError` naming
+    the key, the range and the first run outside it."""
+
     def first(mask: np.ndarray) -> str:
         run = int(np.flatnonzero(mask)[0])
         return f"run {run} has {float(value[run])!r}"
@@ -239,10 +257,20 @@ def _check_values(key: str, quantity: str, value: FloatArray) -> None:
         bad = np.isnan(value) | (value < 0)
         if np.any(bad):
             raise _bad(key, f"must be >= 0 (inf allowed) ({first(bad)})")
-        return
-    if not np.all(np.isfinite(value)):
+        value = np.where(np.isinf(value), 0.0, value)
+    elif not np.all(np.isfinite(value)):
         raise _bad(key, f"must be finite ({first(~np.isfinite(value))})")
     if quantity in ("mass", "radius", "stiffness") and np.any(value <= 0):
         raise _bad(key, f"must be > 0 ({first(value <= 0)})")
     if quantity in ("mu_kinetic", "rest_length", "gravity") and np.any(value < 0):
         raise _bad(key, f"must be >= 0 ({first(value < 0)})")
+    name = _RANGE_OF.get(quantity)
+    if name is not None:
+        low, high, unit = RANGES[name]
+        outside = (value < low) | (value > high)
+        if np.any(outside):
+            raise _bad(
+                key,
+                f"must be between {low:g} and {high:g}{' ' + unit if unit else ''}, the "
+                f"verified range a system file takes ({first(outside)})",
+            )

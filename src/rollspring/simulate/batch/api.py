@@ -253,9 +253,10 @@ def simulate_batch(
     radii included: a radius moves the centre height, the ``height`` attachments (their distance
     from the centre) and the inertia. A spring without a ``rest_length`` in the system keeps its
     default, the initial length, in every run. The topology (bodies, shapes, springs, anchors,
-    attachments, forces) is the system's. Unknown paths, wrong lengths and invalid values raise
-    :class:`~rollspring.errors.ModelError` naming the key; damped springs are refused (the
-    batch integrators are symplectic: use :func:`rollspring.simulate`). ``system`` is a
+    attachments, forces) is the system's. Unknown paths, wrong lengths and values outside the
+    range a system file takes (``rollspring.model.RANGES``) raise
+    :class:`~rollspring.errors.ModelError` naming the key and the first run; damped springs are
+    refused (the batch integrators are symplectic: use :func:`rollspring.simulate`). ``system`` is a
     :class:`~rollspring.model.System`, its JSON form (a dict) or a file path or preset name
     (:func:`rollspring.model.as_system`).
 
@@ -272,8 +273,8 @@ def simulate_batch(
     is still reported). A run whose state overflows (a step far too long, a diverging system)
     ends with status ``nonfinite`` and meaningless metrics.
 
-    **Runs are independent.** A run whose values overflow double precision (a frequency or an
-    inertia that is not finite) gets status ``invalid``; with the step chosen from ``rtol``, a
+    **Runs are independent.** A run whose numbers still overflow double precision (a frequency
+    or an inertia that is not finite) gets status ``invalid``; with the step chosen from ``rtol``, a
     run that alone would need more than :data:`~rollspring.simulate.batch.plan.MAX_STEPS` steps
     gets ``unresolved`` (``messages`` says which value and what range works). Neither is
     integrated nor takes part in the choice of the step. The summary metrics are sampled every

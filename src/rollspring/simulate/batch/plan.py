@@ -49,7 +49,7 @@ METRIC_PHASE = 0.03
 #: those samples, not the motion, the error (single runs interpolate inside the steps instead).
 AUTO_SCHEMES = ("verlet", "yoshida4", "yoshida6")
 #: Most steps the step chosen from ``rtol`` may take: a run that alone would need more (a
-#: frequency far above its neighbours', e.g. a mass of 1e-30 kg) is ``unresolved`` and left
+#: frequency far above its neighbours', e.g. 1e-6 kg on 1e9 N/m) is ``unresolved`` and left
 #: out of the step choice instead of making every run take that many.
 MAX_STEPS = 10**8
 

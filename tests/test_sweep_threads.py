@@ -22,24 +22,11 @@ from rollspring.service.sweeps import SweepError, sweep
 from rollspring.simulate import simulate_batch
 from rollspring.simulate.batch.codegen import BLOCK
 from rollspring.simulate.costs import available_cores
+from tests.test_batch_independence import PER_RUN
 from tests.test_batch_layouts import layouts
 from tests.test_sweep import same
 
 SYSTEM = "hoop-cylinder"
-#: every array of a batch result that holds numbers of the runs
-FIELDS = (
-    "status",
-    "first_slip_time",
-    "first_slip_body",
-    "period_measured",
-    "cm_amplitude",
-    "stationary_amplitude",
-    "max_friction_ratio",
-    "min_normal_force",
-    "energy_error",
-    "final_x",
-    "final_v",
-)
 
 
 def assert_same_runs(a: rollspring.simulate.BatchResult, b: rollspring.simulate.BatchResult):
@@ -49,7 +36,7 @@ def assert_same_runs(a: rollspring.simulate.BatchResult, b: rollspring.simulate.
         b.n_steps,
         b.metric_every,
     )
-    for name in FIELDS:
+    for name in PER_RUN:
         x, y = getattr(a, name), getattr(b, name)
         assert x.dtype == y.dtype and x.shape == y.shape, name
         assert np.array_equal(x, y, equal_nan=x.dtype.kind == "f"), name

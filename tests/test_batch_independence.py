@@ -63,15 +63,29 @@ def alone(system, parameters, run, duration, like, **kwargs):
     )
 
 
+def assert_same_plan(a, b):
+    """Two batches stepped with the same step, step count, metric sampling and integrator."""
+    assert (a.step, a.n_steps, a.metric_every, a.integrator) == (
+        b.step,
+        b.n_steps,
+        b.metric_every,
+        b.integrator,
+    )
+
+
+def assert_same_batch(a, b):
+    """Every run of ``a`` is bit for bit the same run of ``b``."""
+    assert_same_plan(a, b)
+    for name in PER_RUN:
+        mine, theirs = getattr(a, name), getattr(b, name)
+        assert mine.dtype == theirs.dtype and mine.shape == theirs.shape, name
+        assert np.array_equal(bits(mine), bits(theirs)), name
+
+
 def assert_same_run(batch, run, single):
     """Row ``run`` of ``batch`` is bit for bit the only row of ``single``."""
     assert single.n_runs == 1
-    assert (single.step, single.n_steps, single.metric_every, single.integrator) == (
-        batch.step,
-        batch.n_steps,
-        batch.metric_every,
-        batch.integrator,
-    )
+    assert_same_plan(single, batch)
     for name in PER_RUN:
         mine, theirs = getattr(batch, name)[run], getattr(single, name)[0]
         assert np.array_equal(bits(mine), bits(theirs)), (name, run, mine, theirs)

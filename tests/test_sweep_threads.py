@@ -22,24 +22,11 @@ from rollspring.service.sweeps import SweepError, sweep
 from rollspring.simulate import simulate_batch
 from rollspring.simulate.batch.codegen import BLOCK
 from rollspring.simulate.costs import available_cores
-from tests.test_batch_independence import PER_RUN
+from tests.test_batch_independence import assert_same_batch
 from tests.test_batch_layouts import layouts
 from tests.test_sweep import same
 
 SYSTEM = "hoop-cylinder"
-
-
-def assert_same_runs(a: rollspring.simulate.BatchResult, b: rollspring.simulate.BatchResult):
-    assert (a.integrator, a.step, a.n_steps, a.metric_every) == (
-        b.integrator,
-        b.step,
-        b.n_steps,
-        b.metric_every,
-    )
-    for name in PER_RUN:
-        x, y = getattr(a, name), getattr(b, name)
-        assert x.dtype == y.dtype and x.shape == y.shape, name
-        assert np.array_equal(x, y, equal_nan=x.dtype.kind == "f"), name
 
 
 def spread(parameters: dict[str, list[float]], runs: int) -> dict[str, np.ndarray]:
@@ -58,9 +45,9 @@ def test_the_serial_kernel_steps_every_run_as_the_parallel_one(layout):
     kwargs = {"integrator": "yoshida4", "step": 2e-3, "stop_on_slip": False}
     serial = simulate_batch(system, varied, 0.5, threads=1, **kwargs)
     assert serial.n_runs == next(iter(varied.values())).size
-    assert_same_runs(serial, simulate_batch(system, varied, 0.5, **kwargs))
+    assert_same_batch(serial, simulate_batch(system, varied, 0.5, **kwargs))
     if numba.config.NUMBA_NUM_THREADS >= 2:
-        assert_same_runs(serial, simulate_batch(system, varied, 0.5, threads=2, **kwargs))
+        assert_same_batch(serial, simulate_batch(system, varied, 0.5, threads=2, **kwargs))
 
 
 def test_the_serial_kernel_on_the_papers_pair_with_slips():
@@ -72,7 +59,7 @@ def test_the_serial_kernel_on_the_papers_pair_with_slips():
     }
     serial = simulate_batch(SYSTEM, parameters, 3.0, threads=1)
     assert 0 < np.count_nonzero(serial.status == 2) < serial.n_runs  # some slip, some roll
-    assert_same_runs(serial, simulate_batch(SYSTEM, parameters, 3.0))
+    assert_same_batch(serial, simulate_batch(SYSTEM, parameters, 3.0))
 
 
 def test_parallel_launches_from_several_threads_wait_for_each_other():
@@ -84,7 +71,7 @@ def test_parallel_launches_from_several_threads_wait_for_each_other():
     with ThreadPoolExecutor(4) as pool:
         results = list(pool.map(lambda _: simulate_batch(SYSTEM, parameters, 2.0), range(4)))
     for result in results:
-        assert_same_runs(serial, result)
+        assert_same_batch(serial, result)
 
 
 @pytest.mark.parametrize(

@@ -279,7 +279,7 @@ def sweep(
     _check_modes(system, paths)
     shape = tuple(len(v) for v in values)
     grid = Grid(paths, values, chunk_shape(shape, chunk or DEFAULT_CHUNK))
-    if chunk is None and out is not None:
+    if chunk is None and out is not None and not overwrite:  # a store to resume, perhaps
         grid = _resumed_chunks(Path(out), grid)
     toml = system_to_toml(system)
     extra = {

@@ -279,6 +279,37 @@ class Fig3:
         return tuple(sp.simplify(sp.diff(Fig3.length, q).subs(zero)) for q in (phi1, phi2))
 
 
+class Fig3Tilted:
+    """Fig. 3 on one floor: the hoop (radius R2/2, centre at R2/2), the spring from its top (R2
+    high) to the cylinder's point 3R2/2 high, the centres L apart: tilted at rest; exact."""
+
+    r1 = R2 / 2
+    J1, J2 = 2 * m1 * r1**2, sp.Rational(3, 2) * m2 * R2**2
+    end1 = (r1 * phi1 + r1 * sp.sin(phi1), r1 + r1 * sp.cos(phi1))
+    end2 = (L + R2 * phi2 + R2 / 2 * sp.sin(phi2), R2 + R2 / 2 * sp.cos(phi2))
+    length = sp.sqrt((end2[0] - end1[0]) ** 2 + (end2[1] - end1[1]) ** 2)
+    rest = sp.sqrt(L**2 + (R2 / 2) ** 2)
+    V = k / 2 * (length - rest) ** 2
+    acc = (-sp.diff(V, phi1) / J1, -sp.diff(V, phi2) / J2)
+    pull = k * (length - rest) * (end2[0] - end1[0]) / length  # the spring on the hoop, along x
+    friction = (m1 * r1 * acc[0] - pull, m2 * R2 * acc[1] + pull)  # Newton: m a = F + f
+
+
+class Radii:
+    """The Sec. 3 pair with unequal radii R1, R2 (centres level, spring horizontal at the
+    centres): the torques about the contact lines and what they conserve."""
+
+    J1, J2 = 2 * m1 * R1**2, sp.Rational(3, 2) * m2 * R2**2
+    V = k / 2 * (R2 * phi2 - R1 * phi1) ** 2
+    Q = (-sp.diff(V, phi1), -sp.diff(V, phi2))
+
+    @staticmethod
+    def conserved() -> tuple[sp.Expr, sp.Expr]:
+        """d/dt of sum J_i phidot_i (the paper's (rel1)) and of sum J_i phidot_i / R_i."""
+        q1, q2 = Radii.Q
+        return (sp.simplify(q1 + q2), sp.simplify(q1 / R1 + q2 / R2))
+
+
 def _fig3_numbers() -> dict[sp.Symbol, sp.Rational]:
     return {m1: sp.Rational(13, 10), m2: sp.Rational(7, 10), k: 100, R2: sp.Rational(1, 10), L: 1}
 
@@ -394,14 +425,10 @@ def _fig3_no_friction(c: Claim) -> str:
 
 
 def _fric_coupled(c: Claim) -> str:
-    """(fric) with the spring's force: Fig. 2 (at the centres) exact, Fig. 3 (at the percussion
-    heights, where (fric) gives zero) exact against first order."""
-    paper = by_name(c.paper, {"F_1x": Fig2.spring[0], "F_2x": Fig2.spring[1], "R_1": R2 / 2})
-    first_order = tuple(Fig3.linear(f_) for f_ in Fig3.friction)
-    assert first_order == (0, 0)
-    return verdict(
-        paper, Fig2.friction + Fig3.friction, stated=(paper, Fig2.friction + first_order)
-    )
+    """(fric) with the spring's varying force on Fig. 2 (at the centres): Newton at one instant,
+    exact at every configuration (no assumption on F(t))."""
+    paper = by_name(c.paper, {"F_1x": Fig2.spring[0], "F_2x": Fig2.spring[1]})
+    return verdict(paper, Fig2.friction)
 
 
 def _geometry(c: Claim) -> str:
@@ -410,6 +437,35 @@ def _geometry(c: Claim) -> str:
     one_floor = sp.solve(sp.Eq(hoop_top.subs(h, 0), cylinder_pull), R1)[0]
     level = sp.solve([sp.Eq(hoop_top, cylinder_pull), sp.Eq(h + R1, R2)], [R1, h], dict=True)[0]
     return verdict(c.paper, one_floor, stated=(c.paper, level[R1]))
+
+
+def _radii_momentum(c: Claim) -> str:
+    """(rel1): sum J_i phidot_i is conserved only with equal radii (then zero from rest); in general
+    sum J_i phidot_i / R_i is."""
+    rate, kept = Radii.conserved()
+    assert rate != 0 and kept == 0 and sp.simplify(rate.subs(R1, R2)) == 0
+    return verdict(c.paper, Radii.J1 * phid1 + Radii.J2 * phid2, stated=(c.paper, 0))
+
+
+def _radii_stationary(c: Claim) -> str:
+    """(c): the rate of (J_1 x_1 + J_2 x_2)/(J_1 + J_2), x_i = R_i phi_i: a multiple of the
+    conserved sum J_i phidot_i / R_i only with equal radii (then zero from rest)."""
+    rate = (Radii.J1 * R1 * phid1 + Radii.J2 * R2 * phid2) / (Radii.J1 + Radii.J2)
+    kept = Radii.J1 * phid1 / R1 + Radii.J2 * phid2 / R2
+    assert sp.simplify((rate / kept).subs(R1, R2)).free_symbols.isdisjoint({phid1, phid2})
+    assert not sp.simplify(rate / kept).free_symbols.isdisjoint({phid1, phid2})
+    return verdict(c.paper, rate, stated=(c.paper, 0))
+
+
+def _spring_horizontal(c: Claim) -> str:
+    """A tilted spring between the percussion heights: no first-order friction, so the paper's
+    "must be horizontal" (first-order friction when tilted) is wrong."""
+    zero = {phi1: 0, phi2: 0}
+    first = [
+        sp.simplify(sum(sp.diff(f_, q).subs(zero) for q in (phi1, phi2)) + f_.subs(zero))
+        for f_ in Fig3Tilted.friction
+    ]
+    return verdict(c.paper, sp.true if any(f_ != 0 for f_ in first) else sp.false)
 
 
 def _fig3_equations(c: Claim) -> str:
@@ -776,13 +832,12 @@ INDEPENDENT: dict[str, Check] = {
     "sec3.steiner": _plain(lambda: (Fig2.J1, Fig2.J1, Fig2.J2, Fig2.J2)),
     "sec3.fig2-equations": _plain(lambda: Fig2.acc),
     "sec3.fig2-sum": _plain(lambda: sp.simplify(Fig2.J1 * Fig2.acc[0] + Fig2.J2 * Fig2.acc[1])),
-    "sec3.angular-momentum": lambda c: verdict(c.paper, P0, stated=(c.paper, 0)),
+    "sec3.angular-momentum": _radii_momentum,
     "sec3.phase-opposition": _plain(lambda: sp.sign(Fig2.ratio)),
     "sec3.w-relation": lambda c: verdict(c.paper, (P0 / R, P0 / R), stated=(c.paper, (0, 0))),
     "sec3.cm-moves": _plain(_cm_moves),
-    "sec3.stationary-point": lambda c: verdict(
-        c.paper, R * P0 / (Fig2.J1 + Fig2.J2), stated=(c.paper, 0)
-    ),
+    "sec3.stationary-point": _radii_stationary,
+    "sec3.different-inertia": _same_inertia,
     "sec3.same-spring-forces": _magnitudes(
         lambda: (Fig2.spring[1] / Fig2.spring[0], sp.simplify(Fig2.Q[1] / Fig2.Q[0]))
     ),
@@ -808,6 +863,7 @@ INDEPENDENT: dict[str, Check] = {
     "sec4.fric-coupled": _fric_coupled,
     "sec4.fig3-no-friction": _fig3_no_friction,
     "sec4.fig3-geometry": _geometry,
+    "sec4.spring-horizontal": _spring_horizontal,
     "sec4.fig3-caption": _fig3_no_friction,
     "sec4.fig3-equations": _fig3_equations,
     "sec4.fig3-spring-force": _fig3_force,
@@ -1202,6 +1258,7 @@ def test_cli_json_is_a_list_of_the_documented_records(checks) -> None:
             "assumption",
             "correction",
             "reason",
+            "counterexample",
         }
         assert record["verdict"] in VERDICTS
         assert isinstance(record["claim"], str) and record["claim"]
@@ -1353,6 +1410,7 @@ def test_the_catalogue_is_the_claims_file_a_table_per_claim_in_the_papers_order(
                     "recipe",
                     "latex",
                     "assumptions",
+                    "counterexample",
                 }
             ), key
             assert table.get("latex") != table["quote"], key
@@ -1407,3 +1465,96 @@ def test_a_restatement_takes_what_it_does_not_give_from_the_claim_it_repeats() -
     )
     assert again.location == "Sec. 7, sentence 3" and again.quote != first.quote
     assert claim_tables()["sec7.fig3"]["restates"] == "abstract.fig3"
+
+
+# -- the counterexamples: the exact motion of the systems the verdicts name ------------------------
+
+#: Wrong or holds-only-if verdicts with no system the engine can run, and why.
+NO_SYSTEM = {
+    "sec5.2.isochronism-unique": "the isotonic oscillator is a potential, not a rolling system "
+    "(its periods are computed above)",
+    "sec5.4.quadratic-energy": "beta < 0 needs a negative stiffness, which no system file takes",
+    "app-a.fig5-labels": "a figure's labels",
+    "app-b.mass-m": "a symbol's name",
+}
+
+
+@pytest.fixture(scope="module")
+def runs(checks):
+    from rollspring.service.paper_runs import run_counterexamples
+
+    return run_counterexamples(list(checks.values()))
+
+
+def test_every_wrong_or_unstated_verdict_has_a_counterexample_run(checks) -> None:
+    without = {
+        key
+        for key, check in checks.items()
+        if check.verdict in (WRONG, HOLDS_ONLY_IF) and check.claim.counterexample is None
+    }
+    assert without == set(NO_SYSTEM)
+
+
+def test_every_counterexample_disagrees_with_the_papers_statement(checks, runs) -> None:
+    assert set(runs) == {key for key, c in checks.items() if c.claim.counterexample is not None}
+    for key, run in runs.items():
+        cx = run.counterexample
+        assert run.disagrees, (key, run.measured, cx.paper, cx.tolerance)
+        assert abs(run.measured - cx.paper) > cx.tolerance
+        assert checks[key].verdict != VERIFIED, key  # a verified claim needs no counterexample
+        assert cx.words and run.details, key
+
+
+def test_the_measures_agree_with_the_paper_where_it_is_right() -> None:
+    """No false alarm: each measure, on a system where the paper's statement holds, finds it."""
+    from rollspring.analysis.paper import Counterexample
+    from rollspring.service.paper_runs import run_counterexample
+
+    def measured(system: str, measure: str, **start: Any) -> float:
+        return run_counterexample(Counterexample(system, measure, 0.0, 1.0, "-", **start)).measured
+
+    # the paper's equal radii: X-hat of (c) and (rel1) stay put
+    assert measured("fig2", "stationary_point_paper") < 1e-9
+    assert measured("fig2", "contact_momentum") < 1e-9
+    # two hoops joined at their centres (Sec. 3): the centre of mass stays
+    assert measured("two-hoops", "cm_motion") < 1e-9
+    # a spring level with the hoop's centre (y = R, not its percussion height 2R): first-order
+    # frictions, as (fric) says
+    assert abs(measured("zero-sum", "friction_order", start="mode", amplitude=0.02) - 1) < 0.05
+    # the paper's Fig. 3: the static friction is third order, and the motion needs little
+    assert abs(measured("fig3", "friction_order", start="mode", amplitude=0.02) - 3) < 0.1
+    # the canonical ratio of Sec. 5.6 counted as the engine counts (both angles one way): the
+    # paper's magnitude
+    assert abs(abs(measured("fig2", "canonical_ratio")) - 2 / sp.sqrt(3) * 13 / 7) < 1e-3
+    # App. A's f_2 with the cylinder's I_2 = m_2 R^2/2: (k_2/3) R phi_2
+    assert abs(measured("fig2", "cylinder_friction_k2") - sp.Rational(2, 3)) < 1e-3
+
+
+def test_the_fig3_pair_creeps_beyond_first_order(runs) -> None:
+    """Sec. 4: the centre of mass of Fig. 3 is at rest only to first order: at 0.05 rad the exact
+    motion creeps, more the longer it runs, and the motion needs a small mu_s (O(a^3))."""
+    from rollspring.analysis.paper import Counterexample
+    from rollspring.service.paper_runs import run_counterexample
+
+    long = runs["sec4.fig3-cm-at-rest"]
+    short = run_counterexample(
+        Counterexample("fig3", "cm_drift", 0.0, 1e-5, "-", start="mode", amplitude=0.05, periods=10)
+    )
+    assert long.measured > 5 * short.measured > 0
+    small = run_counterexample(
+        Counterexample("fig3", "mu_needed", 0.0, 1e-6, "-", start="mode", amplitude=0.025)
+    )
+    big = runs["sec4.fig3-no-friction"]
+    assert 6 < big.measured / small.measured < 10  # third order: 2^3
+
+
+def test_the_tilted_pair_keeps_no_first_order_friction_and_only_its_frequency_changes() -> None:
+    """Sec. 4's "the spring must be horizontal": on one floor (the spring tilted by theta) the
+    frictions are second order and Omega^2 is the level pair's times cos^2(theta)."""
+    import rollspring
+    from rollspring.analysis.paper import paper_system
+
+    level = rollspring.analyze(paper_system("fig3")).oscillating[0].omega
+    tilted = rollspring.analyze(paper_system("fig3-tilted")).oscillating[0].omega
+    cos2 = 0.5**2 / (0.5**2 + 0.05**2)
+    assert abs((tilted / level) ** 2 - cos2) < 1e-12

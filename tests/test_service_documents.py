@@ -12,7 +12,17 @@ from rollspring.analysis.paper import VERDICTS, check_paper, paper_figure
 from rollspring.service.documents import derivation_payload
 
 STEP_KEYS = {"words", "latex", "mathml", "ref"}
-CLAIM_KEYS = {"key", "location", "claim", "quote", "verdict", "assumption", "correction", "reason"}
+CLAIM_KEYS = {
+    "key",
+    "location",
+    "claim",
+    "quote",
+    "verdict",
+    "assumption",
+    "correction",
+    "reason",
+    "counterexample",
+}
 
 
 @pytest.fixture(scope="module")

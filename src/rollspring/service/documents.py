@@ -24,7 +24,7 @@ import math
 import numbers
 import os
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -59,6 +59,7 @@ __all__ = [
     "derivation_payload",
     "figure_claims",
     "paper_checks",
+    "paper_runs",
     "report_request",
     "run_report",
     "worksheet",
@@ -362,10 +363,28 @@ def figure_claims(system: System) -> tuple[str, tuple[ClaimCheck, ...]] | None:
     return label, check_claims(claims)
 
 
-def claims_json(checks: Iterable[ClaimCheck]) -> list[dict[str, Any]]:
-    """The checks as ``rollspring paper-check --json`` prints them: ``location``, ``claim``
-    (LaTeX), ``verdict``, ``correction`` (LaTeX or None), ``reason``."""
-    return [check.to_dict() for check in checks]
+def claims_json(
+    checks: Iterable[ClaimCheck], runs: Mapping[str, Any] | None = None
+) -> list[dict[str, Any]]:
+    """The checks as ``rollspring paper-check --json`` prints them: ``key``, ``location``,
+    ``claim`` (LaTeX), ``quote``, ``verdict``, ``assumption``, ``correction`` (LaTeX or None),
+    ``reason``, ``counterexample`` (None, or the system the engine runs to show the verdict; with
+    ``runs`` (:func:`paper_runs`, by claim key) also what the run measured, whether it disagrees
+    with the paper's statement, and its details)."""
+    out = []
+    for check in checks:
+        record = check.to_dict()
+        if runs is not None and check.claim.key in runs:
+            record["counterexample"] = runs[check.claim.key].to_dict()
+        out.append(record)
+    return out
+
+
+def paper_runs(checks: Iterable[ClaimCheck]) -> dict[str, Any]:
+    """Each claim's counterexample, run (:mod:`rollspring.service.paper_runs`), by claim key."""
+    from rollspring.service.paper_runs import run_counterexamples
+
+    return run_counterexamples(list(checks))
 
 
 # -- worksheets -----------------------------------------------------------------------------------

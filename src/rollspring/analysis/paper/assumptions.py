@@ -19,6 +19,12 @@ RELEASED = Assumption(
     r"As Fig.~\ref{fig2} shows the spring is initially compressed and suddenly released.",
     "Sec. 3",
 )
+EQUAL_RADII = Assumption(
+    "the hoop and the cylinder have the same radius R",
+    "The center of a thin ring of radius $R$ and mass $m_1$ and the center of the cylinder of "
+    "radius $R$ and mass $m_2$ are connected by an ideal spring",
+    "Sec. 3",
+)
 FORCE_AMOUNTS = Assumption(
     "F₁, F₂ are amounts (magnitudes)", "always exert the same amount of force", "Sec. 2"
 )

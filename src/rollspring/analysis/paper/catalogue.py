@@ -37,13 +37,14 @@ from rollspring.analysis.paper.recipes import (
     sec5_3_5,
     sec5_6_7,
 )
-from rollspring.analysis.paper.types import Assumption, Claim
+from rollspring.analysis.paper.systems import SYSTEMS
+from rollspring.analysis.paper.types import Assumption, Claim, Counterexample
 
 __all__ = ["claim_tables", "paper_claims", "paper_value", "recipe"]
 
 _RECIPE_MODULES = (common, intro, sec3, sec4, sec5_1_2, sec5_3_5, sec5_6_7, appendices)
 _WORDS = ("location", "quote", "statement", "latex")
-_CODE = ("quantity", "paper", "system", "recipe", "assumptions")
+_CODE = ("quantity", "paper", "system", "recipe", "assumptions", "counterexample")
 _FIELDS = {"restates", *_WORDS, *_CODE}
 
 
@@ -117,6 +118,16 @@ def _assumptions(names: list[str]) -> tuple[Assumption, ...]:
     return found  # type: ignore[return-value]
 
 
+def _counterexample(table: dict[str, Any]) -> Counterexample:
+    """The run that shows a verdict (:class:`Counterexample`), its system one of the paper's."""
+    found = Counterexample(**table)
+    if found.system not in SYSTEMS:
+        raise ValueError(f"counterexample: no system {found.system!r}")
+    if found.start not in ("file", "mode"):
+        raise ValueError(f"counterexample: start {found.start!r} is neither 'file' nor 'mode'")
+    return found
+
+
 @functools.cache
 def claim_tables() -> dict[str, dict[str, Any]]:
     """``claims.toml``: each claim's table by key, in the paper's order."""
@@ -139,6 +150,8 @@ def _claim(key: str, table: dict[str, Any], original: Claim | None) -> Claim:
             return table["quote"]
         if name == "assumptions":
             return ()
+        if name == "counterexample":
+            return None
         raise ValueError(f"claims.toml [{key}]: no {name}")
 
     return Claim(
@@ -152,6 +165,7 @@ def _claim(key: str, table: dict[str, Any], original: Claim | None) -> Claim:
         derive=original.derive if original and "recipe" not in table else recipe(table["recipe"]),
         quote=given("quote"),
         assumptions=given("assumptions", _assumptions),
+        counterexample=given("counterexample", _counterexample),
     )
 
 

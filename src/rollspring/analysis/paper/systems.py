@@ -91,6 +91,32 @@ SYSTEMS: dict[str, dict[str, Any]] = {
     "zero-sum": _pair(
         "hoop", "cylinder", r1=0.075, r2=0.1, at=[{"height": 0.075}, {"height": 0.075}]
     ),
+    # Sec. 3 with unequal radii: the hoop (R1 = 0.1 m) on a track raised by R2 - R1 so that the
+    # centres stay level, the cylinder R2 = 0.137 m: X-hat's weights are I'_i/R_i^2, not I'_i
+    "fig2-radii": _pair("hoop", "cylinder", r1=0.1, r2=0.137, track1=0.037),
+    # the Abstract's "same moment of inertia": a hoop (m) and a cylinder (2m) of one radius have
+    # I_1 = I_2 = m R^2, yet their frictions do not cancel
+    "same-inertia": {
+        "bodies": [
+            _body("b1", "hoop", 0.7, 0.1, 0.0),
+            _body("b2", "cylinder", 1.4, 0.1, 0.49),
+        ],
+        "springs": [{"ends": ["b1", "b2"], "stiffness": 100.0, "rest_length": 0.5}],
+    },
+    # Fig. 3 on one floor: R1 = R2/2, the spring from the hoop's top (2R1) to the cylinder's
+    # point 3R2/2 high, tilted by atan(0.05/0.5) = 5.7 degrees: no first-order friction either
+    "fig3-tilted": _pair(
+        "hoop", "cylinder", r1=0.05, r2=0.1, at=[{"height": 0.1}, {"height": 0.15}]
+    ),
+    # fig4a at its equilibrium (both springs at their rest lengths): a start in one normal mode
+    "fig4a-rest": {
+        "anchors": [{"id": "wall", "x": -0.5, "y": 0.1}],
+        "bodies": [_body("b1", "hoop", 1.3, 0.1, 0.0), _body("b2", "cylinder", 0.7, 0.1, 0.5)],
+        "springs": [
+            {"ends": ["wall", "b1"], "stiffness": 80.0, "rest_length": 0.5},
+            {"ends": ["b1", "b2"], "stiffness": 100.0, "rest_length": 0.5},
+        ],
+    },
     # App. A: a body with I = gamma m R^2 pulled at height y; and a hoop, a cylinder
     "pulled": _pulled("custom", inertia_factor=0.3),
     "pulled-hoop": _pulled("hoop"),

@@ -124,6 +124,43 @@ class Derived:
 
 
 @dataclass(frozen=True)
+class Counterexample:
+    """A system the engine *runs* (the exact nonlinear motion) to show what a verdict says: where
+    the paper's statement fails, or holds only under a condition it leaves unstated.
+
+    ``system`` is a key of :data:`~rollspring.analysis.paper.systems.SYSTEMS`; ``start`` is
+    ``"file"`` (as the file places the bodies: the spring compressed, then released) or
+    ``"mode"`` (from the placement, which is the equilibrium, with the velocities of the
+    oscillating mode whose last angle has the amplitude ``amplitude``, rad); the run lasts
+    ``periods`` periods of that mode. ``measure`` names what is measured on the run (the
+    runner's table of measures, :mod:`rollspring.service.paper_runs`); ``paper`` is the value the
+    paper's statement gives for it; the run disagrees when the measured value differs from it by
+    more than ``tolerance``. ``words`` says what the run shows, in a sentence."""
+
+    system: str
+    measure: str
+    paper: float
+    tolerance: float
+    words: str
+    start: str = "file"
+    amplitude: float = 0.05
+    periods: float = 10.0
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON form: every field."""
+        return {
+            "system": self.system,
+            "start": self.start,
+            "amplitude": self.amplitude,
+            "periods": self.periods,
+            "measure": self.measure,
+            "paper": self.paper,
+            "tolerance": self.tolerance,
+            "words": self.words,
+        }
+
+
+@dataclass(frozen=True)
 class Claim:
     """One quantitative statement of the paper (see the module docstring)."""
 
@@ -137,6 +174,7 @@ class Claim:
     derive: Callable[[Bench], Derived] = field(repr=False, compare=False)
     quote: str = ""
     assumptions: tuple[Assumption, ...] = ()
+    counterexample: Counterexample | None = None
 
 
 @dataclass(frozen=True)
@@ -156,7 +194,8 @@ class ClaimCheck:
         """The JSON form: ``key`` (the claim's), ``location``, ``claim`` (LaTeX), ``quote`` (the
         paper's words),
         ``verdict``, ``assumption`` (the paper's stated assumptions the verdict relies on, or
-        None), ``correction`` (LaTeX or None), ``reason``."""
+        None), ``correction`` (LaTeX or None), ``reason``, ``counterexample`` (the system the engine
+        runs to show the verdict, :class:`Counterexample`, or None)."""
         return {
             "key": self.claim.key,
             "location": self.claim.location,
@@ -166,4 +205,7 @@ class ClaimCheck:
             "assumption": self.assumption,
             "correction": self.correction,
             "reason": self.reason,
+            "counterexample": (
+                self.claim.counterexample.to_dict() if self.claim.counterexample else None
+            ),
         }

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import json
 import re
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -33,6 +33,7 @@ __all__ = [
     "plain",
     "quote_text",
     "register",
+    "run_text",
     "summary",
 ]
 
@@ -57,16 +58,17 @@ def paper_check(
     verified, ☑ holds under an assumption the paper states, ⚠ holds only under a condition the
     paper does not state (named), ✘ wrong (with the correction); each with the paper's words."""
     FORMATS.check(format, PaperCheckError)
-    from rollspring.service.documents import claims_json, paper_checks
+    from rollspring.service.documents import claims_json, paper_checks, paper_runs
 
     checks = paper_checks()
+    runs = paper_runs(checks)
     if as_json:
-        print_text(json.dumps(claims_json(checks), indent=2, ensure_ascii=False) + "\n")
+        print_text(json.dumps(claims_json(checks, runs), indent=2, ensure_ascii=False) + "\n")
         return
     if format == "markdown":
-        print_text(markdown_table(checks))
+        print_text(markdown_table(checks, runs))
         return
-    _print_table(checks)
+    _print_table(checks, runs)
 
 
 def summary(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
@@ -87,8 +89,12 @@ def quote_text(quote: str) -> str:
     return plain(text)
 
 
-def markdown_table(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
-    """The checks as a Markdown table (LaTeX in ``$...$``), with a summary line."""
+def markdown_table(
+    checks: tuple[ClaimCheck, ...] | list[ClaimCheck], runs: dict[str, Any] | None = None
+) -> str:
+    """The checks as a Markdown table (LaTeX in ``$...$``), with a summary line; a claim's
+    counterexample run (``runs``, by claim key) follows its reason."""
+    runs = runs or {}
     lines = [
         "# The paper's claims, checked by rollspring's derivation engine",
         "",
@@ -102,7 +108,9 @@ def markdown_table(checks: tuple[ClaimCheck, ...] | list[ClaimCheck]) -> str:
         lines.append(
             f"| {check.verdict.mark} | {_cell(check.claim.location)} | "
             f"“{_cell(quote_text(check.claim.quote))}” | ${_cell_math(check.claim.latex)}$ | "
-            f"{check.verdict.words} | {correction} | {_cell(check.reason)} |"
+            f"{check.verdict.words} | {correction} | {_cell(check.reason)}"
+            + (f" {_cell(run_text(runs[check.claim.key]))}" if check.claim.key in runs else "")
+            + " |"
         )
     return "\n".join(lines) + "\n"
 
@@ -115,7 +123,17 @@ def _cell_math(latex: str) -> str:
     return latex.replace("|", r"\vert ").replace("\n", " ")
 
 
-def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
+def run_text(run: Any) -> str:
+    """A counterexample run in one line: what the system shows, measured against the paper."""
+    cx = run.counterexample
+    verdict = "disagrees with" if run.disagrees else "agrees with"
+    return (
+        f"run ({cx.system}): {cx.words}: {run.measured:.4g} against the paper's {cx.paper:.4g} "
+        f"({verdict} it, tolerance {cx.tolerance:g}); {run.details}"
+    )
+
+
+def _print_table(checks: tuple[ClaimCheck, ...], runs: dict[str, Any]) -> None:
     from rich.table import Table
     from rich.text import Text
 
@@ -141,6 +159,8 @@ def _print_table(checks: tuple[ClaimCheck, ...]) -> None:
                 verdict += f"\nstated ({assumption.location}): “{quote_text(assumption.quote)}”"
         if check.correction:
             verdict += f"\ncorrect: {plain(check.correction)}"
+        if check.claim.key in runs:
+            verdict += f"\n{run_text(runs[check.claim.key])}"
         mark = f"[{_STYLE[check.verdict]}]{check.verdict.mark}[/]"
         table.add_row(
             mark,

@@ -43,10 +43,13 @@ def flip_first_rate(expr: Any) -> Any:
 
 
 ORIENTATION = (
-    "body 1's angle is counted the other way (ε₁ = X̂ − x₁, leftward): the paper defines "
-    "ε₁ = x₁ − X̂ (Sec. 5.2, App. A), with which the spring's deformation is ε₂ − ε₁; it refers "
-    "the orientation to Fig. 2, whose drawing is not in the source, and its Sec. 5.1 counts both "
-    "angles one way (φ₂ = −(4m₁/3m₂)φ₁)"
+    "ε₁ and ε₂ are each body's outward displacement from its equilibrium position (ε₁ = x₁⁰ − "
+    "x₁, leftward; ε₂ = x₂ − x₂⁰), so that ε₁ + ε₂ is the spring's deformation: the paper "
+    "defines ε₁ = x₁ − X̂ (Sec. 5.2, App. A), with which the deformation is ε₂ − ε₁, and "
+    "counting body 1 the other way from X̂ (ε₁ = X̂ − x₁) is not enough either: then ε₁ + ε₂ = "
+    "x₂ − x₁ is the centres' separation, not the deformation; the paper refers the orientation "
+    "to Fig. 2, whose drawing is not in the source, and its Sec. 5.1 counts both angles one way "
+    "(φ₂ = −(4m₁/3m₂)φ₁)"
 )
 
 

@@ -15,8 +15,8 @@ import sympy as sp
 from rollspring.analysis.paper.algebra import same, tidy
 from rollspring.analysis.paper.bench import Bench
 from rollspring.analysis.paper.notation import P0
-from rollspring.analysis.paper.recipes.common import from_rest, mode_ratio
-from rollspring.analysis.paper.symbols import R, m1, m2, phid1, phid2
+from rollspring.analysis.paper.recipes.common import mode_ratio
+from rollspring.analysis.paper.symbols import R
 from rollspring.analysis.paper.types import Derived
 
 
@@ -81,17 +81,50 @@ def fig2_sum(b: Bench) -> Derived:
     )
 
 
+def _equal_radii(b: Bench) -> dict[Any, Any]:
+    """The Sec. 3 pair with unequal radii (``fig2-radii``: the hoop's track raised by
+    R_2 - R_1, centres level) made the paper's Fig. 2: R_1 = R_2 = R, the track on the floor."""
+    names = {p_.name: p_ for p_ in b.sym("fig2-radii").parameters}
+    return {names["R_1"]: R, names["R_2"]: R, names["h_1"]: 0}
+
+
+def _in_conserved(b: Bench, expr: Any) -> Any:
+    """``expr`` (linear in the rates) of the Fig. 2 pair as a multiple of the conserved
+    combination c . phidot = P_0 (M14) when it is one, else None; radii equal."""
+    sym = b.sym("fig2-radii")
+    equal = _equal_radii(b)
+    c = [ci.xreplace(equal) for ci in b.conserved("fig2-radii")]
+    rates = [body.qd for body in sym.bodies]
+    scale = tidy(sp.sympify(expr).xreplace(equal).diff(rates[0]) / c[0])
+    residual = tidy(
+        sp.sympify(expr).xreplace(equal)
+        - scale * sp.Add(*[ci * r for ci, r in zip(c, rates, strict=True)])
+    )
+    return scale * P0 if residual == 0 else None
+
+
+#: Why the paper's weights I'_i rely on its equal radii (Sec. 3, eqs. (rel1), (c)).
+_RADII = (
+    "the weights I'ᵢ rely on the equal radii: in general the conserved quantity is "
+    "Σ(1 + γᵢ)mᵢẋᵢ = ΣI'ᵢφ̇ᵢ/Rᵢ (the zero mode of K, M14) and X̂'s weights are I'ᵢ/Rᵢ²; with "
+    "R₁ ≠ R₂, ΣI'ᵢφ̇ᵢ changes and (c) moves"
+)
+
+
 def momentum(b: Bench) -> Derived:
-    sym = b.sym("fig2")
-    c = b.conserved("fig2")
-    J = [body.J for body in sym.bodies]
-    scaled = [tidy(ci * J[0] / c[0]) for ci in c]
-    value = P0 if same(scaled, J) else J[0] * phid1 + J[1] * phid2
-    return from_rest(
+    """(rel1): I'_1 phidot_1 + I'_2 phidot_2, on the pair with unequal radii; conserved (and zero
+    from rest) with the paper's equal radii."""
+    sym = b.sym("fig2-radii")
+    value = sp.Add(*[body.J * body.qd for body in sym.bodies])
+    conserved = _in_conserved(b, value)
+    if conserved is None:
+        raise RuntimeError("fig2: with equal radii sum J_i phidot_i is expected conserved")
+    return Derived(
         value,
-        "the zero mode v0 of K gives the conserved v0^T M phidot (M14)",
-        why="I'₁φ̇₁ + I'₂φ̇₂ = P₀ is conserved (zero mode v₀ = (1, 1) of K, M14), its value fixed "
-        "by the initial velocities",
+        "sum J_i phidot_i of the pair with unequal radii, against the engine's conserved "
+        "combination v0^T M phidot = P_0 (zero mode of K, M14)",
+        assumed=tidy(conserved.xreplace({P0: 0})),
+        why=_RADII + "; with equal radii I'₁φ̇₁ + I'₂φ̇₂ = P₀, fixed by the initial velocities",
     )
 
 
@@ -142,27 +175,23 @@ def cm_moves(key: str) -> Callable[[Bench], Derived]:
 
 
 def stationary_point(b: Bench) -> Derived:
-    """X-hat of eq. (c) with the paper's weights I'_i: its velocity, from the engine's conserved
-    combination."""
-    sym = b.sym("fig2")
-    paper_weights = [2 * m1 * R**2, sp.Rational(3, 2) * m2 * R**2]
-    c = b.conserved("fig2")
-    rate_terms = [w_ * body.s for w_, body in zip(paper_weights, sym.bodies, strict=True)]
-    ratios = {tidy(term / ci) for term, ci in zip(rate_terms, c, strict=True)}
-    total = sp.Add(*paper_weights)
-    if len(ratios) == 1:  # the paper's weights are the conserved combination's
-        (scale,) = ratios
-        value = tidy(scale * P0 / total)
-    else:
-        value = (
-            sp.Add(*[t_ * body.qd for t_, body in zip(rate_terms, sym.bodies, strict=True)]) / total
-        )
-    return from_rest(
+    """X-hat of eq. (c) with the paper's weights I'_i: its velocity on the pair with unequal
+    radii; with the paper's equal radii a multiple of the engine's conserved combination (zero
+    from rest)."""
+    sym = b.sym("fig2-radii")
+    J = [body.J for body in sym.bodies]
+    value = sp.Add(*[j * body.s * body.qd for j, body in zip(J, sym.bodies, strict=True)]) / (
+        sp.Add(*J)
+    )
+    conserved = _in_conserved(b, value)
+    if conserved is None:
+        raise RuntimeError("fig2: with equal radii X-hat's rate is expected conserved")
+    return Derived(
         value,
-        "d/dt of (I'_1 x_1 + I'_2 x_2)/(I'_1 + I'_2), with the engine's conserved "
-        "combination v0^T M phidot = P_0 (M14)",
-        why="the weights I'ᵢ are those of the conserved combination, so X̂ moves uniformly, "
-        "at rest only for a start from rest",
+        "d/dt of (I'_1 x_1 + I'_2 x_2)/(I'_1 + I'_2) on the pair with unequal radii, against "
+        "the engine's conserved combination v0^T M phidot = P_0 (M14)",
+        assumed=tidy(conserved.xreplace({P0: 0})),
+        why=_RADII + "; with equal radii X̂ moves uniformly, at rest only for a start from rest",
     )
 
 

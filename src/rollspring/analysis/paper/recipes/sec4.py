@@ -46,27 +46,19 @@ def fric(b: Bench) -> Derived:
 
 
 def fric_coupled(b: Bench) -> Derived:
-    """Sec. 4: (fric) with the spring's varying force, on the coupled systems it is meant for:
-    Fig. 2 (the spring at the centres, y = R: exact) and Fig. 3 (at 2R_1 and 3R_2/2, where (fric)
-    gives zero: to first order in the angles)."""
+    """Sec. 4: (fric) with the spring's varying force: the engine's friction (M8) is Newton's
+    second law and the rotation about the contact line at one instant, so it holds for any F(t);
+    on Fig. 2 (the spring at the centres, y = R, always horizontal) exactly, at every
+    configuration."""
     sym = b.sym("fig2")
     forces = [F_[0] for F_ in sym.body_forces]
-    exact = tuple(tidy(f) for f in sym.friction_configuration)
-    fig3 = b.sym("fig3")
-    geometry = fig3_geometry(b)
-    exact3 = tuple(f.xreplace(geometry) for f in fig3.friction_configuration)
-    linear3 = tuple(
-        tidy(f.xreplace(geometry)) for f in fig3.linearized(fig3.friction_configuration)
-    )
     return Derived(
-        exact + exact3,
-        "the engine's exact friction (M8) of the coupled bodies at every configuration: Fig. 2 "
-        "and Fig. 3",
-        assumed=exact + linear3,
+        tuple(tidy(f) for f in sym.friction_configuration),
+        "the engine's exact friction (M8) of the coupled bodies at every configuration (Newton's "
+        "laws at one instant: no assumption on how F varies in time). No assumption is needed: "
+        "(fric) holds instant by instant; on Fig. 3 only the ends' heights (2R₁ → R₁(1 + cos φ₁)) "
+        "and the spring's direction change with the angles, at second order",
         paper_subs={Fx1: forces[0], Fx2: forces[1]},
-        why="exact for the spring at the centres (Fig. 2, y = R); in Fig. 3 the attachment points "
-        "leave 2R₁ and 3R₂/2 as the bodies turn and the spring tilts: there the frictions are "
-        "O(φ³), zero only to first order",
     )
 
 
@@ -93,6 +85,32 @@ def geometry(b: Bench) -> Derived:
         assumed=level_solution[R1],
         why="the level centres need the hoop's track raised by R₂ − R₁ = R₁; on one floor a "
         "horizontal spring would need R₁ = 3R₂/4",
+    )
+
+
+def horizontal_needed(b: Bench) -> Derived:
+    """Sec. 4's "the spring must be horizontal": Fig. 3 on one floor (R_1 = R_2/2, the spring from
+    the hoop's top to the cylinder's point 3R_2/2 high, tilted): the engine's linearised
+    frictions (M8), and its Omega^2 against the level pair's times cos^2 of the tilt."""
+    friction = b.friction_linear("fig3-tilted")
+    sym = b.sym("fig3-tilted")
+    names = {p_.name: p_ for p_ in sym.parameters}
+    r1, r2, ell, spring = names["R_1"], names["R_2"], names["ell"], names["k"]
+    cos2 = ell**2 / (ell**2 + (sp.Rational(3, 2) * r2 - 2 * r1) ** 2)
+    level = spring * sp.Add(*[body.percussion_height**2 / body.J for body in sym.bodies])
+    (w2,) = b.omega2("fig3-tilted")
+    ratio = tidy(w2 / (cos2 * level))
+    shown = "Ω² = cos²θ · k(2/m₁ + 3/(2m₂))" if ratio == 1 else f"Ω²/(cos²θ Ω²_level) = {ratio}"
+    return Derived(
+        sp.true if any(f_ != 0 for f_ in friction) else sp.false,
+        "the engine's linearised frictions (M8) of Fig. 3 on one floor, the spring tilted",
+        why="not needed: each end at its body's percussion height (1 + γ)R is enough; the "
+        "spring's vertical pull has no lever arm about the contact line at rest, so only its "
+        f"horizontal part enters (fric), and the frictions are O(φ²) ({sp.sstr(tuple(friction))} "
+        f"to first order); the tilt θ only changes {shown} and makes the normal forces "
+        "oscillate (Nᵢ = mᵢg ∓ F sin θ)",
+        correction=r"f_1=f_2=O(\varphi^2)\ \text{with the spring tilted (one floor, }R_1=R_2/2"
+        r"\text{): horizontality is not needed}",
     )
 
 

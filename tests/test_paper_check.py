@@ -1167,18 +1167,41 @@ def test_every_quote_is_the_papers_words_where_the_location_says() -> None:
         _verify_quotes_in(source)
         digest = hashlib.sha256(source.encode("utf-8")).hexdigest()
         if os.environ.get("ROLLSPRING_WRITE_QUOTES"):
+            record = {"paper_sha256": digest, "claims": now, "sections": _sections(source)}
             QUOTE_RECORD.write_text(
-                json.dumps({"paper_sha256": digest, "claims": now}, indent=1, sort_keys=True)
-                + "\n",
-                encoding="utf-8",
+                json.dumps(record, indent=1, sort_keys=True) + "\n", encoding="utf-8"
             )
-            record = {"paper_sha256": digest, "claims": now}
         assert record["paper_sha256"] == digest, "the record was verified against another source"
     assert len(record["paper_sha256"]) == 64
     assert record["claims"] == now, (
         "claims changed since their quotes were verified against the paper: rerun this test "
         "with the paper's source present and ROLLSPRING_WRITE_QUOTES=1"
     )
+
+
+def _sections(source: str) -> list[str]:
+    """The paper's parts as it numbers them ('Abstract', 'Sec. 1', ..., 'Sec. 5.6', 'App. C')."""
+    return sorted(name for name in _spans(source) if not name.startswith("Fig."))
+
+
+#: A section or appendix cited in words: "Sec. 5.2", "App. A".
+_CITED = re.compile(r"\b(Sec\. \d+(?:\.\d+)?|App\. [A-Z])\b")
+
+
+def test_every_section_the_check_cites_is_one_the_paper_prints() -> None:
+    """Locations, reasons, corrections, stated assumptions and counterexamples cite the paper's
+    sections by the numbers it prints (the record's sectioning is the paper's, read from its
+    LaTeX when the source is here)."""
+    record = json.loads(QUOTE_RECORD.read_text(encoding="utf-8"))
+    if PAPER is not None and PAPER.is_file():
+        assert record["sections"] == _sections(PAPER.read_text(encoding="utf-8"))
+    printed = set(record["sections"])
+    assert {"Sec. 4", "Sec. 5.6", "App. C"} <= printed and "Sec. 4.5" not in printed
+    for check in check_paper():
+        text = json.dumps(check.to_dict(), ensure_ascii=False)
+        text += " ".join(a.location for a in check.claim.assumptions)
+        cited = set(_CITED.findall(text))
+        assert cited <= printed, (check.claim.key, sorted(cited - printed))
 
 
 def test_the_verdict_is_computed_not_typed_in() -> None:

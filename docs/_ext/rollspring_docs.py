@@ -137,8 +137,11 @@ def _words(text: str | None) -> str:
 
 def paper_check_page() -> str:
     from rollspring.analysis.paper import verdict_counts
+    from rollspring.cli.commands.paper_check import run_text
+    from rollspring.service.documents import paper_runs
 
     checks = rollspring.check_paper()
+    runs = paper_runs(checks)
     lines = [
         "# The paper, claim by claim",
         "",
@@ -155,7 +158,10 @@ def paper_check_page() -> str:
         "(released from rest, magnitudes, small angles, the centres level; the paper's words "
         "are quoted); *holds only if* — it holds only under a condition the paper does not state "
         "(the reason names it; a correction gives the form that holds without it); *wrong* — it "
-        "does not hold, and the correction is the right expression in the paper's own terms.",
+        "does not hold, and the correction is the right expression in the paper's own terms. "
+        "A *run* is a counterexample the engine simulates (the exact motion of one of the "
+        "paper's systems, or a variant of it), measured against what the paper's statement "
+        f"gives: {len(runs)} claims name one.",
         "",
     ]
     for check in checks:
@@ -175,6 +181,8 @@ def paper_check_page() -> str:
         if check.correction:
             lines += [f"  Corrected: {{math}}`{_cell(check.correction)}`", ""]
         lines += [f"  Why: {_words(check.reason)}", ""]
+        if claim.key in runs:
+            lines += [f"  Run: {_words(run_text(runs[claim.key]))}", ""]
     return "\n".join(lines)
 
 

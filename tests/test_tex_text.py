@@ -159,8 +159,7 @@ def test_text_mode_markup_becomes_html() -> None:
     assert "<em>rolls</em>" in html and "<strong>more</strong>" in html and "<i>and</i>" in html
     seen = shown(html)
     assert (
-        seen.text
-        == "rolls – see Fig.\u00a0fig5, eq.\u00a0(g) [a, b]: 50% more and … “so” — Nyitrayá"
+        seen.text == "rolls – see Fig.\u00a05, eq.\u00a0(g) [a, b]: 50% more and … “so” — Nyitrayá"
     )
     assert seen.maths == []
 

@@ -60,7 +60,8 @@ _WRAPPERS = {
     "hbox": ("", ""),
     "footnote": (' <small class="tex-footnote">(', ")</small>"),
 }
-# Cross-references: the label (the paper's numbering is not at hand), marked as a reference.
+# Cross-references: the label (the paper's numbering of equations is not at hand), marked as a
+# reference.
 _REFERENCES = {"ref": ("", ""), "eqref": ("(", ")"), "cite": ("[", "]"), "citep": ("[", "]")}
 _DROPPED_WITH_ARGUMENT = {"label", "index", "vspace", "hspace", "phantom"}
 _SYMBOLS = {
@@ -333,7 +334,10 @@ def _command_html(text: str, index: int, out: list[str], failures: list[str] | N
             out.append(before + tex_text_html(body, failures=failures) + behind)
         elif word in _REFERENCES:
             before, behind = _REFERENCES[word]
-            labels = ", ".join(label.strip() for label in body.split(","))
+            # a figure's label names its number (fig5: Fig. 5), as paper-check's text shows it
+            labels = ", ".join(
+                re.sub(r"^fig(\d+)$", r"\1", label.strip()) for label in body.split(",")
+            )
             out.append(
                 f'<span class="tex-ref" title="\\{word}{{{esc(body)}}} in the paper\'s source">'
                 f"{esc(before + labels + behind)}</span>"

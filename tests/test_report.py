@@ -326,6 +326,43 @@ def test_the_papers_claims_about_fig_2_with_their_verdicts(report: Report, page:
     assert shown[ratio][1] == words["holds-under-stated-assumption"]
 
 
+def test_the_claims_quotes_formulas_and_corrections_are_mathml(report: Report) -> None:
+    section = re.search(r'<section id="paper-check">.*?</section>', report.html, re.DOTALL)
+    assert section
+    body = section.group(0)
+    rows = re.findall(r"<tbody>(.*?)</tbody>", body, re.DOTALL)[0].split("<tr>")[1:]
+    _, checks = paper_figure_checks()
+    assert len(rows) == len(checks) >= 20
+    for row, check in zip(rows, checks, strict=True):
+        cells = re.findall(r"<td[^>]*>(.*?)</td>", row, re.DOTALL)
+        claim, correction = cells[1], cells[3]
+        formula = re.search(r'<span class="cellmath">(.*?)</span>', claim, re.DOTALL)
+        assert formula and formula.group(1).startswith(f'<math xmlns="{MATHML}"'), check.claim.key
+        quote = re.search(r'<q class="quote">(.*?)</q>', claim, re.DOTALL)
+        assert quote, check.claim.key
+        # a formula in the paper's words: delimited, an environment, or a sub/superscript or =
+        if re.search(r"\$|\\[(\[]|\\(?:begin|end)\{|[_^=]", check.claim.quote):
+            assert f'<math xmlns="{MATHML}"' in quote.group(1), check.claim.key
+        if check.correction:
+            assert correction.count(f'<math xmlns="{MATHML}"') == 1, check.claim.key
+    # what a reader sees of the section (outside MathML) has no LaTeX left in it
+    visible = html.unescape(
+        re.sub(r"<[^>]+>", "", re.sub(r"<math\b.*?</math>", "", body, flags=re.DOTALL))
+    )
+    for latex in ("$", "\\dot", "\\varphi", "\\frac", "\\emph", "\\ref", "\\left"):
+        assert latex not in visible
+    assert re.search(r"\\[A-Za-z]", visible) is None
+    assert 'class="tex-source"' not in body and report.math_failures == []
+
+
+def paper_figure_checks() -> tuple[str, tuple[paper_check.ClaimCheck, ...]]:
+    from rollspring.service.documents import figure_claims
+
+    figure = figure_claims(load_system("hoop-cylinder"))
+    assert figure is not None
+    return figure
+
+
 # -- self-contained --------------------------------------------------------------------------
 
 

@@ -106,6 +106,57 @@ def test_formulas_are_mathml_rendered_natively(opened: Opened) -> None:
     assert opened.errors == []
 
 
+# what the paper-check section shows as text (outside MathML), read in the page
+VISIBLE_TEXT = """selector => {
+    const root = document.querySelector(selector);
+    const walker = document.createTreeWalker(root, NodeFilter.SHOW_TEXT, {
+        acceptNode: n => n.parentElement.closest('math') ? NodeFilter.FILTER_REJECT
+                                                         : NodeFilter.FILTER_ACCEPT});
+    let text = '';
+    while (walker.nextNode()) text += walker.currentNode.data;
+    return text;
+}"""
+
+
+@pytest.mark.parametrize(
+    "viewport", [{"width": 1280, "height": 800}, {"width": 390, "height": 844}]
+)
+def test_the_claims_quotes_are_mathml_and_their_table_never_widens_the_page(
+    browser: Browser, report_file: Path, viewport: dict
+) -> None:
+    page = browser.new_page(viewport=viewport)
+    errors: list[str] = []
+    page.on("pageerror", lambda error: errors.append(str(error)))
+    try:
+        page.goto(report_file.as_uri(), wait_until="load")
+        table = page.locator("table#paper-claims")
+        table.scroll_into_view_if_needed()
+        quotes = page.locator("#paper-claims q.quote")
+        assert quotes.count() >= 20
+        assert page.locator("#paper-claims q.quote math").count() >= 10
+        rendered = page.evaluate(
+            "[...document.querySelectorAll('#paper-claims q.quote math')].map(m => "
+            "[getComputedStyle(m).display, m.getBoundingClientRect().width])"
+        )
+        assert all(display in ("math", "inline math") and width > 0 for display, width in rendered)
+        text = page.evaluate(VISIBLE_TEXT, "#paper-check")
+        assert "$" not in text and "\\" not in text
+        widths = page.evaluate(
+            "[document.documentElement.scrollWidth, window.innerWidth,"
+            " document.querySelector('#paper-claims').scrollWidth,"
+            " document.querySelector('#paper-claims').clientWidth]"
+        )
+        page_width, inner_width, table_width, table_box = widths
+        assert page_width <= inner_width
+        if viewport["width"] < 500:  # the table scrolls sideways inside itself
+            assert table_width > table_box
+            page.locator("#paper-claims").evaluate("t => { t.scrollLeft = t.scrollWidth; }")
+            assert page.evaluate("document.documentElement.scrollWidth") <= inner_width
+        assert errors == []
+    finally:
+        page.close()
+
+
 def test_play_moves_the_animation_and_pause_stops_it(opened: Opened) -> None:
     page = opened.page
     play = page.locator("#play")

@@ -221,7 +221,22 @@ def test_derive_the_paper_system_with_its_claims(client: TestClient) -> None:
     assert {claim["verdict"] for claim in data["claims"]} <= set(VERDICTS)
     # the claims the paper makes about its Fig. 2, as paper-check --json lists them
     _, checks = figure_claims(load_system("hoop-cylinder"))
-    assert data["claims"] == claims_json(checks)
+    listed = claims_json(checks)
+    assert [{key: claim[key] for key in listed[0]} for claim in data["claims"]] == listed
+    # beside them, what the report shows: the quote as text and MathML, the formulas as MathML
+    from rollspring.outputs.report import claim_html
+
+    for claim, check in zip(data["claims"], checks, strict=True):
+        shown = claim_html(check)
+        assert set(claim) == set(listed[0]) | {"quote_html", "claim_mathml", "correction_mathml"}
+        assert claim["quote_html"] == shown["quote"]
+        assert claim["claim_mathml"] == shown["claim"] and "<math" in claim["claim_mathml"]
+        if check.correction:
+            assert claim["correction_mathml"] == shown["correction"]
+            assert "<math" in claim["correction_mathml"]
+        else:
+            assert claim["correction_mathml"] is None
+    assert any("<math" in claim["quote_html"] for claim in data["claims"])
     chain = client.post("/api/derive", json={"system": system_json("three-bodies")}).json()
     assert chain["claims"] is None
 

@@ -424,3 +424,76 @@ def test_screenshots(
         seen.check_clean()
     finally:
         page.close()
+
+
+# what an element shows as text outside MathML
+VISIBLE_TEXT = """el => {
+    const walker = document.createTreeWalker(el, NodeFilter.SHOW_TEXT, {
+        acceptNode: n => n.parentElement.closest('math') ? NodeFilter.FILTER_REJECT
+                                                         : NodeFilter.FILTER_ACCEPT});
+    let text = '';
+    while (walker.nextNode()) text += walker.currentNode.data;
+    return text;
+}"""
+
+
+@pytest.mark.parametrize("name, viewport", [("laptop-1280x800", LAPTOP), ("phone-390x844", PHONE)])
+def test_the_papers_claims_are_mathml_and_their_table_never_widens_the_page(
+    browser: Browser, server: str, name: str, viewport: dict
+) -> None:
+    from rollspring.service.documents import figure_claims
+
+    seen = open_page(browser, server, viewport=viewport)
+    page = seen.page
+    try:
+        figure = figure_claims(system_from_dict(page_system(page)))
+        assert figure is not None, "the page opens on one of the paper's systems"
+        checks = figure[1]
+        page.locator("details#derivation summary").click()
+        table = page.locator("#derivation-body table.claims")
+        expect(table).to_be_visible(timeout=60_000)
+        table.scroll_into_view_if_needed()
+        next_frames(page)
+        assert table.locator("tbody tr").count() == len(checks) >= 20
+        quoted_math = 0
+        for check in checks:
+            row = table.locator(f'tbody tr[data-claim="{check.claim.key}"]')
+            assert row.locator(".claim-math math").count() == 1, check.claim.key
+            assert row.locator(".correction math").count() == (1 if check.correction else 0)
+            in_quote = row.locator("q.quote math").count()
+            if re.search(r"\$|\\[(\[]|\\(?:begin|end)\{|[_^=]", check.claim.quote):
+                assert in_quote >= 1, check.claim.key
+            quoted_math += in_quote
+        assert quoted_math >= len(checks) // 2
+        # rendered as MathML (laid out by Chromium, in its namespace), no LaTeX left as text
+        maths = page.evaluate(
+            "[...document.querySelectorAll('table.claims math')].map(m => "
+            "[m.namespaceURI, m.getBoundingClientRect().width])"
+        )
+        assert all(ns == "http://www.w3.org/1998/Math/MathML" and w > 0 for ns, w in maths)
+        text = table.evaluate(VISIBLE_TEXT)
+        assert "$" not in text and re.search(r"\\[A-Za-z]", text) is None
+        assert page.locator("table.claims .tex-source").count() == 0
+        # the page never widens: the table wraps, or scrolls sideways inside its own box
+        box = page.locator("#derivation-body .claims-scroll")
+        widths = page.evaluate(
+            "box => [document.documentElement.scrollWidth, window.innerWidth,"
+            " box.scrollWidth, box.clientWidth]",
+            box.element_handle(),
+        )
+        page_width, inner_width, table_width, box_width = widths
+        assert page_width <= inner_width
+        hint = page.locator("#derivation-body .scroll-hint")
+        if viewport is PHONE:
+            assert table_width > box_width  # it scrolls inside, and says so
+            expect(hint).to_be_visible()
+            assert box.get_attribute("data-overflowing") == "true"
+            box.evaluate("b => { b.scrollLeft = b.scrollWidth; }")
+            next_frames(page)
+            assert page.evaluate("() => document.documentElement.scrollWidth") <= inner_width
+        else:
+            assert table_width <= box_width  # wide enough: it wraps, with no scroll bar
+            expect(hint).to_be_hidden()
+        seen.check_clean()
+    finally:
+        page.close()

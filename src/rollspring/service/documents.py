@@ -293,7 +293,8 @@ def derivation_payload(
     of time and ``residual`` is the SymPy text of the difference (0 when they agree).
     ``claims``: the paper's claims about the system with their verdicts, as
     ``rollspring paper-check --json`` gives them, when the system is one of the paper's
-    (:func:`figure_claims`); otherwise None.
+    (:func:`figure_claims`), each with its quote as HTML with MathML (``quote_html``) and its
+    formula and correction as MathML (``claim_mathml``, ``correction_mathml``); otherwise None.
     """
     from rollspring.outputs.report import derivation_sections
 
@@ -329,8 +330,28 @@ def derivation_payload(
                 for c in check.checks
             ],
         },
-        "claims": None if paper is None else claims_json(paper[1]),
+        "claims": None if paper is None else _claims_shown(paper[1]),
     }
+
+
+def _claims_shown(checks: Sequence[ClaimCheck]) -> list[dict[str, Any]]:
+    """The claims as :func:`claims_json` gives them, and as the report shows them:
+    ``quote_html`` (the paper's words, text and MathML), ``claim_mathml``, ``correction_mathml``
+    (None when there is no correction)."""
+    from rollspring.outputs.report import claim_html
+
+    shown = []
+    for check, data in zip(checks, claims_json(checks), strict=True):
+        html = claim_html(check)
+        shown.append(
+            data
+            | {
+                "quote_html": str(html["quote"]),
+                "claim_mathml": str(html["claim"]),
+                "correction_mathml": str(html["correction"]) if check.correction else None,
+            }
+        )
+    return shown
 
 
 def _mathml(latex: str) -> str | None:

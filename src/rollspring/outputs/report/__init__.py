@@ -20,6 +20,8 @@ Public API::
     write_report(report, "report.pdf", format="pdf")              # headless Chromium
     find_chromium()                                               # path, or ReportError
     latex_to_mathml(r"\\Omega^2 = k/(2m_1)")                      # MathML markup
+    tex_text_html(r"the force $F_1=F_2$ \\emph{is} ...")          # text and MathML
+    claim_html(check)                                  # a paper claim's quote, formula, correction
 """
 
 from rollspring.outputs.report._build import (
@@ -35,6 +37,7 @@ from rollspring.outputs.report._check_sections import derivation_sections
 from rollspring.outputs.report._html import MathConversionError, ReportError, latex_to_mathml
 from rollspring.outputs.report._motion_sections import animation_data
 from rollspring.outputs.report._pdf import CHROMIUM_ENV, find_chromium, html_to_pdf
+from rollspring.outputs.report._tex_text import claim_html, tex_text_html
 
 __all__ = [
     "CHAIN_FRAMES",
@@ -45,6 +48,7 @@ __all__ = [
     "ReportError",
     "animation_data",
     "animation_frames",
+    "claim_html",
     "default_duration",
     "derivation_sections",
     "find_chromium",
@@ -52,5 +56,6 @@ __all__ = [
     "latex_to_mathml",
     "render_chain_report",
     "render_report",
+    "tex_text_html",
     "write_report",
 ]

@@ -22,6 +22,7 @@ from rollspring.analysis.paper import (
 )
 from rollspring.outputs.report._html import Markup, esc, table
 from rollspring.outputs.report._page import Page, _json_script, _verdict
+from rollspring.outputs.report._tex_text import claim_html
 from rollspring.outputs.trajectory import summary_json, trajectory_csv
 
 
@@ -108,21 +109,20 @@ def section_paper_check(page: Page, label: str, checks: Sequence[ClaimCheck]) ->
     rows = []
     for check in checks:
         text, css = f"{check.verdict.mark} {check.verdict.words}", css_class[check.verdict]
+        shown = claim_html(check, failures=page.failures)
         rows.append(
             [
                 check.claim.location,
                 Markup(
                     f"{esc(check.claim.statement)}<br>"
-                    f'<span class="cellmath">{page.math(check.claim.latex, display=False)}'
-                    f"</span><br><q>{esc(check.claim.quote)}</q>"
+                    f'<span class="cellmath">{shown["claim"]}</span>'
+                    f'<q class="quote">{shown["quote"]}</q>'
                 ),
                 Markup(
                     f'<span class="verdict-{css}" data-verdict="{esc(check.verdict)}">'
                     f"{esc(text)}</span>"
                 ),
-                Markup(
-                    f'<span class="cellmath">{page.math(check.correction, display=False)}</span>'
-                )
+                Markup(f'<span class="cellmath">{shown["correction"]}</span>')
                 if check.correction
                 else "–",
                 check.reason,

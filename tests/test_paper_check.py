@@ -864,6 +864,7 @@ INDEPENDENT: dict[str, Check] = {
     "sec4.fig3-no-friction": _fig3_no_friction,
     "sec4.fig3-geometry": _geometry,
     "sec4.spring-horizontal": _spring_horizontal,
+    "sec4.small-angles-why": _spring_horizontal,
     "sec4.fig3-caption": _fig3_no_friction,
     "sec4.fig3-equations": _fig3_equations,
     "sec4.fig3-spring-force": _fig3_force,

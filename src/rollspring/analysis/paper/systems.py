@@ -103,6 +103,15 @@ SYSTEMS: dict[str, dict[str, Any]] = {
         ],
         "springs": [{"ends": ["b1", "b2"], "stiffness": 100.0, "rest_length": 0.5}],
     },
+    # ... and read as the inertias about the contact lines, I'_1 = I'_2: m_1 = 3m_2/4 (where
+    # Sec. 5.3 has k_1 = k_2): X-hat is the midpoint, the centre of mass still moves
+    "same-contact-inertia": {
+        "bodies": [
+            _body("b1", "hoop", 0.75, 0.1, 0.0),
+            _body("b2", "cylinder", 1.0, 0.1, 0.49),
+        ],
+        "springs": [{"ends": ["b1", "b2"], "stiffness": 100.0, "rest_length": 0.5}],
+    },
     # Fig. 3 on one floor: R1 = R2/2, the spring from the hoop's top (2R1) to the cylinder's
     # point 3R2/2 high, tilted by atan(0.05/0.5) = 5.7 degrees: no first-order friction either
     "fig3-tilted": _pair(

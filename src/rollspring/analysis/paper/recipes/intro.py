@@ -15,7 +15,7 @@ from rollspring.analysis.paper.algebra import same, tidy
 from rollspring.analysis.paper.bench import Bench
 from rollspring.analysis.paper.notation import P0
 from rollspring.analysis.paper.recipes.common import from_rest
-from rollspring.analysis.paper.symbols import m2
+from rollspring.analysis.paper.symbols import m1, m2
 from rollspring.analysis.paper.types import Derived
 
 
@@ -143,11 +143,16 @@ def same_inertia(b: Bench) -> Derived:
         if hoops == 0 and cylinders == 0
         else ""
     )
+    (contact,) = sp.solve(sp.Eq(b1.J, b2.J), m1)  # I'_1 = I'_2: m_1 = 3 m_2 / 4
+    with_equal_contact = sp.factor(total.subs(m1, contact))
     return Derived(
         with_equal_inertia,
         "sum of the engine's linearised frictions (M8) with I_1 = I_2 imposed",
         why="with I₁ = I₂ (m₂ = 2m₁) a hoop and a cylinder still need "
-        f"f₁ + f₂ = {sp.sstr(with_equal_inertia)} ≠ 0; {note}".rstrip("; "),
+        f"f₁ + f₂ = {sp.sstr(with_equal_inertia)} ≠ 0; read as the inertias about the contact "
+        f"lines, I'₁ = I'₂ (m₁ = {sp.sstr(contact)}, where Sec. 5.3 has k₁ = k₂), f₁ + f₂ = "
+        f"{sp.sstr(with_equal_contact)} ≠ 0 too: X̂ is the midpoint, the centre of mass is not; "
+        f"{note}".rstrip("; "),
         correction=r"f_1+f_2="
         + sp.latex(total)
         + r"\neq 0\ \text{unless}\ \frac{I_1}{m_1R_1^2}=\frac{I_2}{m_2R_2^2}",

@@ -8,6 +8,7 @@ weights, its torques and angular momenta.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 from typing import Any
 
 import sympy as sp
@@ -104,13 +105,28 @@ def horizontal_needed(b: Bench) -> Derived:
     return Derived(
         sp.true if any(f_ != 0 for f_ in friction) else sp.false,
         "the engine's linearised frictions (M8) of Fig. 3 on one floor, the spring tilted",
-        why="not needed: each end at its body's percussion height (1 + γ)R is enough; the "
+        why="not needed: each end at its body's percussion height (1 + γ)R is enough, for any "
+        "radii (R₁ = R₂ too: the Abstract's 'proper positioning the two fixed end points of the "
+        "spring vertically' needs neither R₁ = R₂/2 nor a raised track); the "
         "spring's vertical pull has no lever arm about the contact line at rest, so only its "
         f"horizontal part enters (fric), and the frictions are O(φ²) ({sp.sstr(tuple(friction))} "
         f"to first order); the tilt θ only changes {shown} and makes the normal forces "
         "oscillate (Nᵢ = mᵢg ∓ F sin θ)",
         correction=r"f_1=f_2=O(\varphi^2)\ \text{with the spring tilted (one floor, }R_1=R_2/2"
         r"\text{): horizontality is not needed}",
+    )
+
+
+def small_angles_why(b: Bench) -> Derived:
+    """Sec. 4's reason for the small angles ("for the spring to maintain its horizontal
+    orientation"): horizontality is not needed (:func:`horizontal_needed`); what the small angles
+    keep is each end at its body's percussion height, which it leaves at second order."""
+    found = horizontal_needed(b)
+    return replace(
+        found,
+        why=found.why + "; what the small angles keep is each end at its percussion height: as "
+        "the bodies turn the ends drop (2R₁ → R₁(1 + cos φ₁), 3R₂/2 → R₂(1 + cos φ₂ /2)), and the "
+        "frictions are O(φ³) even when the spring stays level",
     )
 
 

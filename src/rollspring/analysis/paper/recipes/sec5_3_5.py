@@ -175,6 +175,32 @@ def sum_rule_fig2(b: Bench) -> Derived:
     )
 
 
+def frequency_check(b: Bench) -> Derived:
+    """Sec. 5.5: the sum rule as a check of an equation of motion, and what it cannot see: the
+    coupling's sign (K with the off-diagonal entries flipped, as Sec. 5.3's (al), (be) have it)
+    leaves Omega^2 unchanged and turns the phase opposition into phase."""
+    sym = b.sym("fig2")
+    (w2,) = b.omega2("fig2")
+    clamped = clamped_sum(b, "fig2")
+    flipped = sym.stiffness_matrix.copy()
+    flipped[0, 1], flipped[1, 0] = -flipped[0, 1], -flipped[1, 0]
+    omega = sp.Symbol("Omega2", positive=True)
+    roots = [r_ for r_ in sp.solve((flipped - omega * sym.mass_matrix).det(), omega) if r_ != 0]
+    blind = len(roots) == 1 and tidy(roots[0] - w2) == 0
+    return Derived(
+        tidy(w2 - clamped),
+        "Omega^2 minus the sum of the clamped frequencies K_ii/J_ii, from the engine's M, K; a "
+        "necessary check only"
+        + (
+            ": the frequencies cannot see the coupling's sign — K with its off-diagonal entries "
+            "flipped (Sec. 5.3's (al), (be), whose (de) puts the bodies in phase) has the same Ω², "
+            "so the check passes equations the exact motion refutes (φ₂/φ₁ = −4m₁/(3m₂))"
+            if blind
+            else ""
+        ),
+    )
+
+
 def consequently(b: Bench) -> Derived:
     """Sec. 5.4's "consequently": a system with normal oscillations (a wall spring on the hoop,
     joined to the cylinder) whose modes do not obey the sum rule."""

@@ -44,6 +44,16 @@ def launch_chromium() -> Iterator[Any]:
             browser.close()
 
 
+#: What an element shows as text outside MathML (the page's ``evaluate`` on an element handle).
+VISIBLE_TEXT = """el => {
+    const walker = document.createTreeWalker(el, NodeFilter.SHOW_TEXT, {
+        acceptNode: n => n.parentElement.closest('math') ? NodeFilter.FILTER_REJECT
+                                                         : NodeFilter.FILTER_ACCEPT});
+    let text = '';
+    while (walker.nextNode()) text += walker.currentNode.data;
+    return text;
+}"""
+
 SERVE = str(Path(sys.executable).with_name("rollspring"))
 
 

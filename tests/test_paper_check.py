@@ -1267,23 +1267,27 @@ def test_every_claim_compares_in_known_symbols() -> None:
 runner = CliRunner()
 
 
+#: The fields of a claim's record (``paper-check --json``, the web's and the report's claims).
+CLAIM_KEYS = {
+    "key",
+    "location",
+    "claim",
+    "quote",
+    "verdict",
+    "assumption",
+    "correction",
+    "reason",
+    "counterexample",
+}
+
+
 def test_cli_json_is_a_list_of_the_documented_records(checks) -> None:
     result = runner.invoke(app, ["paper-check", "--json"])
     assert result.exit_code == 0, result.output
     data = json.loads(result.stdout)
     assert isinstance(data, list) and len(data) == len(INDEPENDENT)
     for record in data:
-        assert set(record) == {
-            "key",
-            "location",
-            "claim",
-            "quote",
-            "verdict",
-            "assumption",
-            "correction",
-            "reason",
-            "counterexample",
-        }
+        assert set(record) == CLAIM_KEYS
         assert record["verdict"] in VERDICTS
         assert isinstance(record["claim"], str) and record["claim"]
         assert isinstance(record["quote"], str) and record["quote"]

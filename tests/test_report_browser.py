@@ -19,6 +19,7 @@ from rollspring.cli import app
 from rollspring.model import load_system
 from rollspring.outputs.report import write_report
 from rollspring.service.documents import build_report
+from tests.serving import VISIBLE_TEXT
 
 MATHML = "http://www.w3.org/1998/Math/MathML"
 
@@ -106,18 +107,6 @@ def test_formulas_are_mathml_rendered_natively(opened: Opened) -> None:
     assert opened.errors == []
 
 
-# what the paper-check section shows as text (outside MathML), read in the page
-VISIBLE_TEXT = """selector => {
-    const root = document.querySelector(selector);
-    const walker = document.createTreeWalker(root, NodeFilter.SHOW_TEXT, {
-        acceptNode: n => n.parentElement.closest('math') ? NodeFilter.FILTER_REJECT
-                                                         : NodeFilter.FILTER_ACCEPT});
-    let text = '';
-    while (walker.nextNode()) text += walker.currentNode.data;
-    return text;
-}"""
-
-
 @pytest.mark.parametrize(
     "viewport", [{"width": 1280, "height": 800}, {"width": 390, "height": 844}]
 )
@@ -139,7 +128,7 @@ def test_the_claims_quotes_are_mathml_and_their_table_never_widens_the_page(
             "[getComputedStyle(m).display, m.getBoundingClientRect().width])"
         )
         assert all(display in ("math", "inline math") and width > 0 for display, width in rendered)
-        text = page.evaluate(VISIBLE_TEXT, "#paper-check")
+        text = page.query_selector("#paper-check").evaluate(VISIBLE_TEXT)
         assert "$" not in text and "\\" not in text
         widths = page.evaluate(
             "[document.documentElement.scrollWidth, window.innerWidth,"

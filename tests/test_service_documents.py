@@ -10,19 +10,9 @@ import pytest
 from rollspring import load_system
 from rollspring.analysis.paper import VERDICTS, check_paper, paper_figure
 from rollspring.service.documents import derivation_payload
+from tests.test_paper_check import CLAIM_KEYS
 
 STEP_KEYS = {"words", "latex", "mathml", "ref"}
-CLAIM_KEYS = {
-    "key",
-    "location",
-    "claim",
-    "quote",
-    "verdict",
-    "assumption",
-    "correction",
-    "reason",
-    "counterexample",
-}
 # beside paper-check's keys, what the report shows (the quote as HTML, the formulas as MathML)
 SHOWN_KEYS = {"quote_html", "claim_mathml", "correction_mathml"}
 

@@ -22,7 +22,7 @@ from playwright.sync_api import Browser, Page, expect
 
 import rollspring
 from rollspring.model import system_from_dict
-from tests.serving import Server
+from tests.serving import VISIBLE_TEXT, Server
 
 REPO = Path(__file__).resolve().parents[1]
 LAPTOP = {"width": 1280, "height": 800}
@@ -424,17 +424,6 @@ def test_screenshots(
         seen.check_clean()
     finally:
         page.close()
-
-
-# what an element shows as text outside MathML
-VISIBLE_TEXT = """el => {
-    const walker = document.createTreeWalker(el, NodeFilter.SHOW_TEXT, {
-        acceptNode: n => n.parentElement.closest('math') ? NodeFilter.FILTER_REJECT
-                                                         : NodeFilter.FILTER_ACCEPT});
-    let text = '';
-    while (walker.nextNode()) text += walker.currentNode.data;
-    return text;
-}"""
 
 
 @pytest.mark.parametrize("name, viewport", [("laptop-1280x800", LAPTOP), ("phone-390x844", PHONE)])

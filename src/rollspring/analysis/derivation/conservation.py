@@ -1,5 +1,5 @@
 r"""The derivation by conservation laws: energy and the conserved momentum of the zero mode (paper
-Sec. 4.2; docs/physics.md (M6), (M14)).
+Sec. 5.2; docs/physics.md (M6), (M14)).
 
 It needs one oscillating degree of freedom: one body, or two bodies with one zero mode
 :math:`v_0` (:math:`Kv_0 = 0`). The momentum :math:`\hat P = v_0^T M\dot\varphi` is conserved (the
@@ -319,7 +319,7 @@ def _paper_route(
         [eq(a_syms[i], amplitudes[i]) for i in range(2)],
         "The centres' amplitudes about the stationary point, A_i = v_i / Omega (harmonic "
         "motion again).",
-        "paper A1, A2 (Sec. 4.2)",
+        "paper A1, A2 (Sec. 5.2)",
         how=How(
             "substitute",
             (fast.tag,),

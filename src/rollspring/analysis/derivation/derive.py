@@ -112,6 +112,7 @@ class Derivation:
                     note=f"Does not apply: {result.reason}.",
                     prefix=result.section.prefix,
                     rates=result.section.rates,
+                    cites=result.section.cites,
                 )
                 out.append(section)
         out.append(self.forces)

@@ -39,7 +39,7 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
     m, R, I, F = sp.symbols("m R I F", positive=True)
     y = sp.Symbol("y", nonnegative=True)
     f, a, acc = sp.symbols("f a phiddot", real=True)
-    section = Section("Friction of a pulled body (paper App. A)", prefix="A")
+    section = Section("Friction of a pulled body (paper App. A)", prefix="A", cites="paper App. A")
     newton = eq(F - f, m * a)
     torque = eq(F * y, (I + m * R**2) * acc)
     laws = section.add(
@@ -100,7 +100,7 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
         [eq(names[shape], h) for shape, h in heights.items()],
         f"({factor.tag}) for each shape: gamma = 1 (hoop), 1/2 (solid cylinder), 2/5 (solid "
         "sphere), 2/3 (thin spherical shell).",
-        "paper Sec. 3: 2R (hoop), 3R/2 (cylinder)",
+        "paper Sec. 4: 2R (hoop), 3R/2 (cylinder)",
         how=How(
             "substitute",
             (),
@@ -141,7 +141,7 @@ def zero_friction_heights() -> dict[str, sp.Expr]:
 
 def contact_force_section(sym: SymbolicSystem) -> tuple[Section, dict[str, Any]]:
     """The friction and normal force on every body, symbolically (see the module)."""
-    section = Section("Friction and normal forces", prefix="C")
+    section = Section("Friction and normal forces", prefix="C", cites="paper Sec. 3, 4 and App. A")
     tags = setup_tags(sym)
     n = sym.n
     rolling = [i for i, b in enumerate(sym.bodies) if b.rolls]

@@ -1,5 +1,5 @@
 r"""Hamilton's derivation in the canonical coordinates :math:`q_i = \sqrt{J_i/m_i}\,\varphi_i`,
-:math:`p_i = m_i\dot q_i` (paper Sec. 4.5; docs/physics.md (M6)).
+:math:`p_i = m_i\dot q_i` (paper Sec. 5.6; docs/physics.md (M6)).
 
 These coordinates make the kinetic energy :math:`\sum_i p_i^2/2m_i` (a point transformation,
 hence canonical), so :math:`\mathcal H` is separable. Hamilton's equations give Newton's law in

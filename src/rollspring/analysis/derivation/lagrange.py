@@ -1,10 +1,10 @@
-r"""The Euler-Lagrange derivation of :math:`\mathcal L = T - V` (paper Sec. 4.3; docs/physics.md
+r"""The Euler-Lagrange derivation of :math:`\mathcal L = T - V` (paper Sec. 5.3; docs/physics.md
 (M5), (M7)), checked against ``sympy.physics.mechanics.LagrangesMethod``.
 
 The generalised momenta :math:`p_i = \partial\mathcal L/\partial\dot\varphi_i = J_i\dot\varphi_i`
 and forces :math:`\partial\mathcal L/\partial\varphi_i = -\partial V/\partial\varphi_i` give each
 body's exact equation of motion; linearised, :mod:`.whole_system` takes them to the equation of
-the whole system (with the paper's labels of Sec. 4.3). For one spring between two bodies with a
+the whole system (with the paper's labels of Sec. 5.3). For one spring between two bodies with a
 zero mode the derivation ends with the stiffnesses of the spring's two parts on either side of
 the stationary point (paper (k1), (k2)). :func:`mechanics_lagrange_check` forms the same
 equations with SymPy's ``LagrangesMethod`` and checks that the residual vanishes.

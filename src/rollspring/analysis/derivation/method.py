@@ -4,15 +4,15 @@ its conserved momentum is in words).
 
 One module per method, as ``sympy.physics.mechanics`` keeps ``kane.py`` and ``lagrange.py`` apart:
 
-* :mod:`.newton`: torques about the contact points (paper Sec. 2, 4.1; (M7));
-* :mod:`.conservation`: energy and the conserved momentum of the zero mode (Sec. 4.2); needs a
+* :mod:`.newton`: torques about the contact points (paper Sec. 2, 3, 5.1; (M7));
+* :mod:`.conservation`: energy and the conserved momentum of the zero mode (Sec. 5.2); needs a
   single oscillating degree of freedom;
-* :mod:`.lagrange`: Euler-Lagrange equations of :math:`\mathcal L = T - V` (Sec. 4.3; (M5)),
+* :mod:`.lagrange`: Euler-Lagrange equations of :math:`\mathcal L = T - V` (Sec. 5.3; (M5)),
   checked against ``sympy.physics.mechanics.LagrangesMethod``;
 * :mod:`.natural_frequencies`: subsystem frequencies :math:`\Omega_i^2 = K_{ii}/J_i` and the sum
-  rule (Sec. 4.4, App. B, C); needs two bodies with a zero mode (rank-1 K);
+  rule (Sec. 5.4, App. B, C); needs two bodies with a zero mode (rank-1 K);
 * :mod:`.hamilton`: canonical coordinates :math:`q_i = \sqrt{J_i/m_i}\,\varphi_i`,
-  :math:`p_i = m_i\dot q_i` (Sec. 4.5; (M6)).
+  :math:`p_i = m_i\dot q_i` (Sec. 5.6; (M6)).
 
 Each builds a :class:`MethodResult`: a numbered :class:`~.steps.Section` of steps, each one
 following from earlier ones by one named operation (:class:`~.steps.How`), and its results in a
@@ -79,12 +79,13 @@ PREFIXES = {
     "hamilton": "H",
 }
 
+#: The paper's sections each method follows, numbered as the paper prints them.
 PAPER_SECTIONS = {
-    "newton": "paper Sec. 2 and 4.1",
-    "conservation": "paper Sec. 4.2",
-    "lagrange": "paper Sec. 4.3",
-    "natural-frequencies": "paper Sec. 4.4, App. B and C",
-    "hamilton": "paper Sec. 4.5",
+    "newton": "paper Sec. 2, 3 and 5.1",
+    "conservation": "paper Sec. 5.2",
+    "lagrange": "paper Sec. 5.3",
+    "natural-frequencies": "paper Sec. 5.4, 5.5, App. B and C",
+    "hamilton": "paper Sec. 5.6",
 }
 
 
@@ -127,7 +128,12 @@ class MethodResult:
 def method_section(sym: SymbolicSystem, name: str, title: str | None = None) -> Section:
     """The empty section of method ``name``: its title, its step prefix (``N``, ``E``, ...)
     and the rates of the coordinates (so that steps can say what differentiates into what)."""
-    return Section(title or TITLES[name], prefix=PREFIXES[name], rates=dict(rate_symbols(sym)))
+    return Section(
+        title or TITLES[name],
+        prefix=PREFIXES[name],
+        rates=dict(rate_symbols(sym)),
+        cites=PAPER_SECTIONS[name],
+    )
 
 
 def cached_frequencies(sym: SymbolicSystem, budget: float | None) -> Frequencies:

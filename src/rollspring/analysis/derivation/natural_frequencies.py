@@ -1,4 +1,4 @@
-r"""The derivation by the subsystems' natural frequencies (paper Sec. 4.4, App. B and C;
+r"""The derivation by the subsystems' natural frequencies (paper Sec. 5.4, App. B and C;
 docs/physics.md (M15)).
 
 With every other body clamped, body i oscillates alone with :math:`\Omega_i^2 = K_{ii}/J_i` (its
@@ -192,7 +192,7 @@ def natural_frequencies(sym: SymbolicSystem, budget: float | None) -> MethodResu
         section.add(
             [eq(coefficients[i], values[i]) for i in range(2)],
             "Coefficients of the Hamiltonian potential (k/2)(c1 q1 + c2 q2)^2 in the canonical "
-            "coordinates q_i = sqrt(J_i/m_i) phi_i of Hamilton's method (paper Sec. 4.5, App. "
+            "coordinates q_i = sqrt(J_i/m_i) phi_i of Hamilton's method (paper Sec. 5.6, App. "
             "C), defined by |c_i| = Omega_i / sqrt(k/m_i) with Omega_i of "
             f"({natural.tag}); in a common orientation of the angles they have opposite signs "
             "here.",

@@ -1,5 +1,5 @@
-r"""Newton's derivation: the torques of the applied forces about the contact points (paper Sec. 2
-and 4.1; docs/physics.md (M7)).
+r"""Newton's derivation: the torques of the applied forces about the contact points (paper Sec. 2,
+3 and 5.1; docs/physics.md (M7)).
 
 Hooke's law gives each spring's force, :math:`F = k(l - L)`. For a rolling body the torque
 equation about its contact point, :math:`J_i\ddot\varphi_i = ` the clockwise torque of the

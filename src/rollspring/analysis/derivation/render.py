@@ -38,6 +38,8 @@ def text(title: str, subtitle: str, sections: Sequence[Section]) -> str:
         lines += [subtitle]
     for section in sections:
         lines += ["", section.title, "-" * len(section.title)]
+        if section.cites:
+            lines.append(f"({section.cites})")
         if section.note:
             lines.append(text_words(section.note))
         for step in section.steps:
@@ -74,6 +76,8 @@ def markdown(title: str, subtitle: str, sections: Sequence[Section]) -> str:
         lines += ["", _md_escape(subtitle)]
     for section in sections:
         lines += ["", f"## {_md_escape(section.title)}"]
+        if section.cites:
+            lines += ["", f"*({_md_escape(section.cites)})*"]
         if section.note:
             lines += ["", _md_escape(text_words(section.note))]
         for step in section.steps:
@@ -109,6 +113,8 @@ def latex_document(title: str, subtitle: str, sections: Sequence[Section]) -> st
         body.append(latex_text(subtitle))
     for section in sections:
         body.append(rf"\subsection*{{{latex_text(section.title)}}}")
+        if section.cites:
+            body.append(rf"{{\small ({latex_text(section.cites)})}}")
         if section.note:
             body.append(latex_words(section.note))
         for step in section.steps:
@@ -240,6 +246,7 @@ _GREEK = {
 _ASCII_NAME = re.compile(
     r"(?<![A-Za-z_])(?P<base>" + "|".join(_GREEK) + r"|[A-Za-z])"
     r"(?P<digits>(?<=[a-z])[0-9]+)?"
+    r"(?P<inertia>(?<=I)'(?=_))?"
     r"(?P<sub>_(?:\([A-Za-z0-9]+\)|[A-Za-z0-9]+))?"
     r"(?P<primes>'+)?"
     r"(?P<sup>\^(?:[0-9]+|T|\*|-1)|\*)?"
@@ -248,10 +255,40 @@ _ASCII_NAME = re.compile(
 )
 
 
+#: Partial derivatives the words write in ASCII, as LaTeX (the same forms as
+#: :data:`_DERIVATIVES`).
+_LATEX_DERIVATIVES = {
+    "dL/dphi_i'": r"\partial\mathcal{L}/\partial\dot\varphi_i",
+    "dL/dphi_i": r"\partial\mathcal{L}/\partial\varphi_i",
+    "dV/dphi_i": r"\partial V/\partial\varphi_i",
+    "dV/dphi": r"\partial V/\partial\varphi",
+    "dT/dq_i'": r"\partial T/\partial\dot q_i",
+    "dH/dp_i": r"\partial\mathcal{H}/\partial p_i",
+    "dH/dq_i": r"\partial\mathcal{H}/\partial q_i",
+    "dE/dt": r"\mathrm{d}E/\mathrm{d}t",
+    "d/dt": r"\mathrm{d}/\mathrm{d}t",
+}
+_LATEX_DERIVATIVE = re.compile(
+    "|".join(re.escape(k) for k in sorted(_LATEX_DERIVATIVES, key=len, reverse=True))
+)
+
+
 def latex_words(words: str) -> str:
     """:func:`latex_text` with the names the words write in ASCII (``Omega_i^2``,
     ``phi_1'``, ``v0^T``, ``K_11``, ``q'``, ``y*``) as inline math: a student reading the
-    document sees Omega_i^2 typeset, not its spelling."""
+    document sees Omega_i^2 typeset, not its spelling; a prime is a time derivative (a dot),
+    except on I (the paper's I'), and ``dV/dphi`` is the partial derivative it stands for."""
+    pieces = []
+    position = 0
+    for match in _LATEX_DERIVATIVE.finditer(words):
+        pieces.append(_latex_names(words[position : match.start()]))
+        pieces.append(f"${_LATEX_DERIVATIVES[match.group(0)]}$")
+        position = match.end()
+    pieces.append(_latex_names(words[position:]))
+    return _joined_math("".join(pieces))
+
+
+def _latex_names(words: str) -> str:
     out = []
     position = 0
     for match in _ASCII_NAME.finditer(words):
@@ -262,7 +299,10 @@ def latex_words(words: str) -> str:
             continue  # a plain letter or word stays text
         else:
             index = ",".join(part for part in (digits, sub[1:] if sub else "") if part)
-            math = _GREEK.get(base, base)
+            math = _GREEK.get(base, base) + (match.group("inertia") or "")
+            if primes and base != "I" and len(primes) <= 2:
+                math = (r"\dot{" if len(primes) == 1 else r"\ddot{") + math + "}"
+                primes = ""
             if index:
                 math += f"_{{{index}}}"
             math += primes or ""
@@ -324,7 +364,7 @@ def text_words(words: str) -> str:
         index = (digits or "") + (sub[1:] if sub else "")
         if any(c not in _TEXT_SUB for c in index):
             continue  # a subscript Unicode cannot lower (L_O): left as written
-        name = _GREEK_UNICODE.get(base, base)
+        name = _GREEK_UNICODE.get(base, base) + (match.group("inertia") or "")
         if primes and base != "I" and len(primes) <= 2:
             name += "\u0307" if len(primes) == 1 else "\u0308"
         elif primes:

@@ -274,6 +274,10 @@ class _TextbookStr(_TextbookOrder, StrPrinter):
         result: str = super()._print_Mul(expr)
         return result.replace("*", "·")
 
+    def _print_Equality(self, expr: sp.Eq) -> str:
+        """``lhs = rhs`` (not SymPy's ``Eq(lhs, rhs)``)."""
+        return f"{self._print(expr.lhs)} = {self._print(expr.rhs)}"
+
 
 def inline(obj: Any) -> str:
     """``obj`` as one line of plain text with textbook names (``R_2/R_1`` -> ``R₂/R₁``)."""
@@ -340,13 +344,15 @@ class Section:
     """A titled list of steps (one method's derivation, the setup, the cross-check, ...);
     ``prefix`` numbers its steps (``N1``, ``N2``, ...); ``rates`` maps each symbol that
     changes in time to the symbol of its rate (``phi_1 -> phidot_1``), for the steps that
-    differentiate or integrate in time."""
+    differentiate or integrate in time; ``cites``: the paper's sections it follows, as the
+    paper numbers them (``"paper Sec. 5.3"``), shown under the title."""
 
     title: str
     steps: list[Step] = field(default_factory=list)
     note: str = ""
     prefix: str = ""
     rates: dict[sp.Symbol, sp.Symbol] = field(default_factory=dict)
+    cites: str = ""
 
     def add(
         self,

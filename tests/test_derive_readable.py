@@ -186,3 +186,53 @@ def test_latex_compiles_for_every_preset(
         directory = tmp_path / name
         directory.mkdir()
         compile_latex(rendered[name, True, "latex"], directory)
+
+
+# -- one notation table per derivation -------------------------------------------------------------
+
+
+def test_every_displayed_symbol_has_exactly_one_notation_entry(
+    derivations: dict[tuple[str, bool], Derivation],
+) -> None:
+    """The free symbols of every displayed expression, in their printed form, each have exactly
+    one entry, which says what the symbol stands for; a printed name with two meanings would
+    show as two entries of one name."""
+    from collections import Counter
+
+    from rollspring.analysis.derivation.notation import UNDESCRIBED, displayed_symbols, printed
+
+    for key, result in derivations.items():
+        table = result.notation
+        counts = Counter(entry.text for entry in table)
+        assert all(n == 1 for n in counts.values()), (key, counts.most_common(3))
+        shown = {printed(symbol) for symbol in displayed_symbols(result.sections)}
+        assert shown, key
+        missing = shown - set(counts)
+        assert not missing, (key, sorted(missing))
+        assert not [e.text for e in table if e.meaning == UNDESCRIBED], key
+        if result.symbolic.springs:  # the rest length the words use is defined
+            assert any(
+                entry.text.startswith("L") and "rest length" in entry.meaning for entry in table
+            )
+        names = {entry.text: entry.meaning for entry in table}
+        if "K" in names:  # K is the stiffness matrix only: the contact line is z'
+            assert names["K"].startswith("stiffness matrix"), key
+            text = result.to_text()
+            assert "contact point K" not in text and "about K" not in text, key
+
+
+def test_the_notation_is_rendered_in_every_format(
+    derivations: dict[tuple[str, bool], Derivation],
+) -> None:
+    result = derivations["hoop-cylinder", True]
+    text, markdown, latex = result.to_text(), result.to_markdown(), result.to_latex()
+    assert "\nNotation\n--------\n" in text and "## Notation" in markdown
+    assert r"\subsection*{Notation}" in latex
+    assert text.index("Notation") < text.index("(S1)")
+    for entry in result.notation:
+        assert f"  {entry.text} " in text
+    # the paper's notation: I' for the inertia about the contact line, its value as a symbol
+    names = {entry.text: entry for entry in result.notation}
+    assert "I′₁" in names and "J₁" not in names and "J₁" not in text
+    assert names["k"].value == "100 N/m" and names["m₁"].value == "1 kg"
+    assert names["L"].meaning.endswith("so L = ℓ (m)")

@@ -127,7 +127,7 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         result.system_equation = eq(b.qdd + omega2 * b.q, 0)
         standard = section.add(
             result.system_equation,
-            f"Dividing ({divided.tag}) by J and bringing every term to the left: the equation "
+            f"Dividing ({divided.tag}) by I' and bringing every term to the left: the equation "
             "of motion.",
             "",
             how=How("rearrange", (divided.tag,)),

@@ -26,6 +26,7 @@ from rollspring.analysis.derivation.lagrange import lagrange
 from rollspring.analysis.derivation.method import METHODS, MethodResult, is_papers_fig2
 from rollspring.analysis.derivation.natural_frequencies import natural_frequencies
 from rollspring.analysis.derivation.newton import newton
+from rollspring.analysis.derivation.notation import Entry, notation_table
 from rollspring.analysis.derivation.render import latex_document, markdown, text
 from rollspring.analysis.derivation.setup import setup_section
 from rollspring.analysis.derivation.steps import Section
@@ -122,21 +123,31 @@ class Derivation:
         return out
 
     @property
+    def notation(self) -> list[Entry]:
+        """The notation table: every symbol the steps display, defined once (its meaning and
+        unit, and its value for a parameter of the system), and the names the words use (the
+        rest length L, the contact line z')."""
+        if "notation" not in self.extras:
+            self.extras["notation"] = notation_table(self.sections, self.symbolic)
+        table: list[Entry] = self.extras["notation"]  # type: ignore[assignment]
+        return table
+
+    @property
     def omega2(self) -> list[sp.Expr | None]:
         """Closed forms of the squared frequencies of the oscillating modes (reference)."""
         return list(self.frequencies.omega2)
 
     def to_text(self) -> str:
         """Plain text (Unicode pretty-printing)."""
-        return text(self.title, self.subtitle, self.sections)
+        return text(self.title, self.subtitle, self.sections, notation=self.notation)
 
     def to_markdown(self) -> str:
         """Markdown with ``$$…$$`` math."""
-        return markdown(self.title, self.subtitle, self.sections)
+        return markdown(self.title, self.subtitle, self.sections, notation=self.notation)
 
     def to_latex(self) -> str:
         """A complete LaTeX document (compiles with pdflatex; amsmath only)."""
-        return latex_document(self.title, self.subtitle, self.sections)
+        return latex_document(self.title, self.subtitle, self.sections, notation=self.notation)
 
     def render(self, format: str = "text") -> str:  # noqa: A002 - mirrors --format
         """``text``, ``markdown`` or ``latex``."""
@@ -231,7 +242,7 @@ def derive(
     system: System | dict[str, Any] | str | os.PathLike[str],
     method: str | Sequence[str] = ALL,
     *,
-    symbols: bool = False,
+    symbols: bool = True,
     budget: float | None = 10.0,
     confirm: bool = False,
 ) -> Derivation:
@@ -240,7 +251,9 @@ def derive(
     ``system``: a :class:`~rollspring.model.System` or a preset name / file path;
     ``method``: ``"all"`` or one or more of ``newton``, ``conservation``, ``lagrange``,
     ``natural-frequencies``, ``hamilton``; ``symbols``: parameters as symbols
-    (:math:`m_1, R, k, \dots`) instead of exact numbers; ``budget``: seconds allowed for each
+    (:math:`m_1, R, k, \dots`, the default: a textbook's derivation, the system's numbers
+    in the notation table and in each method's final "with your values" step), or
+    ``symbols=False`` for exact numbers throughout; ``budget``: seconds allowed for each
     open-ended symbolic step (factoring, simplifying residuals), where SymPy can be slow.
 
     ``system`` may also be its JSON form (a dict); anything else is a one-line
@@ -256,7 +269,7 @@ def derive(
     method
         ``"all"``, or one or more of the five methods.
     symbols
-        Parameters as symbols instead of exact numbers.
+        Parameters as symbols (default) instead of exact numbers.
     budget
         Seconds for each open-ended symbolic step (None: no limit).
     confirm
@@ -291,7 +304,7 @@ class DerivationRequest:
 
 
 def derivation_request(
-    method: str | Sequence[str] = ALL, *, symbols: bool = False, budget: float | None = 10.0
+    method: str | Sequence[str] = ALL, *, symbols: bool = True, budget: float | None = 10.0
 ) -> DerivationRequest:
     """The arguments of :func:`derive` checked, in this order (the first bad one is the error,
     a one-line :class:`~rollspring.errors.DerivationError` naming it): ``method``, ``symbols``,

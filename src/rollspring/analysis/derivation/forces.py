@@ -45,7 +45,7 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
     laws = section.add(
         [newton, torque],
         "Newton's law for the centre, and the torque equation about the contact point (its "
-        "acceleration points through the centre, so J phi'' = torque holds there, with J = I + "
+        "acceleration points through the centre, so I' phi'' = torque holds there, with I' = I + "
         "m R^2 by Steiner's theorem); f is the static friction, counted against the pull F.",
         "paper (a1), (a2)",
         how=GIVEN,
@@ -175,7 +175,7 @@ def contact_force_section(sym: SymbolicSystem) -> tuple[Section, dict[str, Any]]
                 )
                 for i in rolling
             ],
-            "With the equation of motion J phi'' = Q (Q the torque of the applied forces about "
+            "With the equation of motion I' phi'' = Q (Q the torque of the applied forces about "
             "the contact point): the friction depends on the configuration only, not on the "
             "velocities.",
             "(M8)",

@@ -66,7 +66,7 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     )
     momentum_rates = section.add(
         [eq(pdot[i], b.J * b.qdd) for i, b in enumerate(sym.bodies)],
-        f"Differentiating ({momenta.tag}) in time (J is constant: the mass matrix does not "
+        f"Differentiating ({momenta.tag}) in time (I' is constant: the mass matrix does not "
         "depend on the angles).",
         "",
         how=How("differentiate in time", (momenta.tag,)),
@@ -125,7 +125,7 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
             "The stiffnesses of the spring's two parts, on either side of the stationary point "
             "(the paper's k_1, k_2). Both parts carry the spring force F; with the stationary "
             "point fixed (the relation of the angles above), part i takes the share Omega_i^2 / "
-            "Omega^2 of the deformation, where Omega_i^2 = K_ii/J_i is body i's frequency with "
+            "Omega^2 of the deformation, where Omega_i^2 = K_ii/I'_i is body i's frequency with "
             "the other body clamped (the subsystem frequency of the next method) and Omega^2 = "
             "Omega_1^2 + Omega_2^2. So k_i = F / (share_i x deformation) = k Omega^2 / Omega_i^2, "
             "and 1/k = 1/k_1 + 1/k_2 because the shares add up to 1.",

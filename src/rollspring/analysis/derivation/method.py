@@ -175,7 +175,7 @@ def names_momentum(sym: SymbolicSystem, v0: sp.Matrix | None) -> str:
         return (
             f"here the weights v0_i are equal{condition} and the bodies roll on one floor, so "
             "P̂ is the total angular momentum about any fixed point O of the floor, L_O = "
-            f"sum J_i phi_i' (clockwise; {_paper_sum(sym.n)})"
+            f"sum I'_i phi_i' (clockwise; {_paper_sum(sym.n)})"
         )
     if equal and not any(b.rolls for b in bodies):
         return (
@@ -189,7 +189,7 @@ def names_momentum(sym: SymbolicSystem, v0: sp.Matrix | None) -> str:
         else "not every body rolls"
     )
     return (
-        "P̂ is not the total angular momentum L_O = sum J_i phi_i' about a point of the floor "
+        "P̂ is not the total angular momentum L_O = sum I'_i phi_i' about a point of the floor "
         f"({why}): it is the momentum of the free rolling motion along v0"
     )
 

@@ -12,6 +12,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 
+from rollspring.analysis.derivation.notation import Entry, width
 from rollspring.analysis.derivation.steps import Section, Step, inline, pretty_text
 
 __all__ = [
@@ -30,12 +31,29 @@ __all__ = [
 FORMATS = ("text", "markdown", "latex")
 
 
-def text(title: str, subtitle: str, sections: Sequence[Section]) -> str:
-    """Plain text: each step's number and words, then its equation pretty-printed (Unicode,
-    names as a textbook prints them)."""
+#: The title of the notation table.
+NOTATION = "Notation"
+
+
+def text(
+    title: str,
+    subtitle: str,
+    sections: Sequence[Section],
+    *,
+    notation: Sequence[Entry] = (),
+) -> str:
+    """Plain text: the notation table, then each step's number and words, then its equation
+    pretty-printed (Unicode, names as a textbook prints them)."""
     lines = [title, "=" * len(title)]
     if subtitle:
         lines += [subtitle]
+    if notation:
+        lines += ["", NOTATION, "-" * len(NOTATION)]
+        columns = max(width(entry.text) for entry in notation)
+        for entry in notation:
+            value = f" = {entry.value}" if entry.value else ""
+            pad = " " * (columns - width(entry.text))
+            lines.append(f"  {entry.text}{pad}  {entry.meaning}{value}")
     for section in sections:
         lines += ["", section.title, "-" * len(section.title)]
         if section.cites:
@@ -69,11 +87,24 @@ def _pretty(step: Step) -> str:
     return "\n".join(out)
 
 
-def markdown(title: str, subtitle: str, sections: Sequence[Section]) -> str:
-    """Markdown with display math ``$$…$$`` (one per step)."""
+def markdown(
+    title: str,
+    subtitle: str,
+    sections: Sequence[Section],
+    *,
+    notation: Sequence[Entry] = (),
+) -> str:
+    """Markdown with display math ``$$…$$`` (one per step), the notation as a table."""
     lines = [f"# {_md_escape(title)}"]
     if subtitle:
         lines += ["", _md_escape(subtitle)]
+    if notation:
+        lines += ["", f"## {NOTATION}", "", "| symbol | meaning | value |", "|---|---|---|"]
+        for entry in notation:
+            lines.append(
+                f"| ${_one_line(entry.latex)}$ | {_md_escape(entry.meaning)} "
+                f"| {_md_escape(entry.value)} |"
+            )
     for section in sections:
         lines += ["", f"## {_md_escape(section.title)}"]
         if section.cites:
@@ -106,11 +137,24 @@ LATEX_PREAMBLE = (
 )
 
 
-def latex_document(title: str, subtitle: str, sections: Sequence[Section]) -> str:
-    """A complete, compilable LaTeX document (article, amsmath)."""
+def latex_document(
+    title: str,
+    subtitle: str,
+    sections: Sequence[Section],
+    *,
+    notation: Sequence[Entry] = (),
+) -> str:
+    """A complete, compilable LaTeX document (article, amsmath), the notation as a list."""
     body = [*LATEX_PREAMBLE, rf"\section*{{{latex_text(title)}}}"]
     if subtitle:
         body.append(latex_text(subtitle))
+    if notation:
+        body.append(rf"\subsection*{{{NOTATION}}}")
+        for entry in notation:
+            value = f" $=$ {latex_text(entry.value)}" if entry.value else ""
+            body.append(
+                rf"\noindent ${_ascii(entry.latex)}$ \quad {latex_text(entry.meaning)}{value}\par"
+            )
     for section in sections:
         body.append(rf"\subsection*{{{latex_text(section.title)}}}")
         if section.cites:
@@ -273,6 +317,11 @@ _LATEX_DERIVATIVE = re.compile(
 )
 
 
+#: Names whose prime is part of the name, not a time derivative: the paper's I' (the inertia
+#: about the contact line) and z' (the contact line).
+_PRIMED = ("I", "z")
+
+
 def latex_words(words: str) -> str:
     """:func:`latex_text` with the names the words write in ASCII (``Omega_i^2``,
     ``phi_1'``, ``v0^T``, ``K_11``, ``q'``, ``y*``) as inline math: a student reading the
@@ -300,7 +349,7 @@ def _latex_names(words: str) -> str:
         else:
             index = ",".join(part for part in (digits, sub[1:] if sub else "") if part)
             math = _GREEK.get(base, base) + (match.group("inertia") or "")
-            if primes and base != "I" and len(primes) <= 2:
+            if primes and base not in _PRIMED and len(primes) <= 2:
                 math = (r"\dot{" if len(primes) == 1 else r"\ddot{") + math + "}"
                 primes = ""
             if index:
@@ -364,11 +413,11 @@ def text_words(words: str) -> str:
         index = (digits or "") + (sub[1:] if sub else "")
         if any(c not in _TEXT_SUB for c in index):
             continue  # a subscript Unicode cannot lower (L_O): left as written
-        name = _GREEK_UNICODE.get(base, base) + (match.group("inertia") or "")
-        if primes and base != "I" and len(primes) <= 2:
+        name = _GREEK_UNICODE.get(base, base) + ("\u2032" if match.group("inertia") else "")
+        if primes and base not in _PRIMED and len(primes) <= 2:
             name += "\u0307" if len(primes) == 1 else "\u0308"
-        elif primes:
-            name += primes
+        elif primes:  # the paper's I' and z': a prime (U+2032), as the equations print it
+            name += "\u2032" * len(primes) if base in _PRIMED else primes
         name += "".join(_TEXT_SUB[c] for c in index)
         if sup:
             name += "".join(_TEXT_SUP.get(c, c) for c in sup.lstrip("^"))

@@ -236,3 +236,53 @@ def test_the_notation_is_rendered_in_every_format(
     assert "I′₁" in names and "J₁" not in names and "J₁" not in text
     assert names["k"].value == "100 N/m" and names["m₁"].value == "1 kg"
     assert names["L"].meaning.endswith("so L = ℓ (m)")
+
+
+# -- symbols first, the numbers at the end ---------------------------------------------------------
+
+
+def test_symbols_are_the_default_and_numbers_come_last(
+    derivations: dict[tuple[str, bool], Derivation],
+) -> None:
+    """By default the parameters are symbols (the paper's m₁, R, k, I'); the system's numbers
+    enter each method only in its last step, "with your values", in decimals: for Fig. 2 of the
+    paper (k = 100 N/m, m₁ = m₂ = 1 kg) Ω² = k/(2m₁) + 2k/(3m₂) = 50 + 200/3 s⁻²."""
+    import math
+
+    import sympy as sp
+
+    result = derivations["hoop-cylinder", True]
+    assert result.symbolic.symbolic and "parameters as symbols" in result.subtitle
+    omega2 = 50 + 200 / 3
+    for name, method in result.methods.items():
+        last = method.section.steps[-1]
+        assert last.how is not None and last.how.op == "with your values", name
+        assert last.words.startswith("With your values"), name
+        values = {str(e.lhs): float(e.rhs) for e in last.equations}
+        assert math.isclose(values["Omega^2"], omega2, rel_tol=5e-4), name
+        assert math.isclose(values["Omega"], math.sqrt(omega2), rel_tol=5e-4), name
+        for step in method.section.steps[:-1]:  # no number of the system before it
+            for item in step.equations:
+                if isinstance(item, sp.Basic):
+                    assert not item.atoms(sp.Float), (name, step.tag, item)
+    text = result.to_text()
+    assert "φ̈₁/50" not in text and "981/100" not in text
+    assert "N₁ = g⋅m₁ - F₁y" in text or "N₁ = -F₁y + g⋅m₁" in text
+    # with numbers throughout (--numbers), the same last step gives the decimals
+    numbers = derivations["hoop-cylinder", False]
+    assert not numbers.symbolic.symbolic
+    last = numbers.methods["newton"].section.steps[-1]
+    assert last.how is not None and last.how.op == "with your values"
+
+
+def test_an_off_centre_system_shows_decimals(derivations) -> None:
+    """Three bodies: the normal modes' squared frequencies are long surds; each method ends
+    with their decimals."""
+    for symbols in (True, False):
+        result = derivations["three-bodies", symbols]
+        for method in result.methods.values():
+            if not method.applies:
+                continue
+            last = method.section.steps[-1]
+            assert last.how is not None and last.how.op == "with your values"
+            assert len(last.equations) == 4  # two oscillating modes: Ω² and Ω of each

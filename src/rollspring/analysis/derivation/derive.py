@@ -31,6 +31,7 @@ from rollspring.analysis.derivation.render import latex_document, markdown, text
 from rollspring.analysis.derivation.setup import setup_section
 from rollspring.analysis.derivation.steps import Section
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
+from rollspring.analysis.derivation.values import with_your_values
 from rollspring.errors import DerivationError
 from rollspring.model import System
 
@@ -336,6 +337,7 @@ def run_derivation(system: System, request: DerivationRequest) -> Derivation:
     for result in results.values():  # applies, but only in part (no linearisation)
         if result.applies and result.reason:
             result.section.note = f"Note: {result.reason}."
+        with_your_values(result, sym, frequencies)  # the numbers come in at the end
     forces, force_results = contact_force_section(sym)
     appendix = appendix_a_friction()[0] if names == list(METHODS) else None
     check = cross_check(sym, results, frequencies, budget=budget)

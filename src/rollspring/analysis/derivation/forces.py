@@ -160,7 +160,8 @@ def contact_force_section(sym: SymbolicSystem) -> tuple[Section, dict[str, Any]]
         + [eq(n_syms[i], sym.bodies[i].m * sym.g - Fy[i]) for i in range(n)],
         "Newton's second law for each centre, horizontally (it accelerates by x'' = R phi'', "
         f"the derivative of{rates}) and vertically (it keeps its height): friction f along +x, "
-        "normal force N; F_i is the applied force on body i (springs, constant forces).",
+        "normal force N; F_ix and F_iy are the horizontal and vertical parts of the applied "
+        "force on body i (springs, constant forces).",
         "(M8), (M9)",
         how=GIVEN,
     )

@@ -34,6 +34,7 @@ __all__ = [
     "Entry",
     "displayed_symbols",
     "notation_table",
+    "parameter_value",
     "printed",
     "width",
 ]
@@ -148,6 +149,8 @@ def _meaning(base: str, sub: str, sup: str, sym: SymbolicSystem, *, parameter: b
             return f"squared angular frequency of normal mode {sub.strip('()')} (1/s²)"
         if sup == "2":
             return f"squared natural frequency of subsystem {sub}: {body} alone (1/s²)"
+        if sub.startswith("("):
+            return f"angular frequency of normal mode {sub.strip('()')} (1/s)"
     table = {
         "phi": f"angle turned by {body}, clockwise, {_coordinate(sym)} (rad)",
         "phidot": f"angular velocity of {body}, the rate of φ (rad/s)",
@@ -239,7 +242,7 @@ def _split(symbol: sp.Basic) -> tuple[str, str, str]:
         if name.startswith("y^*_"):
             return "y", name[4:], "*"
         if name.startswith("Omega_("):
-            return "Omega", name[len("Omega_") : name.index(")") + 1], "2"
+            return "Omega", name[len("Omega_") : name.index(")") + 1], "2" * name.endswith("^2")
         return name, "", ""
     base, sups, subs = split_super_sub(name)
     return base, "".join(subs), "".join(sups)
@@ -250,7 +253,8 @@ def width(text: str) -> int:
     return sum(1 for c in text if not unicodedata.combining(c))
 
 
-def _value(symbol: sp.Basic, sym: SymbolicSystem) -> str:
+def parameter_value(symbol: sp.Basic, sym: SymbolicSystem) -> str:
+    """A parameter's value with its unit (``100 N/m``); empty for any other symbol."""
     if symbol not in sym.values:
         return ""
     value = sym.values[symbol]
@@ -270,7 +274,7 @@ def notation_table(sections: Sequence[Section], sym: SymbolicSystem) -> list[Ent
         parameter = symbol in sym.values
         meaning = _meaning(base, sub, sup, sym, parameter=parameter) or UNDESCRIBED
         text = printed(symbol)
-        entry = Entry(text, latex_of(symbol), meaning, _value(symbol, sym))
+        entry = Entry(text, latex_of(symbol), meaning, parameter_value(symbol, sym))
         entries.setdefault((text, meaning), (_order(base, sup, text), entry))
     for extra in _word_names(sym):
         base = "L" if extra.text.startswith("L") else "z"
@@ -295,7 +299,7 @@ def _word_names(sym: SymbolicSystem) -> list[Entry]:
             value = ""
         else:
             meaning = f"rest length of {where} (m)"
-            value = _value(spring.L, sym) if isinstance(spring.L, sp.Symbol) else ""
+            value = parameter_value(spring.L, sym) if isinstance(spring.L, sp.Symbol) else ""
         out.append(Entry(pretty_name(name), latex_of(sp.Symbol(name)), meaning, value))
     if any(b.rolls for b in sym.bodies):
         out.append(

@@ -411,14 +411,20 @@ def text_words(words: str) -> str:
         if base not in _GREEK and not (digits or sub or primes or sup):
             continue
         index = (digits or "") + (sub[1:] if sub else "")
-        if any(c not in _TEXT_SUB for c in index):
+        lowered = len(index)
+        for position_in_index, c in enumerate(index):
+            if c not in _TEXT_SUB:
+                lowered = position_in_index
+                break
+        if lowered == 0 and index:
             continue  # a subscript Unicode cannot lower (L_O): left as written
         name = _GREEK_UNICODE.get(base, base) + ("\u2032" if match.group("inertia") else "")
         if primes and base not in _PRIMED and len(primes) <= 2:
             name += "\u0307" if len(primes) == 1 else "\u0308"
         elif primes:  # the paper's I' and z': a prime (U+2032), as the equations print it
             name += "\u2032" * len(primes) if base in _PRIMED else primes
-        name += "".join(_TEXT_SUB[c] for c in index)
+        # the letters Unicode cannot lower follow on the line, as the equations print them (F₁y)
+        name += "".join(_TEXT_SUB[c] for c in index[:lowered]) + index[lowered:]
         if sup:
             name += "".join(_TEXT_SUP.get(c, c) for c in sup.lstrip("^"))
         out.append(words[position : match.start()] + name)

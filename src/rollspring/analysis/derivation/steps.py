@@ -71,6 +71,8 @@ OPERATIONS: dict[str, str] = {
     "characteristic equation": "put q = v cos(Omega t): det(K - Omega^2 M) = 0",
     "read off": "compare with a standard form and read off its coefficient",
     "evaluate": "compute: both sides are equal",
+    "with your values": "put the system's numbers (the notation table's) into a result: "
+    "decimals, rounded",
     "check": "a comparison of results, not a step of a derivation",
 }
 

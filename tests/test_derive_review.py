@@ -97,7 +97,9 @@ def test_words_fit_the_system(derivations) -> None:
     assert "slider" not in numbers["E13"].words
     assert "hoop: hoop" not in numbers["S1"].words
     assert "(paper Sec. 5.6" in numbers["F10"].words and "(F4)" in numbers["F10"].words
-    assert "Omega_i^2 = K_ii/I'_i" in numbers["L15"].words  # defined where it is used
+    # the shares of the spring's parts (L16) are derived, then named: Omega_i^2 = K_ii/I'_i
+    assert "Omega_i^2 = K_ii/I'_i" in numbers["L16"].words  # defined where it is used
+    assert numbers["L15"].words.startswith("The spring's deformation to first order")
     assert numbers["H10"].ref == "paper (h) with p1' = m1 q1''"
     assert "zero mode(s)" not in derivations["three-bodies"].to_text()
 

@@ -295,24 +295,71 @@ def _paper_route(
     )
     omega_sym = sp.Symbol("Omega", positive=True)
     centres = is_papers_fig2(sym)
-    section.add(
-        eq(omega_sym, omega),
-        "In a harmonic motion the largest rate of a coordinate is its amplitude times Omega; "
-        "the spring's deformation has amplitude A and, at the undeformed spring, the rate "
-        + (
-            "v1 + v2 (the centres approach each other): Omega = (v1 + v2)/A"
-            if centres
-            else "sum |b_i| v_i / R_i (b_i the lever arms about the contacts): Omega = that / A"
+    summed = fast
+    if centres:
+        # the algebra from (om), (pi) to Omega: v2 = rho v1 with rho rational (the ratio of the
+        # rates times R2/R1), so v1 + v2 = (1 + rho) v1 and (1 + rho) goes under v1's root
+        rho = sp.cancel(speeds[1] / speeds[0])
+        if not rho.has(sp.Pow) or all(p.exp.is_Integer for p in rho.atoms(sp.Pow)):
+            one_plus = sp.factor(1 + rho)
+            summed = section.add(
+                eq(v_syms[0] + v_syms[1], sp.Mul(one_plus, v_syms[0], evaluate=False)),
+                f"Adding the speeds of ({fast.tag}): their ratio v2/v1 = {inline(rho)} is that of "
+                f"the rates ({solved_tag}) times R_2/R_1, a ratio free of roots, so the sum is "
+                "(1 + v2/v1) v1, the deformation's rate at the undeformed spring (the centres "
+                "approach each other).",
+                "paper Ω = (v1+v2)/A",
+                how=How("evaluate", (fast.tag,)),
+            )
+            under_root = sp.factor(sp.cancel(one_plus**2 * speeds[0] ** 2 / amplitude**2))
+            section.add(
+                [
+                    eq(
+                        omega_sym,
+                        sp.Mul(
+                            one_plus,
+                            sp.Pow(
+                                sp.factor(speeds[0] ** 2 / amplitude**2), sp.S.Half, evaluate=False
+                            ),
+                            evaluate=False,
+                        ),
+                    ),
+                    eq(omega_sym, sp.Pow(under_root, sp.S.Half, evaluate=False)),
+                    eq(OMEGA2, tidy(under_root)),
+                ],
+                "In a harmonic motion the largest rate of a coordinate is its amplitude times "
+                "Omega: the spring's deformation has amplitude A and largest rate v1 + v2, so "
+                f"Omega = (v1 + v2)/A, with ({summed.tag}) and v1 of ({fast.tag}); the factor "
+                "squared goes under the root, and the root's content simplifies to the "
+                "(QQQ1) of the other methods. Isochronous: A drops out.",
+                "paper Ω = (v1+v2)/A, (QQQ1)",
+                how=How(
+                    "substitute",
+                    (summed.tag, fast.tag),
+                    args=(v_syms[0] + v_syms[1], v_syms[0]),
+                    law=[eq(omega_sym, (v_syms[0] + v_syms[1]) / amplitude)] * 2
+                    + [eq(OMEGA2, ((v_syms[0] + v_syms[1]) / amplitude) ** 2)],
+                ),
+            )
+    if summed is fast:
+        section.add(
+            eq(omega_sym, omega),
+            "In a harmonic motion the largest rate of a coordinate is its amplitude times Omega; "
+            "the spring's deformation has amplitude A and, at the undeformed spring, the rate "
+            + (
+                "v1 + v2 (the centres approach each other): Omega = (v1 + v2)/A"
+                if centres
+                else "sum |b_i| v_i / R_i (b_i the lever arms about the contacts): Omega = that / A"
+            )
+            + f", with v_i of ({fast.tag}). Isochronous: A drops out.",
+            "paper Omega = (v1+v2)/A",
+            how=How(
+                "substitute",
+                (fast.tag,),
+                args=tuple(v_syms),
+                law=eq(omega_sym, deformation / amplitude),
+            ),
         )
-        + f", with v_i of ({fast.tag}). Isochronous: A drops out.",
-        "paper Omega = (v1+v2)/A",
-        how=How(
-            "substitute",
-            (fast.tag,),
-            args=tuple(v_syms),
-            law=eq(omega_sym, deformation / amplitude),
-        ),
-    )
     amplitudes = [sp.factor(sp.cancel(v / omega)) for v in speeds]
     a_syms = [sp.Symbol(f"A_{b.label}", positive=True) for b in sym.bodies]
     section.add(

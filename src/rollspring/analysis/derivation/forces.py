@@ -40,15 +40,19 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
     y = sp.Symbol("y", nonnegative=True)
     f, a, acc = sp.symbols("f a phiddot", real=True)
     section = Section("Friction of a pulled body (paper App. A)", prefix="A", cites="paper App. A")
-    newton = eq(F - f, m * a)
+    newton = eq(m * a, F - f)
     torque = eq(F * y, (I + m * R**2) * acc)
     laws = section.add(
         [newton, torque],
-        "Newton's law for the centre, and the torque equation about the contact point (its "
-        "acceleration points through the centre, so I' phi'' = torque holds there, with I' = I + "
-        "m R^2 by Steiner's theorem); f is the static friction, counted against the pull F.",
+        "Newton's law for the centre (mass times acceleration equals the resultant force), and "
+        "the torque equation about the contact line z' (the contact point's acceleration points "
+        "through the centre, so I' phi'' = torque holds there, with I' = I + m R^2 by Steiner's "
+        "theorem); f is the static friction, counted against the pull F.",
         "paper (a1), (a2)",
         how=GIVEN,
+        latex=r"\begin{aligned}m a &= F - f \\ F y &= \left(I + m R^{2}\right) \ddot{\varphi}"
+        r"\end{aligned}",
+        plain="m⋅a = F - f\nF⋅y = (I + m⋅R²)⋅φ̈",
     )
     rolling = section.add(
         eq(a, R * acc), "Rolling without slipping.", "paper a = R phi''", how=GIVEN

@@ -240,16 +240,31 @@ def _first_symbol(expr: sp.Expr) -> sp.Symbol | None:
 
 
 def short(expr: sp.Expr) -> sp.Expr:
-    """A compact form for display: factor small expressions, leave big ones alone."""
+    """A compact form for display: factor small expressions, leave big ones alone. The
+    factored form is preferred where it is not longer, its sign taken into the bracket
+    (:func:`sign_inside`): the two bodies' equations then read alike, ``R²k(φ₂ - φ₁)`` and
+    ``R²k(φ₁ - φ₂)``, not one of them factored and the other not."""
     expr = sp.sympify(expr)
     if any(not p.exp.is_Integer for p in expr.atoms(sp.Pow)):
         return expr  # roots (sqrt 2, a spring's length): factoring is slow and gains little
     if expr.count_ops() <= 60:
         try:
-            return min([expr, sp.factor(expr)], key=sp.count_ops)
+            factored = sign_inside(sp.factor(expr))
         except Exception:  # noqa: BLE001 - display only
             return expr
+        return factored if sp.count_ops(factored) <= sp.count_ops(expr) else expr
     return expr
+
+
+def sign_inside(expr: sp.Expr) -> sp.Expr:
+    """``-c (a - b)`` as ``c (b - a)``: a product's minus sign taken into its one sum."""
+    if not isinstance(expr, sp.Mul) or not expr.could_extract_minus_sign():
+        return expr
+    sums = [f for f in expr.args if isinstance(f, sp.Add)]
+    if len(sums) != 1:
+        return expr
+    rest = [f for f in expr.args if f is not sums[0]]
+    return sp.Mul(*rest) * -1 * sp.Mul(-1, sums[0])
 
 
 def zero_mode_2(K: sp.Matrix) -> sp.Matrix | None:

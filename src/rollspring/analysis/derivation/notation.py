@@ -203,6 +203,8 @@ def _meaning(base: str, sub: str, sup: str, sym: SymbolicSystem, *, parameter: b
         "f": f"static friction on {body}, along +x (N)",
         "N": f"normal force of the floor on {body} (N)",
         "Q": f"torque of the applied forces on {body} about its contact line (N m)",
+        "sigma": f"share of the spring's part between {body} and the stationary point in the "
+        "spring's deformation",
         "lambda": f"percussion ratio of {body}, η over the percussion height (1 + γ) R",
         "eta": f"height where the spring's line crosses the centre vertical of {body} (m)",
         "alpha": f"coefficient of the kinetic part of subsystem {sub}'s energy (kg m²)",

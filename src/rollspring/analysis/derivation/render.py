@@ -69,6 +69,8 @@ def text(
 
 
 def _pretty(step: Step) -> str:
+    if step.plain is not None:
+        return step.plain
     equation = step.equation
     items = equation if isinstance(equation, list | tuple) else [equation]
     if len(items) > 12:
@@ -193,6 +195,9 @@ _MATH_CHARACTERS = {
     "P\u0302": r"$\hat P$",
     "X\u0302": r"$\hat X$",
     "±": r"$\pm$",
+    "∂": r"$\partial$",
+    "δ": r"$\delta$",
+    "σ": r"$\sigma$",
     "·": r"$\cdot$",
     "√": r"$\surd$",
     "ℓ": r"$\ell$",
@@ -284,6 +289,7 @@ _GREEK = {
     "lambda": r"\lambda",
     "eta": r"\eta",
     "sigma": r"\sigma",
+    "delta": r"\delta",
 }
 #: A name written in ASCII in the words: a Greek name or a letter, with digits (lower-case
 #: letters only: "(M12)" is an equation tag), a subscript, primes, a superscript or a star.
@@ -375,6 +381,7 @@ _GREEK_UNICODE = {
     "lambda": "λ",
     "eta": "η",
     "sigma": "σ",
+    "delta": "δ",
 }
 _TEXT_SUB = dict(zip("0123456789()aehijklmnoprstuvx", "₀₁₂₃₄₅₆₇₈₉₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ", strict=True))
 #: Partial derivatives the words write in ASCII, as the equations print them.

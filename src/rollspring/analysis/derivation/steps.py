@@ -312,7 +312,9 @@ class Step:
     as ``"paper (QQQ1)"`` or a docs/physics.md tag such as ``"(M7)"``), ``tag`` (its number,
     e.g. ``"N3"``; empty for the cross-check), ``how`` it follows from earlier steps, and
     ``source``: its LaTeX where it is written by hand (else :attr:`math` prints the
-    equation, when first asked: plain text never needs it)."""
+    equation, when first asked: plain text never needs it); ``plain``: its plain text where
+    it is written by hand (the physics' order of factors, m a = F - f, which SymPy would
+    print a⋅m), else the equation is pretty-printed."""
 
     equation: Any
     words: str
@@ -320,6 +322,7 @@ class Step:
     tag: str = ""
     how: How | None = None
     source: str | None = None
+    plain: str | None = None
 
     @cached_property
     def math(self) -> str:
@@ -364,10 +367,12 @@ class Section:
         *,
         how: How | None = None,
         latex: str | None = None,
+        plain: str | None = None,
     ) -> Step:
-        """Append a step (LaTeX from the equation unless given), numbered, and return it."""
+        """Append a step (LaTeX and plain text from the equation unless given), numbered, and
+        return it."""
         tag = f"{self.prefix}{len(self.steps) + 1}" if self.prefix else ""
-        step = make_step(equation, words, ref, latex=latex, tag=tag, how=how)
+        step = make_step(equation, words, ref, latex=latex, tag=tag, how=how, plain=plain)
         self.steps.append(step)
         return step
 
@@ -380,10 +385,11 @@ def make_step(
     latex: str | None = None,
     tag: str = "",
     how: How | None = None,
+    plain: str | None = None,
 ) -> Step:
     """A :class:`Step`; its LaTeX is ``latex`` if given, else generated from ``equation`` when
-    first needed."""
-    return Step(equation, words, ref, tag, how, latex)
+    first needed; its plain text ``plain`` if given, else pretty-printed."""
+    return Step(equation, words, ref, tag, how, latex, plain)
 
 
 def latex_of(obj: Any) -> str:

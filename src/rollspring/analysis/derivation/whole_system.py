@@ -221,7 +221,7 @@ def to_whole_system(
             )
             ratio = sp.cancel(-masses[0] * v0[0] / (masses[1] * v0[1]))
             out["ratio"] = ratio
-            solved = section.add(
+            solved = out["solved_step"] = section.add(
                 eq(coords[1], ratio * coords[0]),
                 f"Solving ({again.tag}) for {inline(coords[1])}.",
                 "",

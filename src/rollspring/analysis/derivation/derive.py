@@ -96,6 +96,12 @@ class Derivation:
             f"{n} {'body' if n == 1 else 'bodies'}, "
             f"{springs} {'spring' if springs == 1 else 'springs'}; {kind}; "
             f"{coordinates} measured from the {self.symbolic.reference}"
+            + (
+                " (the system can roll as a whole: of its equilibria, the one that puts the "
+                "stationary point at the origin)"
+                if self.symbolic.reference == "equilibrium" and self.symbolic.zero_mode_count()
+                else ""
+            )
             + (f"; {extra}" if extra else "")
             + "."
         )

@@ -130,7 +130,7 @@ def _meaning(base: str, sub: str, sup: str, sym: SymbolicSystem, *, parameter: b
         "V": "potential energy of the springs (and constant forces) (J)",
         "Lag": "Lagrangian, ℒ = T − V (J)",
         "Ham": "Hamiltonian, ℋ = T + V in the canonical coordinates (J)",
-        "M": "mass matrix, diag(I'ᵢ): T = ½ q̇ᵀ M q̇",
+        "M": "mass matrix, diagonal with the bodies' I′: T = (1/2) q̇ᵀ M q̇",
         "K": "stiffness matrix, the second derivatives of V at the reference",
         "Xhat": "the stationary point: the weighted mean of the centres that stays at rest (m)",
         "A": "amplitude of the spring's deformation (m)",
@@ -161,7 +161,7 @@ def _meaning(base: str, sub: str, sup: str, sym: SymbolicSystem, *, parameter: b
         "x": f"position of the centre of {body}, {_coordinate(sym)} (m)",
         "xdot": f"velocity of the centre of {body} (m/s)",
         "xddot": f"acceleration of the centre of {body} (m/s²)",
-        "q": f"canonical coordinate of {body}, q = √(I'/m) φ (Sec. 5.6) (m)",
+        "q": f"canonical coordinate of {body}, q = √(I′/m) φ (Sec. 5.6) (m)",
         "qdot": f"rate of the canonical coordinate of {body} (m/s)",
         "qddot": f"second derivative of the canonical coordinate of {body} (m/s²)",
         "p": f"momentum conjugate to the coordinate of {body} (of φ in Lagrange's method, of q "
@@ -175,9 +175,9 @@ def _meaning(base: str, sub: str, sup: str, sym: SymbolicSystem, *, parameter: b
         if sub
         else "inertia factor, I = γ m R² about the centre",
         "Iprime": (
-            f"mass of {body}, a slider: it takes the place of I' in the equations (kg)"
+            f"mass of {body}, a slider: it takes the place of I′ in the equations (kg)"
             if sub.isdigit() and int(sub) <= sym.n and not sym.bodies[int(sub) - 1].rolls
-            else f"moment of inertia of {body} about its contact line z' (the paper's I') (kg m²)"
+            else f"moment of inertia of {body} about its contact line z′ (the paper's I′) (kg m²)"
         ),
         "k": (
             f"stiffness of {spring}"

@@ -481,6 +481,7 @@ def _ascii(value: str) -> str:
         .replace("\u201c", '"')
         .replace("\u201d", '"')
         .replace("\u2212", "-")
+        .replace("\u2032", "'")
         .replace("\u00d7", "x")
         .replace("\u00b7", ".")
     )

@@ -291,15 +291,56 @@ class _TextbookLatex(_TextbookOrder, LatexPrinter):
     """SymPy's LaTeX printer (names: ``ell`` is ``\\ell``, ``y^*_1`` is ``y^{*}_{1}``)."""
 
 
+def paper_surds(obj: Any) -> Any:
+    """Surd coefficients as the paper writes them, roots left in the denominator:
+    ``√2/2 q₁`` -> ``q₁/√2``, ``√6/3 q₂`` -> ``√2 q₂/√3`` (the paper's (k), (h)), ``√6/2`` ->
+    ``√3/√2``. A coefficient c with c² = p/q in lowest terms becomes √p/√q where q is not a
+    square (where it is, SymPy's form is the paper's too: 5√42/3). Display only: the value is
+    the same, the tree is left unevaluated."""
+    if isinstance(obj, list | tuple):
+        return type(obj)(paper_surds(item) for item in obj)
+    if isinstance(obj, sp.MatrixBase) or not isinstance(obj, sp.Basic) or obj.is_Atom:
+        return obj
+    if isinstance(obj, sp.Mul):
+        numbers = [a for a in obj.args if a.is_number]
+        others = [paper_surds(a) for a in obj.args if not a.is_number]
+        if numbers and others:
+            surd = _surd(sp.Mul(*numbers))
+            if surd is not None:
+                sign, top, root = surd
+                return sp.Mul(*sign, *top, *others, root, evaluate=False)
+        return obj.func(*[paper_surds(a) for a in obj.args], evaluate=False)
+    if isinstance(obj, sp.Add | sp.Pow | sp.Equality):
+        return obj.func(*[paper_surds(a) for a in obj.args], evaluate=False)
+    return obj
+
+
+def _surd(number: sp.Expr) -> tuple[list[sp.Expr], list[sp.Expr], sp.Expr] | None:
+    """``a√n/b`` as ``√p/√q``: its sign, numerator and denominator factors (None where it is
+    not a surd with a root to move down)."""
+    if number.is_Rational or not number.is_real:
+        return None
+    square = sp.nsimplify(number**2) if not (number**2).is_Rational else number**2
+    if not square.is_Rational or square <= 0:
+        return None
+    p, q = int(square.p), int(square.q)
+    if q == 1 or sp.sqrt(q).is_Integer:
+        return None
+    sign: list[sp.Expr] = [sp.S.NegativeOne] if number.is_negative else []
+    top = sp.sqrt(p)
+    return sign, ([] if top == 1 else [top]), sp.Pow(sp.sqrt(q), -1, evaluate=False)
+
+
 def pretty_text(obj: Any, *, columns: int = 100) -> str:
-    """Unicode pretty-printing with textbook names (:func:`pretty_name`)."""
+    """Unicode pretty-printing with textbook names (:func:`pretty_name`) and the paper's
+    surds (:func:`paper_surds`)."""
     printer = _TextbookPretty({"use_unicode": True, "num_columns": columns})
-    result: str = printer.doprint(obj)
+    result: str = printer.doprint(paper_surds(obj))
     return result
 
 
 def _latex(obj: Any, **settings: Any) -> str:
-    result: str = _TextbookLatex(settings).doprint(obj)
+    result: str = _TextbookLatex(settings).doprint(paper_surds(obj))
     return result
 
 

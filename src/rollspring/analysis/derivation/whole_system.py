@@ -214,8 +214,10 @@ def to_whole_system(
             position = sp.Add(*[masses[i] * v0[i] * coords[i] for i in range(n)])
             again = section.add(
                 eq(content_free(position, coords), 0),
-                f"Integrating ({integrated.tag}) again; the constant is zero when the "
-                f"{names} are measured from the stationary point (its choice of origin).",
+                f"Integrating ({integrated.tag}) again. The constant is the left side's value "
+                "at the start; a uniform roll along the zero mode is an equilibrium too, and of "
+                f"these equilibria the {names} are measured from the one that makes it zero "
+                "(the stationary point at the origin).",
                 "",
                 how=How("integrate in time", (integrated.tag,)),
             )

@@ -15,6 +15,7 @@ from typing import Any
 
 import sympy as sp
 
+from rollspring.analysis.derivation.method import sign_inside
 from rollspring.analysis.derivation.parts import EXACT_INERTIA_FACTORS
 from rollspring.analysis.derivation.setup import setup_tags
 from rollspring.analysis.derivation.steps import DEFINE, GIVEN, How, Section, eq, inline, named
@@ -354,10 +355,13 @@ def _percussion_ratios(sym: SymbolicSystem) -> list[sp.Expr] | None:
 
 
 def _compact(expr: sp.Expr) -> sp.Expr:
+    """A short form for display, factored as :func:`~.method.short` factors (the sign inside
+    the bracket, so that the bodies' forces read alike)."""
     expr = sp.sympify(expr)
     if expr.count_ops() > 60 or expr.has(sp.sin, sp.cos, sp.sqrt(2).func):
         return expr
     try:
-        return min([expr, sp.factor(expr)], key=sp.count_ops)
+        factored = sign_inside(sp.factor(expr))
     except Exception:  # noqa: BLE001 - display only
         return expr
+    return factored if sp.count_ops(factored) <= sp.count_ops(expr) else expr

@@ -52,6 +52,7 @@ __all__ = [
     "normalised",
     "short",
     "shown_scaled",
+    "sign_inside",
     "single_spring_lever",
     "tidy",
     "tuple_text",

@@ -165,7 +165,7 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     again = section.add(
         eq(content_free(sp.Add(*[J[i] * v0[i] * sym.q[i] for i in range(2)]), sym.q), 0),
         f"Integrating ({conserved.tag}) over time. The constant is the left side's value at "
-        f"the start; a uniform roll along the zero mode is an equilibrium too, and of these "
+        f"the start; a uniform shift along the zero mode is an equilibrium too, and of these "
         f"equilibria the {coordinates_word(sym)} are measured from the one that makes it zero "
         "(the stationary point at the origin).",
         "",

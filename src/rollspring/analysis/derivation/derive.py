@@ -97,8 +97,8 @@ class Derivation:
             f"{springs} {'spring' if springs == 1 else 'springs'}; {kind}; "
             f"{coordinates} measured from the {self.symbolic.reference}"
             + (
-                " (the system can roll as a whole: of its equilibria, the one that puts the "
-                "stationary point at the origin)"
+                " (the system can move as a whole, along its zero mode: of its equilibria, "
+                "the one that puts the stationary point at the origin)"
                 if self.symbolic.reference == "equilibrium" and self.symbolic.zero_mode_count()
                 else ""
             )

@@ -215,7 +215,7 @@ def to_whole_system(
             again = section.add(
                 eq(content_free(position, coords), 0),
                 f"Integrating ({integrated.tag}) again. The constant is the left side's value "
-                "at the start; a uniform roll along the zero mode is an equilibrium too, and of "
+                "at the start; a uniform shift along the zero mode is an equilibrium too, and of "
                 f"these equilibria the {names} are measured from the one that makes it zero "
                 "(the stationary point at the origin).",
                 "",

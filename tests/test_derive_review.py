@@ -56,7 +56,7 @@ def test_a_scaled_sum_says_so_and_names_its_factor(derivations) -> None:
     assert "shown multiplied by 200" in numbers["E2"].words
     symbols = steps(derivations["hoop-cylinder (symbols)"])
     assert "divided by its common factor R²" in symbols["N4"].words
-    assert "proportional to sum J_i v0_i phi_i'" in symbols["H12"].words
+    assert "proportional to sum I'_i v0_i phi_i'" in symbols["H12"].words
     assert "P̂ is the total" not in symbols["H12"].words
 
 
@@ -96,8 +96,10 @@ def test_words_fit_the_system(derivations) -> None:
     numbers = steps(derivations["hoop-cylinder"])
     assert "slider" not in numbers["E13"].words
     assert "hoop: hoop" not in numbers["S1"].words
-    assert "(paper Sec. 4.5" in numbers["F10"].words and "(F4)" in numbers["F10"].words
-    assert "Omega_i^2 = K_ii/J_i" in numbers["L15"].words  # defined where it is used
+    assert "(paper Sec. 5.6" in numbers["F10"].words and "(F4)" in numbers["F10"].words
+    # the shares of the spring's parts (L16) are derived, then named: Omega_i^2 = K_ii/I'_i
+    assert "Omega_i^2 = K_ii/I'_i" in numbers["L16"].words  # defined where it is used
+    assert numbers["L15"].words.startswith("The spring's deformation to first order")
     assert numbers["H10"].ref == "paper (h) with p1' = m1 q1''"
     assert "zero mode(s)" not in derivations["three-bodies"].to_text()
 
@@ -111,7 +113,7 @@ def test_the_words_print_names_as_the_equations_do(derivations) -> None:
         "J φ̈ = torque, R φ̇², v₀ᵀ M q̇, Ω₍ₙ₎², K₁₁/J₁"
     )
     assert text_words("the paper's I'; body i's (l - L)^2; d/dt(dL/dphi_i')") == (
-        "the paper's I'; body i's (l - L)²; d/dt(∂ℒ/∂φ̇ᵢ)"
+        "the paper's I′; body i's (l - L)²; d/dt(∂ℒ/∂φ̇ᵢ)"
     )
     text = derivations["hoop-cylinder"].to_text()
     assert "Omega" not in text.split("Cross-check")[0].replace("Omega_f", "")
@@ -136,7 +138,9 @@ def test_names_in_the_words_are_typeset_in_latex(derivations) -> None:
         latex_text("by φ̇₁ and 2·R²·m₁") == r"by $\dot{\varphi}_{1}$ and 2$\cdot R^{2} \cdot m_{1}$"
     )
     words = latex_words("det(K - Omega^2 M), v0^T M q', body i's K_11/J_1 (M12), Omega_(n)")
-    assert r"$\Omega^{2}$" in words and r"$v_{0}^{T}$" in words and r"$q'$" in words
+    # a prime is a time derivative, typeset as a dot (the paper's I' keeps its prime)
+    assert r"$\Omega^{2}$" in words and r"$v_{0}^{T}$" in words and r"$\dot{q}$" in words
+    assert "$I'_{1}$" in latex_words("I'_1")
     assert "body i's" in words and r"$K_{11}$" in words and "(M12)" in words
     assert r"$\Omega_{(n)}$" in words
     latex = derivations["hoop-cylinder"].to_latex()

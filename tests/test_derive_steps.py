@@ -429,6 +429,24 @@ class Checker:
         for eq in shown:
             assert self.zero(self.residual(eq).subs(mapping)), f"{step.tag}: {eq} does not hold"
 
+    def op_with_your_values(self, step: Step, shown: list[Any], how: Any) -> None:
+        """Each squared frequency of the step used, with the system's numbers, to the digits
+        shown (four significant: within 5e-4 relative), and each Omega its square root."""
+        squared = {eq.lhs: eq.rhs for eq in self.used(how.uses)}
+        by_name = {str(getattr(lhs, "name", lhs)): rhs for lhs, rhs in squared.items()}
+        assert shown, step.tag
+        for eq in shown:
+            name = str(getattr(eq.lhs, "name", eq.lhs))
+            if name.endswith("^2"):
+                expected = float(sp.sympify(by_name[name]).xreplace(self.sym.values))
+            else:
+                expected = float(
+                    sp.sqrt(sp.sympify(by_name[name + "^2"]).xreplace(self.sym.values))
+                )
+            value = float(eq.rhs)
+            assert isinstance(eq.rhs, sp.Float), f"{step.tag}: {eq} is not in decimals"
+            assert abs(value - expected) <= 5e-4 * abs(expected), f"{step.tag}: {eq} vs {expected}"
+
 
 def _det_name(name: str) -> sp.Symbol:
     return Named(f"det {name}")

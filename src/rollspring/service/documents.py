@@ -267,7 +267,7 @@ def derivation_document(
     methods: str | Sequence[str] = ALL,
     *,
     format: str = "text",  # noqa: A002 - mirrors --format
-    symbols: bool = False,
+    symbols: bool = True,
     confirm: bool = False,
 ) -> tuple[str, CrossCheck]:
     """``system`` derived step by step by ``methods`` (``"all"`` or names of

@@ -23,11 +23,11 @@ names: one operation a student can name (:data:`OPERATIONS`: substitute, solve, 
 differentiate, integrate, linearise, ...). The setup (``S``) derives the constraints, the
 inertias about the contact lines, T, V, M and K once; every method refers to it.
 
-Methods (the paper's order of ideas): ``newton`` (torques about the contact points, Sec. 2 and
-4.1), ``conservation`` (energy and the zero mode's momentum, Sec. 4.2),
-``lagrange`` (Euler-Lagrange, Sec. 4.3; also via ``sympy.physics.mechanics.LagrangesMethod``),
-``natural-frequencies`` (subsystem frequencies, Sec. 4.4 and App. B, C) and ``hamilton``
-(canonical equations, Sec. 4.5).
+Methods (the paper's order of ideas): ``newton`` (torques about the contact points, Sec. 2, 3
+and 5.1), ``conservation`` (energy and the zero mode's momentum, Sec. 5.2),
+``lagrange`` (Euler-Lagrange, Sec. 5.3; also via ``sympy.physics.mechanics.LagrangesMethod``),
+``natural-frequencies`` (subsystem frequencies, Sec. 5.4 and App. B, C) and ``hamilton``
+(canonical equations, Sec. 5.6).
 """
 
 from rollspring.analysis.derivation.build import symbolic_system

@@ -1,5 +1,5 @@
 r"""The derivation by conservation laws: energy and the conserved momentum of the zero mode (paper
-Sec. 4.2; docs/physics.md (M6), (M14)).
+Sec. 5.2; docs/physics.md (M6), (M14)).
 
 It needs one oscillating degree of freedom: one body, or two bodies with one zero mode
 :math:`v_0` (:math:`Kv_0 = 0`). The momentum :math:`\hat P = v_0^T M\dot\varphi` is conserved (the
@@ -127,7 +127,7 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         result.system_equation = eq(b.qdd + omega2 * b.q, 0)
         standard = section.add(
             result.system_equation,
-            f"Dividing ({divided.tag}) by J and bringing every term to the left: the equation "
+            f"Dividing ({divided.tag}) by I' and bringing every term to the left: the equation "
             "of motion.",
             "",
             how=How("rearrange", (divided.tag,)),
@@ -164,8 +164,10 @@ def conservation(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     )
     again = section.add(
         eq(content_free(sp.Add(*[J[i] * v0[i] * sym.q[i] for i in range(2)]), sym.q), 0),
-        f"Integrating ({conserved.tag}) over time; the constant is zero when the "
-        f"{coordinates_word(sym)} are measured from the stationary point.",
+        f"Integrating ({conserved.tag}) over time. The constant is the left side's value at "
+        f"the start; a uniform shift along the zero mode is an equilibrium too, and of these "
+        f"equilibria the {coordinates_word(sym)} are measured from the one that makes it zero "
+        "(the stationary point at the origin).",
         "",
         how=How("integrate in time", (conserved.tag,)),
     )
@@ -295,31 +297,78 @@ def _paper_route(
     )
     omega_sym = sp.Symbol("Omega", positive=True)
     centres = is_papers_fig2(sym)
-    section.add(
-        eq(omega_sym, omega),
-        "In a harmonic motion the largest rate of a coordinate is its amplitude times Omega; "
-        "the spring's deformation has amplitude A and, at the undeformed spring, the rate "
-        + (
-            "v1 + v2 (the centres approach each other): Omega = (v1 + v2)/A"
-            if centres
-            else "sum |b_i| v_i / R_i (b_i the lever arms about the contacts): Omega = that / A"
+    summed = fast
+    if centres:
+        # the algebra from (om), (pi) to Omega: v2 = rho v1 with rho rational (the ratio of the
+        # rates times R2/R1), so v1 + v2 = (1 + rho) v1 and (1 + rho) goes under v1's root
+        rho = sp.cancel(speeds[1] / speeds[0])
+        if not rho.has(sp.Pow) or all(p.exp.is_Integer for p in rho.atoms(sp.Pow)):
+            one_plus = sp.factor(1 + rho)
+            summed = section.add(
+                eq(v_syms[0] + v_syms[1], sp.Mul(one_plus, v_syms[0], evaluate=False)),
+                f"Adding the speeds of ({fast.tag}): their ratio v2/v1 = {inline(rho)} is that of "
+                f"the rates ({solved_tag}) times R_2/R_1, a ratio free of roots, so the sum is "
+                "(1 + v2/v1) v1, the deformation's rate at the undeformed spring (the centres "
+                "approach each other).",
+                "paper Ω = (v1+v2)/A",
+                how=How("evaluate", (fast.tag,)),
+            )
+            under_root = sp.factor(sp.cancel(one_plus**2 * speeds[0] ** 2 / amplitude**2))
+            section.add(
+                [
+                    eq(
+                        omega_sym,
+                        sp.Mul(
+                            one_plus,
+                            sp.Pow(
+                                sp.factor(speeds[0] ** 2 / amplitude**2), sp.S.Half, evaluate=False
+                            ),
+                            evaluate=False,
+                        ),
+                    ),
+                    eq(omega_sym, sp.Pow(under_root, sp.S.Half, evaluate=False)),
+                    eq(OMEGA2, tidy(under_root)),
+                ],
+                "In a harmonic motion the largest rate of a coordinate is its amplitude times "
+                "Omega: the spring's deformation has amplitude A and largest rate v1 + v2, so "
+                f"Omega = (v1 + v2)/A, with ({summed.tag}) and v1 of ({fast.tag}); the factor "
+                "squared goes under the root, and the root's content simplifies to the "
+                "(QQQ1) of the other methods. Isochronous: A drops out.",
+                "paper Ω = (v1+v2)/A, (QQQ1)",
+                how=How(
+                    "substitute",
+                    (summed.tag, fast.tag),
+                    args=(v_syms[0] + v_syms[1], v_syms[0]),
+                    law=[eq(omega_sym, (v_syms[0] + v_syms[1]) / amplitude)] * 2
+                    + [eq(OMEGA2, ((v_syms[0] + v_syms[1]) / amplitude) ** 2)],
+                ),
+            )
+    if summed is fast:
+        section.add(
+            eq(omega_sym, omega),
+            "In a harmonic motion the largest rate of a coordinate is its amplitude times Omega; "
+            "the spring's deformation has amplitude A and, at the undeformed spring, the rate "
+            + (
+                "v1 + v2 (the centres approach each other): Omega = (v1 + v2)/A"
+                if centres
+                else "sum |b_i| v_i / R_i (b_i the lever arms about the contacts): Omega = that / A"
+            )
+            + f", with v_i of ({fast.tag}). Isochronous: A drops out.",
+            "paper Omega = (v1+v2)/A",
+            how=How(
+                "substitute",
+                (fast.tag,),
+                args=tuple(v_syms),
+                law=eq(omega_sym, deformation / amplitude),
+            ),
         )
-        + f", with v_i of ({fast.tag}). Isochronous: A drops out.",
-        "paper Omega = (v1+v2)/A",
-        how=How(
-            "substitute",
-            (fast.tag,),
-            args=tuple(v_syms),
-            law=eq(omega_sym, deformation / amplitude),
-        ),
-    )
     amplitudes = [sp.factor(sp.cancel(v / omega)) for v in speeds]
     a_syms = [sp.Symbol(f"A_{b.label}", positive=True) for b in sym.bodies]
     section.add(
         [eq(a_syms[i], amplitudes[i]) for i in range(2)],
         "The centres' amplitudes about the stationary point, A_i = v_i / Omega (harmonic "
         "motion again).",
-        "paper A1, A2 (Sec. 4.2)",
+        "paper A1, A2 (Sec. 5.2)",
         how=How(
             "substitute",
             (fast.tag,),

@@ -4,8 +4,9 @@ The reference is the structure-exploiting route of :class:`~.symbolic.SymbolicSy
 exact :math:`Q = -\partial V/\partial\varphi`, the linearised :math:`\ddot\varphi = -M^{-1}K
 \varphi` and the closed-form roots of :math:`\det(K - \Omega^2 M)`. For each method the
 residuals (its result minus the reference) are simplified and must be exactly zero; methods that
-do not apply are listed with the reason. ``sympy.physics.mechanics.LagrangesMethod`` is compared
-with the structure route as one more check.
+do not apply are listed with the reason. The Euler-Lagrange equations that
+``sympy.physics.mechanics`` forms from the Lagrangian are compared with the structure route as
+one more check (named "lagrange, second route" in the output: no class names are shown).
 """
 
 from __future__ import annotations
@@ -167,8 +168,9 @@ def cross_check(
         if mechanics is not None:
             report.checks.append(
                 Check(
-                    "LagrangesMethod",
-                    "exact equations vs the structure route J phi'' = -dV/dphi",
+                    "lagrange, second route",
+                    "the Euler-Lagrange equations that SymPy's mechanics module forms from the "
+                    "Lagrangian vs the structure route I' phi'' = -dV/dphi",
                     mechanics["residual"],
                     mechanics["agrees"],
                 )

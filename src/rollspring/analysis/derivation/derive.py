@@ -26,10 +26,12 @@ from rollspring.analysis.derivation.lagrange import lagrange
 from rollspring.analysis.derivation.method import METHODS, MethodResult, is_papers_fig2
 from rollspring.analysis.derivation.natural_frequencies import natural_frequencies
 from rollspring.analysis.derivation.newton import newton
+from rollspring.analysis.derivation.notation import Entry, notation_table
 from rollspring.analysis.derivation.render import latex_document, markdown, text
 from rollspring.analysis.derivation.setup import setup_section
 from rollspring.analysis.derivation.steps import Section
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
+from rollspring.analysis.derivation.values import with_your_values
 from rollspring.errors import DerivationError
 from rollspring.model import System
 
@@ -94,6 +96,12 @@ class Derivation:
             f"{n} {'body' if n == 1 else 'bodies'}, "
             f"{springs} {'spring' if springs == 1 else 'springs'}; {kind}; "
             f"{coordinates} measured from the {self.symbolic.reference}"
+            + (
+                " (the system can move as a whole, along its zero mode: of its equilibria, "
+                "the one that puts the stationary point at the origin)"
+                if self.symbolic.reference == "equilibrium" and self.symbolic.zero_mode_count()
+                else ""
+            )
             + (f"; {extra}" if extra else "")
             + "."
         )
@@ -112,6 +120,7 @@ class Derivation:
                     note=f"Does not apply: {result.reason}.",
                     prefix=result.section.prefix,
                     rates=result.section.rates,
+                    cites=result.section.cites,
                 )
                 out.append(section)
         out.append(self.forces)
@@ -121,21 +130,31 @@ class Derivation:
         return out
 
     @property
+    def notation(self) -> list[Entry]:
+        """The notation table: every symbol the steps display, defined once (its meaning and
+        unit, and its value for a parameter of the system), and the names the words use (the
+        rest length L, the contact line z')."""
+        if "notation" not in self.extras:
+            self.extras["notation"] = notation_table(self.sections, self.symbolic)
+        table: list[Entry] = self.extras["notation"]  # type: ignore[assignment]
+        return table
+
+    @property
     def omega2(self) -> list[sp.Expr | None]:
         """Closed forms of the squared frequencies of the oscillating modes (reference)."""
         return list(self.frequencies.omega2)
 
     def to_text(self) -> str:
         """Plain text (Unicode pretty-printing)."""
-        return text(self.title, self.subtitle, self.sections)
+        return text(self.title, self.subtitle, self.sections, notation=self.notation)
 
     def to_markdown(self) -> str:
         """Markdown with ``$$…$$`` math."""
-        return markdown(self.title, self.subtitle, self.sections)
+        return markdown(self.title, self.subtitle, self.sections, notation=self.notation)
 
     def to_latex(self) -> str:
         """A complete LaTeX document (compiles with pdflatex; amsmath only)."""
-        return latex_document(self.title, self.subtitle, self.sections)
+        return latex_document(self.title, self.subtitle, self.sections, notation=self.notation)
 
     def render(self, format: str = "text") -> str:  # noqa: A002 - mirrors --format
         """``text``, ``markdown`` or ``latex``."""
@@ -230,7 +249,7 @@ def derive(
     system: System | dict[str, Any] | str | os.PathLike[str],
     method: str | Sequence[str] = ALL,
     *,
-    symbols: bool = False,
+    symbols: bool = True,
     budget: float | None = 10.0,
     confirm: bool = False,
 ) -> Derivation:
@@ -239,7 +258,9 @@ def derive(
     ``system``: a :class:`~rollspring.model.System` or a preset name / file path;
     ``method``: ``"all"`` or one or more of ``newton``, ``conservation``, ``lagrange``,
     ``natural-frequencies``, ``hamilton``; ``symbols``: parameters as symbols
-    (:math:`m_1, R, k, \dots`) instead of exact numbers; ``budget``: seconds allowed for each
+    (:math:`m_1, R, k, \dots`, the default: a textbook's derivation, the system's numbers
+    in the notation table and in each method's final "with your values" step), or
+    ``symbols=False`` for exact numbers throughout; ``budget``: seconds allowed for each
     open-ended symbolic step (factoring, simplifying residuals), where SymPy can be slow.
 
     ``system`` may also be its JSON form (a dict); anything else is a one-line
@@ -255,7 +276,7 @@ def derive(
     method
         ``"all"``, or one or more of the five methods.
     symbols
-        Parameters as symbols instead of exact numbers.
+        Parameters as symbols (default) instead of exact numbers.
     budget
         Seconds for each open-ended symbolic step (None: no limit).
     confirm
@@ -290,7 +311,7 @@ class DerivationRequest:
 
 
 def derivation_request(
-    method: str | Sequence[str] = ALL, *, symbols: bool = False, budget: float | None = 10.0
+    method: str | Sequence[str] = ALL, *, symbols: bool = True, budget: float | None = 10.0
 ) -> DerivationRequest:
     """The arguments of :func:`derive` checked, in this order (the first bad one is the error,
     a one-line :class:`~rollspring.errors.DerivationError` naming it): ``method``, ``symbols``,
@@ -322,6 +343,7 @@ def run_derivation(system: System, request: DerivationRequest) -> Derivation:
     for result in results.values():  # applies, but only in part (no linearisation)
         if result.applies and result.reason:
             result.section.note = f"Note: {result.reason}."
+        with_your_values(result, sym, frequencies)  # the numbers come in at the end
     forces, force_results = contact_force_section(sym)
     appendix = appendix_a_friction()[0] if names == list(METHODS) else None
     check = cross_check(sym, results, frequencies, budget=budget)

@@ -15,6 +15,7 @@ from typing import Any
 
 import sympy as sp
 
+from rollspring.analysis.derivation.method import sign_inside
 from rollspring.analysis.derivation.parts import EXACT_INERTIA_FACTORS
 from rollspring.analysis.derivation.setup import setup_tags
 from rollspring.analysis.derivation.steps import DEFINE, GIVEN, How, Section, eq, inline, named
@@ -39,16 +40,20 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
     m, R, I, F = sp.symbols("m R I F", positive=True)
     y = sp.Symbol("y", nonnegative=True)
     f, a, acc = sp.symbols("f a phiddot", real=True)
-    section = Section("Friction of a pulled body (paper App. A)", prefix="A")
-    newton = eq(F - f, m * a)
+    section = Section("Friction of a pulled body (paper App. A)", prefix="A", cites="paper App. A")
+    newton = eq(m * a, F - f)
     torque = eq(F * y, (I + m * R**2) * acc)
     laws = section.add(
         [newton, torque],
-        "Newton's law for the centre, and the torque equation about the contact point (its "
-        "acceleration points through the centre, so J phi'' = torque holds there, with J = I + "
-        "m R^2 by Steiner's theorem); f is the static friction, counted against the pull F.",
+        "Newton's law for the centre (mass times acceleration equals the resultant force), and "
+        "the torque equation about the contact line z' (the contact point's acceleration points "
+        "through the centre, so I' phi'' = torque holds there, with I' = I + m R^2 by Steiner's "
+        "theorem); f is the static friction, counted against the pull F.",
         "paper (a1), (a2)",
         how=GIVEN,
+        latex=r"\begin{aligned}m a &= F - f \\ F y &= \left(I + m R^{2}\right) \ddot{\varphi}"
+        r"\end{aligned}",
+        plain="m⋅a = F - f\nF⋅y = (I + m⋅R²)⋅φ̈",
     )
     rolling = section.add(
         eq(a, R * acc), "Rolling without slipping.", "paper a = R phi''", how=GIVEN
@@ -100,7 +105,7 @@ def appendix_a_friction() -> tuple[Section, dict[str, sp.Expr]]:
         [eq(names[shape], h) for shape, h in heights.items()],
         f"({factor.tag}) for each shape: gamma = 1 (hoop), 1/2 (solid cylinder), 2/5 (solid "
         "sphere), 2/3 (thin spherical shell).",
-        "paper Sec. 3: 2R (hoop), 3R/2 (cylinder)",
+        "paper Sec. 4: 2R (hoop), 3R/2 (cylinder)",
         how=How(
             "substitute",
             (),
@@ -141,7 +146,7 @@ def zero_friction_heights() -> dict[str, sp.Expr]:
 
 def contact_force_section(sym: SymbolicSystem) -> tuple[Section, dict[str, Any]]:
     """The friction and normal force on every body, symbolically (see the module)."""
-    section = Section("Friction and normal forces", prefix="C")
+    section = Section("Friction and normal forces", prefix="C", cites="paper Sec. 3, 4 and App. A")
     tags = setup_tags(sym)
     n = sym.n
     rolling = [i for i, b in enumerate(sym.bodies) if b.rolls]
@@ -160,7 +165,8 @@ def contact_force_section(sym: SymbolicSystem) -> tuple[Section, dict[str, Any]]
         + [eq(n_syms[i], sym.bodies[i].m * sym.g - Fy[i]) for i in range(n)],
         "Newton's second law for each centre, horizontally (it accelerates by x'' = R phi'', "
         f"the derivative of{rates}) and vertically (it keeps its height): friction f along +x, "
-        "normal force N; F_i is the applied force on body i (springs, constant forces).",
+        "normal force N; F_ix and F_iy are the horizontal and vertical parts of the applied "
+        "force on body i (springs, constant forces).",
         "(M8), (M9)",
         how=GIVEN,
     )
@@ -175,7 +181,7 @@ def contact_force_section(sym: SymbolicSystem) -> tuple[Section, dict[str, Any]]
                 )
                 for i in rolling
             ],
-            "With the equation of motion J phi'' = Q (Q the torque of the applied forces about "
+            "With the equation of motion I' phi'' = Q (Q the torque of the applied forces about "
             "the contact point): the friction depends on the configuration only, not on the "
             "velocities.",
             "(M8)",
@@ -349,10 +355,13 @@ def _percussion_ratios(sym: SymbolicSystem) -> list[sp.Expr] | None:
 
 
 def _compact(expr: sp.Expr) -> sp.Expr:
+    """A short form for display, factored as :func:`~.method.short` factors (the sign inside
+    the bracket, so that the bodies' forces read alike)."""
     expr = sp.sympify(expr)
     if expr.count_ops() > 60 or expr.has(sp.sin, sp.cos, sp.sqrt(2).func):
         return expr
     try:
-        return min([expr, sp.factor(expr)], key=sp.count_ops)
+        factored = sign_inside(sp.factor(expr))
     except Exception:  # noqa: BLE001 - display only
         return expr
+    return factored if sp.count_ops(factored) <= sp.count_ops(expr) else expr

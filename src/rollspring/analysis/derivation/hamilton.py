@@ -1,5 +1,5 @@
 r"""Hamilton's derivation in the canonical coordinates :math:`q_i = \sqrt{J_i/m_i}\,\varphi_i`,
-:math:`p_i = m_i\dot q_i` (paper Sec. 4.5; docs/physics.md (M6)).
+:math:`p_i = m_i\dot q_i` (paper Sec. 5.6; docs/physics.md (M6)).
 
 These coordinates make the kinetic energy :math:`\sum_i p_i^2/2m_i` (a point transformation,
 hence canonical), so :math:`\mathcal H` is separable. Hamilton's equations give Newton's law in
@@ -63,7 +63,7 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     coordinates = section.add(
         [eq(qs[i], scale[i] * sym.q[i]) for i in range(n)],
         "Canonical coordinates chosen so that the kinetic energy reads sum p^2/(2m): "
-        "q_i = sqrt(J_i/m_i) phi_i (a point transformation, hence canonical).",
+        "q_i = sqrt(I'_i/m_i) phi_i (a point transformation, hence canonical).",
         "paper q1 = sqrt(2) R phi1, q2 = sqrt(3/2) R phi2",
         how=DEFINE,
     )
@@ -127,8 +127,8 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         nonlinear.append(eq(b.J * b.qdd, short(sp.powsimp(rhs))))
     section.add(
         nonlinear,
-        f"Back in the angles: q_i = sqrt(J_i/m_i) phi_i ({coordinates.tag}) in ({in_q.tag}), "
-        "multiplied by sqrt(J_i/m_i), is J_i phi_i'' = -dV/dphi_i.",
+        f"Back in the angles: q_i = sqrt(I'_i/m_i) phi_i ({coordinates.tag}) in ({in_q.tag}), "
+        "multiplied by sqrt(I'_i/m_i), is I'_i phi_i'' = -dV/dphi_i.",
         "(M7)",
         how=How("substitute", (in_q.tag, coordinates.tag), args=(*qs, *qdds)),
     )
@@ -154,7 +154,7 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
             eq(vsym, form),
             f"V to second order ({tags['quadratic']}) in the canonical coordinates "
             f"({coordinates.tag}), as the paper writes it: (k/2)(c1 q1 + c2 q2)^2, c_i = b_i "
-            "sqrt(m_i/J_i) with the lever arms b_i; in a common orientation of the angles c1 "
+            "sqrt(m_i/I'_i) with the lever arms b_i; in a common orientation of the angles c1 "
             "and c2 have opposite signs.",
             "paper (k), (k0) (sign-corrected)",
             how=how_quadratic,
@@ -166,7 +166,7 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
             eq(vsym, constant + linear_term + quadratic),
             f"V to second order ({tags['quadratic']}) in the canonical coordinates "
             f"({coordinates.tag}): (1/2) q^T K_q q with K_q = D^-1 K D^-1, D = "
-            "diag(sqrt(J_i/m_i)).",
+            "diag(sqrt(I'_i/m_i)).",
             "(M12)",
             how=how_quadratic,
         )
@@ -218,8 +218,8 @@ def hamilton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         frequencies=freq,
         in_angles=False,
         momentum_words=(
-            "in the original coordinates it is proportional to sum J_i v0_i phi_i' with v0 = "
-            f"{tuple_text(v0)} (q_i = sqrt(J_i/m_i) phi_i): "
+            "in the original coordinates it is proportional to sum I'_i v0_i phi_i' with v0 = "
+            f"{tuple_text(v0)} (q_i = sqrt(I'_i/m_i) phi_i): "
             + names_momentum(sym, v0).replace("P̂ is", "that sum is")
             if v0 is not None
             else ""

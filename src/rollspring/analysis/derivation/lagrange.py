@@ -1,10 +1,10 @@
-r"""The Euler-Lagrange derivation of :math:`\mathcal L = T - V` (paper Sec. 4.3; docs/physics.md
+r"""The Euler-Lagrange derivation of :math:`\mathcal L = T - V` (paper Sec. 5.3; docs/physics.md
 (M5), (M7)), checked against ``sympy.physics.mechanics.LagrangesMethod``.
 
 The generalised momenta :math:`p_i = \partial\mathcal L/\partial\dot\varphi_i = J_i\dot\varphi_i`
 and forces :math:`\partial\mathcal L/\partial\varphi_i = -\partial V/\partial\varphi_i` give each
 body's exact equation of motion; linearised, :mod:`.whole_system` takes them to the equation of
-the whole system (with the paper's labels of Sec. 4.3). For one spring between two bodies with a
+the whole system (with the paper's labels of Sec. 5.3). For one spring between two bodies with a
 zero mode the derivation ends with the stiffnesses of the spring's two parts on either side of
 the stationary point (paper (k1), (k2)). :func:`mechanics_lagrange_check` forms the same
 equations with SymPy's ``LagrangesMethod`` and checks that the residual vanishes.
@@ -25,7 +25,7 @@ from rollspring.analysis.derivation.method import (
     short,
 )
 from rollspring.analysis.derivation.setup import setup_tags
-from rollspring.analysis.derivation.steps import DEFINE, How, eq, inline, named
+from rollspring.analysis.derivation.steps import DEFINE, How, Section, Step, eq, inline, named
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
 from rollspring.analysis.derivation.whole_system import linearise_in_angles
 
@@ -66,7 +66,7 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     )
     momentum_rates = section.add(
         [eq(pdot[i], b.J * b.qdd) for i, b in enumerate(sym.bodies)],
-        f"Differentiating ({momenta.tag}) in time (J is constant: the mass matrix does not "
+        f"Differentiating ({momenta.tag}) in time (I' is constant: the mass matrix does not "
         "depend on the angles).",
         "",
         how=How("differentiate in time", (momenta.tag,)),
@@ -119,16 +119,20 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
     if not linearised:
         return result
     split = _spring_split(sym, cached_frequencies(sym, budget))
+    solved = result.extras.get("solved_step")
     if split is not None:
+        shares = _shares(section, sym, solved) if isinstance(solved, Step) else None
         section.add(
             [eq(sp.Symbol(f"k_{sym.bodies[i].label}", positive=True), split[i]) for i in range(2)],
-            "The stiffnesses of the spring's two parts, on either side of the stationary point "
-            "(the paper's k_1, k_2). Both parts carry the spring force F; with the stationary "
-            "point fixed (the relation of the angles above), part i takes the share Omega_i^2 / "
-            "Omega^2 of the deformation, where Omega_i^2 = K_ii/J_i is body i's frequency with "
-            "the other body clamped (the subsystem frequency of the next method) and Omega^2 = "
-            "Omega_1^2 + Omega_2^2. So k_i = F / (share_i x deformation) = k Omega^2 / Omega_i^2, "
-            "and 1/k = 1/k_1 + 1/k_2 because the shares add up to 1.",
+            "The stiffnesses of the spring's two parts (the paper's k_1, k_2): both parts carry "
+            "the spring's force F = k delta = k_i delta_i, so k_i = k / sigma_i with the shares "
+            f"of ({shares}); 1/k = 1/k_1 + 1/k_2 because the shares add up to 1."
+            if shares
+            else "The stiffnesses of the spring's two parts, on either side of the stationary "
+            "point (the paper's k_1, k_2): both parts carry the spring's force F, part i takes "
+            "the share Omega_i^2 / Omega^2 of the deformation (Omega_i^2 = K_ii/I'_i, body i's "
+            "frequency with the other clamped; Omega^2 = Omega_1^2 + Omega_2^2), so k_i = k "
+            "Omega^2 / Omega_i^2, and 1/k = 1/k_1 + 1/k_2 because the shares add up to 1.",
             "paper (k1), (k2), (part)",
             how=DEFINE,
         )
@@ -168,6 +172,55 @@ def mechanics_lagrange_check(sym: SymbolicSystem, *, budget: float | None = 30.0
         "equations": forms,
         "message": "agrees" if agrees else "the residual does not simplify to zero",
     }
+
+
+def _shares(section: Section, sym: SymbolicSystem, solved: Step) -> str | None:
+    r"""The deformation's shares :math:`\sigma_i = \delta_i/\delta` of the spring's two parts,
+    derived: the definition (the deformation to first order, :math:`\delta = b_1\varphi_1 +
+    b_2\varphi_2` with the lever arms :math:`b_i = \partial l/\partial\varphi_i`, part i
+    takes :math:`\delta_i = b_i\varphi_i`), then their values with the stationary point fixed
+    (the relation of the angles ``solved``), which are :math:`\Omega_i^2/\Omega^2`
+    (:math:`\Omega_i^2 = K_{ii}/I'_i`). Returns the tag of the values' step (None, and no
+    step, where the shares are not those ratios: a spring under tension at the reference)."""
+    at_reference = dict.fromkeys(sym.q, 0)
+    levers = sym.lever_arms[0]
+    arms = [sp.cancel(sp.sympify(levers.get(i, 0)).xreplace(at_reference)) for i in range(2)]
+    sigma = [sp.Symbol(f"sigma_{b.label}", positive=True) for b in sym.bodies]
+    phi = sym.q
+    deformation = arms[0] * phi[0] + arms[1] * phi[1]
+    ratio = solved.equations[0].rhs
+    values = [
+        sp.factor(sp.cancel((a * p / deformation).subs(phi[1], ratio)))
+        for a, p in zip(arms, phi, strict=True)
+    ]
+    K = sym.stiffness_matrix
+    clamped = [sp.cancel(K[i, i] / sym.bodies[i].J) for i in range(2)]
+    if any(a == 0 for a in arms) or any(
+        sp.cancel(sym.apply_conditions(values[i] - clamped[i] / (clamped[0] + clamped[1]))) != 0
+        for i in range(2)
+    ):
+        return None
+    defined = section.add(
+        [eq(sigma[i], arms[i] * phi[i] / deformation) for i in range(2)],
+        "The spring's deformation to first order, delta = b_1 phi_1 + b_2 phi_2 (b_i = ∂l/∂φᵢ "
+        f"at the reference, the lever arms, as in K = k b b^T of ({setup_tags(sym)['stiffness']})"
+        "), splits at the stationary point into two "
+        "parts: part i, between body i and that point, is stretched by delta_i = b_i phi_i. "
+        "Define each part's share sigma_i = delta_i / delta.",
+        "paper (k1), (k2)",
+        how=DEFINE,
+    )
+    shown = section.add(
+        [eq(sigma[i], values[i]) for i in range(2)],
+        f"With the stationary point fixed, {inline(phi[1])} of ({solved.tag}) in ({defined.tag}): "
+        "phi_1 cancels, the shares are constants. They are Omega_i^2 / Omega^2, with Omega_i^2 = "
+        "K_ii/I'_i (body i's frequency with the other clamped) and Omega^2 = Omega_1^2 + "
+        f"Omega_2^2: here Omega_1^2 / (Omega_1^2 + Omega_2^2) = {inline(clamped[0])} / "
+        f"({inline(clamped[0])} + {inline(clamped[1])}), the same.",
+        "paper (k1), (k2)",
+        how=How("substitute", (defined.tag, solved.tag), args=(phi[1],)),
+    )
+    return shown.tag
 
 
 def _aligned_pairs(pairs: list[tuple[str, str]]) -> str:

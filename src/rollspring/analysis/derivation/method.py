@@ -4,15 +4,15 @@ its conserved momentum is in words).
 
 One module per method, as ``sympy.physics.mechanics`` keeps ``kane.py`` and ``lagrange.py`` apart:
 
-* :mod:`.newton`: torques about the contact points (paper Sec. 2, 4.1; (M7));
-* :mod:`.conservation`: energy and the conserved momentum of the zero mode (Sec. 4.2); needs a
+* :mod:`.newton`: torques about the contact points (paper Sec. 2, 3, 5.1; (M7));
+* :mod:`.conservation`: energy and the conserved momentum of the zero mode (Sec. 5.2); needs a
   single oscillating degree of freedom;
-* :mod:`.lagrange`: Euler-Lagrange equations of :math:`\mathcal L = T - V` (Sec. 4.3; (M5)),
+* :mod:`.lagrange`: Euler-Lagrange equations of :math:`\mathcal L = T - V` (Sec. 5.3; (M5)),
   checked against ``sympy.physics.mechanics.LagrangesMethod``;
 * :mod:`.natural_frequencies`: subsystem frequencies :math:`\Omega_i^2 = K_{ii}/J_i` and the sum
-  rule (Sec. 4.4, App. B, C); needs two bodies with a zero mode (rank-1 K);
+  rule (Sec. 5.4, App. B, C); needs two bodies with a zero mode (rank-1 K);
 * :mod:`.hamilton`: canonical coordinates :math:`q_i = \sqrt{J_i/m_i}\,\varphi_i`,
-  :math:`p_i = m_i\dot q_i` (Sec. 4.5; (M6)).
+  :math:`p_i = m_i\dot q_i` (Sec. 5.6; (M6)).
 
 Each builds a :class:`MethodResult`: a numbered :class:`~.steps.Section` of steps, each one
 following from earlier ones by one named operation (:class:`~.steps.How`), and its results in a
@@ -52,6 +52,7 @@ __all__ = [
     "normalised",
     "short",
     "shown_scaled",
+    "sign_inside",
     "single_spring_lever",
     "tidy",
     "tuple_text",
@@ -79,12 +80,13 @@ PREFIXES = {
     "hamilton": "H",
 }
 
+#: The paper's sections each method follows, numbered as the paper prints them.
 PAPER_SECTIONS = {
-    "newton": "paper Sec. 2 and 4.1",
-    "conservation": "paper Sec. 4.2",
-    "lagrange": "paper Sec. 4.3",
-    "natural-frequencies": "paper Sec. 4.4, App. B and C",
-    "hamilton": "paper Sec. 4.5",
+    "newton": "paper Sec. 2, 3 and 5.1",
+    "conservation": "paper Sec. 5.2",
+    "lagrange": "paper Sec. 5.3",
+    "natural-frequencies": "paper Sec. 5.4, 5.5, App. B and C",
+    "hamilton": "paper Sec. 5.6",
 }
 
 
@@ -127,7 +129,12 @@ class MethodResult:
 def method_section(sym: SymbolicSystem, name: str, title: str | None = None) -> Section:
     """The empty section of method ``name``: its title, its step prefix (``N``, ``E``, ...)
     and the rates of the coordinates (so that steps can say what differentiates into what)."""
-    return Section(title or TITLES[name], prefix=PREFIXES[name], rates=dict(rate_symbols(sym)))
+    return Section(
+        title or TITLES[name],
+        prefix=PREFIXES[name],
+        rates=dict(rate_symbols(sym)),
+        cites=PAPER_SECTIONS[name],
+    )
 
 
 def cached_frequencies(sym: SymbolicSystem, budget: float | None) -> Frequencies:
@@ -169,7 +176,7 @@ def names_momentum(sym: SymbolicSystem, v0: sp.Matrix | None) -> str:
         return (
             f"here the weights v0_i are equal{condition} and the bodies roll on one floor, so "
             "P̂ is the total angular momentum about any fixed point O of the floor, L_O = "
-            f"sum J_i phi_i' (clockwise; {_paper_sum(sym.n)})"
+            f"sum I'_i phi_i' (clockwise; {_paper_sum(sym.n)})"
         )
     if equal and not any(b.rolls for b in bodies):
         return (
@@ -183,7 +190,7 @@ def names_momentum(sym: SymbolicSystem, v0: sp.Matrix | None) -> str:
         else "not every body rolls"
     )
     return (
-        "P̂ is not the total angular momentum L_O = sum J_i phi_i' about a point of the floor "
+        "P̂ is not the total angular momentum L_O = sum I'_i phi_i' about a point of the floor "
         f"({why}): it is the momentum of the free rolling motion along v0"
     )
 
@@ -234,16 +241,31 @@ def _first_symbol(expr: sp.Expr) -> sp.Symbol | None:
 
 
 def short(expr: sp.Expr) -> sp.Expr:
-    """A compact form for display: factor small expressions, leave big ones alone."""
+    """A compact form for display: factor small expressions, leave big ones alone. The
+    factored form is preferred where it is not longer, its sign taken into the bracket
+    (:func:`sign_inside`): the two bodies' equations then read alike, ``R²k(φ₂ - φ₁)`` and
+    ``R²k(φ₁ - φ₂)``, not one of them factored and the other not."""
     expr = sp.sympify(expr)
     if any(not p.exp.is_Integer for p in expr.atoms(sp.Pow)):
         return expr  # roots (sqrt 2, a spring's length): factoring is slow and gains little
     if expr.count_ops() <= 60:
         try:
-            return min([expr, sp.factor(expr)], key=sp.count_ops)
+            factored = sign_inside(sp.factor(expr))
         except Exception:  # noqa: BLE001 - display only
             return expr
+        return factored if sp.count_ops(factored) <= sp.count_ops(expr) else expr
     return expr
+
+
+def sign_inside(expr: sp.Expr) -> sp.Expr:
+    """``-c (a - b)`` as ``c (b - a)``: a product's minus sign taken into its one sum."""
+    if not isinstance(expr, sp.Mul) or not expr.could_extract_minus_sign():
+        return expr
+    sums = [f for f in expr.args if isinstance(f, sp.Add)]
+    if len(sums) != 1:
+        return expr
+    rest = [f for f in expr.args if f is not sums[0]]
+    return sp.Mul(*rest) * -1 * sp.Mul(-1, sums[0])
 
 
 def zero_mode_2(K: sp.Matrix) -> sp.Matrix | None:

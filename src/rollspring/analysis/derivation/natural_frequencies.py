@@ -1,4 +1,4 @@
-r"""The derivation by the subsystems' natural frequencies (paper Sec. 4.4, App. B and C;
+r"""The derivation by the subsystems' natural frequencies (paper Sec. 5.4, App. B and C;
 docs/physics.md (M15)).
 
 With every other body clamped, body i oscillates alone with :math:`\Omega_i^2 = K_{ii}/J_i` (its
@@ -35,12 +35,12 @@ def natural_frequencies(sym: SymbolicSystem, budget: float | None) -> MethodResu
                 f"{sym.n} bodies: the subsystem frequencies do not add up to a normal "
                 "frequency (the sum rule needs two bodies and a rank-1 K); only the trace "
                 "identity holds: the sum of the normal modes' Omega_(n)^2 is the sum of the "
-                "subsystem frequencies Omega_i^2 = K_ii/J_i"
+                "subsystem frequencies Omega_i^2 = K_ii/I'_i"
             )
         elif sym.n == 2 and n_zero != 1:
             reason = (
                 "no zero mode (a wall or a pre-tensioned spring): K has rank 2 and "
-                "no normal mode's Omega^2 is Omega_1^2 + Omega_2^2 (Omega_i^2 = K_ii/J_i, body "
+                "no normal mode's Omega^2 is Omega_1^2 + Omega_2^2 (Omega_i^2 = K_ii/I'_i, body "
                 "i's frequency with the other clamped); only the trace identity holds: "
                 "Omega_(1)^2 + Omega_(2)^2 = Omega_1^2 + Omega_2^2"
             )
@@ -148,8 +148,8 @@ def natural_frequencies(sym: SymbolicSystem, budget: float | None) -> MethodResu
     omega2 = tidy(clamped[0] + clamped[1])
     section.add(
         eq(OMEGA2, sp.Add(omegas2[0], omegas2[1], evaluate=False)),
-        f"The non-zero root of ({char.tag}): dividing by J_1 J_2 Omega^2 leaves Omega^2 = "
-        f"K_11/J_1 + K_22/J_2, the sum of the subsystems' ({natural.tag}).",
+        f"The non-zero root of ({char.tag}): dividing by I'_1 I'_2 Omega^2 leaves Omega^2 = "
+        f"K_11/I'_1 + K_22/I'_2, the sum of the subsystems' ({natural.tag}).",
         "paper Omega_f^2 = Omega_1^2 + Omega_2^2; (M15)",
         how=How("solve", (char.tag, natural.tag), args=(OMEGA2,)),
     )
@@ -192,7 +192,7 @@ def natural_frequencies(sym: SymbolicSystem, budget: float | None) -> MethodResu
         section.add(
             [eq(coefficients[i], values[i]) for i in range(2)],
             "Coefficients of the Hamiltonian potential (k/2)(c1 q1 + c2 q2)^2 in the canonical "
-            "coordinates q_i = sqrt(J_i/m_i) phi_i of Hamilton's method (paper Sec. 4.5, App. "
+            "coordinates q_i = sqrt(I'_i/m_i) phi_i of Hamilton's method (paper Sec. 5.6, App. "
             "C), defined by |c_i| = Omega_i / sqrt(k/m_i) with Omega_i of "
             f"({natural.tag}); in a common orientation of the angles they have opposite signs "
             "here.",
@@ -210,7 +210,7 @@ def natural_frequencies(sym: SymbolicSystem, budget: float | None) -> MethodResu
     ]
     section.add(
         equations,
-        "Each body's equation of motion J_i phi_i'' = -(K phi)_i rebuilt from the subsystems: "
+        "Each body's equation of motion I'_i phi_i'' = -(K phi)_i rebuilt from the subsystems: "
         f"the diagonal of K from them, K_12 from ({coupling.tag}).",
         "",
         how=How("substitute", (coupling.tag,), args=(k12,), law=law),

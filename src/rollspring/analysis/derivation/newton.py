@@ -1,5 +1,5 @@
-r"""Newton's derivation: the torques of the applied forces about the contact points (paper Sec. 2
-and 4.1; docs/physics.md (M7)).
+r"""Newton's derivation: the torques of the applied forces about the contact points (paper Sec. 2,
+3 and 5.1; docs/physics.md (M7)).
 
 Hooke's law gives each spring's force, :math:`F = k(l - L)`. For a rolling body the torque
 equation about its contact point, :math:`J_i\ddot\varphi_i = ` the clockwise torque of the
@@ -64,11 +64,13 @@ def newton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
         law.append(eq(b.J * b.qdd, sp.Add(*terms)))
     rolling = any(b.rolls for b in sym.bodies)
     why = (
-        "For each rolling body, the torque equation about its contact point K: J phi'' = the "
-        f"clockwise torque of the applied forces, with J of ({tags.get('inertia', '')}). It "
-        "holds although K accelerates, because K's acceleration (R phi'^2, straight up) points "
-        "through the centre, the centre of mass; friction and the normal force act at K and "
-        "have no torque about it. The spring's torque is its force times its lever arm about K."
+        "For each rolling body, the torque equation about its contact line z' (the paper's "
+        "instantaneous axis, through the body's lowest point): I' phi'' = the clockwise torque "
+        f"of the applied forces, with I' of ({tags.get('inertia', '')}). It holds although the "
+        "body's lowest point accelerates, because its acceleration (R phi'^2, straight up) "
+        "points through the centre, the centre of mass; friction and the normal force act on "
+        "z' and have no torque about it. The spring's torque is its force times its lever arm "
+        "about z'."
         if rolling
         else "Newton's second law for each slider: m x'' = the horizontal applied force."
     )

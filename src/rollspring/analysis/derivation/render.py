@@ -12,6 +12,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 
+from rollspring.analysis.derivation.notation import Entry, width
 from rollspring.analysis.derivation.steps import Section, Step, inline, pretty_text
 
 __all__ = [
@@ -30,14 +31,33 @@ __all__ = [
 FORMATS = ("text", "markdown", "latex")
 
 
-def text(title: str, subtitle: str, sections: Sequence[Section]) -> str:
-    """Plain text: each step's number and words, then its equation pretty-printed (Unicode,
-    names as a textbook prints them)."""
+#: The title of the notation table.
+NOTATION = "Notation"
+
+
+def text(
+    title: str,
+    subtitle: str,
+    sections: Sequence[Section],
+    *,
+    notation: Sequence[Entry] = (),
+) -> str:
+    """Plain text: the notation table, then each step's number and words, then its equation
+    pretty-printed (Unicode, names as a textbook prints them)."""
     lines = [title, "=" * len(title)]
     if subtitle:
         lines += [subtitle]
+    if notation:
+        lines += ["", NOTATION, "-" * len(NOTATION)]
+        columns = max(width(entry.text) for entry in notation)
+        for entry in notation:
+            value = f" = {entry.value}" if entry.value else ""
+            pad = " " * (columns - width(entry.text))
+            lines.append(f"  {entry.text}{pad}  {entry.meaning}{value}")
     for section in sections:
         lines += ["", section.title, "-" * len(section.title)]
+        if section.cites:
+            lines.append(f"({section.cites})")
         if section.note:
             lines.append(text_words(section.note))
         for step in section.steps:
@@ -49,6 +69,8 @@ def text(title: str, subtitle: str, sections: Sequence[Section]) -> str:
 
 
 def _pretty(step: Step) -> str:
+    if step.plain is not None:
+        return step.plain
     equation = step.equation
     items = equation if isinstance(equation, list | tuple) else [equation]
     if len(items) > 12:
@@ -67,13 +89,28 @@ def _pretty(step: Step) -> str:
     return "\n".join(out)
 
 
-def markdown(title: str, subtitle: str, sections: Sequence[Section]) -> str:
-    """Markdown with display math ``$$…$$`` (one per step)."""
+def markdown(
+    title: str,
+    subtitle: str,
+    sections: Sequence[Section],
+    *,
+    notation: Sequence[Entry] = (),
+) -> str:
+    """Markdown with display math ``$$…$$`` (one per step), the notation as a table."""
     lines = [f"# {_md_escape(title)}"]
     if subtitle:
         lines += ["", _md_escape(subtitle)]
+    if notation:
+        lines += ["", f"## {NOTATION}", "", "| symbol | meaning | value |", "|---|---|---|"]
+        for entry in notation:
+            lines.append(
+                f"| ${_one_line(entry.latex)}$ | {_md_escape(entry.meaning)} "
+                f"| {_md_escape(entry.value)} |"
+            )
     for section in sections:
         lines += ["", f"## {_md_escape(section.title)}"]
+        if section.cites:
+            lines += ["", f"*({_md_escape(section.cites)})*"]
         if section.note:
             lines += ["", _md_escape(text_words(section.note))]
         for step in section.steps:
@@ -102,13 +139,28 @@ LATEX_PREAMBLE = (
 )
 
 
-def latex_document(title: str, subtitle: str, sections: Sequence[Section]) -> str:
-    """A complete, compilable LaTeX document (article, amsmath)."""
+def latex_document(
+    title: str,
+    subtitle: str,
+    sections: Sequence[Section],
+    *,
+    notation: Sequence[Entry] = (),
+) -> str:
+    """A complete, compilable LaTeX document (article, amsmath), the notation as a list."""
     body = [*LATEX_PREAMBLE, rf"\section*{{{latex_text(title)}}}"]
     if subtitle:
         body.append(latex_text(subtitle))
+    if notation:
+        body.append(rf"\subsection*{{{NOTATION}}}")
+        for entry in notation:
+            value = f" $=$ {latex_text(entry.value)}" if entry.value else ""
+            body.append(
+                rf"\noindent ${_ascii(entry.latex)}$ \quad {latex_text(entry.meaning)}{value}\par"
+            )
     for section in sections:
         body.append(rf"\subsection*{{{latex_text(section.title)}}}")
+        if section.cites:
+            body.append(rf"{{\small ({latex_text(section.cites)})}}")
         if section.note:
             body.append(latex_words(section.note))
         for step in section.steps:
@@ -143,6 +195,9 @@ _MATH_CHARACTERS = {
     "P\u0302": r"$\hat P$",
     "X\u0302": r"$\hat X$",
     "±": r"$\pm$",
+    "∂": r"$\partial$",
+    "δ": r"$\delta$",
+    "σ": r"$\sigma$",
     "·": r"$\cdot$",
     "√": r"$\surd$",
     "ℓ": r"$\ell$",
@@ -234,12 +289,14 @@ _GREEK = {
     "lambda": r"\lambda",
     "eta": r"\eta",
     "sigma": r"\sigma",
+    "delta": r"\delta",
 }
 #: A name written in ASCII in the words: a Greek name or a letter, with digits (lower-case
 #: letters only: "(M12)" is an equation tag), a subscript, primes, a superscript or a star.
 _ASCII_NAME = re.compile(
     r"(?<![A-Za-z_])(?P<base>" + "|".join(_GREEK) + r"|[A-Za-z])"
     r"(?P<digits>(?<=[a-z])[0-9]+)?"
+    r"(?P<inertia>(?<=I)'(?=_))?"
     r"(?P<sub>_(?:\([A-Za-z0-9]+\)|[A-Za-z0-9]+))?"
     r"(?P<primes>'+)?"
     r"(?P<sup>\^(?:[0-9]+|T|\*|-1)|\*)?"
@@ -248,10 +305,45 @@ _ASCII_NAME = re.compile(
 )
 
 
+#: Partial derivatives the words write in ASCII, as LaTeX (the same forms as
+#: :data:`_DERIVATIVES`).
+_LATEX_DERIVATIVES = {
+    "dL/dphi_i'": r"\partial\mathcal{L}/\partial\dot\varphi_i",
+    "dL/dphi_i": r"\partial\mathcal{L}/\partial\varphi_i",
+    "dV/dphi_i": r"\partial V/\partial\varphi_i",
+    "dV/dphi": r"\partial V/\partial\varphi",
+    "dT/dq_i'": r"\partial T/\partial\dot q_i",
+    "dH/dp_i": r"\partial\mathcal{H}/\partial p_i",
+    "dH/dq_i": r"\partial\mathcal{H}/\partial q_i",
+    "dE/dt": r"\mathrm{d}E/\mathrm{d}t",
+    "d/dt": r"\mathrm{d}/\mathrm{d}t",
+}
+_LATEX_DERIVATIVE = re.compile(
+    "|".join(re.escape(k) for k in sorted(_LATEX_DERIVATIVES, key=len, reverse=True))
+)
+
+
+#: Names whose prime is part of the name, not a time derivative: the paper's I' (the inertia
+#: about the contact line) and z' (the contact line).
+_PRIMED = ("I", "z")
+
+
 def latex_words(words: str) -> str:
     """:func:`latex_text` with the names the words write in ASCII (``Omega_i^2``,
     ``phi_1'``, ``v0^T``, ``K_11``, ``q'``, ``y*``) as inline math: a student reading the
-    document sees Omega_i^2 typeset, not its spelling."""
+    document sees Omega_i^2 typeset, not its spelling; a prime is a time derivative (a dot),
+    except on I (the paper's I'), and ``dV/dphi`` is the partial derivative it stands for."""
+    pieces = []
+    position = 0
+    for match in _LATEX_DERIVATIVE.finditer(words):
+        pieces.append(_latex_names(words[position : match.start()]))
+        pieces.append(f"${_LATEX_DERIVATIVES[match.group(0)]}$")
+        position = match.end()
+    pieces.append(_latex_names(words[position:]))
+    return _joined_math("".join(pieces))
+
+
+def _latex_names(words: str) -> str:
     out = []
     position = 0
     for match in _ASCII_NAME.finditer(words):
@@ -262,7 +354,10 @@ def latex_words(words: str) -> str:
             continue  # a plain letter or word stays text
         else:
             index = ",".join(part for part in (digits, sub[1:] if sub else "") if part)
-            math = _GREEK.get(base, base)
+            math = _GREEK.get(base, base) + (match.group("inertia") or "")
+            if primes and base not in _PRIMED and len(primes) <= 2:
+                math = (r"\dot{" if len(primes) == 1 else r"\ddot{") + math + "}"
+                primes = ""
             if index:
                 math += f"_{{{index}}}"
             math += primes or ""
@@ -286,6 +381,7 @@ _GREEK_UNICODE = {
     "lambda": "λ",
     "eta": "η",
     "sigma": "σ",
+    "delta": "δ",
 }
 _TEXT_SUB = dict(zip("0123456789()aehijklmnoprstuvx", "₀₁₂₃₄₅₆₇₈₉₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ", strict=True))
 #: Partial derivatives the words write in ASCII, as the equations print them.
@@ -322,14 +418,20 @@ def text_words(words: str) -> str:
         if base not in _GREEK and not (digits or sub or primes or sup):
             continue
         index = (digits or "") + (sub[1:] if sub else "")
-        if any(c not in _TEXT_SUB for c in index):
+        lowered = len(index)
+        for position_in_index, c in enumerate(index):
+            if c not in _TEXT_SUB:
+                lowered = position_in_index
+                break
+        if lowered == 0 and index:
             continue  # a subscript Unicode cannot lower (L_O): left as written
-        name = _GREEK_UNICODE.get(base, base)
-        if primes and base != "I" and len(primes) <= 2:
+        name = _GREEK_UNICODE.get(base, base) + ("\u2032" if match.group("inertia") else "")
+        if primes and base not in _PRIMED and len(primes) <= 2:
             name += "\u0307" if len(primes) == 1 else "\u0308"
-        elif primes:
-            name += primes
-        name += "".join(_TEXT_SUB[c] for c in index)
+        elif primes:  # the paper's I' and z': a prime (U+2032), as the equations print it
+            name += "\u2032" * len(primes) if base in _PRIMED else primes
+        # the letters Unicode cannot lower follow on the line, as the equations print them (F₁y)
+        name += "".join(_TEXT_SUB[c] for c in index[:lowered]) + index[lowered:]
         if sup:
             name += "".join(_TEXT_SUP.get(c, c) for c in sup.lstrip("^"))
         out.append(words[position : match.start()] + name)
@@ -379,6 +481,7 @@ def _ascii(value: str) -> str:
         .replace("\u201c", '"')
         .replace("\u201d", '"')
         .replace("\u2212", "-")
+        .replace("\u2032", "'")
         .replace("\u00d7", "x")
         .replace("\u00b7", ".")
     )

@@ -17,6 +17,7 @@ from rollspring.analysis.derivation.steps import (
     inline,
     latex_of,
     matrix_equation,
+    named,
 )
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
 
@@ -151,9 +152,9 @@ def setup_section(sym: SymbolicSystem) -> Section:
     sliders = [b for b in sym.bodies if not b.rolls]
     if sliders:
         section.add(
-            [eq(sp.Symbol(f"J_{b.label}"), b.m) for b in sliders],
+            [eq(_j_symbol(sym, b.index), b.m) for b in sliders],
             "Sliders on a frictionless floor (data): the coordinate is the displacement x; "
-            "they do not turn.",
+            "they do not turn, so the I' of their equations is the mass.",
             "(M4)",
             how=GIVEN,
         )
@@ -164,7 +165,7 @@ def setup_section(sym: SymbolicSystem) -> Section:
             J = _j_symbol(sym, i)
             eqs.append(eq(J, b.I + b.m * b.R**2))
             lines.append(
-                rf"J_{{{b.label}}} &= I_{{{b.label}}} + m_{{{b.label}}} d^2"
+                rf"I'_{{{b.label}}} &= I_{{{b.label}}} + m_{{{b.label}}} d^2"
                 rf" = {latex_of(b.I)} + {latex_of(b.m * b.R**2)} = {latex_of(b.J)}"
             )
         tags["inertia"] = section.add(
@@ -189,7 +190,7 @@ def setup_section(sym: SymbolicSystem) -> Section:
         tags["kinetic"] = section.add(
             eq(tsym, sym.kinetic),
             f"Substituting the velocities ({tags['rates']}): each body's kinetic energy is "
-            f"(1/2) J phi'^2, a rotation about its contact line with J of ({tags['inertia']}).",
+            f"(1/2) I' phi'^2, a rotation about its contact line with I' of ({tags['inertia']}).",
             "(M4)",
             how=How(
                 "substitute",
@@ -217,11 +218,18 @@ def setup_section(sym: SymbolicSystem) -> Section:
     vsym = sp.Symbol("V")
     law = _potential_law(sym)
     forces = " minus the work of the constant forces" if sym.forces else ""
+    relaxed = [s for s in sym.springs if s.relaxed]
+    rest = (
+        ""
+        if not relaxed
+        else " The rest length L equals the length at the reference, L = ℓ, for every spring "
+        "relaxed there" + (" (each spring here)." if len(relaxed) == len(sym.springs) else ".")
+    )
     tags["potential"] = section.add(
         eq(vsym, sym.potential),
         f"Potential energy: V = sum (1/2) k (l - L)^2 of the springs{forces}, with the "
-        f"lengths of ({tags['lengths']}); gravity is a constant while the bodies roll (their "
-        "centres keep their heights) and is left out."
+        f"lengths l of ({tags['lengths']}) and the rest lengths L; gravity is a constant while "
+        "the bodies roll (their centres keep their heights) and is left out." + rest
         if sym.springs
         else f"Potential energy{forces}; gravity is a constant while the bodies roll.",
         "(M5)",
@@ -270,7 +278,15 @@ def setup_section(sym: SymbolicSystem) -> Section:
 
 
 def _j_symbol(sym: SymbolicSystem, i: int) -> sp.Symbol:
-    return sp.Symbol("J" + ("" if sym.n == 1 else f"_{sym.bodies[i].label}"), positive=True)
+    """The paper's I'_i: body i's moment of inertia about its contact line (a slider's mass)."""
+    label = "" if sym.n == 1 else sym.bodies[i].label
+    text = "I\u2032" + "".join("₀₁₂₃₄₅₆₇₈₉"[int(c)] for c in label)
+    return named(
+        f"Iprime_{label}" if label else "Iprime",
+        f"I'_{{{label}}}" if label else "I'",
+        text,
+        positive=True,
+    )
 
 
 def _potential_law(sym: SymbolicSystem) -> sp.Eq:

@@ -71,6 +71,8 @@ OPERATIONS: dict[str, str] = {
     "characteristic equation": "put q = v cos(Omega t): det(K - Omega^2 M) = 0",
     "read off": "compare with a standard form and read off its coefficient",
     "evaluate": "compute: both sides are equal",
+    "with your values": "put the system's numbers (the notation table's) into a result: "
+    "decimals, rounded",
     "check": "a comparison of results, not a step of a derivation",
 }
 
@@ -274,6 +276,10 @@ class _TextbookStr(_TextbookOrder, StrPrinter):
         result: str = super()._print_Mul(expr)
         return result.replace("*", "·")
 
+    def _print_Equality(self, expr: sp.Eq) -> str:
+        """``lhs = rhs`` (not SymPy's ``Eq(lhs, rhs)``)."""
+        return f"{self._print(expr.lhs)} = {self._print(expr.rhs)}"
+
 
 def inline(obj: Any) -> str:
     """``obj`` as one line of plain text with textbook names (``R_2/R_1`` -> ``R₂/R₁``)."""
@@ -285,15 +291,56 @@ class _TextbookLatex(_TextbookOrder, LatexPrinter):
     """SymPy's LaTeX printer (names: ``ell`` is ``\\ell``, ``y^*_1`` is ``y^{*}_{1}``)."""
 
 
+def paper_surds(obj: Any) -> Any:
+    """Surd coefficients as the paper writes them, roots left in the denominator:
+    ``√2/2 q₁`` -> ``q₁/√2``, ``√6/3 q₂`` -> ``√2 q₂/√3`` (the paper's (k), (h)), ``√6/2`` ->
+    ``√3/√2``. A coefficient c with c² = p/q in lowest terms becomes √p/√q where q is not a
+    square (where it is, SymPy's form is the paper's too: 5√42/3). Display only: the value is
+    the same, the tree is left unevaluated."""
+    if isinstance(obj, list | tuple):
+        return type(obj)(paper_surds(item) for item in obj)
+    if isinstance(obj, sp.MatrixBase) or not isinstance(obj, sp.Basic) or obj.is_Atom:
+        return obj
+    if isinstance(obj, sp.Mul):
+        numbers = [a for a in obj.args if a.is_number]
+        others = [paper_surds(a) for a in obj.args if not a.is_number]
+        if numbers and others:
+            surd = _surd(sp.Mul(*numbers))
+            if surd is not None:
+                sign, top, root = surd
+                return sp.Mul(*sign, *top, *others, root, evaluate=False)
+        return obj.func(*[paper_surds(a) for a in obj.args], evaluate=False)
+    if isinstance(obj, sp.Add | sp.Pow | sp.Equality):
+        return obj.func(*[paper_surds(a) for a in obj.args], evaluate=False)
+    return obj
+
+
+def _surd(number: sp.Expr) -> tuple[list[sp.Expr], list[sp.Expr], sp.Expr] | None:
+    """``a√n/b`` as ``√p/√q``: its sign, numerator and denominator factors (None where it is
+    not a surd with a root to move down)."""
+    if number.is_Rational or not number.is_real:
+        return None
+    square = sp.nsimplify(number**2) if not (number**2).is_Rational else number**2
+    if not square.is_Rational or square <= 0:
+        return None
+    p, q = int(square.p), int(square.q)
+    if q == 1 or sp.sqrt(q).is_Integer:
+        return None
+    sign: list[sp.Expr] = [sp.S.NegativeOne] if number.is_negative else []
+    top = sp.sqrt(p)
+    return sign, ([] if top == 1 else [top]), sp.Pow(sp.sqrt(q), -1, evaluate=False)
+
+
 def pretty_text(obj: Any, *, columns: int = 100) -> str:
-    """Unicode pretty-printing with textbook names (:func:`pretty_name`)."""
+    """Unicode pretty-printing with textbook names (:func:`pretty_name`) and the paper's
+    surds (:func:`paper_surds`)."""
     printer = _TextbookPretty({"use_unicode": True, "num_columns": columns})
-    result: str = printer.doprint(obj)
+    result: str = printer.doprint(paper_surds(obj))
     return result
 
 
 def _latex(obj: Any, **settings: Any) -> str:
-    result: str = _TextbookLatex(settings).doprint(obj)
+    result: str = _TextbookLatex(settings).doprint(paper_surds(obj))
     return result
 
 
@@ -306,7 +353,9 @@ class Step:
     as ``"paper (QQQ1)"`` or a docs/physics.md tag such as ``"(M7)"``), ``tag`` (its number,
     e.g. ``"N3"``; empty for the cross-check), ``how`` it follows from earlier steps, and
     ``source``: its LaTeX where it is written by hand (else :attr:`math` prints the
-    equation, when first asked: plain text never needs it)."""
+    equation, when first asked: plain text never needs it); ``plain``: its plain text where
+    it is written by hand (the physics' order of factors, m a = F - f, which SymPy would
+    print a⋅m), else the equation is pretty-printed."""
 
     equation: Any
     words: str
@@ -314,6 +363,7 @@ class Step:
     tag: str = ""
     how: How | None = None
     source: str | None = None
+    plain: str | None = None
 
     @cached_property
     def math(self) -> str:
@@ -340,13 +390,15 @@ class Section:
     """A titled list of steps (one method's derivation, the setup, the cross-check, ...);
     ``prefix`` numbers its steps (``N1``, ``N2``, ...); ``rates`` maps each symbol that
     changes in time to the symbol of its rate (``phi_1 -> phidot_1``), for the steps that
-    differentiate or integrate in time."""
+    differentiate or integrate in time; ``cites``: the paper's sections it follows, as the
+    paper numbers them (``"paper Sec. 5.3"``), shown under the title."""
 
     title: str
     steps: list[Step] = field(default_factory=list)
     note: str = ""
     prefix: str = ""
     rates: dict[sp.Symbol, sp.Symbol] = field(default_factory=dict)
+    cites: str = ""
 
     def add(
         self,
@@ -356,10 +408,12 @@ class Section:
         *,
         how: How | None = None,
         latex: str | None = None,
+        plain: str | None = None,
     ) -> Step:
-        """Append a step (LaTeX from the equation unless given), numbered, and return it."""
+        """Append a step (LaTeX and plain text from the equation unless given), numbered, and
+        return it."""
         tag = f"{self.prefix}{len(self.steps) + 1}" if self.prefix else ""
-        step = make_step(equation, words, ref, latex=latex, tag=tag, how=how)
+        step = make_step(equation, words, ref, latex=latex, tag=tag, how=how, plain=plain)
         self.steps.append(step)
         return step
 
@@ -372,10 +426,11 @@ def make_step(
     latex: str | None = None,
     tag: str = "",
     how: How | None = None,
+    plain: str | None = None,
 ) -> Step:
     """A :class:`Step`; its LaTeX is ``latex`` if given, else generated from ``equation`` when
-    first needed."""
-    return Step(equation, words, ref, tag, how, latex)
+    first needed; its plain text ``plain`` if given, else pretty-printed."""
+    return Step(equation, words, ref, tag, how, latex, plain)
 
 
 def latex_of(obj: Any) -> str:

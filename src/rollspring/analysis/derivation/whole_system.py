@@ -214,14 +214,16 @@ def to_whole_system(
             position = sp.Add(*[masses[i] * v0[i] * coords[i] for i in range(n)])
             again = section.add(
                 eq(content_free(position, coords), 0),
-                f"Integrating ({integrated.tag}) again; the constant is zero when the "
-                f"{names} are measured from the stationary point (its choice of origin).",
+                f"Integrating ({integrated.tag}) again. The constant is the left side's value "
+                "at the start; a uniform shift along the zero mode is an equilibrium too, and of "
+                f"these equilibria the {names} are measured from the one that makes it zero "
+                "(the stationary point at the origin).",
                 "",
                 how=How("integrate in time", (integrated.tag,)),
             )
             ratio = sp.cancel(-masses[0] * v0[0] / (masses[1] * v0[1]))
             out["ratio"] = ratio
-            solved = section.add(
+            solved = out["solved_step"] = section.add(
                 eq(coords[1], ratio * coords[0]),
                 f"Solving ({again.tag}) for {inline(coords[1])}.",
                 "",

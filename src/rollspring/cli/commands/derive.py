@@ -1,7 +1,8 @@
 """``rollspring derive SYSTEM``: the equations of motion derived step by step (SymPy).
 
 ``--method newton|conservation|lagrange|natural-frequencies|hamilton|all`` (repeatable),
-``--format text|markdown|latex``, ``--symbols`` (masses, radii, stiffnesses as symbols),
+``--format text|markdown|latex``, ``--symbols`` (masses, radii, stiffnesses as symbols: the
+default) or ``--numbers`` (exact numbers throughout),
 ``-o FILE`` (written atomically; default stdout). The command is added to an app by
 :func:`register`.
 """
@@ -39,11 +40,12 @@ def derive_command(
     symbols: Annotated[
         bool,
         typer.Option(
-            "--symbols",
-            help="Masses, radii, stiffnesses and heights as symbols (m_1, R, k, ...) "
-            "instead of exact numbers.",
+            "--symbols/--numbers",
+            help="--symbols (the default): masses, radii, stiffnesses and heights as symbols "
+            "(m_1, R, k, ...), the numbers only in the notation table and in each method's "
+            "final 'with your values' step; --numbers: exact numbers throughout.",
         ),
-    ] = False,
+    ] = True,
     out: Annotated[
         str | None, out_option("Write to this file (atomically) instead of stdout.")
     ] = None,

@@ -5,7 +5,6 @@ derivation that names every displayed symbol once, symbols first with the number
 
 from __future__ import annotations
 
-import os
 import re
 import shutil
 from pathlib import Path
@@ -14,64 +13,9 @@ import pytest
 
 from rollspring.analysis.derivation import Derivation, derive
 from rollspring.model import preset_names
+from tests.test_paper_check import printed_sections
 
-# -- the paper's sectioning, read from its LaTeX source ------------------------------------------
-
-
-def _paper_path() -> Path | None:
-    """The paper's source: ``ROLLSPRING_PAPER`` or the one ``.txt`` of ``../shared/paper/``
-    (as tests/test_paper_check.py finds it)."""
-    given = os.environ.get("ROLLSPRING_PAPER")
-    if given:
-        return Path(given)
-    folder = Path(__file__).resolve().parents[2] / "shared" / "paper"
-    found = sorted(folder.glob("*.txt")) if folder.is_dir() else []
-    return found[0] if found else None
-
-
-PAPER = _paper_path()
-
-_HEADING = re.compile(r"\\(?P<level>section|subsection)(?P<star>\*?)\{(?P<title>[^}]*)\}")
-
-
-def paper_section_numbers(source: str) -> set[str]:
-    """The numbers the paper prints for its sections: ``\\section`` counts 1, 2, ...,
-    ``\\subsection`` counts 5.1, 5.2, ... within its section, starred headings are unnumbered,
-    and an appendix heading ``Appendix A: ...`` gives ``A``."""
-    numbers: set[str] = set()
-    section = subsection = 0
-    for match in _HEADING.finditer(source):
-        title = match.group("title")
-        appendix = re.match(r"Appendix ([A-Z])\b", title)
-        if appendix:
-            numbers.add(appendix.group(1))
-        elif match.group("star"):
-            continue
-        elif match.group("level") == "section":
-            section, subsection = section + 1, 0
-            numbers.add(str(section))
-        else:
-            subsection += 1
-            numbers.add(f"{section}.{subsection}")
-    return numbers
-
-
-def test_the_papers_numbering_is_read_as_printed() -> None:
-    """The helper on a source shaped like the paper's (so the test below checks something)."""
-    source = "\n".join(
-        [
-            r"\section*{Abstract}",
-            r"\section{Introduction}",
-            r"\section{Coupling}",
-            r"\subsection{Solution}",
-            r"\subsection{Other}",
-            r"\section{Conclusion}",
-            r"\appendix",
-            r"\subsection*{Appendix A: Friction}",
-            r"\subsection*{Appendix B: Frequencies}",
-        ]
-    )
-    assert paper_section_numbers(source) == {"1", "2", "2.1", "2.2", "3", "A", "B"}
+# -- the paper's sectioning: tests/test_paper_check.py's record, checked there against the LaTeX --
 
 
 # -- every preset, derived once, in every format -------------------------------------------------
@@ -124,12 +68,10 @@ def test_cited_sections_are_read_from_the_words() -> None:
     assert cited_sections(words) == {"2", "3", "5.1", "5.6", "B", "C"}
 
 
-@pytest.mark.skipif(PAPER is None or not PAPER.is_file(), reason="the paper's source is not here")
 def test_every_cited_section_exists_in_the_paper(
     rendered: dict[tuple[str, bool, str], str],
 ) -> None:
-    assert PAPER is not None
-    printed = paper_section_numbers(PAPER.read_text(encoding="utf-8"))
+    printed = printed_sections()
     assert {"1", "4", "5.1", "5.6", "7", "A", "C"} <= printed
     assert "4.5" not in printed
     cited_anywhere: set[str] = set()
@@ -176,12 +118,12 @@ def test_the_patterns_catch_what_they_are_for(words: str) -> None:
 # -- LaTeX compiles for every preset -------------------------------------------------------------
 
 
-@pytest.mark.skipif(shutil.which("pdflatex") is None, reason="pdflatex is not installed")
 def test_latex_compiles_for_every_preset(
     rendered: dict[tuple[str, bool, str], str], tmp_path: Path
 ) -> None:
     from tests.test_derive_cli import compile_latex
 
+    assert shutil.which("pdflatex"), "pdflatex is needed (make test installs texlive-latex-base)"
     for name in preset_names():
         directory = tmp_path / name
         directory.mkdir()

@@ -1185,6 +1185,14 @@ def _sections(source: str) -> list[str]:
     return sorted(name for name in _spans(source) if not name.startswith("Fig."))
 
 
+def printed_sections() -> set[str]:
+    """The numbers the paper prints for its parts ('1', ..., '5.6', 'A', 'B', 'C'), from the
+    record that :func:`test_every_section_the_check_cites_is_one_the_paper_prints` checks against
+    the paper's LaTeX when the source is here."""
+    record = json.loads(QUOTE_RECORD.read_text(encoding="utf-8"))
+    return {name.split(" ", 1)[1] for name in record["sections"] if name != "Abstract"}
+
+
 #: A section or appendix cited in words: "Sec. 5.2", "App. A".
 _CITED = re.compile(r"\b(Sec\. \d+(?:\.\d+)?|App\. [A-Z])\b")
 

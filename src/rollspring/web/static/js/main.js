@@ -573,7 +573,7 @@ function renderForceValues(frame) {
     const f = b.shape === "slider" ? "" : `f = ${c.f < 0 ? "−" : "+"}${sig(Math.abs(c.f), 3)} N, `;
     parts.push(`${b.id}: ${f}N = ${sig(c.N, 4)} N`);
   }
-  frame.tensions.forEach((t, s) => parts.push(`spring ${s + 1}: T = ${sig(t, 3)} N`));
+  frame.tensions.forEach((t, s) => parts.push(`spring ${s + 1}: T = ${t < 0 ? "−" : "+"}${sig(Math.abs(t), 3)} N`));
   $("#force-values").textContent = parts.length ? `At ${clockText(frame.t)}: ${parts.join("; ")}.` : "";
 }
 

@@ -428,36 +428,41 @@ function drawForces(ctx, view, frame, drawn, maxPx) {
         const length = arrow(ctx, p, sign * t * dx / l * k.spring, -sign * t * dy / l * k.spring,
           FORCE_COLOURS.spring, maxPx);
         drawn.spring.push(length);
-        if (all || frame.labelled.has(id)) {
-          valueLabel(ctx, drawn, id, p.x, p.y - 10, `T = ${sig(Math.abs(t), 3)} N`, FORCE_COLOURS.spring);
-        }
       });
+      // the tension once per spring, over its middle (positive: stretched)
+      const [a, b] = spring.ends;
+      if (all || frame.labelled.has(a) || frame.labelled.has(b)) {
+        const m = view.toCanvas({ x: (ends[0].x + ends[1].x) / 2, y: (ends[0].y + ends[1].y) / 2 });
+        valueLabel(ctx, drawn, frame.labelled.has(a) || !frame.labelled.has(b) ? a : b, m.x,
+          m.y - 16 - (s % 2) * 15, `T = ${signed(t)} N`, FORCE_COLOURS.spring);
+      }
     });
   }
-  for (const body of frame.system.bodies) {
+  frame.system.bodies.forEach((body, index) => {
     const { x } = frame.pose(body.id);
     const contact = frame.contact(body.id);
     drawn.friction[body.id] = 0;
     drawn.normal[body.id] = 0;
-    if (!contact) continue;
+    if (!contact) return;
+    const stagger = (index % 2) * 15; // neighbours' labels on two levels
     const p = view.toCanvas({ x, y: body.track_height || 0 });
     const label = all || frame.labelled.has(body.id);
     if (frame.show.friction && body.shape !== "slider") {
       drawn.friction[body.id] = arrow(ctx, p, contact.f * k.friction, 0, FORCE_COLOURS.friction, maxPx);
       if (label) {
         const right = contact.f >= 0;
-        valueLabel(ctx, drawn, body.id, p.x + (right ? 1 : -1) * (Math.abs(drawn.friction[body.id]) + 6), p.y + 14,
+        valueLabel(ctx, drawn, body.id, p.x + (right ? 1 : -1) * (Math.abs(drawn.friction[body.id]) + 6), p.y + 14 + stagger,
           `f = ${signed(contact.f)} N`, FORCE_COLOURS.friction, right ? "left" : "right");
       }
     }
     if (frame.show.normal) {
       drawn.normal[body.id] = arrow(ctx, p, 0, -contact.N * k.normal, FORCE_COLOURS.normal, maxPx);
       if (label) {
-        valueLabel(ctx, drawn, body.id, p.x + 6, p.y - Math.abs(drawn.normal[body.id]) - 2, `N = ${sig(contact.N, 3)} N`,
-          FORCE_COLOURS.normal, "left");
+        valueLabel(ctx, drawn, body.id, p.x + 6, p.y - Math.abs(drawn.normal[body.id]) - 2 - stagger,
+          `N = ${sig(contact.N, 3)} N`, FORCE_COLOURS.normal, "left");
       }
     }
-  }
+  });
 }
 
 function signed(v) {

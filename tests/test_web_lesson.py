@@ -123,6 +123,49 @@ def test_the_cm_swings_on_the_magnified_strip_while_xhat_stays_put(sized: Opened
     no_horizontal_overflow(page)
 
 
+#: The largest alpha of the strip canvas's pixels around (x, y) CSS px (3×3 device pixels).
+ALPHA_AT = """([x, y]) => {
+    const canvas = document.querySelector('#strip');
+    const ratio = canvas.width / canvas.getBoundingClientRect().width;
+    const px = canvas.getContext('2d').getImageData(
+        Math.round(x * ratio) - 1, Math.round(y * ratio) - 1, 3, 3).data;
+    let alpha = 0;
+    for (let i = 3; i < px.length; i += 4) alpha = Math.max(alpha, px[i]);
+    return alpha;
+}"""
+
+
+def test_the_strip_draws_a_fading_trail_of_each(laptop: Opened) -> None:
+    page = laptop.page
+    frames = sweep(page)
+    dt = page.evaluate("() => window.rollspringPage.dt()")
+    now = 120  # t = 2 s
+    page.locator("#time").evaluate(
+        "(slider, t) => { slider.value = String(t); slider.dispatchEvent(new Event('input')); }",
+        now * dt,
+    )
+    strip = page.evaluate("() => window.rollspringPage.drawn().strip")
+    assert strip["cm"] == frames[now]["drawn"]["strip"]["cm"]
+    fall, trail = strip["fall"], strip["trail"]
+    assert fall >= 10 and trail > 0
+
+    def alpha_back(key: str, samples: int) -> int:
+        x = frames[now - samples]["drawn"]["strip"][key]
+        y = strip[f"{key}Y"] + samples * dt / trail * fall
+        return page.evaluate(ALPHA_AT, [x, y])
+
+    for key in ("cm", "xhat"):
+        head = page.evaluate(ALPHA_AT, [strip[key], strip[f"{key}Y"]])
+        recent, older = alpha_back(key, 9), alpha_back(key, 30)  # 0.15 s and 0.5 s ago
+        assert head == 255
+        assert 0 < older < recent < head  # it fades with age
+    # the CM's trail is a wave (the CM moved), X̂'s a straight line down (it stayed put)
+    assert abs(frames[now - 9]["drawn"]["strip"]["cm"] - strip["cm"]) > 10
+    assert abs(frames[now - 9]["drawn"]["strip"]["xhat"] - strip["xhat"]) < 1e-6
+    # nothing drawn beside the trail
+    assert page.evaluate(ALPHA_AT, [strip["xhat"] + 40, strip["xhatY"] + fall / 2]) == 0
+
+
 def test_newtons_second_law_for_the_whole_system_holds_in_the_plotted_data(
     laptop: Opened,
 ) -> None:

@@ -87,7 +87,10 @@ class Strip {
   constructor(canvas) {
     this.canvas = canvas;
     this.ctx = canvas.getContext("2d");
-    this.drawn = { cm: null, xhat: null, magnification: 1, pxPerM: 0 };
+    // the markers' x, the rows' y, the trails' length (s) and fall (px): the trail point of a
+    // time t − a is drawn a/trail·fall px below its row
+    this.drawn = { cm: null, xhat: null, magnification: 1, pxPerM: 0, cmY: 0, xhatY: 0,
+      trail: TRAIL_S, fall: 0 };
     this.labelled = 0; // ± the magnification the title and label describe (− without X̂)
     this.title = "";
     this.rows = [
@@ -133,6 +136,9 @@ class Strip {
     xhatRow.values = lesson.xhat;
     xhatRow.mid = lesson.xhatMid;
     xhatRow.y = 28 + band;
+    this.drawn.cmY = cmRow.y;
+    this.drawn.xhatY = xhatRow.y;
+    this.drawn.fall = fall;
     ctx.font = "600 12px system-ui, sans-serif";
     ctx.textBaseline = "top";
     ctx.textAlign = "left";

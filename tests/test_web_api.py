@@ -137,6 +137,42 @@ def test_simulate_summary_equals_the_cli_json_for_every_preset(
 
 
 @pytest.mark.parametrize("name", PRESETS)
+def test_simulate_gives_newtons_law_for_the_whole_system_and_the_kinetic_energy_split(
+    client: TestClient, name: str
+) -> None:
+    """(Σm)·a_CM, from the exact rolling equations, equals Σf plus the other horizontal
+    external forces (none for bodies joined to each other alone); a_CM is the second derivative
+    of cm_x; translational + rotational is the kinetic energy."""
+    answer = client.post(
+        "/api/simulate", json={"system": system_json(name), "duration": 2.0, "outputs": 2001}
+    )
+    data = answer.json()
+    system = load_system(name)
+    assert data["total_mass"] == pytest.approx(sum(b.mass for b in system.bodies), rel=1e-15)
+    t = np.array(data["t"])
+    cm_a = np.array(data["cm_a"], dtype=float)
+    friction = np.array(data["friction_x"])
+    other = np.array(data["other_external_x"], dtype=float)
+    assert np.isfinite(cm_a).all()  # no preset slips within 2 s
+    expected = sum(np.array(b["friction"]) for b in data["bodies"].values())
+    np.testing.assert_allclose(friction, expected, rtol=1e-12, atol=1e-15)
+    force = friction + other
+    scale = max(np.max(np.abs(force)), 1e-300)
+    assert np.max(np.abs(data["total_mass"] * cm_a - force)) <= 1e-9 * scale
+    if not system.anchors and not system.forces:
+        assert np.max(np.abs(other)) <= 1e-9 * max(np.max(np.abs(friction)), 1e-300)
+    # a_CM is the CM's acceleration: the central second difference of cm_x
+    cm = np.array(data["cm_x"])
+    h = t[1] - t[0]
+    second = (cm[2:] - 2 * cm[1:-1] + cm[:-2]) / h**2
+    spread = max(np.max(np.abs(cm_a)), 1e-12)
+    assert np.max(np.abs(second - cm_a[1:-1])) <= 1e-3 * spread + 1e-6
+    energy = data["energy"]
+    split = np.array(energy["translational"]) + np.array(energy["rotational"])
+    np.testing.assert_allclose(split, energy["kinetic"], rtol=1e-12, atol=1e-15)
+
+
+@pytest.mark.parametrize("name", PRESETS)
 def test_simulate_csv_is_the_trajectory_file(client: TestClient, name: str, tmp_path) -> None:
     answer = client.post(
         "/api/simulate.csv", json={"system": system_json(name), "duration": 1.0, "outputs": 51}

@@ -32,6 +32,7 @@ __all__ = [
     "run_request",
     "run_simulation",
     "simulation_payload",
+    "whole_system",
 ]
 
 
@@ -171,6 +172,7 @@ def simulation_payload(run: SimulationRun) -> dict[str, Any]:
             "friction_ratio": column(trajectory.friction_ratio, i),
             "slipping": column(trajectory.slipping, i),
         }
+    whole = whole_system(trajectory)
     return {
         "summary": summary_json(trajectory),
         "t": trajectory.t,
@@ -186,11 +188,70 @@ def simulation_payload(run: SimulationRun) -> dict[str, Any]:
             "kinetic": trajectory.kinetic,
             "potential": trajectory.potential,
             "total": trajectory.energy,
+            "translational": whole["translational"],
+            "rotational": whole["rotational"],
         },
         "cm_x": trajectory.cm_x,
+        "cm_a": whole["cm_a"],
+        "friction_x": whole["friction_x"],
+        "other_external_x": whole["other_external_x"],
+        "total_mass": whole["total_mass"],
         "stationary_x": trajectory.stationary_x,
         "initial": {body.id: {"x": body.x, "v": body.v} for body in run.system.bodies},
         "linear": None
         if run.linear is None
         else {name: column(run.linear, i) for i, name in enumerate(trajectory.ids)},
+    }
+
+
+def whole_system(trajectory: Trajectory) -> dict[str, Any]:
+    r"""The whole system's Newton's second law and its kinetic energy split, over ``t``.
+
+    ``cm_a``: the centre of mass's acceleration :math:`a_{CM} = \sum m_i\ddot x_i/\sum m_i`
+    (m/s²) from the exact rolling equations of motion (:func:`rollspring.physics.accelerations`,
+    :math:`\ddot x_i = s_i\ddot q_i`, at each output's positions and velocities); NaN (JSON
+    ``null``) at an output where a body slips. ``friction_x``: :math:`\sum f_i` (N), the
+    frictions, the only horizontal external forces of bodies joined to each other alone;
+    ``other_external_x``: the rest of :math:`\sum F_{ix}` (N; wall springs, external forces; the
+    springs between bodies cancel), so that
+    :math:`(\sum m)\,a_{CM} = \sum f + \text{other}`. ``translational``
+    :math:`\sum\tfrac12 m_i v_i^2` and ``rotational`` :math:`\sum\tfrac12 I_i\omega_i^2` (J),
+    whose sum is the kinetic energy. ``total_mass``: :math:`\sum m_i` (kg)."""
+    import dataclasses
+
+    from rollspring.physics import accelerations, body_forces, system_arrays
+
+    arrays = system_arrays(trajectory.system)
+    rolls = arrays.rolls > 0
+    x, phi = trajectory.x, trajectory.phi
+    # the rolling coordinate q (the angle of a rolling body, the displacement of a slider) and
+    # the reference positions x0 = x - s q it is measured from: the file's placement until a
+    # body slips, shifted by each slip (constant while every body rolls)
+    q = np.where(rolls, phi, x - arrays.x0)
+    qdot = np.where(rolls, trajectory.omega, trajectory.v)
+    offsets = x - arrays.scale * q
+    n = len(trajectory.t)
+    cm_a = np.full(n, np.nan)
+    other = np.full(n, np.nan)
+    rolling = ~trajectory.slipping.any(axis=1)
+    mass = arrays.mass
+    total_mass = float(np.sum(mass))
+    if rolling.any():
+        keys = np.round(offsets[rolling] / 1e-9).astype(np.int64)
+        _, first, group = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+        rows = np.flatnonzero(rolling)
+        for g, start in enumerate(first):
+            pick = rows[group.reshape(-1) == g]
+            here = dataclasses.replace(arrays, x0=offsets[rows[start]])
+            qddot = accelerations(here, q[pick], qdot[pick])
+            cm_a[pick] = (arrays.scale * qddot) @ mass / total_mass
+            other[pick] = np.sum(body_forces(here, q[pick], qdot[pick])[..., 0], axis=-1)
+    central = arrays.gamma * mass * arrays.radius**2
+    return {
+        "cm_a": cm_a,
+        "friction_x": np.sum(trajectory.friction, axis=1),
+        "other_external_x": other,
+        "total_mass": total_mass,
+        "translational": 0.5 * (trajectory.v**2) @ mass,
+        "rotational": 0.5 * (trajectory.omega**2) @ central,
     }

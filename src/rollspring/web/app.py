@@ -187,6 +187,8 @@ class EnergySeries(BaseModel):
     kinetic: Series
     potential: Series
     total: Series
+    translational: Series = Field(description="The kinetic energy of the centres' motion.")
+    rotational: Series = Field(description="The kinetic energy of the rotations.")
 
 
 class SimulateResponse(BaseModel):
@@ -196,6 +198,13 @@ class SimulateResponse(BaseModel):
     springs: list[SpringSeries]
     energy: EnergySeries
     cm_x: Series
+    cm_a: Series = Field(description="The CM's acceleration; null where a body slips.")
+    friction_x: Series = Field(description="The sum of the frictions (N).")
+    other_external_x: Series = Field(
+        description="The other horizontal external forces (walls, external forces), N; null "
+        "where a body slips."
+    )
+    total_mass: float
     stationary_x: Series | None
     initial: dict[str, dict[str, float]]
     linear: dict[str, Series] | None

@@ -11,7 +11,10 @@
 //   ready()       → a Promise resolved once the first motion is drawn;
 //   system()      → a copy of the system being edited (the JSON form);
 //   time()        → the clock (s); dt() → the Step interval (s): one output interval;
-//   settled()     → true when no change waits to be computed or drawn (for tests).
+//   settled()     → true when no change waits to be computed or drawn (for tests);
+//   drawn()       → what the last frame drew (CSS px): the strip's CM and X̂ positions and its
+//                   magnification, each force arrow's signed length, the arrows' px per N;
+//   plotData(key) → a plot's series labels and data as plotted.
 // Initial displacements are shown relative to where each body was when the system was loaded
 // (the preset, file or link): that is also where Home puts a body back.
 
@@ -22,15 +25,20 @@ import { attachmentFromPoint, springEnds, worldBounds } from "./geometry.js";
 import { Handles } from "./handles.js";
 import { renderDerivation, renderEnergyBars, renderModes } from "./panels.js";
 import { Plots } from "./plots.js";
-import { largestForce, Scene } from "./scene.js";
-import { energyBars } from "./series.js";
+import { Scene } from "./scene.js";
+import { energyBars, FORCE_COLOURS, neededMu } from "./series.js";
 import { advance, clockText, outputInterval, sampleIndex, SPEEDS, stepForward, valueAt } from "./timeline.js";
 import { decodeState, encodeState } from "./urlstate.js";
 
 const DURATION = 10;
 const OUTPUTS = 601;
 const DEBOUNCE_MS = 90;
-const ARROW_PX = 70; // the largest force shown is drawn this long
+// The force arrows' scales at zoom ×1 (px per N), one per kind, fixed while the page is open
+// (the arrow-scale control multiplies them): the default system's frictions (≤ 0.5 N) are
+// ~30 px, its weights ~40 px, its spring's pull ~30 px.
+const FORCE_SCALES = { spring: 30, friction: 60, normal: 4 };
+const ZOOMS = [0.25, 0.5, 1, 2, 4, 8];
+const FORCE_NAMES = { friction: "friction f", normal: "normal force N", spring: "spring force" };
 
 const $ = (selector) => document.querySelector(selector);
 
@@ -38,7 +46,8 @@ const state = {
   preset: "",
   system: null, // the system being edited (JSON form)
   loaded: {}, // body id → x when the system was loaded (Home)
-  show: { spring: false, friction: true, normal: false, markers: true, linear: false, dots: false },
+  show: { spring: false, friction: true, normal: false, markers: true, linear: false, dots: false,
+    values: false, absolute: false },
   onSlip: "stop",
   speed: 1,
   start: null, // {mode, amplitude}: start along a mode instead of the system's x, v
@@ -47,6 +56,12 @@ const state = {
 };
 
 let run = null; // the last good /api/simulate answer
+let lesson = null; // the strip's series of `run` (see lessonOf)
+let needed = null; // body id → max |f|/N needed up to each sample of `run`
+const forceScale = { ...FORCE_SCALES }; // px per N now (the arrow-scale control)
+let arrowZoom = 1;
+const labelled = new Set(); // bodies hovered or focused: their forces get value labels
+let hovered = null;
 let analysis = null; // the last good /api/analyze answer
 let playing = false;
 let dragging = false;
@@ -62,7 +77,7 @@ const readyPromise = new Promise((resolve) => (resolveReady = resolve));
 const simulate = latest("/api/simulate");
 const analyze = latest("/api/analyze");
 const derive = latest("/api/derive");
-const scene = new Scene($("#scene"));
+const scene = new Scene($("#scene"), $("#strip"));
 const plots = new Plots($("#plots"), (t) => seek(t));
 const editor = new Editor($("#editor"), (kind) => edited(kind));
 const handles = new Handles($("#handles"), {
@@ -165,7 +180,10 @@ function applyMotion(sim, system) {
   slider.max = String(end);
   slider.step = String(outputInterval(run.t));
   $("#dt").textContent = `${sig(outputInterval(run.t), 4)} s`;
-  plots.setRun(run, system);
+  lesson = lessonOf(run);
+  needed = Object.fromEntries(Object.entries(run.bodies).map(([id, b]) => [id, neededMu(b.friction, b.normal)]));
+  buildGauges(system);
+  plots.setRun(run, system, plotView());
   renderInitial();
   describeRun();
   if (state.start && !playing) play();
@@ -178,6 +196,7 @@ function applyMotion(sim, system) {
 /** The linear analysis of the system now shown: the modal table, X̂, the displacements. */
 function applyAnalysis(lin) {
   analysis = lin;
+  plots.update("positions", run, run.system, plotView());
   renderModes($("#modes tbody"), analysis, playMode);
   renderAnalysisNote();
   renderInitial();
@@ -340,6 +359,7 @@ function pause() {
   playing = false;
   $("#play").textContent = "Play";
   $("#play").setAttribute("aria-label", "Play");
+  draw(); // the force values, shown while paused
   saveUrl();
 }
 
@@ -380,7 +400,7 @@ function frameNow() {
     const pose = (id) => ({ x: body(id).x, phi: 0 });
     const tensions = system.springs.map((s) => restTension(system, s, pose));
     return { system, pose, tensions, contact: () => null, cm: null, xhat: null, t, ghosts: null,
-      flash: new Set(), show: state.show, forceScale: 0, preview: true };
+      flash: new Set(), show: state.show, forceScale, labelled, lesson: null, preview: true };
   }
   const times = run.t;
   const pose = (id) => ({ x: valueAt(times, run.bodies[id].x, t), phi: valueAt(times, run.bodies[id].phi, t) });
@@ -389,7 +409,6 @@ function frameNow() {
   const event = firstEvent();
   if (event && t >= event.time - 1e-9) flash.add(event.body);
   for (const [id, b] of Object.entries(run.bodies)) if (b.slipping[i]) flash.add(id);
-  const largest = largestForce(run, state.show);
   return {
     system, pose, t, flash, show: state.show,
     tensions: run.springs.map((s) => valueAt(times, s.tension, t)),
@@ -398,7 +417,7 @@ function frameNow() {
     xhat: run.stationary_x ? valueAt(times, run.stationary_x, t) : null,
     ghosts: state.show.linear && run.linear
       ? Object.fromEntries(Object.entries(run.linear).map(([id, xs]) => [id, valueAt(times, xs, t)])) : null,
-    forceScale: largest > 0 ? ARROW_PX / largest : 0,
+    forceScale, labelled, lesson,
     preview: false,
   };
 }
@@ -409,19 +428,22 @@ function restTension(system, spring, pose) {
   return spring.stiffness * (Math.hypot(b.x - a.x, b.y - a.y) - spring.rest_length);
 }
 
+let lastPose = null;
 function draw() {
   if (!state.system) return;
   const frame = frameNow();
+  lastPose = frame.pose;
   scene.draw(frame);
   $("#clock").textContent = clockText(state.t);
   $("#clock").dataset.t = String(state.t);
   $("#time").value = String(state.t);
-  $("#scale-note").textContent = frame.forceScale > 0 && (state.show.spring || state.show.friction || state.show.normal)
-    ? `arrows: 1 N = ${sig(frame.forceScale, 3)} px` : "";
   placeHandles(frame);
   if (!frame.preview) {
     plots.setTime(state.t);
-    renderEnergyBars($("#energy-bars"), energyBars(run, sampleIndex(run.t, state.t)));
+    const i = sampleIndex(run.t, state.t);
+    renderEnergyBars($("#energy-bars"), energyBars(run, i));
+    renderGauges(i);
+    if (!playing) renderForceValues(frame);
     announceEvent();
     if (drawnRun !== run) {
       drawnRun = run;
@@ -462,6 +484,157 @@ function setStatus(text) {
   $("#status").textContent = text;
 }
 
+// ---------------------------------------------------------------- the lesson and the forces
+
+/** What the plots show: positions from the equilibrium of the analysis now shown (when it is
+ * of these bodies), or absolute. */
+function plotView() {
+  const eq = analysis && analysis.equilibrium && analysis.equilibrium.found ? analysis.equilibrium.x : null;
+  const sp = analysis ? analysis.stationary_point : null;
+  return { absolute: state.show.absolute, equilibrium: eq, weights: sp && sp.weights ? sp.weights : null };
+}
+
+/** The strip's series: the CM and X̂ with the middle of each one's range, and the larger
+ * half-range (m), which sets the magnification. */
+function lessonOf(sim) {
+  const mid = (values) => {
+    let lo = Infinity;
+    let hi = -Infinity;
+    for (const v of values) {
+      if (v == null) continue;
+      lo = Math.min(lo, v);
+      hi = Math.max(hi, v);
+    }
+    return lo <= hi ? { mid: (lo + hi) / 2, half: (hi - lo) / 2 } : { mid: 0, half: 0 };
+  };
+  const cm = mid(sim.cm_x);
+  const xhat = sim.stationary_x ? mid(sim.stationary_x) : null;
+  return { times: sim.t, cm: sim.cm_x, xhat: sim.stationary_x, cmMid: cm.mid,
+    xhatMid: xhat ? xhat.mid : 0, halfRange: Math.max(cm.half, xhat ? xhat.half : 0) };
+}
+
+let gaugeIds = "";
+/** One "needed μ" gauge per rolling body: max |f|/N needed so far against its μs. */
+function buildGauges(system) {
+  const rolling = system.bodies.filter((b) => b.shape !== "slider");
+  const ids = rolling.map((b) => `${b.id}:${b.mu_static}`).join("|");
+  if (ids === gaugeIds) return;
+  gaugeIds = ids;
+  $(".mu-box").hidden = rolling.length === 0;
+  $("#mu-gauges").replaceChildren(...rolling.map((b) => {
+    const row = document.createElement("div");
+    row.className = "gauge";
+    row.dataset.gauge = b.id;
+    const name = document.createElement("span");
+    name.className = "name";
+    name.textContent = b.id;
+    const track = document.createElement("div");
+    track.className = "track";
+    track.setAttribute("aria-hidden", "true");
+    const fill = document.createElement("div");
+    fill.className = "fill";
+    const limit = document.createElement("div");
+    limit.className = "limit";
+    track.append(fill, limit);
+    const value = document.createElement("output");
+    value.className = "value";
+    row.append(name, track, value);
+    Object.assign(row, { mu: Number(b.mu_static), fill, limit, value, lastNow: NaN, lastTotal: NaN });
+    return row;
+  }));
+}
+
+function renderGauges(i) {
+  // only what changed is written (the running max changes seldom): no work in most frames
+  for (const row of $("#mu-gauges").children) {
+    const series = needed[row.dataset.gauge];
+    if (!series) continue;
+    const now = series[i];
+    const total = series[series.length - 1];
+    if (row.lastNow === now && row.lastTotal === total) continue;
+    row.lastNow = now;
+    row.lastTotal = total;
+    const mu = row.mu;
+    const finite = Number.isFinite(mu);
+    const top = Math.max(finite ? mu : 0, total, 1e-12) * 1.15;
+    row.fill.style.width = `${Math.min(100, (now / top) * 100).toFixed(2)}%`;
+    row.limit.hidden = !finite;
+    if (finite) row.limit.style.left = `${Math.min(100, (mu / top) * 100).toFixed(2)}%`;
+    row.dataset.over = String(finite && now > mu);
+    row.value.textContent = `needs μ ≥ ${sig(now, 3)} of μs = ${finite ? sig(mu, 3) : "∞"}`;
+  }
+}
+
+function renderForceValues(frame) {
+  const parts = [];
+  for (const b of frame.system.bodies) {
+    const c = frame.contact(b.id);
+    if (!c) continue;
+    const f = b.shape === "slider" ? "" : `f = ${c.f < 0 ? "−" : "+"}${sig(Math.abs(c.f), 3)} N, `;
+    parts.push(`${b.id}: ${f}N = ${sig(c.N, 4)} N`);
+  }
+  frame.tensions.forEach((t, s) => parts.push(`spring ${s + 1}: T = ${t < 0 ? "−" : "+"}${sig(Math.abs(t), 3)} N`));
+  $("#force-values").textContent = parts.length ? `At ${clockText(frame.t)}: ${parts.join("; ")}.` : "";
+}
+
+function renderForceKey() {
+  for (const kind of Object.keys(FORCE_SCALES)) {
+    const item = $(`#force-key [data-force="${kind}"]`);
+    item.querySelector(".swatch").style.background = FORCE_COLOURS[kind];
+    item.querySelector(".scale").textContent = `${FORCE_NAMES[kind]}: 1 N = ${sig(forceScale[kind], 3)} px`;
+  }
+}
+
+function wireForceKey() {
+  const zoom = $("#arrow-scale");
+  zoom.replaceChildren(...ZOOMS.map((z) => new Option(`×${z}`, String(z))));
+  zoom.value = String(arrowZoom);
+  zoom.addEventListener("change", () => {
+    arrowZoom = Number(zoom.value);
+    for (const kind of Object.keys(FORCE_SCALES)) forceScale[kind] = FORCE_SCALES[kind] * arrowZoom;
+    renderForceKey();
+    draw();
+  });
+  renderForceKey();
+  // value labels for the body under the pointer or with the keyboard focus
+  const layer = $("#handles");
+  const relabel = () => {
+    labelled.clear();
+    if (hovered) labelled.add(hovered);
+    const focused = document.activeElement && document.activeElement.closest && document.activeElement.closest("#handles [data-body]");
+    if (focused) labelled.add(focused.dataset.body);
+    if (!playing) draw();
+  };
+  layer.addEventListener("pointermove", (e) => {
+    if (!state.system) return;
+    const box = layer.getBoundingClientRect();
+    const x = scene.view.toWorld({ x: e.clientX - box.left, y: e.clientY - box.top }).x;
+    const frame = lastPose;
+    let best = null;
+    let bestD = Infinity;
+    for (const b of state.system.bodies) {
+      const d = Math.abs((frame ? frame(b.id).x : b.x) - x) - b.radius;
+      if (d < bestD) {
+        bestD = d;
+        best = b.id;
+      }
+    }
+    const id = bestD * scene.view.pxPerM < 24 ? best : null;
+    if (id !== hovered) {
+      hovered = id;
+      relabel();
+    }
+  });
+  layer.addEventListener("pointerleave", () => {
+    if (hovered !== null) {
+      hovered = null;
+      relabel();
+    }
+  });
+  layer.addEventListener("focusin", relabel);
+  layer.addEventListener("focusout", () => setTimeout(relabel));
+}
+
 // ---------------------------------------------------------------- the URL (share)
 
 let urlTimer = null;
@@ -480,7 +653,7 @@ function shareable() {
 
 function restore(saved) {
   loadSystem(saved.system, saved.preset || "");
-  Object.assign(state, { loaded: saved.loaded, show: saved.show, onSlip: saved.onSlip,
+  Object.assign(state, { loaded: saved.loaded, show: { ...state.show, ...saved.show }, onSlip: saved.onSlip,
     speed: saved.speed, start: saved.start, t: saved.t, window: saved.window });
   scene.setWindow(state.window);
   syncViewControls();
@@ -586,10 +759,12 @@ function wireControls(presets) {
     $(`#show-${key}`).addEventListener("change", (e) => {
       state.show[key] = e.target.checked;
       if (key === "linear") recomputeNow();
+      else if (key === "absolute" && run) plots.update("positions", run, run.system, plotView());
       else draw();
       saveUrl();
     });
   }
+  wireForceKey();
   $("#continue-slip").addEventListener("change", (e) => {
     state.onSlip = e.target.checked ? "continue" : "stop";
     pendingChange = performance.now();
@@ -643,6 +818,8 @@ window.rollspringPage = {
   time: () => state.t,
   dt,
   settled: () => timer === null && inFlight === 0 && (pendingChange === null || errorShown),
+  drawn: () => structuredClone({ ...scene.drawn, forceScale }),
+  plotData: (key) => plots.plotted(key),
 };
 
 async function main() {

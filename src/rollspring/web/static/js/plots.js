@@ -1,14 +1,23 @@
-// The four time plots (uPlot), each with a time cursor that follows the animation's clock.
+// The time plots (uPlot), each with a time cursor that follows the animation's clock.
 
 import uPlot from "/vendor/uplot/uPlot.esm.js";
-import { energySeries, forceSeries, positionSeries, ratioSeries } from "./series.js";
+import { energySeries, forceSeries, newtonSeries, positionSeries, ratioSeries } from "./series.js";
+
+const POSITION_TITLES = {
+  equilibrium: "Displacements from equilibrium: the CM (bold) moves, X̂ (bold, dashed) stays put",
+  "t = 0": "Displacements from t = 0: the CM (bold) and X̂ (bold, dashed)",
+  absolute: "Centre positions, the CM (bold) and X̂ (bold, dashed)",
+};
 
 const PLOTS = [
-  { key: "positions", title: "Centre positions, CM and X̂", unit: "x (m)", build: positionSeries },
+  { key: "positions", title: POSITION_TITLES.equilibrium, unit: "x (m)", build: positionSeries },
+  { key: "newton", title: "The whole system: Σf, the frictions, is (Σm)·a_CM — friction moves the CM",
+    unit: "force (N)", build: newtonSeries },
   { key: "forces", title: "Friction f and normal force N, with ±μs N", unit: "force (N)",
     build: forceSeries },
   { key: "ratio", title: "Friction used, |f| / (μs N)", unit: "|f| / (μs N)", build: ratioSeries },
-  { key: "energy", title: "Energy", unit: "energy (J)", build: energySeries },
+  { key: "energy", title: "Energy: kinetic (translational + rotational), potential, total",
+    unit: "energy (J)", build: energySeries },
 ];
 
 /** One uPlot per figure in `container`; `setRun` replaces the data, `setTime` moves the
@@ -25,7 +34,7 @@ export class Plots {
       caption.textContent = spec.title;
       figure.append(caption);
       container.append(figure);
-      return { spec, figure, plot: null, signature: "", cursor: null, revision: 0 };
+      return { spec, figure, caption, plot: null, signature: "", cursor: null, revision: 0, built: null };
     });
     new ResizeObserver(() => this.resize()).observe(container);
   }
@@ -38,29 +47,49 @@ export class Plots {
     for (const f of this.figures) if (f.plot) f.plot.setSize({ width: this.width(f.figure), height: 200 });
   }
 
-  /** Show the trajectory `run` of `system`. */
-  setRun(run, system) {
-    for (const f of this.figures) {
-      const { data, series } = f.spec.build(run, system);
-      const signature = series.map((s) => s.label).join("|");
-      if (f.plot && signature === f.signature) {
-        f.plot.setData(data);
-      } else {
-        if (f.plot) f.plot.destroy();
-        f.plot = this.make(f, series, data);
-        f.signature = signature;
-      }
-      f.revision += 1;
-      f.figure.dataset.revision = String(f.revision);
-    }
+  /** Show the trajectory `run` of `system`; `view`: how positions are shown (positionSeries). */
+  setRun(run, system, view = {}) {
+    for (const f of this.figures) this.show(f, run, system, view);
   }
 
-  make(f, series, data) {
+  /** Show the plot `key` again (its view changed). */
+  update(key, run, system, view = {}) {
+    const f = this.figures.find((g) => g.spec.key === key);
+    if (f && run) this.show(f, run, system, view);
+  }
+
+  /** The plot `key` as plotted: {labels, data} (data[0] is t). */
+  plotted(key) {
+    const f = this.figures.find((g) => g.spec.key === key);
+    if (!f || !f.built) return null;
+    return { labels: f.built.series.map((s) => s.label), unit: f.built.unit ?? f.spec.unit,
+      data: f.built.data.map((column) => Array.from(column)) };
+  }
+
+  show(f, run, system, view) {
+    const built = f.spec.build(run, system, view);
+    const { data, series } = built;
+    const unit = built.unit ?? f.spec.unit;
+    const signature = `${unit}|${series.map((s) => s.label).join("|")}`;
+    if (f.plot && signature === f.signature) {
+      f.plot.setData(data);
+    } else {
+      if (f.plot) f.plot.destroy();
+      f.plot = this.make(f, series, data, unit);
+      f.signature = signature;
+    }
+    if (built.reference) f.caption.textContent = POSITION_TITLES[built.reference];
+    f.built = built;
+    f.revision += 1;
+    f.figure.dataset.revision = String(f.revision);
+  }
+
+  make(f, series, data, unit) {
     const plot = new uPlot({
       width: this.width(f.figure),
       height: 200,
       scales: { x: { time: false } },
-      axes: [{ label: "t (s)", size: 36, labelSize: 18 }, { label: f.spec.unit, size: 58, labelSize: 18 }],
+      axes: [{ label: "t (s)", size: 36, labelSize: 18 }, { label: unit, size: 58, labelSize: 18 }],
       legend: { live: true },
       cursor: { drag: { x: false, y: false } },
       series: [{ label: "t (s)" }, ...series.map((s) => ({

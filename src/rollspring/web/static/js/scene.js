@@ -1,20 +1,33 @@
 // The animation canvas: tracks, walls, rolling bodies with spokes and a mark, zigzag springs,
-// force arrows to scale, the CM and X̂ on the floor, ghost bodies of the linear solution, a
-// clock. `Scene.draw(frame)` paints one instant; what the instant is comes from main.js.
+// force arrows to fixed scales (px per N, one per kind of force) with value labels, the CM and
+// X̂ on the floor, ghost bodies of the linear solution, a clock; and under it the lesson strip:
+// the CM and X̂ magnified, each with a fading trail. `Scene.draw(frame)` paints one instant;
+// what the instant is comes from main.js. What was drawn last (pixel positions and arrow
+// lengths) is kept in `scene.drawn`, for tests.
 
 import { makeView, springEnds, zigzag } from "./geometry.js";
-import { bodyColour } from "./series.js";
-import { clockText } from "./timeline.js";
+import { sig } from "./format.js";
+import { bodyColour, CM_COLOUR, FORCE_COLOURS, magnification, XHAT_COLOUR } from "./series.js";
+import { clockText, sampleIndex, valueAt } from "./timeline.js";
 
 const INK = "#1d2430";
-const FORCE_COLOURS = { spring: "#8a4fbf", friction: "#c2502b", normal: "#2e8b57" };
+/** The longest arrow drawn, as a share of the canvas width (a longer one is cut, marked so). */
+const ARROW_MAX = 0.45;
+/** The trail of the strip's markers: how far back (s) and in how many fading steps. */
+const TRAIL_S = 0.6;
+const TRAIL_STEPS = 6;
 
 /** The canvas and its view of the world window; handles the device pixel ratio. */
 export class Scene {
-  constructor(canvas) {
+  /** `canvas`: the animation; `stripCanvas` (optional): the magnified CM and X̂ strip. */
+  constructor(canvas, stripCanvas = null) {
     this.canvas = canvas;
     this.ctx = canvas.getContext("2d");
+    this.strip = stripCanvas ? new Strip(stripCanvas) : null;
     this.window = { xmin: -0.5, xmax: 0.5, ymin: -0.1, ymax: 0.3 };
+    // what the last frame drew (CSS px), rewritten in place by every draw
+    this.drawn = { friction: {}, normal: {}, spring: [], labels: [],
+      strip: this.strip ? this.strip.drawn : null };
     this.resize();
   }
 
@@ -31,7 +44,8 @@ export class Scene {
     this.canvas.height = Math.round(height * ratio);
     this.ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
     this.setWindow(this.window);
-    return changed;
+    const stripChanged = this.strip ? this.strip.resize() : false;
+    return changed || stripChanged;
   }
 
   /** Show the world window `w` ({xmin, xmax, ymin, ymax}, metres). */
@@ -43,7 +57,9 @@ export class Scene {
 
   /** Paint one instant. `frame`: {system, pose(id) → {x, phi}, tensions[], contact(id) →
    * {f, N}, cm, xhat (or null), t, ghosts {id: x} or null, flash Set of ids, show {spring,
-   * friction, normal, markers}, forceScale (px per N)}. */
+   * friction, normal, markers, values}, forceScale {spring, friction, normal} (px per N),
+   * labelled (a Set of body ids whose forces get value labels), lesson (see Strip.draw) or
+   * null}. */
   draw(frame) {
     const { ctx, view } = this;
     ctx.clearRect(0, 0, this.width, this.height);
@@ -53,13 +69,188 @@ export class Scene {
     frame.system.springs.forEach((spring, s) => drawSpring(ctx, view, frame, spring, s));
     frame.system.bodies.forEach((body, i) => drawBody(ctx, view, frame, body, i));
     if (frame.show.markers) drawMarkers(ctx, view, frame);
-    drawForces(ctx, view, frame);
+    drawForces(ctx, view, frame, this.drawn, this.width * ARROW_MAX);
     ctx.fillStyle = INK;
     ctx.font = "600 15px system-ui, sans-serif";
     ctx.textAlign = "left";
     ctx.textBaseline = "top";
     ctx.fillText(clockText(frame.t), 10, 8);
+    if (this.strip) this.strip.draw(frame, view.pxPerM);
   }
+}
+
+/** The lesson strip: the CM and X̂ each on its own row, about the middle of its range, at one
+ * magnification (1, 2, 5 × 10^k, the largest that keeps both inside the strip) of the
+ * animation's scale, each with a trail of the last TRAIL_S s that fades and falls with age
+ * (the CM's a wave, X̂'s a straight line: it stays put). */
+class Strip {
+  constructor(canvas) {
+    this.canvas = canvas;
+    this.ctx = canvas.getContext("2d");
+    // the markers' x, the rows' y, the trails' length (s) and fall (px): the trail point of a
+    // time t − a is drawn a/trail·fall px below its row
+    this.drawn = { cm: null, xhat: null, magnification: 1, pxPerM: 0, cmY: 0, xhatY: 0,
+      trail: TRAIL_S, fall: 0 };
+    this.labelled = 0; // ± the magnification the title and label describe (− without X̂)
+    this.title = "";
+    this.rows = [
+      { key: "cm", name: "CM", values: null, mid: 0, colour: CM_COLOUR, y: 0 },
+      { key: "xhat", name: "X̂", values: null, mid: 0, colour: XHAT_COLOUR, y: 0 },
+    ];
+  }
+
+  resize() {
+    const box = this.canvas.getBoundingClientRect();
+    const width = Math.max(1, Math.round(box.width));
+    const height = Math.max(1, Math.round(box.height));
+    const ratio = window.devicePixelRatio || 1;
+    const changed = width !== this.width || height !== this.height;
+    this.width = width;
+    this.height = height;
+    this.canvas.width = Math.round(width * ratio);
+    this.canvas.height = Math.round(height * ratio);
+    this.ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+    return changed;
+  }
+
+  /** `frame.lesson`: {times, cm, xhat (or null), cmMid, xhatMid, halfRange (m)} of the run. */
+  draw(frame, pxPerM) {
+    const { ctx, width, height } = this;
+    const lesson = frame.lesson;
+    ctx.clearRect(0, 0, width, height);
+    if (!lesson) {
+      this.drawn.cm = null;
+      this.drawn.xhat = null;
+      return;
+    }
+    const mag = magnification(lesson.halfRange * pxPerM, 0.3 * width);
+    const k = pxPerM * mag; // px per metre in the strip
+    const cx = width / 2;
+    // two bands under the title, each with its marker on top and its trail falling below
+    const band = (height - 22) / 2;
+    const fall = band - 12;
+    const [cmRow, xhatRow] = this.rows;
+    cmRow.values = lesson.cm;
+    cmRow.mid = lesson.cmMid;
+    cmRow.y = 28;
+    xhatRow.values = lesson.xhat;
+    xhatRow.mid = lesson.xhatMid;
+    xhatRow.y = 28 + band;
+    this.drawn.cmY = cmRow.y;
+    this.drawn.xhatY = xhatRow.y;
+    this.drawn.fall = fall;
+    ctx.font = "600 12px system-ui, sans-serif";
+    ctx.textBaseline = "top";
+    ctx.textAlign = "left";
+    ctx.fillStyle = INK;
+    if (this.labelled !== (lesson.xhat ? mag : -mag)) { // the words change with these only
+      this.labelled = lesson.xhat ? mag : -mag;
+      this.title = `${lesson.xhat ? "CM and X̂" : "CM"} magnified ×${mag}`;
+      this.canvas.setAttribute("aria-label", `The centre of mass${lesson.xhat ? " and the stationary "
+        + "point X̂" : ""}, magnified ×${mag}, each about the middle of its range.`);
+      this.canvas.dataset.magnification = String(mag);
+    }
+    ctx.fillText(this.title, 6, 3);
+    scaleBar(ctx, width, k);
+    const times = lesson.times;
+    const i = sampleIndex(times, frame.t);
+    for (const row of this.rows) {
+      if (!row.values) continue;
+      ctx.strokeStyle = "#c9d0da";
+      ctx.lineWidth = 1;
+      ctx.beginPath();
+      ctx.moveTo(30, row.y);
+      ctx.lineTo(width - 6, row.y);
+      ctx.moveTo(cx, row.y - 5);
+      ctx.lineTo(cx, row.y + 5);
+      ctx.stroke();
+      // the trail: samples back to TRAIL_S s ago, in TRAIL_STEPS paths of fading alpha
+      const dtSample = times.length > 1 ? times[1] - times[0] : 1;
+      const back = Math.min(i, Math.max(1, Math.round(TRAIL_S / dtSample)));
+      const per = Math.max(1, Math.ceil(back / TRAIL_STEPS));
+      ctx.strokeStyle = row.colour;
+      ctx.lineWidth = 2.5;
+      for (let step = 0, j = i; step < TRAIL_STEPS && j > i - back; step++) {
+        ctx.globalAlpha = 0.75 * (1 - step / TRAIL_STEPS);
+        ctx.beginPath();
+        const stop = Math.max(i - back, j - per);
+        for (let m = j; m >= stop; m--) {
+          const v = row.values[m];
+          if (v == null) continue;
+          const px = cx + (v - row.mid) * k;
+          const py = row.y + ((frame.t - times[m]) / TRAIL_S) * fall;
+          if (m === j) ctx.moveTo(px, py);
+          else ctx.lineTo(px, py);
+        }
+        ctx.stroke();
+        j = stop;
+      }
+      ctx.globalAlpha = 1;
+      const now = valueAt(times, row.values, frame.t);
+      const px = now == null ? null : cx + (now - row.mid) * k;
+      this.drawn[row.key] = px;
+      ctx.font = "600 13px system-ui, sans-serif";
+      ctx.textBaseline = "middle";
+      ctx.textAlign = "left";
+      ctx.fillStyle = row.colour;
+      ctx.fillText(row.name, 6, row.y);
+      if (px != null) {
+        ctx.beginPath();
+        ctx.arc(px, row.y, 6.5, 0, 2 * Math.PI);
+        ctx.fill();
+        ctx.strokeStyle = "#fff";
+        ctx.lineWidth = 1.5;
+        ctx.stroke();
+      }
+    }
+    if (!lesson.xhat) this.drawn.xhat = null;
+    this.drawn.magnification = mag;
+    this.drawn.pxPerM = k;
+  }
+}
+
+/** A scale bar at the strip's top right: a round length (1, 2 or 5 × 10^k m) 30–120 px long. */
+function scaleBar(ctx, width, k) {
+  let length = 10;
+  for (let e = -7; e <= 1 && length === 10; e++) {
+    for (const m of [1, 2, 5]) {
+      if (m * 10 ** e * k >= 30) {
+        length = m * 10 ** e;
+        break;
+      }
+    }
+  }
+  const px = length * k;
+  const x1 = width - 8;
+  const x0 = x1 - px;
+  ctx.strokeStyle = INK;
+  ctx.lineWidth = 2;
+  ctx.beginPath();
+  ctx.moveTo(x0, 10);
+  ctx.lineTo(x1, 10);
+  ctx.moveTo(x0, 6);
+  ctx.lineTo(x0, 14);
+  ctx.moveTo(x1, 6);
+  ctx.lineTo(x1, 14);
+  ctx.stroke();
+  ctx.font = "11px system-ui, sans-serif";
+  ctx.textAlign = "right";
+  ctx.textBaseline = "top";
+  ctx.fillStyle = INK;
+  if (length !== barLength) {
+    barLength = length;
+    barText = lengthText(length);
+  }
+  ctx.fillText(barText, x0 - 4, 4);
+}
+
+let barLength = 0;
+let barText = "";
+
+function lengthText(m) {
+  if (m >= 1) return `${sig(m, 1)} m`;
+  if (m >= 1e-3) return `${Number((m * 1e3).toPrecision(1))} mm`;
+  return `${Number((m * 1e6).toPrecision(1))} µm`;
 }
 
 function drawTracks(ctx, view, system, width) {
@@ -198,30 +389,36 @@ function drawGhosts(ctx, view, frame) {
 function drawMarkers(ctx, view, frame) {
   const floor = Math.min(...frame.system.bodies.map((b) => b.track_height || 0));
   const y = view.toCanvas({ x: 0, y: floor }).y;
-  const marks = [{ x: frame.cm, text: "CM", colour: "#555" }];
-  if (frame.xhat != null) marks.push({ x: frame.xhat, text: "X̂", colour: "#000" });
+  const marks = [{ x: frame.cm, text: "CM", colour: CM_COLOUR }];
+  if (frame.xhat != null) marks.push({ x: frame.xhat, text: "X̂", colour: XHAT_COLOUR });
   marks.forEach((m, k) => {
     if (m.x == null) return;
     const px = view.toCanvas({ x: m.x, y: 0 }).x;
     ctx.fillStyle = m.colour;
     ctx.beginPath();
-    ctx.moveTo(px, y + 2);
-    ctx.lineTo(px - 6, y + 12);
-    ctx.lineTo(px + 6, y + 12);
+    ctx.moveTo(px, y + 1);
+    ctx.lineTo(px - 8, y + 14);
+    ctx.lineTo(px + 8, y + 14);
     ctx.closePath();
     ctx.fill();
-    ctx.font = "12px system-ui, sans-serif";
+    ctx.font = "600 13px system-ui, sans-serif";
     ctx.textAlign = "center";
     ctx.textBaseline = "top";
     ctx.fillStyle = "#fff";
-    ctx.fillRect(px - 11, y + 13 + k * 13, 22, 13);
+    ctx.fillRect(px - 12, y + 15 + k * 14, 24, 14);
     ctx.fillStyle = m.colour;
-    ctx.fillText(m.text, px, y + 13 + k * 13);
+    ctx.fillText(m.text, px, y + 15 + k * 14);
   });
 }
 
-function drawForces(ctx, view, frame) {
+/** The force arrows at their kind's fixed scale (px per N); an arrow longer than `maxPx` is
+ * cut there and ends in a bar. Records each arrow's drawn (signed) length in `drawn`; labels
+ * the values of the bodies in `frame.labelled` (or of every body with `show.values`). */
+function drawForces(ctx, view, frame, drawn, maxPx) {
   const k = frame.forceScale;
+  const all = frame.show.values;
+  drawn.spring.length = 0;
+  drawn.labels.length = 0;
   if (frame.show.spring) {
     frame.system.springs.forEach((spring, s) => {
       const ends = springEnds(frame.system, spring, frame.pose);
@@ -234,44 +431,74 @@ function drawForces(ctx, view, frame) {
         // force on end a: +T e, on end b: −T e (docs/physics.md §2)
         const sign = j === 0 ? 1 : -1;
         const p = view.toCanvas(ends[j]);
-        arrow(ctx, p, { x: sign * t * dx / l * k, y: -sign * t * dy / l * k }, FORCE_COLOURS.spring);
+        const length = arrow(ctx, p, sign * t * dx / l * k.spring, -sign * t * dy / l * k.spring,
+          FORCE_COLOURS.spring, maxPx);
+        drawn.spring.push(length);
       });
+      // the tension once per spring, over its middle (positive: stretched)
+      const [a, b] = spring.ends;
+      if (all || frame.labelled.has(a) || frame.labelled.has(b)) {
+        const m = view.toCanvas({ x: (ends[0].x + ends[1].x) / 2, y: (ends[0].y + ends[1].y) / 2 });
+        valueLabel(ctx, drawn, frame.labelled.has(a) || !frame.labelled.has(b) ? a : b, m.x,
+          m.y - 16 - (s % 2) * 15, `T = ${signed(t)} N`, FORCE_COLOURS.spring);
+      }
     });
   }
-  for (const body of frame.system.bodies) {
+  frame.system.bodies.forEach((body, index) => {
     const { x } = frame.pose(body.id);
     const contact = frame.contact(body.id);
-    if (!contact) continue;
+    drawn.friction[body.id] = 0;
+    drawn.normal[body.id] = 0;
+    if (!contact) return;
+    const stagger = (index % 2) * 15; // neighbours' labels on two levels
     const p = view.toCanvas({ x, y: body.track_height || 0 });
+    const label = all || frame.labelled.has(body.id);
     if (frame.show.friction && body.shape !== "slider") {
-      arrow(ctx, p, { x: contact.f * k, y: 0 }, FORCE_COLOURS.friction);
+      drawn.friction[body.id] = arrow(ctx, p, contact.f * k.friction, 0, FORCE_COLOURS.friction, maxPx);
+      if (label) {
+        const right = contact.f >= 0;
+        valueLabel(ctx, drawn, body.id, p.x + (right ? 1 : -1) * (Math.abs(drawn.friction[body.id]) + 6), p.y + 14 + stagger,
+          `f = ${signed(contact.f)} N`, FORCE_COLOURS.friction, right ? "left" : "right");
+      }
     }
-    if (frame.show.normal) arrow(ctx, p, { x: 0, y: -contact.N * k }, FORCE_COLOURS.normal);
-  }
+    if (frame.show.normal) {
+      drawn.normal[body.id] = arrow(ctx, p, 0, -contact.N * k.normal, FORCE_COLOURS.normal, maxPx);
+      if (label) {
+        valueLabel(ctx, drawn, body.id, p.x + 6, p.y - Math.abs(drawn.normal[body.id]) - 2 - stagger,
+          `N = ${sig(contact.N, 3)} N`, FORCE_COLOURS.normal, "left");
+      }
+    }
+  });
 }
 
-/** Largest force a frame can show (N), for the arrow scale. */
-export function largestForce(run, show) {
-  let max = 0;
-  const take = (values) => {
-    for (const v of values) if (v != null) max = Math.max(max, Math.abs(v));
-  };
-  if (show.spring) run.springs.forEach((s) => take(s.tension));
-  for (const b of Object.values(run.bodies)) {
-    if (show.friction) take(b.friction);
-    if (show.normal) take(b.normal);
-  }
-  return max;
+function signed(v) {
+  return `${v < 0 ? "−" : "+"}${sig(Math.abs(v), 3)}`;
 }
 
+/** A value label (its text also kept in `drawn.labels` as "<body id>: <text>", for tests). */
+function valueLabel(ctx, drawn, id, x, y, text, colour, align = "center") {
+  drawn.labels.push(`${id}: ${text}`);
+  ctx.font = "600 12px system-ui, sans-serif";
+  ctx.textAlign = align;
+  ctx.textBaseline = "middle";
+  const w = ctx.measureText(text).width;
+  const left = align === "left" ? x : align === "right" ? x - w : x - w / 2;
+  ctx.fillStyle = "rgba(255,255,255,0.88)";
+  ctx.fillRect(left - 3, y - 8, w + 6, 16);
+  ctx.fillStyle = colour;
+  ctx.fillText(text, x, y);
+}
 
-function arrow(ctx, p, d, colour) {
-  const length = Math.hypot(d.x, d.y);
-  if (length < 1) return;
-  const ux = d.x / length;
-  const uy = d.y / length;
+/** An arrow from p by (dx, dy) px, cut at `maxPx` (then it ends in a bar instead of a head);
+ * returns its drawn length, signed as dx (or as −dy for a vertical arrow): 0 below 1 px. */
+function arrow(ctx, p, dx, dy, colour, maxPx) {
+  const full = Math.hypot(dx, dy);
+  if (!(full >= 1)) return 0;
+  const length = Math.min(full, maxPx);
+  const ux = dx / full;
+  const uy = dy / full;
   const head = Math.min(9, length * 0.6);
-  const tip = { x: p.x + d.x, y: p.y + d.y };
+  const tip = { x: p.x + ux * length, y: p.y + uy * length };
   ctx.strokeStyle = colour;
   ctx.fillStyle = colour;
   ctx.lineWidth = 2.5;
@@ -285,6 +512,16 @@ function arrow(ctx, p, d, colour) {
   ctx.lineTo(tip.x - ux * head + uy * head * 0.5, tip.y - uy * head - ux * head * 0.5);
   ctx.closePath();
   ctx.fill();
+  if (length < full) { // cut: two bars across the shaft
+    for (const back of [14, 19]) {
+      const c = { x: tip.x - ux * back, y: tip.y - uy * back };
+      ctx.beginPath();
+      ctx.moveTo(c.x - uy * 7, c.y + ux * 7);
+      ctx.lineTo(c.x + uy * 7, c.y - ux * 7);
+      ctx.stroke();
+    }
+  }
+  return dx !== 0 ? Math.sign(dx) * length : -Math.sign(dy) * length;
 }
 
 function dot(ctx, p, r, fill, stroke) {

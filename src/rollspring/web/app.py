@@ -12,7 +12,7 @@ reads no file on a client's behalf: systems arrive in the request, presets by na
 from __future__ import annotations
 
 import contextlib
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from pathlib import Path
 from typing import Any, Literal
 
@@ -232,6 +232,7 @@ def create_app(
     preset: str | None = None,
     budget: float = DEFAULT_BUDGET,
     workers: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> FastAPI:
     """The ASGI app: the page at ``/`` (opening on ``system``, default the default preset),
     the JSON API under ``/api``, with ``workers`` worker processes (default: one per core)
@@ -245,6 +246,9 @@ def create_app(
         Seconds each computation may take before it is answered with 503 (at most a day).
     workers
         Worker processes (default: one per core; at most four per core).
+    progress
+        Called ``progress(ready, workers)`` as each worker becomes ready while the app starts
+        (it answers once every one is).
 
     Returns
     -------
@@ -262,7 +266,7 @@ def create_app(
 
     @contextlib.asynccontextmanager
     async def lifespan(_: FastAPI) -> AsyncIterator[None]:
-        holder["pool"] = ComputePool(workers, budget)
+        holder["pool"] = ComputePool(workers, budget, progress=progress)
         try:
             yield
         finally:

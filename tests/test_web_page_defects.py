@@ -288,3 +288,36 @@ def test_the_modes_friction_is_per_metre_of_amplitude_with_the_peak_beside_it(
     expect(peak).to_have_text(
         f"hoop {sig4(expected['hoop'])}, cylinder {sig4(expected['cylinder'])} N"
     )
+
+
+@pytest.mark.parametrize(
+    ("path", "bad", "slot", "words"),
+    [
+        ("springs.0.damping", "-1", "springs.0.damping", "system.springs[0].damping: must be"),
+        ("bodies.0.mu_static", "abc", "bodies.0.mu_static", "must be a number (got 'abc')"),
+        # a problem of the whole system that names a part: at that part (was: at the top)
+        ("bodies.0.x", "0.49", "springs.0", "system: springs[0]: its two ends coincide"),
+    ],
+)
+def test_an_error_is_shown_next_to_the_field_and_cleared_once_fixed(
+    opened: Opened, path: str, bad: str, slot: str, words: str
+) -> None:
+    page = opened.page
+    box = field(page, path)
+    good = box.input_value()
+    box.fill(bad)
+    box.press("Enter")
+    settle(page)
+    shown = page.locator(f'#editor [data-error-for="{slot}"]')
+    expect(shown).to_be_visible()
+    expect(shown).to_contain_text(words)
+    expect(page.locator("#system-error")).to_be_hidden()
+    expect(page.locator("#editor .field-error:visible")).to_have_count(1)
+    expect(page.locator("#status")).to_contain_text("Not computed")
+    box.fill(good)
+    box.press("Enter")
+    settle(page)
+    expect(shown).to_be_hidden()
+    expect(page.locator("#editor .field-error:visible")).to_have_count(0)
+    expect(page.locator("#editor [aria-invalid]")).to_have_count(0)
+    expect(page.locator("#status")).to_contain_text("Computed 10.00 s")

@@ -198,7 +198,8 @@ def test_an_edited_preset_says_so_and_its_downloads_carry_the_edited_name(opened
     mass.fill("2")
     mass.press("Enter")
     settle(page)
-    assert picker.evaluate(selected).endswith("(hoop-cylinder) (edited)")
+    shown = picker.evaluate(selected)
+    assert shown.startswith("(edited) ") and shown.endswith("(hoop-cylinder)")
     assert picker.input_value() == ""
     page.locator("details#toml-panel summary").click()
     expect(page.locator("#toml")).to_have_value(re.compile(r"mass = 2\.0"))

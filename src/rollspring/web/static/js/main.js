@@ -109,15 +109,16 @@ function isEdited() {
   return canonical(state.system) !== (preset ? canonical(preset.system) : origin);
 }
 
-/** The picker names the preset, or "<preset> (edited)" once the system differs from it. */
+/** The picker names the preset, or "(edited) <preset>" once the system differs from it
+ * ("(edited)" first: a long title is cut at the picker's width). */
 function showPicker() {
   const picker = $("#preset");
   if (!picker.options.length) return;
   const preset = presets.find((p) => p.name === state.preset);
   const edited = isEdited();
   picker.options[0].textContent = preset
-    ? `${preset.title} (${preset.name}) (edited)`
-    : `${state.system.name || "your system"}${edited ? " (edited)" : ""}`;
+    ? `(edited) ${preset.title} (${preset.name})`
+    : `${edited ? "(edited) " : ""}${state.system.name || "your system"}`;
   picker.options[0].hidden = Boolean(preset) && !edited; // offered only when it is the one shown
   picker.value = preset && !edited ? preset.name : "";
 }

@@ -80,8 +80,8 @@ class Server:
         assert found, f"no URL in {line!r}"
         host = found.group(1)
         url = f"http://{'127.0.0.1' if host == '0.0.0.0' else host}:{found.group(2)}/"
-        # It answers once its worker processes are warm (the socket accepts connections before
-        # that: a request may wait for the warm-up, or time out and be sent again).
+        # It prints the URL once it answers (its worker processes warm): a request is answered
+        # at once (tests/test_serve_cli.py checks that); asked again only should it fail.
         deadline = time.monotonic() + 180
         while True:
             assert self.process.poll() is None, f"rollspring serve exited: {self.stop()}"

@@ -332,7 +332,7 @@ def test_a_range_of_too_many_values_is_refused_on_the_command_line(
         ("duration", True, "duration: must be a number (got true)"),
         ("duration", "1", "duration: must be a number (got '1')"),
         ("outputs", 11.5, "outputs: must be a whole number (got 11.5)"),
-        ("linear", 1, "linear: must be a bool (got 1)"),
+        ("linear", 1, "linear: must be true or false (got 1)"),  # JSON's words (issue 26)
     ],
 )
 def test_the_web_refuses_a_bool_or_text_for_a_number_with_422(

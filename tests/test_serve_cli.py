@@ -1,13 +1,16 @@
 """``rollspring serve`` from its command line: bad options are one-line errors with exit 2
-before anything starts; another address than loopback is served with a warning."""
+before anything starts; another address than loopback is served with a warning; the URL is
+printed only once the server answers (its workers warmed first, with a progress line)."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import signal
 import subprocess
 import time
+from pathlib import Path
 
 import pytest
 import requests
@@ -98,16 +101,13 @@ def test_sigterm_stops_the_server_and_every_worker(when: str) -> None:
         start_new_session=True,
     )
     try:
-        assert process.stdout is not None
-        line = process.stdout.readline()
-        assert "http://127.0.0.1:" in line
-        url = re.search(r"http://\S+/", line).group(0)  # type: ignore[union-attr]
-        while when == "serving":  # until it answers: its workers are warm
-            try:
-                if requests.get(url + "api/start", timeout=30).status_code == 200:
-                    break
-            except requests.ConnectionError:
-                time.sleep(0.2)
+        assert process.stdout is not None and process.stderr is not None
+        if when == "starting":  # the progress line: the workers are starting
+            assert "warming up" in process.stderr.readline()
+        else:  # the URL: it answers, its workers warm
+            line = process.stdout.readline()
+            url = re.search(r"http://127\.0\.0\.1:\d+/", line).group(0)  # type: ignore[union-attr]
+            assert requests.get(url + "api/start", timeout=30).status_code == 200
         process.send_signal(signal.SIGTERM)
         process.communicate(timeout=30)
         deadline = time.monotonic() + 30
@@ -118,3 +118,64 @@ def test_sigterm_stops_the_server_and_every_worker(when: str) -> None:
         if _group_alive(process.pid):
             os.killpg(process.pid, signal.SIGKILL)
         process.communicate(timeout=30)
+
+
+def _group(leader: int) -> list[int]:
+    """The processes of the process group ``leader`` leads, but the leader."""
+    found = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        with contextlib.suppress(OSError, IndexError, ValueError):
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+            if int(fields[2]) == leader and int(stat.parent.name) != leader:
+                found.append(int(stat.parent.name))
+    return found
+
+
+def test_the_url_is_printed_only_once_the_server_answers() -> None:
+    """Issue 26: the URL came 9-37 s before the server answered (``--open`` showed a hanging
+    browser). Now the workers warm first, with a progress line, and the URL follows. At the
+    moment it appears the worker processes are all there, warm: frozen (SIGSTOP), the server
+    still answers the page at once, for it waits on nothing more."""
+    process = subprocess.Popen(
+        [SERVE, "serve", "--port", "0", "--workers", "2"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,  # one stream: the order of the lines
+        text=True,
+        start_new_session=True,
+    )
+    frozen: list[int] = []
+    try:
+        assert process.stdout is not None
+        lines = []
+        for line in process.stdout:
+            lines.append(line)
+            if "http://" in line:
+                break
+        assert lines[0].startswith("rollspring: warming up 2 worker processes")
+        assert "2/2 ready" in lines[-2], lines
+        url = re.search(r"http://127\.0\.0\.1:\d+/", lines[-1]).group(0)  # type: ignore[union-attr]
+        # the forkserver, its two workers (and multiprocessing's resource tracker)
+        frozen = _group(process.pid)
+        assert len(frozen) >= 3, frozen
+        for pid in frozen:
+            os.kill(pid, signal.SIGSTOP)
+        page = requests.get(url, timeout=60)
+        assert page.status_code == 200
+        assert "<title>rollspring" in page.text
+        for pid in frozen:
+            os.kill(pid, signal.SIGCONT)
+        frozen = []
+        system = requests.get(url + "api/start", timeout=60).json()
+        analysis = requests.post(url + "api/analyze", json={"system": system["system"]}, timeout=60)
+        assert analysis.status_code == 200
+        assert len(analysis.json()["modes"]) == 2
+    finally:
+        for pid in frozen:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGCONT)
+        process.send_signal(signal.SIGINT)
+        try:
+            process.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.communicate(timeout=30)

@@ -411,7 +411,8 @@ INVALID = [
         ["body", "toml"],
         "bodies[0].mass: must be between 1e-06 and 1e+06 kg",
     ),
-    ({"duration": 1.0, "system": "hoop-cylinder"}, ["body", "system"], "table"),
+    ({"duration": 1.0, "system": "hoop-cylinder"}, ["body", "system"], "must be an object"),
+    (_with("system.springs", {}), ["body", "system", "springs"], "must be an array"),
 ]
 
 
@@ -453,6 +454,68 @@ def test_not_json_is_422(client: TestClient) -> None:
     )
     assert answer.status_code == 422
     assert answer.json()["detail"][0]["loc"][0] == "body"
+
+
+#: Bodies that are not a JSON object, and the message: in JSON's words (issue 26: before,
+#: "[23]: JSON decode error", "must be a table", ": missing (required)").
+NOT_AN_OBJECT = [
+    (
+        b'{"system": {"bodies": [}',
+        "application/json",
+        "body: not valid JSON at line 1, column 24 (expecting value)",
+    ),
+    (
+        b'{\n  "duration": 1.0,\n  "system": {"bodies": [1,]}\n}',
+        "application/json",
+        "body: not valid JSON at line 3, column 27 (expecting value)",
+    ),
+    (b"hello", "application/json", "body: not valid JSON at line 1, column 1"),
+    (
+        b"hello",
+        "text/plain",
+        "body: expected a JSON object (sent with Content-Type: application/json), got text",
+    ),
+    (b"", "application/json", "body: expected a JSON object with 'system' or 'toml', got nothing"),
+    (b"[1]", "application/json", "body: expected a JSON object, got an array"),
+    (b'"hoop-cylinder"', "application/json", "body: expected a JSON object, got a string"),
+    (b"3", "application/json", "body: expected a JSON object, got a number"),
+    (b"true", "application/json", "body: expected a JSON object, got true"),
+]
+
+
+@pytest.mark.parametrize(("content", "kind", "words"), NOT_AN_OBJECT)
+def test_a_body_that_is_not_a_json_object_is_said_so_in_jsons_words(
+    client: TestClient, content: bytes, kind: str, words: str
+) -> None:
+    for path in ("/api/analyze", "/api/simulate", "/api/system"):
+        answer = client.post(path, content=content, headers={"content-type": kind})
+        assert answer.status_code == 422, answer.text
+        data = answer.json()
+        assert data["message"].startswith(words), data
+        assert data["detail"] == [{"loc": ["body"], "msg": data["message"], "type": ANY_TYPE}]
+        for toml_word in ("table", "decode error", ": missing"):
+            assert toml_word not in data["message"]
+
+
+class _AnyString(str):
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, str) and bool(other)
+
+    __hash__ = str.__hash__
+
+
+ANY_TYPE = _AnyString()
+
+
+def test_types_inside_the_system_are_named_in_jsons_words(client: TestClient) -> None:
+    body = system_json("hoop-cylinder")
+    body["bodies"][0] = "hoop"
+    answer = client.post("/api/analyze", json={"system": body})
+    assert answer.status_code == 422
+    assert answer.json()["message"] == "system.bodies[0]: must be an object (got 'hoop')"
+    # the same problem in a TOML file keeps TOML's words (the CLI's line)
+    toml = client.post("/api/analyze", json={"toml": "bodies = ['hoop']"})
+    assert "bodies[0]: must be a table" in toml.json()["message"]
 
 
 # ------------------------------------------------------------------------------- the bounds

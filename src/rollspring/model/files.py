@@ -294,16 +294,17 @@ def system_from_text(
 
 
 def validation_errors(
-    errors: list[dict[str, Any]], data: Any
+    errors: list[dict[str, Any]], data: Any, *, json: bool = False
 ) -> list[tuple[tuple[Any, ...], str, str]]:
     """pydantic's validation errors (``ValidationError.errors()``, locations relative to
-    ``data``) as ``(loc, message, type)``: ``message`` the one-line words the CLI prints."""
+    ``data``) as ``(loc, message, type)``: ``message`` the one-line words the CLI prints
+    (with ``json``, in JSON's words: "object" and "array" for TOML's "table" and "list")."""
     out = []
     for error in errors:
         loc = tuple(
             p for p in error["loc"] if not (isinstance(p, str) and p.startswith("function-"))
         )
-        out.append((loc, _oneline(_describe(error)), str(error["type"])))
+        out.append((loc, _oneline(_describe(error, json=json)), str(error["type"])))
     return out
 
 
@@ -341,7 +342,21 @@ def _one_line(exc: ValidationError) -> str:
     return message
 
 
-def _describe(error: ErrorDetails | dict[str, Any]) -> str:
+#: What a value must be, in a TOML file's words and in JSON's (the web API's).
+_TYPE_WORDS = {
+    "float": ("a number", "a number"),
+    "int": ("a whole number", "a whole number"),
+    "string": ("a string", "a string"),
+    "bool": ("a bool", "true or false"),
+    "list": ("a list", "an array"),
+    "tuple": ("a tuple", "an array"),
+    "dict": ("a table", "an object"),
+    "model": ("a table", "an object"),
+    "model_attributes": ("a table", "an object"),
+}
+
+
+def _describe(error: ErrorDetails | dict[str, Any], *, json: bool = False) -> str:
     loc = [p for p in error["loc"] if not (isinstance(p, str) and p.startswith("function-"))]
     kind = error["type"]
     msg: str = error["msg"]
@@ -383,14 +398,7 @@ def _describe(error: ErrorDetails | dict[str, Any]) -> str:
         "model_type",
         "model_attributes_type",
     ):
-        expected = (
-            kind.removesuffix("_type")
-            .replace("model_attributes", "table")
-            .replace("model", "table")
-            .replace("dict", "table")
-        )
-        word = {"float": "number", "int": "whole number"}.get(expected, expected)
-        msg = f"must be a {word}"
+        msg = f"must be {_TYPE_WORDS[kind.removesuffix('_type')][1 if json else 0]}"
     elif kind == "string_pattern_mismatch":
         msg = "must start with a letter or '_' and hold only letters, digits, '_' or '-'"
     elif kind in ("too_short", "too_long") and loc and loc[-1] in ("ends", "at"):

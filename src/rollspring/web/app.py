@@ -12,7 +12,7 @@ reads no file on a client's behalf: systems arrive in the request, presets by na
 from __future__ import annotations
 
 import contextlib
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from pathlib import Path
 from typing import Any, Literal
 
@@ -241,6 +241,7 @@ def create_app(
     preset: str | None = None,
     budget: float = DEFAULT_BUDGET,
     workers: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> FastAPI:
     """The ASGI app: the page at ``/`` (opening on ``system``, default the default preset),
     the JSON API under ``/api``, with ``workers`` worker processes (default: one per core)
@@ -254,6 +255,9 @@ def create_app(
         Seconds each computation may take before it is answered with 503 (at most a day).
     workers
         Worker processes (default: one per core; at most four per core).
+    progress
+        Called ``progress(ready, workers)`` as each worker becomes ready while the app starts
+        (it answers once every one is).
 
     Returns
     -------
@@ -271,7 +275,7 @@ def create_app(
 
     @contextlib.asynccontextmanager
     async def lifespan(_: FastAPI) -> AsyncIterator[None]:
-        holder["pool"] = ComputePool(workers, budget)
+        holder["pool"] = ComputePool(workers, budget, progress=progress)
         try:
             yield
         finally:
@@ -473,25 +477,71 @@ def _problem(loc: list[Any], message: str, kind: str) -> JSONResponse:
 
 
 def _invalid_response(errors: Any, body: Any) -> JSONResponse:
-    """422 for pydantic's errors of a request body: each location with the CLI's words."""
+    """422 for pydantic's errors of a request body: each location with the CLI's one-line
+    words, in JSON's terms ("object", "array"); a body that is not a JSON object, or not JSON
+    at all, said so (a syntax error with its line and column)."""
     errors = list(errors)
     detail: list[dict[str, Any]] = []
     for error in errors:
         loc = list(error.get("loc", ()))
         relative = loc[1:] if loc[:1] == ["body"] else loc
         data = body if isinstance(body, dict) else {}
-        if relative[:1] == ["system"] and isinstance(data.get("system"), dict):
-            inner = validation_errors([{**error, "loc": tuple(relative[1:])}], data["system"])
+        kind = str(error.get("type", "invalid"))
+        whole = _whole_body(error, body)
+        if whole is not None:
+            loc, message = ["body"], whole
+        elif relative[:1] == ["system"] and isinstance(data.get("system"), dict):
+            inner = validation_errors(
+                [{**error, "loc": tuple(relative[1:])}], data["system"], json=True
+            )
             message = f"system.{inner[0][1]}" if relative[1:] else f"system: {inner[0][1]}"
         else:
-            message = validation_errors([{**error, "loc": tuple(relative)}], data)[0][1]
-        detail.append({"loc": loc, "msg": message, "type": str(error.get("type", "invalid"))})
+            message = validation_errors([{**error, "loc": tuple(relative)}], data, json=True)[0][1]
+            if not relative:
+                message = f"body: {message}"
+        detail.append({"loc": loc, "msg": message, "type": kind})
     if not detail:
-        detail = [{"loc": ["body"], "msg": "invalid request", "type": "invalid"}]
+        detail = [{"loc": ["body"], "msg": "body: invalid request", "type": "invalid"}]
     first = detail[0]["msg"]
     more = len(detail) - 1
     message = first + (f" (and {more} more problem{'s' if more > 1 else ''})" if more else "")
     return JSONResponse({"detail": detail, "message": message}, status_code=422)
+
+
+#: What a JSON value is, in JSON's words.
+_JSON_KINDS = {list: "an array", str: "a string", int: "a number", float: "a number"}
+
+
+def _whole_body(error: dict[str, Any], body: Any) -> str | None:
+    """The message for a request body that is not a JSON object at all (not JSON, a JSON
+    syntax error, another JSON value, or nothing), or None when the problem is inside it."""
+    loc = list(error.get("loc", ()))
+    kind = error.get("type")
+    if kind == "json_invalid":
+        reason = str((error.get("ctx") or {}).get("error") or "not valid JSON")
+        where = ""
+        if len(loc) > 1 and isinstance(loc[1], int) and isinstance(body, str | bytes):
+            text = body.decode("utf-8", "replace") if isinstance(body, bytes) else body
+            before = text[: loc[1]]
+            line = before.count("\n") + 1
+            column = loc[1] - (before.rfind("\n") + 1) + 1
+            where = f" at line {line}, column {column}"
+        return f"body: not valid JSON{where} ({reason[:1].lower()}{reason[1:]})"
+    if loc != ["body"]:
+        return None
+    if kind == "missing" or body in (None, b""):
+        return "body: expected a JSON object with 'system' or 'toml', got nothing (or null)"
+    if kind in ("model_attributes_type", "dict_type", "model_type"):
+        if isinstance(body, bytes | bytearray):
+            return (
+                "body: expected a JSON object (sent with Content-Type: application/json), got text"
+            )
+        if isinstance(body, bool):
+            got = "true" if body else "false"
+        else:
+            got = next((w for t, w in _JSON_KINDS.items() if isinstance(body, t)), "a value")
+        return f"body: expected a JSON object, got {got}"
+    return None
 
 
 class _BodyLimit:

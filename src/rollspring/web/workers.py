@@ -20,6 +20,7 @@ import multiprocessing
 import os
 import queue
 import threading
+from collections.abc import Callable
 from multiprocessing.connection import Connection
 from typing import Any
 
@@ -34,6 +35,7 @@ __all__ = [
     "Overloaded",
     "check_pool",
     "max_workers",
+    "pool_size",
 ]
 
 #: Modules the forkserver imports once, so that every worker starts with them loaded and with
@@ -50,6 +52,11 @@ WORKERS_PER_CORE = 4
 def max_workers() -> int:
     """The most worker processes a pool may have: :data:`WORKERS_PER_CORE` per core."""
     return WORKERS_PER_CORE * (os.cpu_count() or 1)
+
+
+def pool_size(workers: int | None) -> int:
+    """How many worker processes a pool of ``workers`` has (None or 0: one per core)."""
+    return max(1, workers or os.cpu_count() or 1)
 
 
 def check_pool(workers: Any, budget: Any, *, option: str = "") -> tuple[int | None, float]:
@@ -100,11 +107,18 @@ class _Worker:
 
 
 class ComputePool:
-    """``size`` worker processes; :meth:`run` runs one job with a time budget (s)."""
+    """``size`` worker processes; :meth:`run` runs one job with a time budget (s).
+    ``progress(ready, size)`` is called as each first worker becomes ready (warm)."""
 
-    def __init__(self, size: int | None = None, budget: float = 10.0) -> None:
+    def __init__(
+        self,
+        size: int | None = None,
+        budget: float = 10.0,
+        *,
+        progress: Callable[[int, int], None] | None = None,
+    ) -> None:
         size, budget = check_pool(size, budget)
-        self.size = max(1, size or os.cpu_count() or 1)
+        self.size = pool_size(size)
         self.budget = float(budget)
         self._context = multiprocessing.get_context("forkserver")
         self._context.set_forkserver_preload(PRELOAD)
@@ -115,10 +129,12 @@ class ComputePool:
         self.replaced = 0  # workers killed for running past the budget (or dying)
         try:
             starting = [self._start() for _ in range(self.size)]
-            for worker in starting:  # serve only once warm: no request pays for a compilation
-                if not worker.wait_ready():
+            for ready, worker in enumerate(starting, 1):  # serve only once warm: no request
+                if not worker.wait_ready():  # pays for a compilation
                     raise RuntimeError("a worker process did not start (see its error above)")
                 self._idle.put(worker)
+                if progress is not None:
+                    progress(ready, self.size)
         except BaseException:  # a failure, Ctrl-C or SIGTERM while starting: no worker is left
             self.close()
             raise

@@ -2,14 +2,17 @@
 
 The app is :func:`rollspring.web.create_app` on uvicorn. It binds to 127.0.0.1 unless told
 otherwise (another address is allowed, with a warning: the page has no log-in). ``--port 0``
-takes a free port; the URL printed on stdout is the one to open.
+takes a free port. The worker processes warm up first (a progress line on stderr); the URL is
+printed on stdout, and ``--open`` opens it, only once the server answers.
 """
 
 from __future__ import annotations
 
 import ipaddress
 import socket
-from typing import Annotated
+import sys
+from collections.abc import Callable
+from typing import Annotated, Any
 
 import typer
 
@@ -73,24 +76,56 @@ def serve(
     import uvicorn
 
     from rollspring.web import create_app
+    from rollspring.web.workers import pool_size
+
+    total = pool_size(workers)
+    warming = f"rollspring: warming up {total} worker process{'es' if total > 1 else ''} …"
+    tty = sys.stderr.isatty()
+
+    def progress(ready: int, total: int) -> None:
+        if tty:  # the line, updated in place as each worker is ready
+            end = "\n" if ready == total else ""
+            sys.stderr.write(f"\r{warming} {ready}/{total} ready{end}")
+            sys.stderr.flush()
+        elif ready == total:  # a log: the line again, finished
+            say(f"{warming} {ready}/{total} ready")
 
     app = create_app(
         model,
         preset=system if system in preset_names() else None,
         budget=budget,
         workers=workers or None,
+        progress=progress,
     )
+    if not tty:
+        say(warming)
+
+    def serving() -> None:
+        typer.echo(f"rollspring: {model.name or system} at {url} (Ctrl-C stops)")
+        if open_browser:  # a browser may take its time to start: not on the server's loop
+            import threading
+            import webbrowser
+
+            threading.Thread(target=webbrowser.open, args=(url,), daemon=True).start()
+
     config = uvicorn.Config(
         app, log_level="warning", limit_concurrency=limit_concurrency, timeout_graceful_shutdown=2
     )
-    server = uvicorn.Server(config)
-    typer.echo(f"rollspring: {model.name or system} at {url} (Ctrl-C stops)")
-    if open_browser:
-        import threading
-        import webbrowser
+    _server(config, serving).run(sockets=[listener])
 
-        threading.Timer(1.0, webbrowser.open, args=(url,)).start()
-    server.run(sockets=[listener])
+
+def _server(config: Any, serving: Callable[[], None]) -> Any:
+    """uvicorn's server, calling ``serving()`` once it answers: after its start-up (every
+    worker process warm) and once it accepts on its socket, not before."""
+    import uvicorn
+
+    class Server(uvicorn.Server):
+        async def startup(self, sockets: Any = None) -> None:
+            await super().startup(sockets=sockets)
+            if self.started and not self.should_exit:
+                serving()
+
+    return Server(config)
 
 
 def _is_loopback(host: str) -> bool:

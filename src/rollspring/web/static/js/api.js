@@ -20,6 +20,14 @@ export function fieldPath(loc) {
   return parts.join(".");
 }
 
+/** "springs.0.ends" from a message about the whole system that names a part of it first
+ * ("system: springs[0].ends: a spring cannot join 'hoop' to itself"); "" when it names none. */
+export function pathInMessage(message) {
+  const found = /^system: ((?:bodies|springs|anchors|forces)\[\d+\](?:\.[A-Za-z_]\w*|\[\d+\])*)[:\s]/
+    .exec(message || "");
+  return found ? found[1].replace(/\[(\d+)\]/g, ".$1").replace(/^\./, "") : "";
+}
+
 async function failure(response) {
   let body = null;
   try {
@@ -29,7 +37,8 @@ async function failure(response) {
   }
   if (body && body.message) {
     const loc = Array.isArray(body.detail) && body.detail[0] ? body.detail[0].loc : [];
-    return new ApiError(body.message, fieldPath(loc), response.status);
+    return new ApiError(body.message, fieldPath(loc) || pathInMessage(body.message),
+      response.status);
   }
   const detail = body && typeof body.detail === "string" ? body.detail : response.statusText;
   return new ApiError(`${response.status}: ${detail}`, "", response.status);

@@ -19,12 +19,13 @@
 // (the preset, file or link): that is also where Home puts a body back.
 
 import { ApiError, getJson, latest, postBlob, postJson } from "./api.js";
-import { Editor } from "./editor.js";
+import { Editor, parseField } from "./editor.js";
 import { roundTo, sig, signedMetres } from "./format.js";
 import { attachmentFromPoint, springEnds, worldBounds } from "./geometry.js";
 import { Handles } from "./handles.js";
 import { renderDerivation, renderEnergyBars, renderModes } from "./panels.js";
 import { Plots } from "./plots.js";
+import { canonical, fileStem, maxRatio, peakFriction, rollingText } from "./runtext.js";
 import { Scene } from "./scene.js";
 import { energyBars, FORCE_COLOURS, neededMu } from "./series.js";
 import { advance, clockText, outputInterval, sampleIndex, SPEEDS, stepForward, valueAt } from "./timeline.js";
@@ -62,6 +63,11 @@ const forceScale = { ...FORCE_SCALES }; // px per N now (the arrow-scale control
 let arrowZoom = 1;
 const labelled = new Set(); // bodies hovered or focused: their forces get value labels
 let hovered = null;
+let presets = []; // /api/presets
+let origin = ""; // the system as loaded (canonical JSON): "(edited)" once it differs
+let goodStart = null; // the mode start of the last motion computed (a refused one reverts to it)
+let lastMode = null; // the mode "Play mode" last asked for (a new amplitude replays it)
+let autoplay = false; // play the next motion as soon as it is in ("Play mode" pressed)
 let analysis = null; // the last good /api/analyze answer
 let playing = false;
 let dragging = false;
@@ -95,8 +101,9 @@ function body(id) {
 
 // ---------------------------------------------------------------- loading and recomputing
 
-function loadSystem(system, preset = "") {
+function loadSystem(system, preset = "", { compute = true } = {}) {
   state.system = structuredClone(system);
+  origin = canonical(system);
   state.preset = preset;
   state.loaded = Object.fromEntries(system.bodies.map((b) => [b.id, b.x]));
   state.start = null;
@@ -106,7 +113,29 @@ function loadSystem(system, preset = "") {
   $("#preset").value = preset;
   editor.load(state.system);
   run = null;
-  recomputeNow();
+  goodStart = null;
+  showPicker();
+  if (compute) recomputeNow();
+}
+
+/** Changed since it was loaded (a preset: since the preset's own system). */
+function isEdited() {
+  const preset = presets.find((p) => p.name === state.preset);
+  return canonical(state.system) !== (preset ? canonical(preset.system) : origin);
+}
+
+/** The picker names the preset, or "(edited) <preset>" once the system differs from it
+ * ("(edited)" first: a long title is cut at the picker's width). */
+function showPicker() {
+  const picker = $("#preset");
+  if (!picker.options.length) return;
+  const preset = presets.find((p) => p.name === state.preset);
+  const edited = isEdited();
+  picker.options[0].textContent = preset
+    ? `(edited) ${preset.title} (${preset.name})`
+    : `${edited ? "(edited) " : ""}${state.system.name || "your system"}`;
+  picker.options[0].hidden = Boolean(preset) && !edited; // offered only when it is the one shown
+  picker.value = preset && !edited ? preset.name : "";
 }
 
 let timer = null;
@@ -136,15 +165,42 @@ async function recomputeNow() {
     editor.clearErrors();
     $("#system-error").hidden = true;
     errorShown = false;
+    goodStart = request.start || null;
+    if (request.start) clearStartError();
     applyMotion(sim, system);
     const lin = await pending;
     if (!lin || run !== sim) return;
     applyAnalysis(lin);
   } catch (error) {
-    showError(error);
+    if (error instanceof ApiError && /^start(\.|$)/.test(error.path) && request.start) {
+      startRefused(error); // the mode start asked for: shown at its box, the last one kept
+    } else {
+      showError(error);
+    }
   } finally {
     inFlight -= 1;
   }
+}
+
+/** A mode start the server refused (an amplitude out of range): its message next to the
+ * amplitude box, and the start of the motion on screen kept, so later edits still compute. */
+function startRefused(error) {
+  errorShown = true;
+  autoplay = false;
+  state.start = goodStart;
+  const slot = $("#amplitude-error");
+  slot.textContent = error.message;
+  slot.hidden = false;
+  $("#amplitude").setAttribute("aria-invalid", "true");
+  renderInitial();
+  setStatus("Not computed: the mode's amplitude is not valid (see the message next to it); "
+    + "the motion shown is the last one computed.");
+}
+
+function clearStartError() {
+  $("#amplitude-error").hidden = true;
+  $("#amplitude-error").textContent = "";
+  $("#amplitude").removeAttribute("aria-invalid");
 }
 
 function showError(error) {
@@ -178,15 +234,18 @@ function applyMotion(sim, system) {
   }
   const slider = $("#time");
   slider.max = String(end);
-  slider.step = String(outputInterval(run.t));
-  $("#dt").textContent = `${sig(outputInterval(run.t), 4)} s`;
+  slider.step = end > 0 ? String(outputInterval(run.t)) : "any";
+  $("#dt").textContent = end > 0 ? `${sig(outputInterval(run.t), 4)} s`
+    : "— (the motion ends at t = 0: nothing to step through)";
+  $("#friction-peak").textContent = peakFriction(run, system.bodies);
   lesson = lessonOf(run);
   needed = Object.fromEntries(Object.entries(run.bodies).map(([id, b]) => [id, neededMu(b.friction, b.normal)]));
   buildGauges(system);
   plots.setRun(run, system, plotView());
   renderInitial();
   describeRun();
-  if (state.start && !playing) play();
+  if (autoplay && !playing && end > 0) play();
+  autoplay = false;
   draw();
   saveUrl();
   if ($("#derivation").open) loadDerivation();
@@ -206,19 +265,18 @@ function describeRun() {
   const s = run.summary;
   const event = firstEvent();
   const end = run.t[run.t.length - 1];
-  if (event) {
+  if (event && end === 0) {
+    setStatus(`Not run: ${event.body} ${event.kind === "slip"
+      ? "slips at once, at t = 0 (the friction it needs at the start is more than μs N); tick "
+        + "“continue after a slip” to run on with kinetic friction"
+      : "lifts off at once, at t = 0 (its normal force is not positive)"}.`);
+  } else if (event) {
     setStatus(`Computed ${sig(end, 4)} s. ${event.kind === "slip" ? "Slips" : "Lifts off"}: `
       + `${event.body} at t = ${event.time.toFixed(4)} s — play to see it.`);
   } else {
-    setStatus(`Computed ${sig(end, 4)} s (${s.status}); every body rolls without slipping, `
-      + `max |f|/(μs N) = ${sig(maxRatio(), 3)}.`);
+    setStatus(`Computed ${sig(end, 4)} s (${s.status}); `
+      + `${rollingText(run.system.bodies, maxRatio(s))}.`);
   }
-}
-
-function maxRatio() {
-  const m = run.summary.max_friction_ratio;
-  if (m && typeof m === "object") return Math.max(...Object.values(m).filter((v) => v != null));
-  return m;
 }
 
 /** The first slip or lift-off: {kind, time, body} or null. */
@@ -317,6 +375,7 @@ function moveDot(dot, q, phase) {
 // A committed change (a slider released, a field entered, a drag ended) is computed at once;
 // the stream of "input" events while a slider or a body is being dragged is debounced.
 function edited(kind) {
+  showPicker();
   renderInitial();
   draw();
   if (kind === "commit") {
@@ -328,7 +387,10 @@ function edited(kind) {
 }
 
 function playMode(index) {
-  state.start = { mode: index, amplitude: Number($("#amplitude").value) || 0.01 };
+  // the box's text as typed: the server says what is wrong with it, next to the box
+  state.start = { mode: index, amplitude: parseField($("#amplitude").value) };
+  lastMode = index;
+  autoplay = true;
   state.t = 0;
   pendingChange = performance.now();
   pause();
@@ -652,11 +714,12 @@ function shareable() {
 }
 
 function restore(saved) {
-  loadSystem(saved.system, saved.preset || "");
+  loadSystem(saved.system, saved.preset || "", { compute: false });
   Object.assign(state, { loaded: saved.loaded, show: { ...state.show, ...saved.show }, onSlip: saved.onSlip,
     speed: saved.speed, start: saved.start, t: saved.t, window: saved.window });
   scene.setWindow(state.window);
   syncViewControls();
+  showPicker();
   recomputeNow();
 }
 
@@ -713,8 +776,8 @@ function download(blob, name) {
   setTimeout(() => URL.revokeObjectURL(a.href), 1000);
 }
 
-function fileStem() {
-  return state.preset || "system";
+function downloadStem() {
+  return fileStem(state.preset, state.system.name, isEdited());
 }
 
 async function downloadFrom(path, payload, name) {
@@ -733,7 +796,7 @@ function syncViewControls() {
   $("#speed").value = String(state.speed);
 }
 
-function wireControls(presets) {
+function wireControls() {
   const picker = $("#preset");
   picker.replaceChildren(new Option("(edited system)", ""),
     ...presets.map((p) => new Option(`${p.title} (${p.name})`, p.name)));
@@ -744,6 +807,10 @@ function wireControls(presets) {
       pendingChange = performance.now();
       loadSystem(p.system, p.name);
     }
+  });
+  $("#amplitude").addEventListener("change", () => {
+    // a new amplitude replays the mode asked for last (and clears its error once valid)
+    if (lastMode !== null && (state.start || !$("#amplitude-error").hidden)) playMode(lastMode);
   });
   $("#play").addEventListener("click", () => (playing ? pause() : play()));
   $("#step").addEventListener("click", step);
@@ -796,13 +863,13 @@ function wireControls(presets) {
   });
   $("#download-toml").addEventListener("click", async () => {
     if (!tomlEdited) await loadToml();
-    download(new Blob([$("#toml").value], { type: "application/toml" }), `${fileStem()}.toml`);
+    download(new Blob([$("#toml").value], { type: "application/toml" }), `${downloadStem()}.toml`);
   });
   $("#download-csv").addEventListener("click", () => downloadFrom("/api/simulate.csv",
     { system: state.system, duration: DURATION, outputs: OUTPUTS, on_slip: state.onSlip,
-      ...(state.start ? { start: state.start } : {}) }, `${fileStem()}-trajectory.csv`));
+      ...(state.start ? { start: state.start } : {}) }, `${downloadStem()}-trajectory.csv`));
   $("#download-report").addEventListener("click", () => downloadFrom("/api/report",
-    { system: state.system }, `${fileStem()}-report.html`));
+    { system: state.system }, `${downloadStem()}-report.html`));
   $("#derivation").addEventListener("toggle", () => $("#derivation").open && loadDerivation());
   syncViewControls();
   new ResizeObserver(() => {
@@ -823,8 +890,8 @@ window.rollspringPage = {
 };
 
 async function main() {
-  const presets = await getJson("/api/presets");
-  wireControls(presets);
+  presets = await getJson("/api/presets");
+  wireControls();
   const saved = await decodeState(location.hash);
   if (saved) {
     restore(saved);

@@ -24,6 +24,7 @@ import { roundTo, sig, signedMetres } from "./format.js";
 import { attachmentFromPoint, springEnds, worldBounds } from "./geometry.js";
 import { Handles } from "./handles.js";
 import { renderDerivation, renderEnergyBars, renderModes } from "./panels.js";
+import { watchScrollBoxes } from "./scrollbox.js";
 import { Plots } from "./plots.js";
 import { Scene } from "./scene.js";
 import { energyBars, FORCE_COLOURS, neededMu } from "./series.js";
@@ -696,7 +697,10 @@ async function loadDerivation() {
   box.setAttribute("aria-busy", "true");
   try {
     const d = await derive({ system: state.system });
-    if (d) renderDerivation(box, d);
+    if (d) {
+      renderDerivation(box, d);
+      watchScrollBoxes(box);
+    }
   } catch (error) {
     box.textContent = `Could not derive: ${error.message}`;
   }
@@ -805,6 +809,7 @@ function wireControls(presets) {
     { system: state.system }, `${fileStem()}-report.html`));
   $("#derivation").addEventListener("toggle", () => $("#derivation").open && loadDerivation());
   syncViewControls();
+  watchScrollBoxes($(".modes-section"));
   new ResizeObserver(() => {
     if (scene.resize()) draw();
   }).observe($("#scene"));

@@ -42,7 +42,8 @@ $(STAMP): pyproject.toml constraints.txt | $(BIN)/uv
 	$(PIP) -e ".[test]"
 	touch $(STAMP) $(DEMO_STAMP)
 
-# the page's front-end libraries (uPlot), pinned in package.json / package-lock.json
+# the page's front-end libraries (uPlot; axe-core for the tests, not served), pinned in
+# package.json / package-lock.json
 WEB_STATIC := src/rollspring/web/static
 WEB_STAMP  := $(WEB_STATIC)/node_modules/.installed
 $(WEB_STAMP): $(WEB_STATIC)/package.json $(WEB_STATIC)/package-lock.json

@@ -434,6 +434,12 @@ def create_app(
             media_type="text/html",
         )
 
+    @app.get("/static/node_modules/{rest:path}", include_in_schema=False)
+    def not_served(rest: str) -> Response:
+        # the front-end packages' folder: the page's uPlot is served as /vendor/uplot, and the
+        # rest (axe-core, for the tests) is not the page's
+        return JSONResponse({"detail": "Not Found"}, status_code=404)
+
     if STATIC.is_dir():
         app.mount("/static", StaticFiles(directory=STATIC), name="static")
     app.mount("/vendor/uplot", StaticFiles(directory=UPLOT, check_dir=False), name="uplot")

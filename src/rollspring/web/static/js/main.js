@@ -24,6 +24,7 @@ import { roundTo, sig, signedMetres } from "./format.js";
 import { attachmentFromPoint, springEnds, worldBounds } from "./geometry.js";
 import { Handles } from "./handles.js";
 import { renderDerivation, renderEnergyBars, renderModes } from "./panels.js";
+import { watchScrollBoxes } from "./scrollbox.js";
 import { Plots } from "./plots.js";
 import { canonical, fileStem, maxRatio, peakFriction, rollingText } from "./runtext.js";
 import { Scene } from "./scene.js";
@@ -759,7 +760,10 @@ async function loadDerivation() {
   box.setAttribute("aria-busy", "true");
   try {
     const d = await derive({ system: state.system });
-    if (d) renderDerivation(box, d);
+    if (d) {
+      renderDerivation(box, d);
+      watchScrollBoxes(box);
+    }
   } catch (error) {
     box.textContent = `Could not derive: ${error.message}`;
   }
@@ -872,6 +876,7 @@ function wireControls() {
     { system: state.system }, `${downloadStem()}-report.html`));
   $("#derivation").addEventListener("toggle", () => $("#derivation").open && loadDerivation());
   syncViewControls();
+  watchScrollBoxes($(".modes-section"));
   new ResizeObserver(() => {
     if (scene.resize()) draw();
   }).observe($("#scene"));

@@ -1,7 +1,8 @@
 // The animation canvas: tracks, walls, rolling bodies with spokes and a mark, zigzag springs,
 // force arrows to fixed scales (px per N, one per kind of force) with value labels, the CM and
 // X̂ on the floor, ghost bodies of the linear solution, a clock; and under it the lesson strip:
-// the CM and X̂ magnified, each with a fading trail. `Scene.draw(frame)` paints one instant;
+// the CM and X̂ magnified, each with a fading trail. Body labels are laid out so that they never
+// overlap (raised a row, or shortened, when neighbours are close). `Scene.draw(frame)` paints one instant;
 // what the instant is comes from main.js. What was drawn last (pixel positions and arrow
 // lengths) is kept in `scene.drawn`, for tests.
 
@@ -26,8 +27,9 @@ export class Scene {
     this.strip = stripCanvas ? new Strip(stripCanvas) : null;
     this.window = { xmin: -0.5, xmax: 0.5, ymin: -0.1, ymax: 0.3 };
     // what the last frame drew (CSS px), rewritten in place by every draw
-    this.drawn = { friction: {}, normal: {}, spring: [], labels: [],
+    this.drawn = { friction: {}, normal: {}, spring: [], labels: [], bodyLabels: [],
       strip: this.strip ? this.strip.drawn : null };
+    this.wantedLabels = []; // the body labels of the frame being drawn, before their layout
     this.resize();
   }
 
@@ -67,14 +69,19 @@ export class Scene {
     drawWalls(ctx, view, frame.system);
     if (frame.ghosts) drawGhosts(ctx, view, frame);
     frame.system.springs.forEach((spring, s) => drawSpring(ctx, view, frame, spring, s));
-    frame.system.bodies.forEach((body, i) => drawBody(ctx, view, frame, body, i));
+    const wanted = this.wantedLabels;
+    wanted.length = 0;
+    frame.system.bodies.forEach((body, i) => drawBody(ctx, view, frame, body, i, wanted));
     if (frame.show.markers) drawMarkers(ctx, view, frame);
     drawForces(ctx, view, frame, this.drawn, this.width * ARROW_MAX);
     ctx.fillStyle = INK;
-    ctx.font = "600 15px system-ui, sans-serif";
+    ctx.font = CLOCK_FONT;
     ctx.textAlign = "left";
     ctx.textBaseline = "top";
-    ctx.fillText(clockText(frame.t), 10, 8);
+    const clock = clockText(frame.t);
+    ctx.fillText(clock, 10, 8);
+    const clockBox = { x: 10, y: 8, w: textWidth(ctx, CLOCK_FONT, clock), h: 18 };
+    drawBodyLabels(ctx, wanted, this.drawn.bodyLabels, this.width, clockBox);
     if (this.strip) this.strip.draw(frame, view.pxPerM);
   }
 }
@@ -317,7 +324,7 @@ function drawSpring(ctx, view, frame, spring, s) {
   for (const p of [a, b]) dot(ctx, p, frame.show.dots ? 6 : 4, "#fff", INK);
 }
 
-function drawBody(ctx, view, frame, body, i) {
+function drawBody(ctx, view, frame, body, i, labels) {
   const { x, phi } = frame.pose(body.id);
   const c = view.toCanvas({ x, y: (body.track_height || 0) + body.radius });
   const r = body.radius * view.pxPerM;
@@ -334,7 +341,7 @@ function drawBody(ctx, view, frame, body, i) {
     ctx.fillRect(c.x - r, c.y - r, 2 * r, 2 * r);
     ctx.strokeRect(c.x - r, c.y - r, 2 * r, 2 * r);
     ctx.restore();
-    label(ctx, body.id, c.x, c.y - r - 4);
+    labels.push({ id: body.id, x: c.x, y: c.y - r - 4 });
     return;
   }
   const ring = body.shape === "hoop" || body.shape === "shell";
@@ -367,7 +374,7 @@ function drawBody(ctx, view, frame, body, i) {
   dot(ctx, { x: c.x + 0.78 * r * Math.sin(phi), y: c.y - 0.78 * r * Math.cos(phi) },
     Math.max(3, r * 0.12), INK);
   dot(ctx, c, 2.5, INK);
-  label(ctx, body.id, c.x, c.y - r - 6);
+  labels.push({ id: body.id, x: c.x, y: c.y - r - 6 });
 }
 
 function drawGhosts(ctx, view, frame) {
@@ -536,12 +543,71 @@ function dot(ctx, p, r, fill, stroke) {
   }
 }
 
-function label(ctx, text, x, y) {
-  ctx.font = "12px system-ui, sans-serif";
-  ctx.textAlign = "center";
+const CLOCK_FONT = "600 15px system-ui, sans-serif";
+const LABEL_FONT = "12px system-ui, sans-serif";
+/** A body label's box height (px), the rows it may be raised by, its horizontal margin. */
+const LABEL_H = 14;
+const LABEL_ROWS = 4;
+const LABEL_PAD = 2;
+
+const widths = new Map(); // font + text → measured width (px): measured once
+function textWidth(ctx, font, text) {
+  const key = `${font}|${text}`;
+  let w = widths.get(key);
+  if (w === undefined) {
+    ctx.font = font;
+    w = ctx.measureText(text).width;
+    widths.set(key, w);
+  }
+  return w;
+}
+
+/** A shorter label: the id's first letter and its trailing number ("cylinder8" → "c8"), else
+ * its first three characters. */
+function shortLabel(id) {
+  const number = /\d+$/.exec(id);
+  return number ? `${id[0]}${number[0]}` : id.slice(0, 3);
+}
+
+function overlaps(a, b) {
+  return a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h;
+}
+
+/** Lay out and draw the body labels `wanted` ([{id, x, y}]: centred at x, bottom at y) so that
+ * no two overlap, nor the clock: from left to right, each on the lowest free row above its body
+ * (a raised label gets a leader line down to it), else shortened, else left out. What is drawn
+ * goes into `placed` ([{id, text, x, y, w, h, cx}]: the box, CSS px, and the body's centre x). */
+function drawBodyLabels(ctx, wanted, placed, width, clockBox) {
+  placed.length = 0;
+  const order = [...wanted].sort((a, b) => a.x - b.x);
+  ctx.font = LABEL_FONT;
+  ctx.textAlign = "left";
   ctx.textBaseline = "bottom";
-  ctx.fillStyle = INK;
-  ctx.fillText(text, x, y);
+  for (const want of order) {
+    let spot = null;
+    for (const text of want.id.length > 3 ? [want.id, shortLabel(want.id)] : [want.id]) {
+      const w = textWidth(ctx, LABEL_FONT, text) + 2 * LABEL_PAD;
+      const x = Math.max(0, Math.min(width - w, want.x - w / 2));
+      for (let row = 0; row < LABEL_ROWS && !spot; row++) {
+        const box = { id: want.id, text, x, y: want.y - LABEL_H * (row + 1), w, h: LABEL_H, cx: want.x };
+        if (box.y < 0) break;
+        if (!overlaps(box, clockBox) && !placed.some((p) => overlaps(p, box))) spot = box;
+      }
+      if (spot) break;
+    }
+    if (!spot) continue;
+    placed.push(spot);
+    if (spot.y + spot.h < want.y - 1) { // raised: a leader line down to its body
+      ctx.strokeStyle = "#9aa4b2";
+      ctx.lineWidth = 1;
+      ctx.beginPath();
+      ctx.moveTo(want.x, spot.y + spot.h);
+      ctx.lineTo(want.x, want.y);
+      ctx.stroke();
+    }
+    ctx.fillStyle = INK;
+    ctx.fillText(spot.text, spot.x + LABEL_PAD, spot.y + spot.h - 1);
+  }
 }
 
 function tint(hex) {

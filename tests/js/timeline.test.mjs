@@ -40,3 +40,27 @@ test("clock and number formats", () => {
   assert.equal(signedMetres(0), "0 m");
   assert.equal(roundTo(0.49 + 0.02, 1e-6), 0.51);
 });
+
+test("Step back goes to the previous output time, never below 0", async () => {
+  const { stepBackward } = await import("../../src/rollspring/web/static/js/timeline.js");
+  const dt = outputInterval(times);
+  assert.equal(stepBackward(times, times[3]), times[2]);
+  assert.equal(stepBackward(times, times[3] + dt / 3), times[3]);
+  assert.equal(stepBackward(times, times[1]), 0);
+  assert.equal(stepBackward(times, 0), 0);
+  assert.equal(stepBackward(times, 10), times[599]);
+});
+
+test("the run length is a number of seconds within the page's bounds", async () => {
+  const { parseDuration, outputsFor, DURATION_MAX } = await import("../../src/rollspring/web/static/js/timeline.js");
+  assert.deepEqual(parseDuration("4"), { value: 4 });
+  assert.deepEqual(parseDuration(" 2.5 s"), { value: 2.5 });
+  assert.match(parseDuration("abc").error, /number of seconds/);
+  assert.match(parseDuration("").error, /number of seconds/);
+  assert.match(parseDuration("-3").error, /number of seconds/);
+  assert.match(parseDuration("0.5").error, /from 1 s to 60 s/);
+  assert.match(parseDuration(String(DURATION_MAX + 1)).error, /not 61/);
+  assert.equal(outputsFor(10), 601);
+  assert.equal(outputsFor(2.5), 151);
+  assert.ok(outputsFor(DURATION_MAX) <= 20000); // the server's MAX_OUTPUTS
+});

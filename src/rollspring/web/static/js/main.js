@@ -29,11 +29,11 @@ import { Plots } from "./plots.js";
 import { canonical, fileStem, maxRatio, peakFriction, rollingText } from "./runtext.js";
 import { Scene } from "./scene.js";
 import { energyBars, FORCE_COLOURS, neededMu } from "./series.js";
-import { advance, clockText, outputInterval, sampleIndex, SPEEDS, stepForward, valueAt } from "./timeline.js";
+import { wireShortcuts } from "./shortcuts.js";
+import { advance, clockText, DURATION_DEFAULT, outputInterval, outputsFor, parseDuration, sampleIndex, SPEEDS,
+  stepBackward, stepForward, valueAt } from "./timeline.js";
 import { decodeState, encodeState } from "./urlstate.js";
 
-const DURATION = 10;
-const OUTPUTS = 601;
 const DEBOUNCE_MS = 90;
 // The force arrows' scales at zoom ×1 (px per N), one per kind, fixed while the page is open
 // (the arrow-scale control multiplies them): the default system's frictions (≤ 0.5 N) are
@@ -55,7 +55,9 @@ const state = {
   start: null, // {mode, amplitude}: start along a mode instead of the system's x, v
   t: 0,
   window: null, // the world window the canvas shows
+  duration: DURATION_DEFAULT, // the run length (s)
 };
+const DEFAULT_SHOW = { ...state.show }; // the view options Reset all restores
 
 let run = null; // the last good /api/simulate answer
 let lesson = null; // the strip's series of `run` (see lessonOf)
@@ -66,6 +68,7 @@ const labelled = new Set(); // bodies hovered or focused: their forces get value
 let hovered = null;
 let presets = []; // /api/presets
 let origin = ""; // the system as loaded (canonical JSON): "(edited)" once it differs
+let loadedSystem = null; // the system as loaded (Reset all goes back to it, or to its preset)
 let goodStart = null; // the mode start of the last motion computed (a refused one reverts to it)
 let lastMode = null; // the mode "Play mode" last asked for (a new amplitude replays it)
 let autoplay = false; // play the next motion as soon as it is in ("Play mode" pressed)
@@ -104,6 +107,7 @@ function body(id) {
 
 function loadSystem(system, preset = "", { compute = true } = {}) {
   state.system = structuredClone(system);
+  loadedSystem = structuredClone(system);
   origin = canonical(system);
   state.preset = preset;
   state.loaded = Object.fromEntries(system.bodies.map((b) => [b.id, b.x]));
@@ -152,7 +156,7 @@ async function recomputeNow() {
   clearTimeout(timer);
   timer = null;
   const system = structuredClone(state.system);
-  const request = { system, duration: DURATION, outputs: OUTPUTS, on_slip: state.onSlip,
+  const request = { system, duration: state.duration, outputs: outputsFor(state.duration), on_slip: state.onSlip,
     linear: state.show.linear };
   if (state.start) request.start = state.start;
   setStatus("Computing…");
@@ -453,6 +457,11 @@ function step() {
   seek(stepForward(state.t, dt(), run.t[run.t.length - 1]));
 }
 
+function stepBack() {
+  if (!run) return;
+  seek(stepBackward(run.t, state.t));
+}
+
 /** Pose of every body at the clock: from the trajectory, or while a body is being dragged or
  * its new motion is on its way, at rest where the system places it. */
 function frameNow() {
@@ -648,16 +657,19 @@ function renderForceKey() {
   }
 }
 
+function setArrowZoom(z) {
+  arrowZoom = z;
+  $("#arrow-scale").value = String(z);
+  for (const kind of Object.keys(FORCE_SCALES)) forceScale[kind] = FORCE_SCALES[kind] * arrowZoom;
+  renderForceKey();
+  draw();
+}
+
 function wireForceKey() {
   const zoom = $("#arrow-scale");
   zoom.replaceChildren(...ZOOMS.map((z) => new Option(`×${z}`, String(z))));
   zoom.value = String(arrowZoom);
-  zoom.addEventListener("change", () => {
-    arrowZoom = Number(zoom.value);
-    for (const kind of Object.keys(FORCE_SCALES)) forceScale[kind] = FORCE_SCALES[kind] * arrowZoom;
-    renderForceKey();
-    draw();
-  });
+  zoom.addEventListener("change", () => setArrowZoom(Number(zoom.value)));
   renderForceKey();
   // value labels for the body under the pointer or with the keyboard focus
   const layer = $("#handles");
@@ -711,13 +723,15 @@ function saveUrl() {
 
 function shareable() {
   return { preset: state.preset, system: state.system, loaded: state.loaded, show: state.show,
-    onSlip: state.onSlip, speed: state.speed, start: state.start, t: state.t, window: state.window };
+    onSlip: state.onSlip, speed: state.speed, start: state.start, t: state.t, window: state.window,
+    duration: state.duration };
 }
 
 function restore(saved) {
   loadSystem(saved.system, saved.preset || "", { compute: false });
   Object.assign(state, { loaded: saved.loaded, show: { ...state.show, ...saved.show }, onSlip: saved.onSlip,
-    speed: saved.speed, start: saved.start, t: saved.t, window: saved.window });
+    speed: saved.speed, start: saved.start, t: saved.t, window: saved.window,
+    duration: parseDuration(saved.duration ?? DURATION_DEFAULT).value ?? DURATION_DEFAULT });
   scene.setWindow(state.window);
   syncViewControls();
   showPicker();
@@ -798,6 +812,31 @@ function syncViewControls() {
   for (const key of Object.keys(state.show)) $(`#show-${key}`).checked = state.show[key];
   $("#continue-slip").checked = state.onSlip === "continue";
   $("#speed").value = String(state.speed);
+  $("#duration").value = String(state.duration);
+  showDurationError(null);
+}
+
+function showDurationError(message) {
+  $("#duration-error").textContent = message || "";
+  $("#duration-error").hidden = !message;
+  if (message) $("#duration").setAttribute("aria-invalid", "true");
+  else $("#duration").removeAttribute("aria-invalid");
+}
+
+/** Back to the system as loaded (its preset's own system when it came from one), the default
+ * view options, arrow scale, speed and run length, at t = 0, paused. */
+function resetAll() {
+  pause();
+  const preset = presets.find((p) => p.name === state.preset);
+  Object.assign(state, { show: { ...DEFAULT_SHOW }, onSlip: "stop", speed: 1, duration: DURATION_DEFAULT });
+  setArrowZoom(1);
+  $("#amplitude").value = "0.01";
+  clearStartError();
+  lastMode = null;
+  autoplay = false;
+  syncViewControls();
+  pendingChange = performance.now();
+  loadSystem(preset ? preset.system : loadedSystem, state.preset);
 }
 
 function wireControls() {
@@ -818,6 +857,18 @@ function wireControls() {
   });
   $("#play").addEventListener("click", () => (playing ? pause() : play()));
   $("#step").addEventListener("click", step);
+  $("#step-back").addEventListener("click", stepBack);
+  $("#reset-all").addEventListener("click", resetAll);
+  $("#duration").addEventListener("change", () => {
+    const parsed = parseDuration($("#duration").value);
+    showDurationError(parsed.error);
+    if (parsed.error) return;
+    state.duration = parsed.value;
+    pendingChange = performance.now();
+    recomputeNow();
+  });
+  wireShortcuts({ playPause: () => (playing ? pause() : play()), step, stepBack, restart: () => seek(0) },
+    $("#shortcuts"), $("#keys-help"));
   $("#restart").addEventListener("click", () => seek(0));
   $("#time").addEventListener("input", () => seek(Number($("#time").value)));
   const speed = $("#speed");
@@ -870,7 +921,7 @@ function wireControls() {
     download(new Blob([$("#toml").value], { type: "application/toml" }), `${downloadStem()}.toml`);
   });
   $("#download-csv").addEventListener("click", () => downloadFrom("/api/simulate.csv",
-    { system: state.system, duration: DURATION, outputs: OUTPUTS, on_slip: state.onSlip,
+    { system: state.system, duration: state.duration, outputs: outputsFor(state.duration), on_slip: state.onSlip,
       ...(state.start ? { start: state.start } : {}) }, `${downloadStem()}-trajectory.csv`));
   $("#download-report").addEventListener("click", () => downloadFrom("/api/report",
     { system: state.system }, `${downloadStem()}-report.html`));

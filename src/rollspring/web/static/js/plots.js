@@ -63,6 +63,7 @@ export class Plots {
     const f = this.figures.find((g) => g.spec.key === key);
     if (!f || !f.built) return null;
     return { labels: f.built.series.map((s) => s.label), unit: f.built.unit ?? f.spec.unit,
+      styles: f.built.series.map((s) => ({ stroke: s.stroke, width: s.width || 1.6, dash: s.dash || [] })),
       data: f.built.data.map((column) => Array.from(column)) };
   }
 
@@ -97,6 +98,7 @@ export class Plots {
         points: { show: false },
       }))],
     }, data, f.figure);
+    lineMarkers(plot, series);
     const cursor = document.createElement("div");
     cursor.className = "time-cursor";
     plot.over.append(cursor);
@@ -116,4 +118,31 @@ export class Plots {
       f.cursor.style.transform = `translateX(${left}px)`;
     }
   }
+}
+
+const SVG = "http://www.w3.org/2000/svg";
+
+/** Each legend entry's marker drawn as a short piece of its line: colour, width and dash as
+ * plotted (uPlot's own marker is a square with a CSS border, which cannot show a dash pattern). */
+function lineMarkers(plot, series) {
+  const rows = plot.root.querySelectorAll(".u-legend .u-series");
+  series.forEach((s, i) => {
+    const marker = rows[i + 1] && rows[i + 1].querySelector(".u-marker");
+    if (!marker) return;
+    const width = s.width || 1.6;
+    const dash = s.dash || [];
+    const svg = document.createElementNS(SVG, "svg");
+    svg.setAttribute("viewBox", "0 0 32 10");
+    svg.setAttribute("preserveAspectRatio", "none");
+    svg.setAttribute("aria-hidden", "true");
+    const line = document.createElementNS(SVG, "line");
+    Object.entries({ x1: 0, y1: 5, x2: 32, y2: 5, stroke: s.stroke, "stroke-width": width,
+      "stroke-dasharray": dash.length ? dash.join(" ") : "none" })
+      .forEach(([k, v]) => line.setAttribute(k, String(v)));
+    svg.append(line);
+    marker.classList.add("line-marker");
+    marker.dataset.dash = dash.join(" ");
+    marker.dataset.width = String(width);
+    marker.replaceChildren(svg);
+  });
 }

@@ -47,3 +47,36 @@ export function valueAt(times, values, t) {
 export function clockText(t) {
   return `t = ${t.toFixed(4)} s`;
 }
+
+/** The clock after one Step back: the last output time before t (0 at the start). */
+export function stepBackward(times, t) {
+  const tol = 1e-9 * Math.max(1, Math.abs(t));
+  let i = sampleIndex(times, t);
+  while (i > 0 && times[i] >= t - tol) i -= 1;
+  return Math.max(0, Math.min(times[i], t));
+}
+
+// The run length (the simulated duration, s). The server takes up to 600 s; the page keeps to
+// DURATION_MAX so that its trajectory (an output every 1/60 s) stays small and quick to draw.
+export const DURATION_DEFAULT = 10;
+export const DURATION_MIN = 1;
+export const DURATION_MAX = 60;
+export const OUTPUTS_PER_SECOND = 60;
+
+/** The run length typed in its box: {value} (s) or {error} (a sentence for next to the box). */
+export function parseDuration(text) {
+  const s = String(text ?? "").trim().replace(/\s*s$/, "");
+  const value = /^[+]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i.test(s) ? Number(s) : NaN;
+  if (!Number.isFinite(value)) {
+    return { error: `The run length must be a number of seconds, from ${DURATION_MIN} to ${DURATION_MAX}.` };
+  }
+  if (value < DURATION_MIN || value > DURATION_MAX) {
+    return { error: `The run length must be from ${DURATION_MIN} s to ${DURATION_MAX} s (not ${s}).` };
+  }
+  return { value };
+}
+
+/** The output times asked for a run of `duration` s: one every 1/60 s (601 for 10 s). */
+export function outputsFor(duration) {
+  return Math.round(OUTPUTS_PER_SECOND * duration) + 1;
+}

@@ -196,7 +196,17 @@ def test_every_tap_target_is_at_least_44_px_on_a_phone(phone: Opened) -> None:
         assert kind in kinds
     small = [t for t in targets if t["width"] < TAP or t["height"] < TAP]
     assert small == []
+    # the controls of issue 26, point 5, among them
+    ids = {t["what"].split("[")[0] for t in targets}
+    for control in ("button#step-back", "button#reset-all", "button#keys-help", "input#duration"):
+        assert control in ids
     no_horizontal_overflow(page)
+    # the shortcut dialog, open: its Close button too
+    page.locator("#keys-help").click()
+    expect(page.get_by_role("dialog", name="Keyboard shortcuts")).to_be_visible()
+    in_dialog = [t for t in page.evaluate(TARGETS) if t["what"].startswith("button#[button] Close")]
+    assert len(in_dialog) == 1
+    assert in_dialog[0]["width"] >= TAP and in_dialog[0]["height"] >= TAP
 
 
 def test_targets_stay_compact_on_a_laptop(sized: Opened) -> None:
@@ -360,6 +370,14 @@ def test_axe_core_finds_no_serious_or_critical_violation(sized: Opened) -> None:
     page = sized.page
     assert serious(axe_violations(page)) == []
     open_everything(page)
+    assert serious(axe_violations(page)) == []
+    no_horizontal_overflow(page)
+    # with a bad run length shown at its box, and with the shortcut dialog open
+    page.locator("#duration").fill("0")
+    page.locator("#duration").press("Enter")
+    expect(page.locator("#duration-error")).to_be_visible()
+    page.locator("#keys-help").click()
+    expect(page.get_by_role("dialog", name="Keyboard shortcuts")).to_be_visible()
     assert serious(axe_violations(page)) == []
     no_horizontal_overflow(page)
 

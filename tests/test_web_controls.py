@@ -323,3 +323,54 @@ def test_legends_show_each_series_line_as_drawn(opened: Opened, key: str) -> Non
         by_label = {entry["label"]: entry for entry in legend}
         assert by_label["X̂"]["dash"] == "10 5" and by_label["X̂"]["width"] == 3.5
         assert by_label["CM"]["dash"] == "none" and by_label["CM"]["width"] == 3.5
+
+
+# ------------------------------------------------------------------------------------ zoom
+
+
+def test_dragging_across_a_plot_zooms_every_plot_to_that_time_window(opened: Opened) -> None:
+    page = opened.page
+    keys = ["positions", "newton", "forces", "ratio", "energy"]
+    whole = button(page, "Show the whole run")
+    expect(whole).to_be_disabled()
+    for key in keys:
+        assert page.evaluate("k => window.rollspringPage.plotWindow(k)", key) == [0, 10]
+    over = page.locator('[data-plot="positions"] .u-over')
+    over.scroll_into_view_if_needed()
+    box = over.bounding_box()
+    y = box["y"] + box["height"] / 2
+    page.mouse.move(box["x"] + box["width"] * 0.2, y)
+    page.mouse.down()
+    page.mouse.move(box["x"] + box["width"] * 0.35, y, steps=4)
+    page.mouse.move(box["x"] + box["width"] * 0.5, y, steps=4)
+    page.mouse.up()
+    window = page.evaluate("() => window.rollspringPage.plotWindow('positions')")
+    # about 2 s to 5 s of the 10 s run (the cursor lands on whole pixels)
+    assert window[0] == pytest.approx(2, abs=0.05)
+    assert window[1] == pytest.approx(5, abs=0.05)
+    for key in keys:
+        assert page.evaluate("k => window.rollspringPage.plotWindow(k)", key) == window
+    assert clock(page) == 0  # a drag zooms; it does not move the clock
+    expect(whole).to_be_enabled()
+    # a click still moves the clock, within the window shown
+    page.mouse.click(box["x"] + box["width"] / 2, y)
+    assert window[0] < clock(page) < window[1]
+    # an edit keeps the window
+    stiffness = field(page, "springs.0.stiffness")
+    stiffness.fill("150")
+    stiffness.press("Enter")
+    settle(page)
+    assert page.evaluate("() => window.rollspringPage.plotWindow('energy')") == window
+    whole.click()
+    for key in keys:
+        assert page.evaluate("k => window.rollspringPage.plotWindow(k)", key) == [0, 10]
+    expect(whole).to_be_disabled()
+    # Reset all shows the whole run too
+    page.mouse.move(box["x"] + box["width"] * 0.2, y)
+    page.mouse.down()
+    page.mouse.move(box["x"] + box["width"] * 0.5, y, steps=4)
+    page.mouse.up()
+    assert page.evaluate("() => window.rollspringPage.plotWindow('ratio')") != [0, 10]
+    button(page, "Reset all").click()
+    settle(page)
+    assert page.evaluate("() => window.rollspringPage.plotWindow('ratio')") == [0, 10]

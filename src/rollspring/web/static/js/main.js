@@ -14,7 +14,8 @@
 //   settled()     → true when no change waits to be computed or drawn (for tests);
 //   drawn()       → what the last frame drew (CSS px): the strip's CM and X̂ positions and its
 //                   magnification, each force arrow's signed length, the arrows' px per N;
-//   plotData(key) → a plot's series labels and data as plotted.
+//   plotData(key) → a plot's series labels, line styles and data as plotted;
+//   plotWindow(key) → the time window [t0, t1] a plot shows (a drag zooms every plot).
 // Initial displacements are shown relative to where each body was when the system was loaded
 // (the preset, file or link): that is also where Home puts a body back.
 
@@ -88,7 +89,7 @@ const simulate = latest("/api/simulate");
 const analyze = latest("/api/analyze");
 const derive = latest("/api/derive");
 const scene = new Scene($("#scene"), $("#strip"));
-const plots = new Plots($("#plots"), (t) => seek(t));
+const plots = new Plots($("#plots"), (t) => seek(t), $("#reset-zoom"));
 const editor = new Editor($("#editor"), (kind) => edited(kind));
 const handles = new Handles($("#handles"), {
   x: (id) => body(id).x,
@@ -835,6 +836,7 @@ function resetAll() {
   lastMode = null;
   autoplay = false;
   syncViewControls();
+  plots.resetZoom();
   pendingChange = performance.now();
   loadSystem(preset ? preset.system : loadedSystem, state.preset);
 }
@@ -943,6 +945,7 @@ window.rollspringPage = {
   settled: () => timer === null && inFlight === 0 && (pendingChange === null || errorShown),
   drawn: () => structuredClone({ ...scene.drawn, forceScale }),
   plotData: (key) => plots.plotted(key),
+  plotWindow: (key) => plots.window(key),
 };
 
 async function main() {

@@ -21,11 +21,17 @@ const PLOTS = [
 ];
 
 /** One uPlot per figure in `container`; `setRun` replaces the data, `setTime` moves the
- * cursors, `onSeek(t)` is called when the user clicks a plot to set the clock. */
+ * cursors, `onSeek(t)` is called when the user clicks a plot to set the clock. Dragging across
+ * a plot zooms every plot to that time window; `zoomButton` shows the whole run again. */
 export class Plots {
-  constructor(container, onSeek) {
+  constructor(container, onSeek, zoomButton = null) {
     this.container = container;
     this.onSeek = onSeek;
+    this.zoomed = null; // [t0, t1] shown by every plot, or null: the whole run
+    this.t = 0;
+    this.zoomButton = zoomButton;
+    if (zoomButton) zoomButton.addEventListener("click", () => this.resetZoom());
+    this.showZoom();
     this.figures = PLOTS.map((spec) => {
       const figure = document.createElement("figure");
       figure.className = "plot";
@@ -79,6 +85,12 @@ export class Plots {
       f.plot = this.make(f, series, data, unit);
       f.signature = signature;
     }
+    if (this.zoomed) {
+      // the window zoomed to stays while it is within the run; a shorter run shows all of it
+      const end = data[0][data[0].length - 1];
+      if (this.zoomed[0] < end) f.plot.setScale("x", { min: this.zoomed[0], max: Math.min(this.zoomed[1], end) });
+      else this.resetZoom();
+    }
     if (built.reference) f.caption.textContent = POSITION_TITLES[built.reference];
     f.built = built;
     f.revision += 1;
@@ -92,7 +104,16 @@ export class Plots {
       scales: { x: { time: false } },
       axes: [{ label: "t (s)", size: 36, labelSize: 18 }, { label: unit, size: 58, labelSize: 18 }],
       legend: { live: true },
-      cursor: { drag: { x: false, y: false } },
+      cursor: { drag: { x: true, y: false, setScale: false } },
+      hooks: {
+        setSelect: [(u) => {
+          if (u.select.width > 3) {
+            this.zoom(u.posToVal(u.select.left, "x"), u.posToVal(u.select.left + u.select.width, "x"));
+          }
+          u.setSelect({ left: 0, top: 0, width: 0, height: 0 }, false);
+        }],
+        setScale: [(u, key) => key === "x" && this.placeCursor(u)],
+      },
       series: [{ label: "t (s)" }, ...series.map((s) => ({
         label: s.label, stroke: s.stroke, width: s.width || 1.6, dash: s.dash, spanGaps: false,
         points: { show: false },
@@ -102,9 +123,13 @@ export class Plots {
     const cursor = document.createElement("div");
     cursor.className = "time-cursor";
     plot.over.append(cursor);
+    let down = null;
+    plot.over.addEventListener("mousedown", () => (down = plot.cursor.left));
     plot.over.addEventListener("click", () => {
       const left = plot.cursor.left;
-      if (left != null && left >= 0) this.onSeek(plot.posToVal(left, "x"));
+      const dragged = down != null && left != null && Math.abs(left - down) > 3; // a zoom, not a click
+      down = null;
+      if (!dragged && left != null && left >= 0) this.onSeek(plot.posToVal(left, "x"));
     });
     f.cursor = cursor;
     return plot;
@@ -112,11 +137,43 @@ export class Plots {
 
   /** Move every time cursor to t. */
   setTime(t) {
+    this.t = t;
+    for (const f of this.figures) if (f.plot) this.placeCursor(f.plot, f);
+  }
+
+  placeCursor(plot, f = this.figures.find((g) => g.plot === plot)) {
+    if (!f || !f.cursor) return;
+    const left = plot.valToPos(this.t, "x");
+    f.cursor.style.transform = `translateX(${left}px)`;
+    f.cursor.hidden = !(left >= 0 && left <= plot.over.clientWidth);
+  }
+
+  /** Show the time window [t0, t1] in every plot. */
+  zoom(t0, t1) {
+    this.zoomed = [Math.min(t0, t1), Math.max(t0, t1)];
+    for (const f of this.figures) if (f.plot) f.plot.setScale("x", { min: this.zoomed[0], max: this.zoomed[1] });
+    this.showZoom();
+  }
+
+  /** Show the whole run in every plot. */
+  resetZoom() {
+    this.zoomed = null;
     for (const f of this.figures) {
-      if (!f.plot) continue;
-      const left = f.plot.valToPos(t, "x");
-      f.cursor.style.transform = `translateX(${left}px)`;
+      if (!f.plot || !f.built) continue;
+      const t = f.built.data[0];
+      f.plot.setScale("x", { min: t[0], max: t[t.length - 1] });
     }
+    this.showZoom();
+  }
+
+  /** The time window plot `key` shows: [min, max]. */
+  window(key) {
+    const f = this.figures.find((g) => g.spec.key === key);
+    return f && f.plot ? [f.plot.scales.x.min, f.plot.scales.x.max] : null;
+  }
+
+  showZoom() {
+    if (this.zoomButton) this.zoomButton.disabled = this.zoomed === null;
   }
 }
 

@@ -374,3 +374,31 @@ def test_dragging_across_a_plot_zooms_every_plot_to_that_time_window(opened: Ope
     button(page, "Reset all").click()
     settle(page)
     assert page.evaluate("() => window.rollspringPage.plotWindow('ratio')") == [0, 10]
+
+
+# ------------------------------------------------------------------------- choosing the lines
+
+
+def test_a_plots_lines_can_be_chosen_and_stay_chosen_through_edits(opened: Opened) -> None:
+    page = opened.page
+    figure = page.locator('[data-plot="positions"]')
+    plotted = page.evaluate("() => window.rollspringPage.plotData('positions')")
+    assert all(plotted["shown"])
+    figure.get_by_text("Lines shown").click()
+    boxes = figure.locator(".plot-lines input[type=checkbox]")
+    expect(boxes).to_have_count(len(plotted["labels"]))
+    figure.get_by_label("hoop", exact=True).uncheck()
+    shown = page.evaluate("() => window.rollspringPage.plotData('positions').shown")
+    assert shown == [label != "hoop" for label in plotted["labels"]]
+    uplot = "() => [...document.querySelectorAll('[data-plot=positions] .u-legend .u-series')]" + (
+        ".slice(1).map(r => !r.classList.contains('u-off'))"
+    )
+    assert page.evaluate(uplot) == shown  # the legend greys it out as uPlot hides it
+    stiffness = field(page, "springs.0.stiffness")
+    stiffness.fill("150")
+    stiffness.press("Enter")
+    settle(page)
+    assert page.evaluate("() => window.rollspringPage.plotData('positions').shown") == shown
+    figure.get_by_label("hoop", exact=True).check()
+    assert all(page.evaluate("() => window.rollspringPage.plotData('positions').shown"))
+    assert all(page.evaluate(uplot))

@@ -40,7 +40,16 @@ export class Plots {
       caption.textContent = spec.title;
       figure.append(caption);
       container.append(figure);
-      return { spec, figure, caption, plot: null, signature: "", cursor: null, revision: 0, built: null };
+      const lines = document.createElement("details");
+      lines.className = "plot-lines";
+      const summary = document.createElement("summary");
+      summary.textContent = "Lines shown";
+      const boxes = document.createElement("div");
+      boxes.className = "boxes";
+      lines.append(summary, boxes);
+      figure.append(lines);
+      return { spec, figure, caption, boxes, hidden: new Set(), plot: null, signature: "", cursor: null,
+        revision: 0, built: null };
     });
     new ResizeObserver(() => this.resize()).observe(container);
   }
@@ -70,6 +79,7 @@ export class Plots {
     if (!f || !f.built) return null;
     return { labels: f.built.series.map((s) => s.label), unit: f.built.unit ?? f.spec.unit,
       styles: f.built.series.map((s) => ({ stroke: s.stroke, width: s.width || 1.6, dash: s.dash || [] })),
+      shown: f.built.series.map((s) => !f.hidden.has(s.label)),
       data: f.built.data.map((column) => Array.from(column)) };
   }
 
@@ -84,6 +94,7 @@ export class Plots {
       if (f.plot) f.plot.destroy();
       f.plot = this.make(f, series, data, unit);
       f.signature = signature;
+      this.lineBoxes(f, series);
     }
     if (this.zoomed) {
       // the window zoomed to stays while it is within the run; a shorter run shows all of it
@@ -113,9 +124,11 @@ export class Plots {
           u.setSelect({ left: 0, top: 0, width: 0, height: 0 }, false);
         }],
         setScale: [(u, key) => key === "x" && this.placeCursor(u)],
+        setSeries: [(u, i, opts) => i != null && opts && "show" in opts && this.seriesShown(f, i - 1, opts.show)],
       },
       series: [{ label: "t (s)" }, ...series.map((s) => ({
         label: s.label, stroke: s.stroke, width: s.width || 1.6, dash: s.dash, spanGaps: false,
+        show: !f.hidden.has(s.label),
         points: { show: false },
       }))],
     }, data, f.figure);
@@ -133,6 +146,30 @@ export class Plots {
     });
     f.cursor = cursor;
     return plot;
+  }
+
+  /** The plot's choice of lines: a checkbox per series (also toggled by a click on its legend
+   * entry); a line hidden stays hidden while its plot keeps that series. */
+  lineBoxes(f, series) {
+    f.boxes.replaceChildren(...series.map((s, i) => {
+      const label = document.createElement("label");
+      const box = document.createElement("input");
+      box.type = "checkbox";
+      box.checked = !f.hidden.has(s.label);
+      box.dataset.series = s.label;
+      box.addEventListener("change", () => f.plot.setSeries(i + 1, { show: box.checked }));
+      label.append(box, ` ${s.label}`);
+      return label;
+    }));
+  }
+
+  seriesShown(f, i, show) {
+    const label = f.built ? f.built.series[i]?.label : null;
+    if (label == null) return;
+    if (show) f.hidden.delete(label);
+    else f.hidden.add(label);
+    const box = f.boxes.children[i]?.querySelector("input");
+    if (box) box.checked = show;
   }
 
   /** Move every time cursor to t. */

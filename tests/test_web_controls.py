@@ -402,3 +402,10 @@ def test_a_plots_lines_can_be_chosen_and_stay_chosen_through_edits(opened: Opene
     figure.get_by_label("hoop", exact=True).check()
     assert all(page.evaluate("() => window.rollspringPage.plotData('positions').shown"))
     assert all(page.evaluate(uplot))
+    # Reset all shows every line again
+    figure.get_by_label("CM", exact=True).uncheck()
+    assert not all(page.evaluate("() => window.rollspringPage.plotData('positions').shown"))
+    button(page, "Reset all").click()
+    settle(page)
+    assert all(page.evaluate("() => window.rollspringPage.plotData('positions').shown"))
+    expect(figure.get_by_label("CM", exact=True)).to_be_checked()

@@ -837,6 +837,7 @@ function resetAll() {
   autoplay = false;
   syncViewControls();
   plots.resetZoom();
+  plots.showAllLines();
   pendingChange = performance.now();
   loadSystem(preset ? preset.system : loadedSystem, state.preset);
 }

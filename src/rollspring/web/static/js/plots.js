@@ -163,6 +163,14 @@ export class Plots {
     }));
   }
 
+  /** Every line of every plot shown again. */
+  showAllLines() {
+    for (const f of this.figures) {
+      f.hidden.clear();
+      if (f.plot) f.plot.series.forEach((s, i) => i > 0 && !s.show && f.plot.setSeries(i, { show: true }));
+    }
+  }
+
   seriesShown(f, i, show) {
     const label = f.built ? f.built.series[i]?.label : null;
     if (label == null) return;

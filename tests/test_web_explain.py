@@ -149,13 +149,13 @@ def test_the_explanations_give_the_numbers_of_the_system_shown(
     analysis = requests.post(server + "/api/analyze", json={"system": system}, timeout=60).json()
     weights = analysis["stationary_point"]["weights"]
     assert weights  # these presets have an X̂
-    shown = page.locator("#why-xhat .numbers li[data-body]").evaluate_all(
-        "ls => Object.fromEntries(ls.map(l => [l.dataset.body, Number(l.dataset.weight)]))"
+    shown = page.locator("#why-xhat .numbers li[data-why-body]").evaluate_all(
+        "ls => Object.fromEntries(ls.map(l => [l.dataset.whyBody, Number(l.dataset.weight)]))"
     )
     assert shown == weights
     model = system_from_dict(system)
-    heights = page.locator("#why-percussion .numbers li[data-body]").evaluate_all(
-        "ls => Object.fromEntries(ls.map(l => [l.dataset.body, Number(l.dataset.height)]))"
+    heights = page.locator("#why-percussion .numbers li[data-why-body]").evaluate_all(
+        "ls => Object.fromEntries(ls.map(l => [l.dataset.whyBody, Number(l.dataset.height)]))"
     )
     expected = {b.id: (1 + b.gamma) * b.radius for b in model.bodies if b.shape != "slider"}
     assert heights == pytest.approx(expected, rel=1e-15)
@@ -164,8 +164,8 @@ def test_the_explanations_give_the_numbers_of_the_system_shown(
 
 def test_the_percussion_heights_of_hoop_and_cylinder_are_2r_and_1_5r(laptop: Opened) -> None:
     page = laptop.page
-    heights = page.locator("#why-percussion .numbers li[data-body]").evaluate_all(
-        "ls => Object.fromEntries(ls.map(l => [l.dataset.body, Number(l.dataset.height)]))"
+    heights = page.locator("#why-percussion .numbers li[data-why-body]").evaluate_all(
+        "ls => Object.fromEntries(ls.map(l => [l.dataset.whyBody, Number(l.dataset.height)]))"
     )
     radii = {b["id"]: b["radius"] for b in page_system(page)["bodies"]}
     assert heights["hoop"] == pytest.approx(2 * radii["hoop"], rel=1e-15)

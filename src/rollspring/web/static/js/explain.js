@@ -141,7 +141,7 @@ export class Explainer {
     }
     const rows = system.bodies.filter((b) => weights[b.id] != null).map((b) => {
       const inertia = (1 + gammaOf(b)) * b.mass; // I′/R² = (1 + γ) m
-      return el("li", { dataset: { body: b.id, weight: String(weights[b.id]) } },
+      return el("li", { dataset: { whyBody: b.id, weight: String(weights[b.id]) } },
         `${b.id} (${b.shape}): I′/R² = (1 + ${sig(gammaOf(b), 3)}) · ${sig(b.mass, 4)} kg = ${sig(inertia, 4)} kg, `
         + `so w = ${sig(weights[b.id], 4)}`);
     });
@@ -164,7 +164,7 @@ export class Explainer {
   percussion(system) {
     const box = this.root.querySelector("#why-percussion .numbers");
     const rolling = system.bodies.filter((b) => b.shape !== "slider");
-    const items = rolling.map((b) => el("li", { dataset: { body: b.id, height: String(percussionHeight(b)) } },
+    const items = rolling.map((b) => el("li", { dataset: { whyBody: b.id, height: String(percussionHeight(b)) } },
       `${b.id} (${b.shape}, γ = ${sig(gammaOf(b), 3)}, R = ${sig(b.radius, 4)} m): `
       + `(1 + γ)R = ${sig(percussionHeight(b), 4)} m above its track`));
     const ends = springEndsOnBodies(system);

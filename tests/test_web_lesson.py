@@ -279,7 +279,9 @@ def test_the_arrow_scale_control_the_colour_key_and_value_labels(laptop: Opened)
     for kind in ("friction", "normal"):
         for body, px in drawn[kind].items():
             assert doubled[kind][body] == pytest.approx(2 * px, rel=1e-12)
-    # value labels: on hover
+    # value labels: on hover (the body brought into view first: ticking the boxes above may
+    # have scrolled it off the top)
+    page.locator('[data-body="hoop"]').scroll_into_view_if_needed()
     box = page.locator('[data-body="hoop"]').bounding_box()
     page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
     labels = page.evaluate("() => window.rollspringPage.drawn().labels")

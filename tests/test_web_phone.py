@@ -66,12 +66,13 @@ def next_frames(page: Page, n: int = 2) -> None:
 
 
 def open_everything(page: Page) -> None:
-    """Every panel open (the derivation, with the paper's claims; the system file) and every
-    view option ticked, as wide as the page gets."""
+    """Every panel open (the derivation, with the paper's claims; the system file; the three
+    "Why?" explanations, with their snap buttons) and every view option ticked, as wide as the
+    page gets."""
     for box in page.locator(".view-options input[type=checkbox]").all():
         box.check()
         settle(page)
-    for panel in ("derivation", "toml-panel"):
+    for panel in ("derivation", "toml-panel", "why-xhat", "why-cm", "why-percussion"):
         page.locator(f"details#{panel} > summary").click()
     expect(page.locator("#derivation-body table.claims")).to_have_count(1, timeout=120_000)
     expect(page.locator("#toml")).not_to_have_value("", timeout=30_000)

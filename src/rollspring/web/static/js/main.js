@@ -13,7 +13,8 @@
 //   time()        → the clock (s); dt() → the Step interval (s): one output interval;
 //   settled()     → true when no change waits to be computed or drawn (for tests);
 //   drawn()       → what the last frame drew (CSS px): the strip's CM and X̂ positions and its
-//                   magnification, each force arrow's signed length, the arrows' px per N;
+//                   magnification, each force arrow's signed length, the arrows' px per N,
+//                   each body's percussion mark ({id: {x, y}}) and the px per m;
 //   plotData(key) → a plot's series labels, line styles and data as plotted;
 //   plotWindow(key) → the time window [t0, t1] a plot shows (a drag zooms every plot).
 // Initial displacements are shown relative to where each body was when the system was loaded
@@ -21,6 +22,7 @@
 
 import { ApiError, getJson, latest, postBlob, postJson } from "./api.js";
 import { Editor, parseField } from "./editor.js";
+import { Explainer } from "./explain.js";
 import { roundTo, sig, signedMetres } from "./format.js";
 import { attachmentFromPoint, springEnds, worldBounds } from "./geometry.js";
 import { Handles } from "./handles.js";
@@ -50,7 +52,7 @@ const state = {
   system: null, // the system being edited (JSON form)
   loaded: {}, // body id → x when the system was loaded (Home)
   show: { spring: false, friction: true, normal: false, markers: true, linear: false, dots: false,
-    values: false, absolute: false },
+    values: false, absolute: false, percussion: true },
   onSlip: "stop",
   speed: 1,
   start: null, // {mode, amplitude}: start along a mode instead of the system's x, v
@@ -91,6 +93,7 @@ const derive = latest("/api/derive");
 const scene = new Scene($("#scene"), $("#strip"));
 const plots = new Plots($("#plots"), (t) => seek(t), $("#reset-zoom"));
 const editor = new Editor($("#editor"), (kind) => edited(kind));
+const explainer = new Explainer(document, snap);
 const handles = new Handles($("#handles"), {
   x: (id) => body(id).x,
   home: (id) => state.loaded[id] ?? body(id).x,
@@ -121,6 +124,8 @@ function loadSystem(system, preset = "", { compute = true } = {}) {
   run = null;
   goodStart = null;
   showPicker();
+  explainer.describe($("#preset-description"), state.system);
+  explainer.update(state.system, null);
   if (compute) recomputeNow();
 }
 
@@ -265,6 +270,7 @@ function applyAnalysis(lin) {
   renderModes($("#modes tbody"), analysis, playMode);
   renderAnalysisNote();
   renderInitial();
+  explainer.update(state.system, analysis);
 }
 
 function describeRun() {
@@ -376,12 +382,32 @@ function moveDot(dot, q, phase) {
   }
 }
 
+/** "Snap the spring here": each of `ends` ([{spring, end, height}]) attached at that height
+ * on its body's centre vertical (its percussion point), and the bodies of `tracks` ({id:
+ * track_height}) moved to those tracks; then computed again. */
+function snap(ends, tracks = {}) {
+  pause();
+  for (const [id, h] of Object.entries(tracks)) body(id).track_height = h;
+  if (Object.keys(tracks).length) {
+    state.window = worldBounds(state.system);
+    scene.setWindow(state.window);
+  }
+  for (const { spring, end, height } of ends) {
+    const s = state.system.springs[spring];
+    s.at ??= [{}, {}];
+    s.at[end] = { height };
+  }
+  editor.render();
+  edited("commit");
+}
+
 // ---------------------------------------------------------------- edits
 
 // A committed change (a slider released, a field entered, a drag ended) is computed at once;
 // the stream of "input" events while a slider or a body is being dragged is debounced.
 function edited(kind) {
   showPicker();
+  explainer.update(state.system, analysis);
   renderInitial();
   draw();
   if (kind === "commit") {

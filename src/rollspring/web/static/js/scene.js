@@ -7,6 +7,7 @@
 // lengths) is kept in `scene.drawn`, for tests.
 
 import { makeView, springEnds, zigzag } from "./geometry.js";
+import { percussionHeight } from "./explain.js";
 import { sig } from "./format.js";
 import { bodyColour, CM_COLOUR, FORCE_COLOURS, magnification, XHAT_COLOUR } from "./series.js";
 import { clockText, sampleIndex, valueAt } from "./timeline.js";
@@ -28,7 +29,7 @@ export class Scene {
     this.window = { xmin: -0.5, xmax: 0.5, ymin: -0.1, ymax: 0.3 };
     // what the last frame drew (CSS px), rewritten in place by every draw
     this.drawn = { friction: {}, normal: {}, spring: [], labels: [], bodyLabels: [],
-      strip: this.strip ? this.strip.drawn : null };
+      percussion: {}, pxPerM: 0, strip: this.strip ? this.strip.drawn : null };
     this.wantedLabels = []; // the body labels of the frame being drawn, before their layout
     this.resize();
   }
@@ -72,6 +73,8 @@ export class Scene {
     const wanted = this.wantedLabels;
     wanted.length = 0;
     frame.system.bodies.forEach((body, i) => drawBody(ctx, view, frame, body, i, wanted));
+    drawPercussion(ctx, view, frame, this.drawn.percussion);
+    this.drawn.pxPerM = view.pxPerM;
     if (frame.show.markers) drawMarkers(ctx, view, frame);
     drawForces(ctx, view, frame, this.drawn, this.width * ARROW_MAX);
     ctx.fillStyle = INK;
@@ -376,6 +379,52 @@ function drawBody(ctx, view, frame, body, i, labels) {
   dot(ctx, c, 2.5, INK);
   labels.push({ id: body.id, x: c.x, y: c.y - r - 6 });
 }
+
+/** Each rolling body's percussion point P, at (1 + γ)R above its contact point on the vertical
+ * through its centre (with `show.percussion`); their canvas positions go into `drawn` ({id:
+ * {x, y}}, emptied otherwise). The mark is a fixed height that moves along with the body but
+ * does not turn with it: the percussion property belongs to the line of action of a horizontal
+ * pull at that height above the contact, whichever material point is there — a mark turning
+ * with the body would leave that height as soon as it rolls and teach the wrong thing (that
+ * one point of the body is special); a spring attached there at rest stays near it for small
+ * swings, which is why friction vanishes to first order. */
+function drawPercussion(ctx, view, frame, drawn) {
+  for (const id of Object.keys(drawn)) delete drawn[id];
+  if (!frame.show.percussion) return;
+  for (const body of frame.system.bodies) {
+    const h = percussionHeight(body);
+    if (h == null) continue;
+    const { x } = frame.pose(body.id);
+    const p = view.toCanvas({ x, y: (body.track_height || 0) + h });
+    drawn[body.id] = { x: p.x, y: p.y };
+    ctx.save();
+    ctx.strokeStyle = PERCUSSION_COLOUR;
+    ctx.fillStyle = "#fff";
+    ctx.lineWidth = 2;
+    ctx.beginPath(); // a small open diamond with a tick on each side
+    ctx.moveTo(p.x, p.y - 6);
+    ctx.lineTo(p.x + 6, p.y);
+    ctx.lineTo(p.x, p.y + 6);
+    ctx.lineTo(p.x - 6, p.y);
+    ctx.closePath();
+    ctx.fill();
+    ctx.stroke();
+    ctx.beginPath();
+    ctx.moveTo(p.x - 12, p.y);
+    ctx.lineTo(p.x - 7, p.y);
+    ctx.moveTo(p.x + 7, p.y);
+    ctx.lineTo(p.x + 12, p.y);
+    ctx.stroke();
+    ctx.font = "600 11px system-ui, sans-serif";
+    ctx.textAlign = "left";
+    ctx.textBaseline = "middle";
+    ctx.fillStyle = PERCUSSION_COLOUR;
+    ctx.fillText("P", p.x + 14, p.y);
+    ctx.restore();
+  }
+}
+
+const PERCUSSION_COLOUR = "#0b7a55";
 
 function drawGhosts(ctx, view, frame) {
   ctx.save();

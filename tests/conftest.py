@@ -133,3 +133,61 @@ def browser() -> Iterator[Any]:
 
     with launch_chromium() as launched:
         yield launched
+
+
+# -- the page: one real server per test module, pages opened in its Chromium ----------------------
+
+
+@pytest.fixture(scope="module")
+def server() -> Iterator[str]:
+    """``rollspring serve`` on a free port of 127.0.0.1 (one per test module); its base URL (no
+    trailing slash)."""
+    from tests.serving import Server
+
+    running = Server("--budget", "600")  # about answers, not speed: never reached
+    try:
+        yield running.url.rstrip("/")
+    finally:
+        running.stop()
+
+
+def _opened(browser: Any, server: str, viewport: dict[str, int]) -> Iterator[Any]:
+    """The page at ``viewport``, ready; after the test: no console error, no foreign request."""
+    from tests.test_web_page import open_page
+
+    seen = open_page(browser, server, viewport=viewport)
+    yield seen
+    seen.check_clean()
+    seen.page.close()
+
+
+@pytest.fixture()
+def opened(browser: Any, server: str) -> Iterator[Any]:
+    """The page on the laptop's screen."""
+    from tests.serving import LAPTOP
+
+    yield from _opened(browser, server, LAPTOP)
+
+
+@pytest.fixture()
+def laptop(browser: Any, server: str) -> Iterator[Any]:
+    """The page on the laptop's screen (beside ``sized`` and ``phone``)."""
+    from tests.serving import LAPTOP
+
+    yield from _opened(browser, server, LAPTOP)
+
+
+@pytest.fixture()
+def phone(browser: Any, server: str) -> Iterator[Any]:
+    """The page on the phone's screen."""
+    from tests.serving import PHONE
+
+    yield from _opened(browser, server, PHONE)
+
+
+@pytest.fixture(params=["laptop-1280x800", "phone-390x844"])
+def sized(request: pytest.FixtureRequest, browser: Any, server: str) -> Iterator[Any]:
+    """The page on each screen in turn."""
+    from tests.serving import SIZES
+
+    yield from _opened(browser, server, dict(SIZES)[request.param])

@@ -44,6 +44,12 @@ def launch_chromium() -> Iterator[Any]:
             browser.close()
 
 
+#: The page's two screens: a laptop and a phone held upright (CSS px).
+LAPTOP = {"width": 1280, "height": 800}
+PHONE = {"width": 390, "height": 844}
+#: Both, with their test ids.
+SIZES = [("laptop-1280x800", LAPTOP), ("phone-390x844", PHONE)]
+
 #: What an element shows as text outside MathML (the page's ``evaluate`` on an element handle).
 VISIBLE_TEXT = """el => {
     const walker = document.createTreeWalker(el, NodeFilter.SHOW_TEXT, {

@@ -8,13 +8,11 @@ Nothing here waits on wall-clock time: every wait is for a condition in the page
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
 
 import pytest
 import requests
 from playwright.sync_api import Browser, Page, expect
 
-from tests.serving import Server
 from tests.test_web_page import Opened, clock, field, next_frames, open_page, page_system, settle
 
 VIEW_OPTIONS = [
@@ -28,24 +26,6 @@ VIEW_OPTIONS = [
     "continue-slip",
     "show-absolute",
 ]
-
-
-@pytest.fixture(scope="module")
-def server() -> Iterator[str]:
-    """``rollspring serve`` on a free port of 127.0.0.1; its base URL (no trailing slash)."""
-    running = Server("--budget", "600")
-    try:
-        yield running.url.rstrip("/")
-    finally:
-        running.stop()
-
-
-@pytest.fixture()
-def opened(browser: Browser, server: str) -> Iterator[Opened]:
-    seen = open_page(browser, server)
-    yield seen
-    seen.check_clean()
-    seen.page.close()
 
 
 def button(page: Page, name: str):

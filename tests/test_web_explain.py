@@ -12,17 +12,13 @@ Nothing here waits on wall-clock time: every wait is for a condition in the page
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
 
 import pytest
 import requests
-from playwright.sync_api import Browser, Page, expect
+from playwright.sync_api import Page, expect
 
 from rollspring.model import system_from_dict
-from tests.serving import Server
-from tests.test_web_page import LAPTOP, PHONE, Opened, open_page, page_system, settle
-
-SIZES = [("laptop-1280x800", LAPTOP), ("phone-390x844", PHONE)]
+from tests.test_web_page import Opened, page_system, settle
 
 #: The largest |f| of every body over the page's run, read from the force plot's data.
 PEAK_FRICTION = """() => {
@@ -34,31 +30,6 @@ PEAK_FRICTION = """() => {
     });
     return peak;
 }"""
-
-
-@pytest.fixture(scope="module")
-def server() -> Iterator[str]:
-    running = Server("--budget", "600")
-    try:
-        yield running.url.rstrip("/")
-    finally:
-        running.stop()
-
-
-@pytest.fixture(params=SIZES, ids=[name for name, _ in SIZES])
-def sized(request: pytest.FixtureRequest, browser: Browser, server: str) -> Iterator[Opened]:
-    seen = open_page(browser, server, viewport=request.param[1])
-    yield seen
-    seen.check_clean()
-    seen.page.close()
-
-
-@pytest.fixture()
-def laptop(browser: Browser, server: str) -> Iterator[Opened]:
-    seen = open_page(browser, server)
-    yield seen
-    seen.check_clean()
-    seen.page.close()
 
 
 def presets(server: str) -> dict[str, dict]:

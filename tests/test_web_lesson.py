@@ -13,45 +13,14 @@ the last frame drew), at the run's own output times; nothing waits on wall-clock
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
 
 import numpy as np
 import pytest
-from playwright.sync_api import Browser, Page, expect
+from playwright.sync_api import Page, expect
 
 import rollspring
 from rollspring.model import load_system, system_from_dict
-from tests.serving import Server
-from tests.test_web_page import LAPTOP, PHONE, Opened, open_page, page_system, settle
-
-SIZES = [("laptop-1280x800", LAPTOP), ("phone-390x844", PHONE)]
-
-
-@pytest.fixture(scope="module")
-def server() -> Iterator[str]:
-    """``rollspring serve`` on a free port of 127.0.0.1; its base URL (no trailing slash)."""
-    running = Server("--budget", "600")
-    try:
-        yield running.url.rstrip("/")
-    finally:
-        running.stop()
-
-
-@pytest.fixture(params=SIZES, ids=[name for name, _ in SIZES])
-def sized(request: pytest.FixtureRequest, browser: Browser, server: str) -> Iterator[Opened]:
-    seen = open_page(browser, server, viewport=request.param[1])
-    yield seen
-    seen.check_clean()
-    seen.page.close()
-
-
-@pytest.fixture()
-def laptop(browser: Browser, server: str) -> Iterator[Opened]:
-    seen = open_page(browser, server)
-    yield seen
-    seen.check_clean()
-    seen.page.close()
-
+from tests.test_web_page import Opened, page_system, settle
 
 #: Every output time of the run (k·dt): move the clock there and keep what the frame drew.
 SWEEP = """() => {

@@ -13,7 +13,6 @@ from __future__ import annotations
 import hashlib
 import re
 import shutil
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -22,21 +21,9 @@ from playwright.sync_api import Browser, Page, expect
 
 import rollspring
 from rollspring.model import system_from_dict
-from tests.serving import VISIBLE_TEXT, Server
+from tests.serving import LAPTOP, PHONE, VISIBLE_TEXT
 
 REPO = Path(__file__).resolve().parents[1]
-LAPTOP = {"width": 1280, "height": 800}
-PHONE = {"width": 390, "height": 844}
-
-
-@pytest.fixture(scope="module")
-def server() -> Iterator[str]:
-    """``rollspring serve`` on a free port of 127.0.0.1; its base URL (no trailing slash)."""
-    running = Server("--budget", "600")  # about answers, not speed: never reached
-    try:
-        yield running.url.rstrip("/")
-    finally:
-        running.stop()
 
 
 @dataclass
@@ -71,14 +58,6 @@ def open_page(browser: Browser, base: str, url: str = "/", viewport: dict = LAPT
     page.evaluate("() => window.rollspringPage.ready()")
     settle(page)
     return seen
-
-
-@pytest.fixture()
-def opened(browser: Browser, server: str) -> Iterator[Opened]:
-    seen = open_page(browser, server)
-    yield seen
-    seen.check_clean()
-    seen.page.close()
 
 
 def settle(page: Page) -> None:

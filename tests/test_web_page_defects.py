@@ -17,7 +17,6 @@ import pytest
 import requests
 from playwright.sync_api import Browser, expect
 
-from tests.serving import Server
 from tests.test_web_page import (
     Opened,
     clock,
@@ -29,16 +28,6 @@ from tests.test_web_page import (
     settle,
     wait_omega,
 )
-
-
-@pytest.fixture(scope="module")
-def server() -> Iterator[str]:
-    """``rollspring serve`` on a free port of 127.0.0.1; its base URL (no trailing slash)."""
-    running = Server("--budget", "600")  # about answers, not speed: never reached
-    try:
-        yield running.url.rstrip("/")
-    finally:
-        running.stop()
 
 
 @pytest.fixture()

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Iterator
 from itertools import combinations
 from pathlib import Path
 
@@ -19,41 +18,13 @@ import pytest
 import requests
 from playwright.sync_api import Browser, Page, expect
 
-from tests.serving import Server
 from tests.test_web_page import LAPTOP, PHONE, Opened, open_page, page_system, settle
 
 STATIC = Path(__file__).resolve().parents[1] / "src" / "rollspring" / "web" / "static"
 AXE = STATIC / "node_modules" / "axe-core" / "axe.min.js"
-SIZES = [("laptop-1280x800", LAPTOP), ("phone-390x844", PHONE)]
 CHAINS = ["chain-diatomic", "chain-monatomic"]
 #: The smallest tap target (CSS px), WCAG 2.5.5 and Apple's and Google's guides.
 TAP = 44
-
-
-@pytest.fixture(scope="module")
-def server() -> Iterator[str]:
-    """``rollspring serve`` on a free port of 127.0.0.1; its base URL (no trailing slash)."""
-    running = Server("--budget", "600")
-    try:
-        yield running.url.rstrip("/")
-    finally:
-        running.stop()
-
-
-@pytest.fixture(params=SIZES, ids=[name for name, _ in SIZES])
-def sized(request: pytest.FixtureRequest, browser: Browser, server: str) -> Iterator[Opened]:
-    seen = open_page(browser, server, viewport=request.param[1])
-    yield seen
-    seen.check_clean()
-    seen.page.close()
-
-
-@pytest.fixture()
-def phone(browser: Browser, server: str) -> Iterator[Opened]:
-    seen = open_page(browser, server, viewport=PHONE)
-    yield seen
-    seen.check_clean()
-    seen.page.close()
 
 
 def next_frames(page: Page, n: int = 2) -> None:

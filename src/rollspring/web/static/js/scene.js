@@ -20,6 +20,22 @@ const TRAIL_S = 0.6;
 const TRAIL_STEPS = 6;
 
 /** The canvas and its view of the world window; handles the device pixel ratio. */
+/** Size ``owner.canvas`` to its CSS box at the device's pixel ratio (drawing in CSS px): sets
+ * ``owner.width``, ``owner.height`` and the context's transform; true when the size changed. */
+function fitCanvas(owner) {
+  const box = owner.canvas.getBoundingClientRect();
+  const width = Math.max(1, Math.round(box.width));
+  const height = Math.max(1, Math.round(box.height));
+  const ratio = window.devicePixelRatio || 1;
+  const changed = width !== owner.width || height !== owner.height;
+  owner.width = width;
+  owner.height = height;
+  owner.canvas.width = Math.round(width * ratio);
+  owner.canvas.height = Math.round(height * ratio);
+  owner.ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+  return changed;
+}
+
 export class Scene {
   /** `canvas`: the animation; `stripCanvas` (optional): the magnified CM and X̂ strip. */
   constructor(canvas, stripCanvas = null) {
@@ -36,16 +52,7 @@ export class Scene {
 
   /** Fit the canvas to its CSS box; returns true when its size changed. */
   resize() {
-    const box = this.canvas.getBoundingClientRect();
-    const width = Math.max(1, Math.round(box.width));
-    const height = Math.max(1, Math.round(box.height));
-    const ratio = window.devicePixelRatio || 1;
-    const changed = width !== this.width || height !== this.height;
-    this.width = width;
-    this.height = height;
-    this.canvas.width = Math.round(width * ratio);
-    this.canvas.height = Math.round(height * ratio);
-    this.ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+    const changed = fitCanvas(this);
     this.setWindow(this.window);
     const stripChanged = this.strip ? this.strip.resize() : false;
     return changed || stripChanged;
@@ -110,17 +117,7 @@ class Strip {
   }
 
   resize() {
-    const box = this.canvas.getBoundingClientRect();
-    const width = Math.max(1, Math.round(box.width));
-    const height = Math.max(1, Math.round(box.height));
-    const ratio = window.devicePixelRatio || 1;
-    const changed = width !== this.width || height !== this.height;
-    this.width = width;
-    this.height = height;
-    this.canvas.width = Math.round(width * ratio);
-    this.canvas.height = Math.round(height * ratio);
-    this.ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
-    return changed;
+    return fitCanvas(this);
   }
 
   /** `frame.lesson`: {times, cm, xhat (or null), cmMid, xhatMid, halfRange (m)} of the run. */

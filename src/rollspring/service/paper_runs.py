@@ -100,12 +100,9 @@ class _Run:
     mass: np.ndarray
     radius: np.ndarray
     central: np.ndarray  # I_i about the centre
+    contact: np.ndarray  # J_i = I_i + m_i R_i^2 about the contact line (the paper's I')
     centre_height: np.ndarray
-
-    @property
-    def contact(self) -> np.ndarray:
-        """J_i = I_i + m_i R_i^2 (the paper's I')."""
-        return self.central + self.mass * self.radius**2
+    acceleration: np.ndarray  # the centres' xddot_i at the output times, from the physics (M7)
 
 
 def _simulate(counterexample: Counterexample, amplitude: float | None = None) -> _Run:
@@ -141,14 +138,19 @@ def _simulate(counterexample: Counterexample, amplitude: float | None = None) ->
     if str(run.status) != "finished":
         raise RuntimeError(f"{counterexample.system}: the run ended {run.status}: {run.message}")
     bodies = system.bodies
+    radius = np.array([b.radius for b in bodies])
+    # every output row rolls (the run finished without a slip): xddot_i = R_i phiddot_i exactly
+    angular = accelerations(system_arrays(system), run.phi, run.omega)
     return _Run(
         data,
         run,
         mode.period,
         np.array([b.mass for b in bodies]),
-        np.array([b.radius for b in bodies]),
+        radius,
         np.array([b.central_inertia for b in bodies]),
+        np.array([b.contact_inertia for b in bodies]),
         np.array([b.track_height + b.radius for b in bodies]),
+        radius * angular,
     )
 
 
@@ -162,9 +164,8 @@ def _slope(y: np.ndarray, x: np.ndarray) -> float:
 
 
 def _spring_pull(r: _Run) -> np.ndarray:
-    """F_ix = m_i xddot_i - f_i (Newton along x), xddot from the output velocities."""
-    acceleration = np.gradient(r.run.v, r.run.t, axis=0)
-    result: np.ndarray = r.mass * acceleration - r.run.friction
+    """F_ix = m_i xddot_i - f_i (Newton along x), xddot from the physics' accelerations."""
+    result: np.ndarray = r.mass * r.acceleration - r.run.friction
     return result
 
 

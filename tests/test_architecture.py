@@ -26,7 +26,7 @@ COMPUTATIONS = {
 
 
 def test_import_linter_contracts_are_kept() -> None:
-    """model -> physics -> analysis -> simulate -> outputs -> service -> interfaces; the core
+    """model -> physics -> analysis -> simulate -> lab -> outputs -> service -> interfaces; the core
     imports no CLI, web or plotting library (contracts in pyproject.toml)."""
     lint = Path(sys.executable).with_name("lint-imports")
     result = subprocess.run(

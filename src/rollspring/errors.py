@@ -19,6 +19,8 @@ The tree, grouped by the layer that raises each class (bottom layer first)::
     ├── CostTooHigh             a run's estimated time or memory is above the bound (--yes)
     │ simulate
     ├── SimulationError         invalid simulation arguments (duration, tolerance, integrator)
+    │ lab
+    ├── TrackingError           a video cannot be tracked as asked (unreadable, a body not found)
     │ outputs
     ├── OutputError             an output file or directory cannot be written
     ├── ReportError             the report cannot be made or written as asked
@@ -75,6 +77,7 @@ __all__ = [
     "StoreMismatchError",
     "SweepError",
     "SweepPlotError",
+    "TrackingError",
     "WebError",
     "WorksheetError",
     "WorksheetOptionError",
@@ -123,6 +126,15 @@ class CostTooHigh(RollspringError, ValueError):
 
 class SimulationError(RollspringError, ValueError):
     """A simulation was requested with invalid arguments (duration, tolerance, integrator)."""
+
+
+# ------------------------------------------------------------------------------------ lab
+
+
+class TrackingError(RollspringError, ValueError):
+    """A video cannot be tracked as asked: an unreadable or empty video, a body or its marker
+    not found in a range of frames, a bad time range or scale (one line naming the file or the
+    option and the reason)."""
 
 
 # -------------------------------------------------------------------------------- outputs
@@ -228,6 +240,7 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "symbolic": ("sympy", "latex2mathml"),
     "sweep": ("dask", "distributed", "zarr", "xarray"),
 }
+EXTRAS["lab"] = ("cv2", "emcee")
 EXTRAS["report"] = EXTRAS["plot"] + EXTRAS["symbolic"]
 EXTRAS["web"] = ("fastapi", "uvicorn", "orjson") + EXTRAS["report"]
 

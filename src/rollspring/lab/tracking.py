@@ -1,0 +1,798 @@
+r"""Tracking a video of rolling bodies: each body's centre x (m) and rotation φ (rad) per frame.
+
+:func:`track_video` reads a video with OpenCV and, in every frame, finds the bodies of a system
+— a hoop seen as a ring, a cylinder, sphere or shell as a disc, each with one contrasting
+marker on its rim — as a camera filming the experiment from the side sees them:
+
+1. **The floor line** (first frame): the strongest near-horizontal straight edge
+   (``cv2.HoughLines`` on Canny edges, within 15° of horizontal), refined to a fraction of a
+   pixel by a straight-line fit to the edge's position in every column (the bodies' outlines
+   rejected as outliers). Its angle is the **camera roll**, corrected: positions are measured
+   along the floor line and heights above it, angles from its normal.
+2. **The bodies** (first frame): circle candidates of ``cv2.HoughCircles``, each refined (step
+   3), kept when they stand on the floor line (height of the centre = radius), and matched to
+   the system's bodies in the order of their x and by the ratios of their radii. The marker's
+   colour, its distance from the centre and the body's colour are read from a polar sampling of
+   the body.
+3. **Every frame**, per body, in a search window around the centre predicted from the two
+   frames before (constant velocity): the outer edge is located on 96 rays from the centre
+   (``cv2.remap`` of the smoothed grey image along each ray, the strongest step of the
+   body's contrast, to a fraction of a pixel by a parabola), and a circle fitted to those edge
+   points by least squares (Kåsa's algebraic fit, outliers beyond three robust standard
+   deviations dropped and the fit repeated; rays near the floor contact and towards another
+   body left out). Then the marker: the ring of pixels at its distance from the centre, scored
+   by the projection of each pixel's colour on the (marker − body) colour difference, its
+   angle the centroid of the score's peak.
+
+Units and conventions (the columns of ``tracks.csv``):
+
+* ``t``: the frame's time in the video (s; the container's time stamps, or index / fps).
+* ``x_<id>``: the centre's position along the floor line (m, +x to the right of the image).
+  Origin: the first body's centre in the first tracked frame is at its ``x`` in the system
+  file, unless ``origin`` says where (m).
+* ``phi_<id>``: the marker's angle from the floor's normal (straight up), clockwise positive,
+  unwrapped from frame to frame (rad). A marker put at the top of the body at the system's
+  initial placement makes it the model's φ.
+
+The scale (px/m) is the bodies' measured radii over their known radii (the median over the
+frames), unless given. The quality per body: the RMS of the circle fit's edge residuals, the
+RMS of the centre's height above the floor minus its radius (a body that rolls on the floor
+keeps it zero), and the median contrast of the marker.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from rollspring.errors import TrackingError
+from rollspring.model import System
+from rollspring.physics.arrays import FloatArray
+
+__all__ = ["FloorLine", "FrameTrack", "TrackResult", "draw_overlay", "track_video"]
+
+#: Rays per body for the outline, samples per turn for the marker.
+RAYS = 96
+MARKER_SAMPLES = 360
+#: Rays within this angle (rad) of straight down (the floor contact) are not used.
+CONTACT_HALF_ANGLE = math.radians(40.0)
+#: A body is lost in a frame when fewer than this fraction of its usable rays find its edge,
+#: when its radius is off by more than this fraction, or its marker's contrast is below this.
+MIN_RAY_FRACTION = 0.35
+MAX_RADIUS_CHANGE = 0.12
+MIN_MARKER_SCORE = 0.45
+#: Radial sampling step along a ray (px).
+STEP = 0.5
+
+
+@dataclass(frozen=True)
+class FloorLine:
+    """The floor line in the image: a ``point`` on it (px), its unit ``direction`` (towards
+    the image's right) and unit ``normal`` (towards the image's top), all (u, v) with v down.
+    ``roll`` is the camera roll (rad): the scene is seen turned counter-clockwise by it."""
+
+    point: FloatArray
+    direction: FloatArray
+    normal: FloatArray
+
+    @property
+    def roll(self) -> float:
+        """The angle of the floor line in the image, counter-clockwise positive (rad)."""
+        return math.atan2(-float(self.direction[1]), float(self.direction[0]))
+
+    def along(self, points: FloatArray) -> FloatArray:
+        """Positions of image ``points`` (..., 2) along the floor line (px)."""
+        result: FloatArray = (np.asarray(points) - self.point) @ self.direction
+        return result
+
+    def height(self, points: FloatArray) -> FloatArray:
+        """Heights of image ``points`` (..., 2) above the floor line (px)."""
+        result: FloatArray = (np.asarray(points) - self.point) @ self.normal
+        return result
+
+
+@dataclass(frozen=True)
+class FrameTrack:
+    """What one frame's tracking found, in pixels (the overlay draws it): per body the centre
+    (n, 2), the radius (n,), the marker's point (n, 2) and whether the body was found (n,)."""
+
+    index: int
+    time: float
+    centre: FloatArray
+    radius: FloatArray
+    marker: FloatArray
+    found: np.ndarray
+    floor: FloorLine
+
+
+@dataclass
+class _Body:
+    """A body as the tracker knows it after the first frame."""
+
+    id: str
+    shape: str
+    radius_m: float
+    radius_px: float
+    polarity: float  # +1: the body is darker than what surrounds it
+    colour: FloatArray  # BGR
+    marker_direction: FloatArray  # marker colour - body colour, BGR
+    marker_radii: FloatArray  # the rows (px from the centre) the marker is sampled at
+    marker_half_width: float  # rad
+
+
+@dataclass
+class TrackResult:
+    """The tracks of a video (see :mod:`rollspring.lab.tracking` for the conventions).
+
+    ``t`` (frames,) s; ``x`` and ``phi`` (frames, bodies) in m and rad, the columns in the
+    order of ``ids`` (the system's); ``frames`` the video's frame indices; ``fps`` the video's
+    frame rate; ``scale`` px/m (``scale_source``: ``"radii"`` or ``"given"``); ``roll`` the
+    camera roll (rad); ``residuals`` per body: ``circle_rms`` (m), ``height_rms`` (m),
+    ``marker_contrast``; ``centre_px``, ``radius_px`` the raw image measurements."""
+
+    video: str
+    ids: tuple[str, ...]
+    t: FloatArray
+    x: FloatArray
+    phi: FloatArray
+    frames: np.ndarray
+    fps: float
+    scale: float
+    scale_source: str
+    roll: float
+    residuals: dict[str, dict[str, float]]
+    centre_px: FloatArray
+    radius_px: FloatArray
+    seconds: float = 0.0
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    def columns(self) -> dict[str, FloatArray]:
+        """The CSV's columns in order: ``t``, then ``x_<id>``, ``phi_<id>`` per body."""
+        columns = {"t": self.t}
+        for i, name in enumerate(self.ids):
+            columns[f"x_{name}"] = self.x[:, i]
+            columns[f"phi_{name}"] = self.phi[:, i]
+        return columns
+
+    def to_csv(self, path: str | os.PathLike[str] | None = None) -> str:
+        """The tracks as CSV text (header ``t,x_<id>,phi_<id>,...``, one row per frame, SI
+        units, 17 significant digits); written to ``path`` too when given (atomically: the
+        command line writes through :mod:`rollspring.outputs.atomic`)."""
+        columns = self.columns()
+        table = np.column_stack(list(columns.values()))
+        lines = [",".join(columns)]
+        lines += [",".join(f"{value:.17g}" for value in row) for row in table.tolist()]
+        text = "\n".join(lines) + "\n"
+        if path is not None:
+            target = Path(path)
+            temporary = target.with_name(f".{target.name}.{os.getpid()}.part")
+            try:
+                temporary.write_text(text, encoding="utf-8")
+                os.replace(temporary, target)
+            finally:
+                temporary.unlink(missing_ok=True)
+        return text
+
+    def summary(self) -> dict[str, Any]:
+        """The JSON summary (``rollspring track --json``): ``video``, ``frames``, ``fps``,
+        ``t_start``, ``t_end``, ``scale`` (px/m), ``scale_source``, ``roll_deg``, ``bodies``
+        (the ids in order) and ``residuals`` per body (``circle_rms``, ``height_rms`` in m,
+        ``marker_contrast``), ``frames_per_second`` (the tracking's speed)."""
+        return {
+            "video": self.video,
+            "frames": int(self.t.size),
+            "fps": self.fps,
+            "t_start": float(self.t[0]),
+            "t_end": float(self.t[-1]),
+            "scale": self.scale,
+            "scale_source": self.scale_source,
+            "roll_deg": math.degrees(self.roll),
+            "bodies": list(self.ids),
+            "residuals": self.residuals,
+            "frames_per_second": (self.t.size / self.seconds) if self.seconds > 0 else None,
+        }
+
+    def _repr_html_(self) -> str:
+        from html import escape
+
+        rows = "".join(
+            f"<tr><td>{escape(name)}</td><td>{values['circle_rms'] * 1e3:.3g}</td>"
+            f"<td>{values['height_rms'] * 1e3:.3g}</td>"
+            f"<td>{values['marker_contrast']:.2f}</td></tr>"
+            for name, values in self.residuals.items()
+        )
+        return (
+            f"<div><b>Tracks of {escape(Path(self.video).name)}</b>: {self.t.size} frames, "
+            f"t = {self.t[0]:.4g} … {self.t[-1]:.4g} s at {self.fps:.4g} fps; scale "
+            f"{self.scale:.5g} px/m ({self.scale_source}); camera roll "
+            f"{math.degrees(self.roll):.3g}°"
+            "<table><tr><th>body</th><th>circle fit RMS (mm)</th><th>height RMS (mm)</th>"
+            f"<th>marker contrast</th></tr>{rows}</table></div>"
+        )
+
+
+# ------------------------------------------------------------------------------ reading
+
+
+def _open(video: str | os.PathLike[str]) -> Any:
+    """The video opened with OpenCV, or a one-line :class:`TrackingError` naming the file."""
+    import cv2
+
+    path = Path(video)
+    if not path.exists():
+        raise TrackingError(f"{video}: no such file")
+    if not path.is_file():
+        raise TrackingError(f"{video}: not a regular file")
+    capture = cv2.VideoCapture(str(path))
+    if not capture.isOpened():
+        capture.release()
+        raise TrackingError(f"{video}: cannot be read as a video")
+    return capture
+
+
+def _check_times(start: float | None, stop: float | None) -> None:
+    for name, value in (("--from", start), ("--to", stop)):
+        if value is not None and not (math.isfinite(value) and value >= 0):
+            raise TrackingError(f"{name}: must be a time >= 0 s, got {value:g}")
+    if start is not None and stop is not None and stop <= start:
+        raise TrackingError(f"--to: must be after --from ({start:g} s), got {stop:g}")
+
+
+# ------------------------------------------------------------------------------ geometry
+
+
+def _floor_line(gray: np.ndarray) -> FloorLine:
+    """The floor line of a grey frame: the strongest near-horizontal line of the Hough
+    transform of its edges, then a least-squares line through the edge's sub-pixel row in each
+    column near it (outliers — the bodies — dropped)."""
+    import cv2
+
+    width = gray.shape[1]
+    smooth = cv2.GaussianBlur(gray, (0, 0), 1.5)
+    edges = cv2.Canny(smooth, 20, 60)
+    lines = cv2.HoughLines(
+        edges,
+        1,
+        math.pi / 720,
+        width // 4,
+        min_theta=math.pi / 2 - 0.26,
+        max_theta=math.pi / 2 + 0.26,
+    )
+    if lines is None:
+        raise TrackingError("no floor line found (a straight horizontal edge under the bodies)")
+    rho, theta = (float(value) for value in lines[0][0])
+    # the line: u cos(theta) + v sin(theta) = rho; its row at each column
+    columns = np.arange(4, width - 4, 2, dtype=np.float64)
+    rows = (rho - columns * math.cos(theta)) / math.sin(theta)
+    offsets = np.arange(-6.0, 6.0 + 1e-9, 0.5)
+    map_u = np.repeat(columns[:, None], offsets.size, axis=1).astype(np.float32)
+    map_v = (rows[:, None] + offsets[None, :]).astype(np.float32)
+    profile = cv2.remap(smooth.astype(np.float32), map_u, map_v, cv2.INTER_LINEAR)
+    step = np.abs(profile[:, 2:] - profile[:, :-2])
+    peak = np.argmax(step, axis=1)
+    inside = (peak > 0) & (peak < step.shape[1] - 1)
+    k = np.clip(peak, 1, step.shape[1] - 2)
+    left, mid, right = (step[np.arange(k.size), k + d] for d in (-1, 0, 1))
+    curvature = left - 2 * mid + right
+    shift = np.where(
+        curvature < 0, 0.5 * (left - right) / np.where(curvature < 0, curvature, -1), 0
+    )
+    edge_rows = rows + offsets[1:-1][peak] + shift * 0.5
+    strong = inside & (mid > 0.5 * np.median(mid))
+    u, v = columns[strong], edge_rows[strong]
+    if u.size < 10:
+        raise TrackingError("no floor line found (a straight horizontal edge under the bodies)")
+    keep = np.ones(u.size, dtype=bool)
+    for _ in range(4):
+        slope, intercept = np.polyfit(u[keep], v[keep], 1)
+        residual = v - (slope * u + intercept)
+        spread = 1.4826 * np.median(np.abs(residual[keep])) + 0.05
+        keep = np.abs(residual) < 3 * spread
+    direction = np.array([1.0, slope]) / math.hypot(1.0, slope)
+    normal = np.array([direction[1], -direction[0]])
+    return FloorLine(np.array([0.0, intercept]), direction, normal)
+
+
+def _ray_grid(radius: float, band: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Ray directions (RAYS, 2) and radial samples (J,) from ``radius - band`` to
+    ``radius + band``, and the angles."""
+    angles = 2 * math.pi * np.arange(RAYS) / RAYS
+    directions = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    radii = np.arange(max(radius - band, 1.0), radius + band + 1e-9, STEP)
+    return directions, radii, angles
+
+
+def _fit_outline(
+    image: np.ndarray,
+    centre: FloatArray,
+    radius: float,
+    band: float,
+    polarity: float,
+    usable: np.ndarray,
+) -> tuple[FloatArray, float, float, int, float]:
+    """The circle through a body's outer edge near (``centre``, ``radius``): the strongest step
+    of ``polarity`` (+1: dark inside) within ``band`` px of ``radius`` on each ``usable`` ray,
+    located to a fraction of a pixel, then Kåsa's algebraic fit with outliers dropped.
+    Returns the centre, the radius, the RMS residual (px), the number of rays used and their
+    median edge strength (grey levels per px)."""
+    import cv2
+
+    directions, radii, _ = _ray_grid(radius, band)
+    points = centre + radii[None, :, None] * directions[:, None, :]
+    map_u = points[..., 0].astype(np.float32)
+    map_v = points[..., 1].astype(np.float32)
+    profile = cv2.remap(image, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+    step = polarity * (profile[:, 2:] - profile[:, :-2]) / (2 * STEP)
+    peak = np.argmax(step, axis=1)
+    rows = np.arange(RAYS)
+    k = np.clip(peak, 1, step.shape[1] - 2)
+    left, mid, right = step[rows, k - 1], step[rows, k], step[rows, k + 1]
+    curvature = left - 2 * mid + right
+    safe = np.where(curvature < 0, curvature, -1.0)
+    shift = np.where(curvature < 0, np.clip(0.5 * (left - right) / safe, -0.5, 0.5), 0.0)
+    edge = radii[1:-1][k] + shift * STEP
+    strength = mid
+    good = usable & (peak > 0) & (peak < step.shape[1] - 1) & (strength > 0)
+    if good.sum() >= 6:
+        good &= strength > 0.35 * np.median(strength[good])
+    if good.sum() < 6:
+        return centre, radius, math.inf, 0, 0.0
+    xy = centre + edge[:, None] * directions
+    keep = good.copy()
+    fitted_centre, fitted_radius, rms = centre, radius, math.inf
+    for _ in range(3):
+        u, v = xy[keep, 0], xy[keep, 1]
+        design = np.column_stack([u, v, np.ones(u.size)])
+        solution, *_ = np.linalg.lstsq(design, u * u + v * v, rcond=None)
+        a, b, c = solution
+        fitted_centre = np.array([a / 2, b / 2])
+        squared = c + fitted_centre @ fitted_centre
+        if squared <= 0:
+            return centre, radius, math.inf, 0, 0.0
+        fitted_radius = math.sqrt(squared)
+        residual = (
+            np.hypot(xy[:, 0] - fitted_centre[0], xy[:, 1] - fitted_centre[1]) - fitted_radius
+        )
+        spread = 1.4826 * float(np.median(np.abs(residual[keep])))
+        rms = float(np.sqrt(np.mean(residual[keep] ** 2)))
+        new_keep = good & (np.abs(residual) < max(3 * spread, 0.3))
+        if new_keep.sum() < 6 or np.array_equal(new_keep, keep):
+            break
+        keep = new_keep
+    return fitted_centre, fitted_radius, rms, int(keep.sum()), float(np.median(strength[keep]))
+
+
+def _usable_rays(
+    floor: FloorLine, centres: FloatArray, radii: FloatArray, index: int, band: float
+) -> np.ndarray:
+    """The rays of body ``index`` that can see its outline: not within
+    :data:`CONTACT_HALF_ANGLE` of the floor contact, not ending inside another body."""
+    directions, _, _ = _ray_grid(1.0, 0.0)
+    down = -floor.normal
+    usable = directions @ down < math.cos(CONTACT_HALF_ANGLE)
+    ends = centres[index] + (radii[index] + band) * directions
+    for other in range(len(radii)):
+        if other != index:
+            distance = np.hypot(*(ends - centres[other]).T)
+            usable &= distance > radii[other] + band
+    return usable
+
+
+def _polar(
+    frame: np.ndarray, centre: FloatArray, radii: FloatArray, samples: int
+) -> tuple[np.ndarray, FloatArray]:
+    """A polar sampling of a colour ``frame`` about ``centre``: (len(radii), samples, 3), and
+    the angles (image angles: (cos θ, sin θ) with v down)."""
+    import cv2
+
+    angles = 2 * math.pi * np.arange(samples) / samples
+    map_u = (centre[0] + radii[:, None] * np.cos(angles)[None, :]).astype(np.float32)
+    map_v = (centre[1] + radii[:, None] * np.sin(angles)[None, :]).astype(np.float32)
+    values = cv2.remap(frame, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+    return values, angles
+
+
+def _marker_angle(frame: np.ndarray, centre: FloatArray, body: _Body) -> tuple[float, float]:
+    """The image angle of the body's marker (rad, (cos θ, sin θ) with v down) and its score
+    (about 1 on the marker, 0 on the body): the centroid of the score's peak on the ring of the
+    marker's radii."""
+    values, angles = _polar(frame, centre, body.marker_radii, MARKER_SAMPLES)
+    colour = np.median(values.reshape(-1, 3), axis=0)
+    direction = body.marker_direction
+    score = ((values - colour) @ direction / float(direction @ direction)).mean(axis=0)
+    top = int(np.argmax(score))
+    peak = float(score[top])
+    width = int(body.marker_half_width / (2 * math.pi) * MARKER_SAMPLES) + 4
+    offsets = np.arange(-width, width + 1)
+    window = score[(top + offsets) % MARKER_SAMPLES]
+    weight = np.clip(window - 0.5 * peak, 0.0, None)
+    shift = float(weight @ offsets / weight.sum()) if weight.sum() > 0 else 0.0
+    return float(angles[top] + shift * 2 * math.pi / MARKER_SAMPLES), peak
+
+
+def _learn_body(
+    frame: np.ndarray,
+    centre: FloatArray,
+    radius: float,
+    polarity: float,
+    spec: Any,
+) -> _Body:
+    """A body's looks from its first frame: its colour just inside the outline, the marker's
+    colour, radii and angular width (the samples of the body's rows far from the body's
+    colour, where most of them are)."""
+    radii = np.arange(0.3 * radius, radius - 1.5 + 1e-9, 1.0)
+    values, _ = _polar(frame, centre, radii, MARKER_SAMPLES)
+    colour = np.median(values[-1], axis=0)
+    distance = np.linalg.norm(values - colour, axis=-1)
+    typical = np.median(distance, axis=1)
+    rows = typical < 25.0  # the rows on the body (a hoop's ring; every row of a disc)
+    far = (distance > 45.0) & rows[:, None]
+    if far.sum() < 4:
+        raise TrackingError(f"body '{spec.id}': no marker found on it in the first frame")
+    counts = far.sum(axis=0).astype(np.float64)
+    kernel = np.ones(9)
+    smooth = np.convolve(np.concatenate([counts[-4:], counts, counts[:4]]), kernel, "valid")
+    top = int(np.argmax(smooth))
+    near = (np.abs(((np.arange(MARKER_SAMPLES) - top + 180) % MARKER_SAMPLES) - 180)) <= 30
+    marked = far & near[None, :]
+    marker_colour = np.median(values[marked], axis=0)
+    marker_rows = radii[marked.any(axis=1)]
+    span = marked.any(axis=0)
+    half_width = span.sum() * math.pi / MARKER_SAMPLES
+    lo, hi = float(marker_rows.min()), float(marker_rows.max())
+    inset = 0.25 * (hi - lo)
+    ring = np.linspace(lo + inset, hi - inset, max(2, min(5, int(hi - lo) + 1)))
+    return _Body(
+        id=spec.id,
+        shape=spec.shape,
+        radius_m=float(spec.radius),
+        radius_px=radius,
+        polarity=polarity,
+        colour=colour,
+        marker_direction=marker_colour - colour,
+        marker_radii=ring,
+        marker_half_width=float(half_width),
+    )
+
+
+def _find_bodies(
+    gray: np.ndarray, smooth: np.ndarray, floor: FloorLine, system: System
+) -> list[tuple[FloatArray, float, float]]:
+    """The bodies in the first frame: (centre, radius, polarity) each, in the system's order."""
+    import cv2
+
+    height = gray.shape[0]
+    candidates = cv2.HoughCircles(
+        cv2.GaussianBlur(gray, (0, 0), 2.0),
+        cv2.HOUGH_GRADIENT,
+        dp=1,
+        minDist=8,
+        param1=100,
+        param2=25,
+        minRadius=max(6, height // 40),
+        maxRadius=height // 2,
+    )
+    if candidates is None:
+        raise TrackingError("no round body found in the first frame")
+    standing: list[tuple[FloatArray, float, float, float]] = []
+    everywhere = np.ones(RAYS, dtype=bool)
+    down = np.ones(RAYS, dtype=bool)
+    directions, _, _ = _ray_grid(1.0, 0.0)
+    down = directions @ -floor.normal < math.cos(CONTACT_HALF_ANGLE)
+    for u, v, r in candidates[0][:40]:
+        best = None
+        for polarity in (1.0, -1.0):
+            centre, radius = np.array([u, v], dtype=np.float64), float(r)
+            for band in (0.3 * radius, 0.12 * radius, 3.0):
+                centre, radius, rms, used, strength = _fit_outline(
+                    smooth, centre, radius, max(band, 3.0), polarity, down & everywhere
+                )
+                if used == 0:
+                    break
+            if used < MIN_RAY_FRACTION * down.sum():
+                continue
+            touch = abs(float(floor.height(centre)) - radius)
+            if touch > 0.04 * radius + 1.5:
+                continue
+            quality = strength * used / (1.0 + rms)
+            if best is None or quality > best[3]:
+                best = (centre, radius, polarity, quality)
+        if best is not None and not any(
+            np.hypot(*(best[0] - other[0])) < 0.5 * min(best[1], other[1]) for other in standing
+        ):
+            standing.append(best)
+    n = len(system.bodies)
+    if len(standing) < n:
+        raise TrackingError(
+            f"{n} bodies standing on the floor line expected in the first frame, "
+            f"found {len(standing)}"
+        )
+    order = np.argsort([body.x for body in system.bodies], kind="stable")
+    standing.sort(key=lambda item: float(floor.along(item[0])))
+    wanted = np.array([system.bodies[i].radius for i in order])
+    from itertools import combinations
+
+    best_choice, best_cost = None, math.inf
+    for choice in combinations(range(len(standing)), n):
+        measured = np.array([standing[j][1] for j in choice])
+        ratio = np.log(measured / wanted)
+        cost = float(np.ptp(ratio)) - 0.02 * sum(math.log(standing[j][3]) for j in choice) / n
+        if cost < best_cost:
+            best_choice, best_cost = choice, cost
+    assert best_choice is not None
+    found: list[tuple[FloatArray, float, float]] = [(np.zeros(2), 0.0, 1.0)] * n
+    for slot, j in zip(order, best_choice, strict=True):
+        found[int(slot)] = standing[j][:3]
+    return found
+
+
+# ------------------------------------------------------------------------------ tracking
+
+
+def track_video(
+    video: str | os.PathLike[str],
+    system: System,
+    *,
+    scale: float | None = None,
+    start: float | None = None,
+    stop: float | None = None,
+    origin: float | None = None,
+    progress: Callable[[float], None] | None = None,
+    on_frame: Callable[[np.ndarray, FrameTrack], None] | None = None,
+) -> TrackResult:
+    r"""Track every body of ``system`` in ``video`` from ``start`` to ``stop`` (s of the video,
+    default all of it): :class:`TrackResult` with t, x (m) and φ (rad) per frame.
+
+    The method and the conventions are the module's (:mod:`rollspring.lab.tracking`). ``scale``
+    (px/m) replaces the scale measured from the radii; ``origin`` (m) is the first body's
+    position in the first tracked frame (default its ``x`` in the system). ``progress`` is
+    called with the fraction of the frames done; ``on_frame(frame, found)`` with each frame
+    (BGR) and :class:`FrameTrack` (the overlay). One-line :class:`TrackingError` for an
+    unreadable or empty video, a bad time range or scale, and a body or marker not found (naming
+    the body and the first range of frames and times where it is lost).
+    """
+    import time as clock
+
+    import cv2
+
+    _check_times(start, stop)
+    if scale is not None and not (math.isfinite(scale) and scale > 0):
+        raise TrackingError(f"--scale: must be a positive number of px/m, got {scale:g}")
+    if origin is not None and not math.isfinite(origin):
+        raise TrackingError(f"--origin: must be a finite position in m, got {origin:g}")
+    for body in system.bodies:
+        if not body.rolls:
+            raise TrackingError(f"bodies.{body.id}: a slider cannot be tracked (round bodies only)")
+    began = clock.perf_counter()
+    capture = _open(video)
+    try:
+        fps = float(capture.get(cv2.CAP_PROP_FPS))
+        if not (math.isfinite(fps) and fps > 0):
+            fps = 0.0
+        count = int(capture.get(cv2.CAP_PROP_FRAME_COUNT) or 0)
+        result = _track(
+            capture, video, system, fps, count, scale, start, stop, origin, progress, on_frame
+        )
+    finally:
+        capture.release()
+    result.seconds = clock.perf_counter() - began
+    return result
+
+
+def _frame_time(capture: Any, index: int, fps: float, last: float | None) -> float:
+    import cv2
+
+    stamp = float(capture.get(cv2.CAP_PROP_POS_MSEC)) / 1000.0
+    if math.isfinite(stamp) and (last is None or stamp > last) and (stamp > 0 or index == 0):
+        return stamp
+    if fps > 0:
+        return index / fps
+    raise TrackingError("the video has neither time stamps nor a frame rate")
+
+
+def _track(
+    capture: Any,
+    video: str | os.PathLike[str],
+    system: System,
+    fps: float,
+    count: int,
+    scale: float | None,
+    start: float | None,
+    stop: float | None,
+    origin: float | None,
+    progress: Callable[[float], None] | None,
+    on_frame: Callable[[np.ndarray, FrameTrack], None] | None,
+) -> TrackResult:
+    import cv2
+
+    n = len(system.bodies)
+    times: list[float] = []
+    indices: list[int] = []
+    centres: list[FloatArray] = []
+    radii_px: list[FloatArray] = []
+    angles: list[FloatArray] = []
+    found_rows: list[np.ndarray] = []
+    rms_rows: list[FloatArray] = []
+    scores: list[FloatArray] = []
+    bodies: list[_Body] = []
+    floor: FloorLine | None = None
+    index, last = -1, None
+    read_any = False
+    while True:
+        ok = capture.grab()
+        if not ok:
+            break
+        index += 1
+        read_any = True
+        moment = _frame_time(capture, index, fps, last)
+        last = moment
+        if start is not None and moment < start - 1e-9:
+            continue
+        if stop is not None and moment > stop + 1e-9:
+            break
+        ok, frame = capture.retrieve()
+        if not ok or frame is None:
+            break
+        if frame.ndim == 2:
+            frame = cv2.cvtColor(frame, cv2.COLOR_GRAY2BGR)
+        gray = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY)
+        smooth = cv2.GaussianBlur(gray, (5, 5), 1.0).astype(np.float32)
+        colour = frame.astype(np.float32)
+        if floor is None:
+            floor = _floor_line(gray)
+            first = _find_bodies(gray, smooth, floor, system)
+            bodies = [
+                _learn_body(colour, c, r, p, spec)
+                for (c, r, p), spec in zip(first, system.bodies, strict=True)
+            ]
+            previous = np.array([c for c, _, _ in first])
+            before = previous.copy()
+        predicted = 2 * previous - before if len(centres) >= 2 else previous
+        expected = np.array([body.radius_px for body in bodies])
+        centre_row = np.empty((n, 2))
+        radius_row = np.empty(n)
+        angle_row = np.empty(n)
+        found_row = np.zeros(n, dtype=bool)
+        rms_row = np.full(n, np.nan)
+        score_row = np.zeros(n)
+        for i, body in enumerate(bodies):
+            usable = _usable_rays(floor, predicted, expected, i, 0.25 * body.radius_px)
+            centre, radius = predicted[i], body.radius_px
+            used = 0
+            for band in (max(0.25 * body.radius_px, 4.0), 3.0):
+                centre, radius, rms, used, _ = _fit_outline(
+                    smooth, centre, radius, band, body.polarity, usable
+                )
+                if used == 0:
+                    break
+            ok_outline = (
+                used >= MIN_RAY_FRACTION * usable.sum()
+                and abs(radius - body.radius_px) < MAX_RADIUS_CHANGE * body.radius_px + 1.0
+            )
+            if not ok_outline:
+                centre, radius = predicted[i], body.radius_px
+            angle, peak = _marker_angle(colour, centre, body)
+            centre_row[i], radius_row[i], angle_row[i] = centre, radius, angle
+            rms_row[i], score_row[i] = rms, peak
+            found_row[i] = ok_outline and peak >= MIN_MARKER_SCORE
+        before, previous = previous, np.where(found_row[:, None], centre_row, predicted)
+        times.append(moment)
+        indices.append(index)
+        centres.append(centre_row)
+        radii_px.append(radius_row)
+        angles.append(angle_row)
+        found_rows.append(found_row)
+        rms_rows.append(rms_row)
+        scores.append(score_row)
+        if on_frame is not None:
+            marker = centre_row + np.array([body.marker_radii.mean() for body in bodies])[
+                :, None
+            ] * np.stack([np.cos(angle_row), np.sin(angle_row)], axis=1)
+            on_frame(
+                frame,
+                FrameTrack(index, moment, centre_row, radius_row, marker, found_row, floor),
+            )
+        if progress is not None and count > 0 and index % 8 == 0:
+            progress(min(index / count, 1.0))
+    if not read_any:
+        raise TrackingError(f"{video}: holds no frames")
+    if not times:
+        span = (
+            f"{start if start is not None else 0:g} … {stop if stop is not None else math.inf:g} s"
+        )
+        raise TrackingError(
+            f"--from/--to: no frame of {video} between {span} (it ends at {last:g} s)"
+        )
+    assert floor is not None
+    found = np.array(found_rows)
+    t = np.array(times)
+    for i, body in enumerate(bodies):
+        lost = np.flatnonzero(~found[:, i])
+        if lost.size:
+            first = lost[0]
+            end = first
+            while end + 1 < found.shape[0] and not found[end + 1, i]:
+                end += 1
+            raise TrackingError(
+                f"{video}: body '{body.id}' not found in frames {indices[first]}–{indices[end]} "
+                f"(t = {t[first]:.3f}–{t[end]:.3f} s; {lost.size} frames in all)"
+            )
+    centre_px = np.array(centres)
+    radius_px = np.array(radii_px)
+    radius_m = np.array([body.radius_m for body in bodies])
+    if scale is None:
+        measured = float(np.sum(np.median(radius_px, axis=0)) / np.sum(radius_m))
+        source = "radii"
+    else:
+        measured, source = float(scale), "given"
+    along = floor.along(centre_px)
+    heights = floor.height(centre_px)
+    zero = float(system.bodies[0].x) if origin is None else float(origin)
+    x = zero + (along - along[0, 0]) / measured
+    image_angle = np.array(angles)
+    offset = np.stack([np.cos(image_angle), np.sin(image_angle)], axis=-1)
+    phi = np.arctan2(offset @ floor.direction, offset @ floor.normal)
+    phi = np.unwrap(phi, axis=0)
+    edge_rms = np.array(rms_rows)
+    residuals = {
+        body.id: {
+            "circle_rms": float(np.sqrt(np.mean(edge_rms[:, i] ** 2)) / measured),
+            "height_rms": float(
+                np.sqrt(np.mean((heights[:, i] - body.radius_m * measured) ** 2)) / measured
+            ),
+            "marker_contrast": float(np.median(np.array(scores)[:, i])),
+        }
+        for i, body in enumerate(bodies)
+    }
+    if progress is not None:
+        progress(1.0)
+    return TrackResult(
+        video=str(video),
+        ids=tuple(body.id for body in system.bodies),
+        t=t,
+        x=x,
+        phi=phi,
+        frames=np.array(indices),
+        fps=fps if fps > 0 else float(1 / np.median(np.diff(t))) if t.size > 1 else 0.0,
+        scale=measured,
+        scale_source=source,
+        roll=floor.roll,
+        residuals=residuals,
+        centre_px=centre_px,
+        radius_px=radius_px,
+    )
+
+
+def draw_overlay(frame: np.ndarray, found: FrameTrack) -> np.ndarray:
+    """``frame`` (BGR) with what the tracker found drawn on it: the floor line, each body's
+    fitted outline and centre, the radius to its marker (green found, red lost)."""
+    import cv2
+
+    image = frame.copy()
+    floor = found.floor
+    width = image.shape[1]
+    a = floor.point - floor.direction * 2 * width
+    b = floor.point + floor.direction * 2 * width
+    cv2.line(image, _px(a), _px(b), (255, 0, 255), 1, cv2.LINE_AA, 4)
+    for centre, radius, marker, ok in zip(
+        found.centre, found.radius, found.marker, found.found, strict=True
+    ):
+        colour = (0, 200, 0) if ok else (0, 0, 255)
+        cv2.circle(image, _px(centre), int(round(radius * 16)), colour, 1, cv2.LINE_AA, 4)
+        cv2.drawMarker(
+            image, (int(round(centre[0])), int(round(centre[1]))), colour, cv2.MARKER_CROSS, 10, 1
+        )
+        cv2.line(image, _px(centre), _px(marker), colour, 1, cv2.LINE_AA, 4)
+        cv2.circle(image, _px(marker), 3 * 16, colour, 1, cv2.LINE_AA, 4)
+    return image
+
+
+def _px(point: FloatArray) -> tuple[int, int]:
+    """A point for OpenCV's drawing with 4 fractional bits."""
+    return int(round(float(point[0]) * 16)), int(round(float(point[1]) * 16))

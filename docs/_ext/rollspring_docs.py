@@ -50,6 +50,11 @@ SECTIONS: list[tuple[str, str, tuple[str, ...]]] = [
         ("rollspring.simulate",),
     ),
     (
+        "The lab",
+        "A real experiment's recording: a video tracked (OpenCV, the `lab` extra).",
+        ("rollspring.lab",),
+    ),
+    (
         "Derivations, the paper check, reports and sweeps",
         "Loaded on first use (SymPy, Matplotlib, Zarr): `import rollspring` stays light.",
         (

@@ -12,6 +12,7 @@ springs to each other and to walls. Quick start::
     rollspring.check_paper()                              # the paper's claims with verdicts
     rollspring.build_report(system)                       # the self-contained HTML report
     rollspring.sweep(system, {"springs.0.stiffness": k}, 10.0)   # a grid of runs -> xarray
+    rollspring.track("film.mp4", system).x                # a video of the bodies tracked
 
 Every name loads its part on first use (SciPy for the analysis, the compiled kernels for the
 simulation, SymPy and Matplotlib for derivations and reports), so ``import rollspring`` stays
@@ -31,6 +32,7 @@ TYPE_CHECKING = False  # as typing.TYPE_CHECKING, without importing typing (10 m
 if TYPE_CHECKING:  # what the names below load on first use, for type checkers and editors
     from rollspring import analysis as analysis
     from rollspring import cli as cli
+    from rollspring import lab as lab
     from rollspring import model as model
     from rollspring import outputs as outputs
     from rollspring import physics as physics
@@ -41,6 +43,7 @@ if TYPE_CHECKING:  # what the names below load on first use, for type checkers a
     from rollspring.analysis.derivation import Derivation, derive, symbolic_system
     from rollspring.analysis.dispersion import dispersion
     from rollspring.analysis.paper import check_paper, paper_claims
+    from rollspring.lab.tracking import TrackResult, track
     from rollspring.model import (
         Anchor,
         Attachment,
@@ -195,11 +198,13 @@ _LAZY = {
     "dispersion": "rollspring.analysis.dispersion",
     "export_mjcf": "rollspring.outputs.mjcf",
     "create_app": "rollspring.web.app",
+    "track": "rollspring.lab.tracking",
+    "TrackResult": "rollspring.lab.tracking",
 }
 
 #: The subpackages, also loaded on first use (``rollspring.simulate`` is one of them).
 _SUBPACKAGES = frozenset(
-    {"analysis", "cli", "model", "outputs", "physics", "service", "simulate", "web"}
+    {"analysis", "cli", "lab", "model", "outputs", "physics", "service", "simulate", "web"}
 )
 
 #: Names that need an optional extra (``pip install 'rollspring[extra]'``).
@@ -215,6 +220,8 @@ _EXTRAS = {
     "sweep": "sweep",
     "web": "web",
     "create_app": "web",
+    "track": "lab",
+    "TrackResult": "lab",
 }
 
 
@@ -264,6 +271,7 @@ __all__ = [
     "Spring",
     "System",
     "SystemArrays",
+    "TrackResult",
     "Trajectory",
     "accelerations",
     "analyze",
@@ -296,6 +304,7 @@ __all__ = [
     "system_from_dict",
     "system_json_schema",
     "total_energy",
+    "track",
     "worksheet",
     "write_report",
 ]

@@ -30,6 +30,7 @@ from rollspring.cli.commands import (
     simulate,
     sweep,
     sweep_plot,
+    track,
     worksheet,
 )
 from rollspring.cli.text import say
@@ -157,6 +158,7 @@ COMMANDS = (
     sweep_plot,
     chain,
     dispersion,
+    track,
 )
 
 

@@ -55,7 +55,15 @@ from rollspring.errors import TrackingError
 from rollspring.model import System
 from rollspring.physics.arrays import FloatArray
 
-__all__ = ["FloorLine", "FrameTrack", "TrackResult", "draw_overlay", "track_video"]
+__all__ = [
+    "FloorLine",
+    "FrameTrack",
+    "TrackResult",
+    "check_options",
+    "draw_overlay",
+    "track",
+    "track_video",
+]
 
 #: Rays per body for the outline, samples per turn for the marker.
 RAYS = 96
@@ -229,6 +237,8 @@ def _open(video: str | os.PathLike[str]) -> Any:
         raise TrackingError(f"{video}: no such file")
     if not path.is_file():
         raise TrackingError(f"{video}: not a regular file")
+    if path.stat().st_size == 0:
+        raise TrackingError(f"{video}: empty file")
     capture = cv2.VideoCapture(str(path))
     if not capture.isOpened():
         capture.release()
@@ -236,7 +246,28 @@ def _open(video: str | os.PathLike[str]) -> Any:
     return capture
 
 
-def _check_times(start: float | None, stop: float | None) -> None:
+def check_options(
+    *,
+    scale: float | None = None,
+    start: float | None = None,
+    stop: float | None = None,
+    origin: float | None = None,
+) -> None:
+    """The options of :func:`track_video` checked before any work: one-line
+    :class:`TrackingError` naming the option (``--scale``, ``--from``, ``--to``,
+    ``--origin``) and the reason."""
+    for name, value in (
+        ("--scale", scale),
+        ("--from", start),
+        ("--to", stop),
+        ("--origin", origin),
+    ):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, int | float)):
+            raise TrackingError(f"{name}: must be a number, got {value!r}")
+    if scale is not None and not (math.isfinite(scale) and scale > 0):
+        raise TrackingError(f"--scale: must be a positive number of px/m, got {scale:g}")
+    if origin is not None and not math.isfinite(origin):
+        raise TrackingError(f"--origin: must be a finite position in m, got {origin:g}")
     for name, value in (("--from", start), ("--to", stop)):
         if value is not None and not (math.isfinite(value) and value >= 0):
             raise TrackingError(f"{name}: must be a time >= 0 s, got {value:g}")
@@ -400,20 +431,33 @@ def _polar(
 
 def _marker_angle(frame: np.ndarray, centre: FloatArray, body: _Body) -> tuple[float, float]:
     """The image angle of the body's marker (rad, (cos θ, sin θ) with v down) and its score
-    (about 1 on the marker, 0 on the body): the centroid of the score's peak on the ring of the
-    marker's radii."""
+    (about 1 on the marker, 0 on the body). On the ring of the marker's radii each sample is
+    scored by the projection of its colour, less the ring's median colour, on the marker's
+    colour difference; the marker's angle is the midpoint of the two half-height crossings of
+    the score's peak (interpolated linearly), which a marker's uneven inside does not move."""
     values, angles = _polar(frame, centre, body.marker_radii, MARKER_SAMPLES)
     colour = np.median(values.reshape(-1, 3), axis=0)
     direction = body.marker_direction
     score = ((values - colour) @ direction / float(direction @ direction)).mean(axis=0)
-    top = int(np.argmax(score))
-    peak = float(score[top])
-    width = int(body.marker_half_width / (2 * math.pi) * MARKER_SAMPLES) + 4
+    width = int(body.marker_half_width / (2 * math.pi) * MARKER_SAMPLES) + 6
+    smooth = np.convolve(np.concatenate([score[-2:], score, score[:2]]), np.ones(5) / 5, "valid")
+    top = int(np.argmax(smooth))
     offsets = np.arange(-width, width + 1)
     window = score[(top + offsets) % MARKER_SAMPLES]
-    weight = np.clip(window - 0.5 * peak, 0.0, None)
-    shift = float(weight @ offsets / weight.sum()) if weight.sum() > 0 else 0.0
-    return float(angles[top] + shift * 2 * math.pi / MARKER_SAMPLES), peak
+    high = window > 0.5 * float(smooth[top])
+    plateau = float(np.median(window[high])) if high.any() else float(smooth[top])
+    level = 0.5 * plateau
+    centre_index = width
+    edges = []
+    for step in (-1, 1):
+        k = centre_index
+        while 0 < k < window.size - 1 and window[k + step] >= level:
+            k += step
+        inner, outer = window[k], window[k + step] if 0 <= k + step < window.size else level
+        fraction = (inner - level) / (inner - outer) if inner != outer else 0.5
+        edges.append(k + step * min(max(fraction, 0.0), 1.0))
+    shift = 0.5 * (edges[0] + edges[1]) - centre_index
+    return float(angles[top] + shift * 2 * math.pi / MARKER_SAMPLES), plateau
 
 
 def _learn_body(
@@ -480,6 +524,10 @@ def _find_bodies(
     )
     if candidates is None:
         raise TrackingError("no round body found in the first frame")
+    # the typical edge of the background: a body's outline must be well above it
+    slope_u = cv2.Sobel(smooth, cv2.CV_32F, 1, 0) / 8
+    slope_v = cv2.Sobel(smooth, cv2.CV_32F, 0, 1) / 8
+    texture = float(np.median(np.hypot(slope_u, slope_v)))
     standing: list[tuple[FloatArray, float, float, float]] = []
     everywhere = np.ones(RAYS, dtype=bool)
     down = np.ones(RAYS, dtype=bool)
@@ -498,7 +546,7 @@ def _find_bodies(
             if used < MIN_RAY_FRACTION * down.sum():
                 continue
             touch = abs(float(floor.height(centre)) - radius)
-            if touch > 0.04 * radius + 1.5:
+            if touch > 0.04 * radius + 1.5 or strength < 3 * texture or rms > 0.6 + 0.01 * radius:
                 continue
             quality = strength * used / (1.0 + rms)
             if best is None or quality > best[3]:
@@ -561,11 +609,7 @@ def track_video(
 
     import cv2
 
-    _check_times(start, stop)
-    if scale is not None and not (math.isfinite(scale) and scale > 0):
-        raise TrackingError(f"--scale: must be a positive number of px/m, got {scale:g}")
-    if origin is not None and not math.isfinite(origin):
-        raise TrackingError(f"--origin: must be a finite position in m, got {origin:g}")
+    check_options(scale=scale, start=start, stop=stop, origin=origin)
     for body in system.bodies:
         if not body.rolls:
             raise TrackingError(f"bodies.{body.id}: a slider cannot be tracked (round bodies only)")
@@ -583,6 +627,38 @@ def track_video(
         capture.release()
     result.seconds = clock.perf_counter() - began
     return result
+
+
+def track(
+    video: str | os.PathLike[str],
+    system: System | dict[str, Any] | str | os.PathLike[str],
+    *,
+    scale: float | None = None,
+    start: float | None = None,
+    stop: float | None = None,
+    origin: float | None = None,
+    progress: Callable[[float], None] | None = None,
+) -> TrackResult:
+    """Track every body of ``system`` (a :class:`~rollspring.model.System`, its JSON form, a
+    file or a preset name) in ``video``: :func:`track_video`, whose result has the arrays
+    ``t``, ``x``, ``phi``, ``.to_csv()``, ``.summary()`` and a notebook view.
+
+    Example::
+
+        result = rollspring.track("hoop-cylinder.mp4", "hoop-cylinder")
+        result.x[:, 0], result.phi[:, 0], result.summary()["roll_deg"]
+    """
+    from rollspring.model import as_system
+
+    return track_video(
+        video,
+        as_system(system),
+        scale=scale,
+        start=start,
+        stop=stop,
+        origin=origin,
+        progress=progress,
+    )
 
 
 def _frame_time(capture: Any, index: int, fps: float, last: float | None) -> float:
@@ -645,15 +721,23 @@ def _track(
         smooth = cv2.GaussianBlur(gray, (5, 5), 1.0).astype(np.float32)
         colour = frame.astype(np.float32)
         if floor is None:
-            floor = _floor_line(gray)
-            first = _find_bodies(gray, smooth, floor, system)
-            bodies = [
-                _learn_body(colour, c, r, p, spec)
-                for (c, r, p), spec in zip(first, system.bodies, strict=True)
-            ]
+            try:
+                floor = _floor_line(gray)
+                first = _find_bodies(gray, smooth, floor, system)
+            except TrackingError as exc:
+                raise TrackingError(f"{video}: {exc} (t = {moment:.3f} s)") from None
+            try:
+                bodies = [
+                    _learn_body(colour, c, r, p, spec)
+                    for (c, r, p), spec in zip(first, system.bodies, strict=True)
+                ]
+            except TrackingError as exc:
+                raise TrackingError(f"{video}: {exc}") from None
             previous = np.array([c for c, _, _ in first])
             before = previous.copy()
-        predicted = 2 * previous - before if len(centres) >= 2 else previous
+            was_lost = np.zeros(n, dtype=bool)
+        # constant velocity from the last two frames; a body lost stays where it was last seen
+        predicted = 2 * previous - before
         expected = np.array([body.radius_px for body in bodies])
         centre_row = np.empty((n, 2))
         radius_row = np.empty(n)
@@ -665,7 +749,9 @@ def _track(
             usable = _usable_rays(floor, predicted, expected, i, 0.25 * body.radius_px)
             centre, radius = predicted[i], body.radius_px
             used = 0
-            for band in (max(0.25 * body.radius_px, 4.0), 3.0):
+            # a lost body is looked for farther
+            bands = (0.5, 0.25, 0.12) if was_lost[i] else (0.25,)
+            for band in (*(max(b * body.radius_px, 4.0) for b in bands), 3.0):
                 centre, radius, rms, used, _ = _fit_outline(
                     smooth, centre, radius, band, body.polarity, usable
                 )
@@ -681,7 +767,10 @@ def _track(
             centre_row[i], radius_row[i], angle_row[i] = centre, radius, angle
             rms_row[i], score_row[i] = rms, peak
             found_row[i] = ok_outline and peak >= MIN_MARKER_SCORE
-        before, previous = previous, np.where(found_row[:, None], centre_row, predicted)
+        # the next prediction's history: the last two sightings, or no velocity after a loss
+        seen = np.where(found_row[:, None], centre_row, previous)
+        before = np.where((found_row & ~was_lost)[:, None], previous, seen)
+        previous, was_lost = seen, ~found_row
         times.append(moment)
         indices.append(index)
         centres.append(centre_row)

@@ -254,3 +254,14 @@ def test_the_python_api_raises_the_same_errors(recordings: dict[str, Recording])
         rollspring.track(recording.video, recording.system, start=1.0, stop=0.5)
     with pytest.raises(TrackingError, match="no such file"):
         rollspring.track("no-such-video.mp4", recording.system)
+
+
+def test_the_command_without_the_lab_extra_says_which_to_install(monkeypatch) -> None:
+    from rollspring import errors
+
+    monkeypatch.setitem(errors.EXTRAS, "lab", ("rollspring_no_such_module",))
+    result = runner.invoke(app, ["track", "film.mp4", "--system", "hoop-cylinder"])
+    assert result.exit_code == 2
+    assert result.stderr == (
+        "error: rollspring track needs the 'lab' extra: pip install 'rollspring[lab]'\n"
+    )

@@ -206,9 +206,9 @@ def render_frames(
     else:
         wall = np.broadcast_to(colours["wall"], (height, width, 3))
         tabletop = np.broadcast_to(colours["table"], (height, width, 3))
-    background = wall * (1.0 - table) + tabletop * table
+    background = (wall * (1.0 - table) + tabletop * table).astype(np.float32)
     ids = [body.id for body in bodies]
-    for k, time in enumerate(motion.t):
+    for k in range(motion.t.size):
         image = background.copy()
         u = (motion.x[k] - x_left) * scale
         v = floor_row - radii * scale
@@ -222,11 +222,10 @@ def render_frames(
         if camera.blur > 0:
             image = cv2.GaussianBlur(image, (0, 0), camera.blur)
         if camera.flicker > 0:
-            image *= 1.0 + camera.flicker * rng.standard_normal()
+            image *= np.float32(1.0 + camera.flicker * rng.standard_normal())
         if camera.noise > 0:
             image += camera.noise * rng.standard_normal(image.shape, dtype=np.float32)
         yield np.clip(np.rint(image), 0, 255).astype(np.uint8)
-        del time
 
 
 def _draw_springs(
@@ -256,9 +255,14 @@ def _draw_springs(
         cv2.polylines(
             canvas, [np.rint(points * 16).astype(np.int32)], False, 255, 2, cv2.LINE_AA, 4
         )
-    alpha = canvas.astype(np.float64)[..., None] / 255.0
-    image *= 1.0 - alpha
-    image += alpha * colour
+    rows, cols = np.nonzero(canvas)
+    if rows.size == 0:
+        return
+    box = np.s_[rows.min() : rows.max() + 1, cols.min() : cols.max() + 1]
+    alpha = canvas[box].astype(np.float32)[..., None] / np.float32(255.0)
+    patch = image[box]
+    patch *= 1.0 - alpha
+    patch += alpha * colour
 
 
 def _draw_body(
@@ -296,8 +300,8 @@ def _draw_body(
         dot = centre + (1 - 2 * DOT) * radius * marker_at
         marker = _coverage(np.hypot(cols - dot[0], rows - dot[1]), DOT * radius)
         base = colours["disc"]
-    body = body[..., None]
-    marker = marker[..., None]
+    body = body[..., None].astype(np.float32)
+    marker = marker[..., None].astype(np.float32)
     patch *= 1.0 - body
     patch += body * base
     patch *= 1.0 - marker

@@ -221,10 +221,14 @@ def test_bad_input_is_one_line_and_exit_2_and_nothing_is_written(
     folder.mkdir()
     cases = [
         (["track", str(tmp_path / "missing.mp4")], "no such file"),
+        (["track", str(folder)], "a-folder: not a regular file"),
         (["track", str(empty)], "empty.mp4: empty file"),
         (["track", str(text)], "notes.mp4: cannot be read as a video"),
         (["track", str(blank)], "blank.mp4: no round body found"),
-        (["track", str(lost_cylinder.video)], "body 'cylinder' not found in frames 20–29 "),
+        (
+            ["track", str(lost_cylinder.video), "--overlay", str(tmp_path / "overlay.mp4")],
+            "body 'cylinder' not found in frames 20–29 ",
+        ),
         (["track", video, "--from", "1.0", "--to", "0.5"], "--to"),
         (["track", video, "--from", "-1"], "--from"),
         (["track", video, "--from", "7"], "--from/--to: no frame"),

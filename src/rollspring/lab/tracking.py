@@ -426,6 +426,7 @@ def _polar(
     map_u = (centre[0] + radii[:, None] * np.cos(angles)[None, :]).astype(np.float32)
     map_v = (centre[1] + radii[:, None] * np.sin(angles)[None, :]).astype(np.float32)
     values = cv2.remap(frame, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+    values = values.astype(np.float32)
     return values, angles
 
 
@@ -719,7 +720,7 @@ def _track(
             frame = cv2.cvtColor(frame, cv2.COLOR_GRAY2BGR)
         gray = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY)
         smooth = cv2.GaussianBlur(gray, (5, 5), 1.0).astype(np.float32)
-        colour = frame.astype(np.float32)
+        colour = frame  # sampled where needed (the marker's ring), as float then
         if floor is None:
             try:
                 floor = _floor_line(gray)

@@ -236,6 +236,11 @@ def test_bad_input_is_one_line_and_exit_2_and_nothing_is_written(
         (["track", video, "-o", str(folder)], "it is a directory"),
         (["track", video, "--overlay", str(folder)], "--overlay"),
         (["track", video, "--overlay", str(tmp_path / "overlay.avi")], ".mp4"),
+        (["track", video, "-o", video], "the same file as the video read"),
+        (
+            ["track", video, "-o", str(tmp_path / "x.mp4"), "--overlay", str(tmp_path / "x.mp4")],
+            "the same file as --out",
+        ),
     ]
     for args, expected in cases:
         command = [*args, "--system", system]

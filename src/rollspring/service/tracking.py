@@ -27,17 +27,32 @@ __all__ = ["check_places", "track_to_files"]
 
 
 def check_places(
-    out: str | os.PathLike[str] | None, overlay: str | os.PathLike[str] | None
+    out: str | os.PathLike[str] | None,
+    overlay: str | os.PathLike[str] | None,
+    video: str | os.PathLike[str] | None = None,
 ) -> tuple[Path | None, Path | None]:
     """``-o`` and ``--overlay`` checked before any work: each a regular file or a new one in
-    a writable folder, the overlay an ``.mp4``, and not both the same file."""
+    a writable folder, the overlay an ``.mp4``, neither the other nor the ``video`` read."""
     csv = None if out is None else writable_file(out, "--out")
-    video = None if overlay is None else writable_file(overlay, "--overlay")
-    if video is not None and video.suffix.lower() != ".mp4":
+    drawn = None if overlay is None else writable_file(overlay, "--overlay")
+    if drawn is not None and drawn.suffix.lower() != ".mp4":
         raise OutputError(f"--overlay {overlay}: must be an .mp4 file")
-    if csv is not None and video is not None and csv.absolute() == video.absolute():
+    if csv is not None and drawn is not None and _same(csv, drawn):
         raise OutputError(f"--overlay {overlay}: the same file as --out")
-    return csv, video
+    for option, place in (("--out", csv), ("--overlay", drawn)):
+        if place is not None and video is not None and _same(place, Path(video)):
+            raise OutputError(f"{option} {place}: the same file as the video read")
+    return csv, drawn
+
+
+def _same(a: Path, b: Path) -> bool:
+    """Whether two paths name one file (the same inode when both exist)."""
+    try:
+        if a.exists() and b.exists():
+            return os.path.samefile(a, b)
+    except OSError:
+        pass
+    return a.absolute() == b.absolute()
 
 
 def track_to_files(
@@ -58,7 +73,7 @@ def track_to_files(
     written."""
     import cv2
 
-    csv, drawn = check_places(out, overlay)
+    csv, drawn = check_places(out, overlay, video)
     written: list[Path] = []
     with ExitStack() as stack:
         csv_part = None if csv is None else stack.enter_context(atomic_path(csv))

@@ -65,7 +65,7 @@ def track(
     from rollspring.service.tracking import check_places, track_to_files
 
     check_options(scale=scale, start=start, stop=stop, origin=origin)
-    check_places(out, overlay)  # an unwritable place fails now, not after the work
+    check_places(out, overlay, video)  # an unwritable place fails now, not after the work
     model = load(system)
     with ProgressBar("tracking") as bar:
         result, written = track_to_files(

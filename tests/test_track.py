@@ -274,3 +274,18 @@ def test_the_command_without_the_lab_extra_says_which_to_install(monkeypatch) ->
     assert result.stderr == (
         "error: rollspring track needs the 'lab' extra: pip install 'rollspring[lab]'\n"
     )
+
+
+def test_three_bodies_small_and_blurred(tmp_path: Path) -> None:
+    """A hoop, a cylinder and a sphere (the preset ``three-bodies``), 35 px in radius, blurred
+    by 2 px: the discs set the scale (a blurred thin ring looks larger), every body is found in
+    the system's order."""
+    data = rollspring.load_system("three-bodies").model_dump()
+    data["bodies"][0]["v"], data["bodies"][2]["v"] = 0.2, -0.2
+    system = system_from_dict(data)
+    camera = Camera(scale=350.0, roll_deg=-3.0, noise=4.0, blur=2.0, flicker=0.04, seed=11)
+    motion = exact_motion(system, camera.frame_times(1.0))
+    result = rollspring.track(write_video(tmp_path / "three.mp4", system, motion, camera), system)
+    assert result.ids == ("hoop", "cylinder", "sphere")
+    assert (np.sqrt(np.mean((result.x - motion.x) ** 2, axis=0)) <= 1e-3).all()
+    assert (np.sqrt(np.mean((result.phi - motion.phi) ** 2, axis=0)) <= 0.02).all()

@@ -35,7 +35,8 @@ Units and conventions (the columns of ``tracks.csv``):
   initial placement makes it the model's φ.
 
 The scale (px/m) is the bodies' measured radii over their known radii (the median over the
-frames), unless given. The quality per body: the RMS of the circle fit's edge residuals, the
+frames; the discs' alone when there are any, as a blurred thin ring looks a little larger than
+it is), unless given. The quality per body: the RMS of the circle fit's edge residuals, the
 RMS of the centre's height above the floor minus its radius (a body that rolls on the floor
 keeps it zero), and the median contrast of the marker.
 """
@@ -396,6 +397,12 @@ def _fit_outline(
         if new_keep.sum() < 6 or np.array_equal(new_keep, keep):
             break
         keep = new_keep
+    # A blurred circle's steepest edge lies sigma^2 / (2 r) inside it (sigma: the blur's
+    # width, the camera's and the smoothing's together, read from the peak's curvature: a
+    # Gaussian peak g has g'' / g = -1 / sigma^2; the central difference adds a 1-px box)
+    width = -mid[keep] * STEP**2 / np.minimum(curvature[keep], -1e-9)
+    blur = max(float(np.median(width)) - 1.0 / 12.0, 0.0)
+    fitted_radius += blur / (2.0 * fitted_radius)
     return fitted_centre, fitted_radius, rms, int(keep.sum()), float(np.median(strength[keep]))
 
 
@@ -468,16 +475,24 @@ def _learn_body(
     polarity: float,
     spec: Any,
 ) -> _Body:
-    """A body's looks from its first frame: its colour just inside the outline, the marker's
-    colour, radii and angular width (the samples of the body's rows far from the body's
-    colour, where most of them are)."""
-    radii = np.arange(0.3 * radius, radius - 1.5 + 1e-9, 1.0)
+    """A body's looks from its first frame: its colour, the marker's colour, radii and angular
+    width. On a polar sampling of the body (a disc's every row, a hoop's ring: the rows whose
+    colour is nearer the outermost row's than the hoop's inside), the body's colour is the
+    median, the marker the samples farthest from it (beyond half the 99th percentile of the
+    distances), where most of them are."""
+    radii = np.arange(0.3 * radius, radius - 1.0 + 1e-9, 1.0)
     values, _ = _polar(frame, centre, radii, MARKER_SAMPLES)
-    colour = np.median(values[-1], axis=0)
+    typical = np.median(values, axis=1)  # each row's colour
+    if spec.shape == "hoop":
+        outside = np.linalg.norm(typical - typical[-1], axis=-1)
+        rows = outside < 0.5 * float(np.linalg.norm(typical[0] - typical[-1]))
+        rows[-1] = True
+    else:
+        rows = np.ones(radii.size, dtype=bool)
+    colour = np.median(values[rows].reshape(-1, 3), axis=0)
     distance = np.linalg.norm(values - colour, axis=-1)
-    typical = np.median(distance, axis=1)
-    rows = typical < 25.0  # the rows on the body (a hoop's ring; every row of a disc)
-    far = (distance > 45.0) & rows[:, None]
+    threshold = max(0.5 * float(np.percentile(distance[rows], 99.0)), 20.0)
+    far = (distance > threshold) & rows[:, None]
     if far.sum() < 4:
         raise TrackingError(f"body '{spec.id}': no marker found on it in the first frame")
     counts = far.sum(axis=0).astype(np.float64)
@@ -817,7 +832,12 @@ def _track(
     radius_px = np.array(radii_px)
     radius_m = np.array([body.radius_m for body in bodies])
     if scale is None:
-        measured = float(np.sum(np.median(radius_px, axis=0)) / np.sum(radius_m))
+        # a disc's outline is a step, measured where it is; a hoop's thin ring, once blurred,
+        # looks a little larger (its two edges push each other apart): discs set the scale
+        # when there are any
+        discs = np.array([body.shape != "hoop" for body in bodies])
+        chosen = discs if discs.any() else ~discs
+        measured = float(np.sum(np.median(radius_px[:, chosen], axis=0)) / np.sum(radius_m[chosen]))
         source = "radii"
     else:
         measured, source = float(scale), "given"

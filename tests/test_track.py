@@ -263,6 +263,8 @@ def test_the_python_api_raises_the_same_errors(recordings: dict[str, Recording])
         rollspring.track(recording.video, recording.system, start=1.0, stop=0.5)
     with pytest.raises(TrackingError, match="no such file"):
         rollspring.track("no-such-video.mp4", recording.system)
+    with pytest.raises(TrackingError, match="a slider cannot be tracked"):
+        rollspring.track(recording.video, "two-masses")
 
 
 def test_the_command_without_the_lab_extra_says_which_to_install(monkeypatch) -> None:

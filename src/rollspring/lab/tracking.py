@@ -545,21 +545,19 @@ def _find_bodies(
     slope_v = cv2.Sobel(smooth, cv2.CV_32F, 0, 1) / 8
     texture = float(np.median(np.hypot(slope_u, slope_v)))
     standing: list[tuple[FloatArray, float, float, float]] = []
-    everywhere = np.ones(RAYS, dtype=bool)
-    down = np.ones(RAYS, dtype=bool)
     directions, _, _ = _ray_grid(1.0, 0.0)
-    down = directions @ -floor.normal < math.cos(CONTACT_HALF_ANGLE)
+    usable = directions @ -floor.normal < math.cos(CONTACT_HALF_ANGLE)
     for u, v, r in candidates[0][:40]:
         best = None
         for polarity in (1.0, -1.0):
             centre, radius = np.array([u, v], dtype=np.float64), float(r)
             for band in (0.3 * radius, 0.12 * radius, 3.0):
                 centre, radius, rms, used, strength = _fit_outline(
-                    smooth, centre, radius, max(band, 3.0), polarity, down & everywhere
+                    smooth, centre, radius, max(band, 3.0), polarity, usable
                 )
                 if used == 0:
                     break
-            if used < MIN_RAY_FRACTION * down.sum():
+            if used < MIN_RAY_FRACTION * usable.sum():
                 continue
             touch = abs(float(floor.height(centre)) - radius)
             if touch > 0.04 * radius + 1.5 or strength < 3 * texture or rms > 0.6 + 0.01 * radius:
@@ -577,16 +575,25 @@ def _find_bodies(
             f"{n} bodies standing on the floor line expected in the first frame, "
             f"found {len(standing)}"
         )
+    # the bodies left to right are the system's in the order of x: the n candidates (in their
+    # order along the floor) whose radii have the system's ratios and whose spacing is the
+    # system's, the clearest outlines breaking ties
     order = np.argsort([body.x for body in system.bodies], kind="stable")
-    standing.sort(key=lambda item: float(floor.along(item[0])))
+    standing.sort(key=lambda item: -item[3])
+    standing = sorted(standing[: n + 6], key=lambda item: float(floor.along(item[0])))
     wanted = np.array([system.bodies[i].radius for i in order])
+    placed = np.array([system.bodies[i].x for i in order])
     from itertools import combinations
 
     best_choice, best_cost = None, math.inf
     for choice in combinations(range(len(standing)), n):
         measured = np.array([standing[j][1] for j in choice])
         ratio = np.log(measured / wanted)
-        cost = float(np.ptp(ratio)) - 0.02 * sum(math.log(standing[j][3]) for j in choice) / n
+        along = np.array([float(floor.along(standing[j][0])) for j in choice])
+        scale = float(np.exp(np.median(np.log(measured / wanted))))
+        spacing = np.abs(np.diff(along) / scale - np.diff(placed)).sum() / wanted.sum()
+        clarity = sum(math.log(standing[j][3]) for j in choice) / n
+        cost = float(np.ptp(ratio)) + 0.1 * float(spacing) - 0.02 * clarity
         if cost < best_cost:
             best_choice, best_cost = choice, cost
     assert best_choice is not None

@@ -10,19 +10,22 @@ marker on its rim — as a camera filming the experiment from the side sees them
    rejected as outliers). Its angle is the **camera roll**, corrected: positions are measured
    along the floor line and heights above it, angles from its normal.
 2. **The bodies** (first frame): circle candidates of ``cv2.HoughCircles``, each refined (step
-   3), kept when they stand on the floor line (height of the centre = radius), and matched to
-   the system's bodies in the order of their x and by the ratios of their radii. The marker's
-   colour, its distance from the centre and the body's colour are read from a polar sampling of
-   the body.
+   3), kept when they stand on the floor line (height of the centre = radius) with an outline
+   well above the background's texture, and matched to the system's bodies in the order of
+   their x, by the ratios of their radii and by their spacing. The marker's colour, its
+   distance from the centre and the body's colour are read from a polar sampling of the body.
 3. **Every frame**, per body, in a search window around the centre predicted from the two
    frames before (constant velocity): the outer edge is located on 96 rays from the centre
    (``cv2.remap`` of the smoothed grey image along each ray, the strongest step of the
    body's contrast, to a fraction of a pixel by a parabola), and a circle fitted to those edge
    points by least squares (Kåsa's algebraic fit, outliers beyond three robust standard
    deviations dropped and the fit repeated; rays near the floor contact and towards another
-   body left out). Then the marker: the ring of pixels at its distance from the centre, scored
-   by the projection of each pixel's colour on the (marker − body) colour difference, its
-   angle the centroid of the score's peak.
+   body left out). A blurred circle's steepest edge lies :math:`\sigma^2/2r` inside it: the
+   blur's width σ is read from the curvature of the edge's peak and the radius corrected.
+   Then the marker: the ring of pixels at its distance from the centre, scored by the
+   projection of each pixel's colour on the (marker − body) colour difference, its angle the
+   midpoint of the two half-height crossings of the score's peak. A body whose outline or
+   marker is not found is looked for farther in the next frame, where it was last seen.
 
 Units and conventions (the columns of ``tracks.csv``):
 
@@ -695,6 +698,58 @@ def _frame_time(capture: Any, index: int, fps: float, last: float | None) -> flo
     raise TrackingError("the video has neither time stamps nor a frame rate")
 
 
+@dataclass
+class _Sightings:
+    """What the frames showed, frame by frame (lists of per-frame rows)."""
+
+    times: list[float] = field(default_factory=list)
+    indices: list[int] = field(default_factory=list)
+    centre: list[FloatArray] = field(default_factory=list)
+    radius: list[FloatArray] = field(default_factory=list)
+    angle: list[FloatArray] = field(default_factory=list)
+    found: list[np.ndarray] = field(default_factory=list)
+    edge_rms: list[FloatArray] = field(default_factory=list)
+    contrast: list[FloatArray] = field(default_factory=list)
+
+
+def _locate(
+    smooth: np.ndarray,
+    frame: np.ndarray,
+    floor: FloorLine,
+    bodies: list[_Body],
+    predicted: FloatArray,
+    was_lost: np.ndarray,
+) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray, FloatArray, FloatArray]:
+    """Every body in one frame, each looked for about its ``predicted`` centre (farther for a
+    body ``was_lost`` in the frame before): centres (n, 2) and radii (n,) in px, the markers'
+    image angles (n,), whether each was found (its outline on enough rays, its radius as
+    expected, its marker clear), the fits' RMS residuals (px) and the markers' contrasts."""
+    n = len(bodies)
+    expected = np.array([body.radius_px for body in bodies])
+    centres, radii, angles = np.empty((n, 2)), np.empty(n), np.empty(n)
+    found, edge_rms, contrast = np.zeros(n, dtype=bool), np.full(n, np.nan), np.zeros(n)
+    for i, body in enumerate(bodies):
+        usable = _usable_rays(floor, predicted, expected, i, 0.25 * body.radius_px)
+        centre, radius, rms, used = predicted[i], body.radius_px, math.inf, 0
+        bands = (0.5, 0.25, 0.12) if was_lost[i] else (0.25,)
+        for band in (*(max(b * body.radius_px, 4.0) for b in bands), 3.0):
+            centre, radius, rms, used, _ = _fit_outline(
+                smooth, centre, radius, band, body.polarity, usable
+            )
+            if used == 0:
+                break
+        outline = (
+            used >= MIN_RAY_FRACTION * usable.sum()
+            and abs(radius - body.radius_px) < MAX_RADIUS_CHANGE * body.radius_px + 1.0
+        )
+        if not outline:
+            centre, radius = predicted[i], body.radius_px
+        angles[i], contrast[i] = _marker_angle(frame, centre, body)
+        centres[i], radii[i], edge_rms[i] = centre, radius, rms
+        found[i] = outline and contrast[i] >= MIN_MARKER_SCORE
+    return centres, radii, angles, found, edge_rms, contrast
+
+
 def _track(
     capture: Any,
     video: str | os.PathLike[str],
@@ -708,29 +763,17 @@ def _track(
     progress: Callable[[float], None] | None,
     on_frame: Callable[[np.ndarray, FrameTrack], None] | None,
 ) -> TrackResult:
+    """The frames of ``capture`` from ``start`` to ``stop`` tracked (:func:`track_video`)."""
     import cv2
 
     n = len(system.bodies)
-    times: list[float] = []
-    indices: list[int] = []
-    centres: list[FloatArray] = []
-    radii_px: list[FloatArray] = []
-    angles: list[FloatArray] = []
-    found_rows: list[np.ndarray] = []
-    rms_rows: list[FloatArray] = []
-    scores: list[FloatArray] = []
+    seen = _Sightings()
     bodies: list[_Body] = []
     floor: FloorLine | None = None
     index, last = -1, None
-    read_any = False
-    while True:
-        ok = capture.grab()
-        if not ok:
-            break
+    while capture.grab():
         index += 1
-        read_any = True
-        moment = _frame_time(capture, index, fps, last)
-        last = moment
+        moment = last = _frame_time(capture, index, fps, last)
         if start is not None and moment < start - 1e-9:
             continue
         if stop is not None and moment > stop + 1e-9:
@@ -742,101 +785,104 @@ def _track(
             frame = cv2.cvtColor(frame, cv2.COLOR_GRAY2BGR)
         gray = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY)
         smooth = cv2.GaussianBlur(gray, (5, 5), 1.0).astype(np.float32)
-        colour = frame  # sampled where needed (the marker's ring), as float then
         if floor is None:
-            try:
-                floor = _floor_line(gray)
-                first = _find_bodies(gray, smooth, floor, system)
-            except TrackingError as exc:
-                raise TrackingError(f"{video}: {exc} (t = {moment:.3f} s)") from None
-            try:
-                bodies = [
-                    _learn_body(colour, c, r, p, spec)
-                    for (c, r, p), spec in zip(first, system.bodies, strict=True)
-                ]
-            except TrackingError as exc:
-                raise TrackingError(f"{video}: {exc}") from None
-            previous = np.array([c for c, _, _ in first])
-            before = previous.copy()
-            was_lost = np.zeros(n, dtype=bool)
-        # constant velocity from the last two frames; a body lost stays where it was last seen
+            floor, bodies, previous = _first_frame(video, system, frame, gray, smooth, moment)
+            before, was_lost = previous.copy(), np.zeros(n, dtype=bool)
+        # constant velocity from the last two sightings; a lost body is looked for where it
+        # was last seen
         predicted = 2 * previous - before
-        expected = np.array([body.radius_px for body in bodies])
-        centre_row = np.empty((n, 2))
-        radius_row = np.empty(n)
-        angle_row = np.empty(n)
-        found_row = np.zeros(n, dtype=bool)
-        rms_row = np.full(n, np.nan)
-        score_row = np.zeros(n)
-        for i, body in enumerate(bodies):
-            usable = _usable_rays(floor, predicted, expected, i, 0.25 * body.radius_px)
-            centre, radius = predicted[i], body.radius_px
-            used = 0
-            # a lost body is looked for farther
-            bands = (0.5, 0.25, 0.12) if was_lost[i] else (0.25,)
-            for band in (*(max(b * body.radius_px, 4.0) for b in bands), 3.0):
-                centre, radius, rms, used, _ = _fit_outline(
-                    smooth, centre, radius, band, body.polarity, usable
-                )
-                if used == 0:
-                    break
-            ok_outline = (
-                used >= MIN_RAY_FRACTION * usable.sum()
-                and abs(radius - body.radius_px) < MAX_RADIUS_CHANGE * body.radius_px + 1.0
-            )
-            if not ok_outline:
-                centre, radius = predicted[i], body.radius_px
-            angle, peak = _marker_angle(colour, centre, body)
-            centre_row[i], radius_row[i], angle_row[i] = centre, radius, angle
-            rms_row[i], score_row[i] = rms, peak
-            found_row[i] = ok_outline and peak >= MIN_MARKER_SCORE
-        # the next prediction's history: the last two sightings, or no velocity after a loss
-        seen = np.where(found_row[:, None], centre_row, previous)
-        before = np.where((found_row & ~was_lost)[:, None], previous, seen)
-        previous, was_lost = seen, ~found_row
-        times.append(moment)
-        indices.append(index)
-        centres.append(centre_row)
-        radii_px.append(radius_row)
-        angles.append(angle_row)
-        found_rows.append(found_row)
-        rms_rows.append(rms_row)
-        scores.append(score_row)
+        centres, radii, angles, found, edge_rms, contrast = _locate(
+            smooth, frame, floor, bodies, predicted, was_lost
+        )
+        sighted = np.where(found[:, None], centres, previous)
+        before = np.where((found & ~was_lost)[:, None], previous, sighted)
+        previous, was_lost = sighted, ~found
+        seen.times.append(moment)
+        seen.indices.append(index)
+        seen.centre.append(centres)
+        seen.radius.append(radii)
+        seen.angle.append(angles)
+        seen.found.append(found)
+        seen.edge_rms.append(edge_rms)
+        seen.contrast.append(contrast)
         if on_frame is not None:
-            marker = centre_row + np.array([body.marker_radii.mean() for body in bodies])[
-                :, None
-            ] * np.stack([np.cos(angle_row), np.sin(angle_row)], axis=1)
-            on_frame(
-                frame,
-                FrameTrack(index, moment, centre_row, radius_row, marker, found_row, floor),
-            )
+            reach = np.array([body.marker_radii.mean() for body in bodies])[:, None]
+            marker = centres + reach * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+            on_frame(frame, FrameTrack(index, moment, centres, radii, marker, found, floor))
         if progress is not None and count > 0 and index % 8 == 0:
             progress(min(index / count, 1.0))
-    if not read_any:
+    if index < 0:
         raise TrackingError(f"{video}: holds no frames")
-    if not times:
-        span = (
-            f"{start if start is not None else 0:g} … {stop if stop is not None else math.inf:g} s"
-        )
+    if floor is None:
+        first = 0 if start is None else start
+        until = math.inf if stop is None else stop
         raise TrackingError(
-            f"--from/--to: no frame of {video} between {span} (it ends at {last:g} s)"
+            f"--from/--to: no frame of {video} between {first:g} and {until:g} s "
+            f"(it ends at {last:g} s)"
         )
-    assert floor is not None
-    found = np.array(found_rows)
-    t = np.array(times)
+    _check_found(video, bodies, seen)
+    if progress is not None:
+        progress(1.0)
+    return _result(video, system, bodies, floor, seen, fps, scale, origin)
+
+
+def _first_frame(
+    video: str | os.PathLike[str],
+    system: System,
+    frame: np.ndarray,
+    gray: np.ndarray,
+    smooth: np.ndarray,
+    moment: float,
+) -> tuple[FloorLine, list[_Body], FloatArray]:
+    """The floor line, the bodies' looks and their centres (n, 2) from the first frame tracked;
+    a failure names the video and the frame's time."""
+    try:
+        floor = _floor_line(gray)
+        first = _find_bodies(gray, smooth, floor, system)
+        bodies = [
+            _learn_body(frame, c, r, p, spec)
+            for (c, r, p), spec in zip(first, system.bodies, strict=True)
+        ]
+    except TrackingError as exc:
+        raise TrackingError(f"{video}: {exc} (t = {moment:.3f} s)") from None
+    return floor, bodies, np.array([c for c, _, _ in first])
+
+
+def _check_found(video: str | os.PathLike[str], bodies: list[_Body], seen: _Sightings) -> None:
+    """A body not found in some frames: :class:`TrackingError` naming it, the first range of
+    frames (and times) where it was lost and how many frames in all."""
+    found = np.array(seen.found)
     for i, body in enumerate(bodies):
         lost = np.flatnonzero(~found[:, i])
         if lost.size:
-            first = lost[0]
-            end = first
+            first = end = int(lost[0])
             while end + 1 < found.shape[0] and not found[end + 1, i]:
                 end += 1
             raise TrackingError(
-                f"{video}: body '{body.id}' not found in frames {indices[first]}–{indices[end]} "
-                f"(t = {t[first]:.3f}–{t[end]:.3f} s; {lost.size} frames in all)"
+                f"{video}: body '{body.id}' not found in frames {seen.indices[first]}–"
+                f"{seen.indices[end]} (t = {seen.times[first]:.3f}–{seen.times[end]:.3f} s; "
+                f"{lost.size} frames in all)"
             )
-    centre_px = np.array(centres)
-    radius_px = np.array(radii_px)
+
+
+def _result(
+    video: str | os.PathLike[str],
+    system: System,
+    bodies: list[_Body],
+    floor: FloorLine,
+    seen: _Sightings,
+    fps: float,
+    scale: float | None,
+    origin: float | None,
+) -> TrackResult:
+    r"""The sightings in SI units. Scale :math:`s = \sum_i \tilde r_i / \sum_i R_i` (px/m,
+    :math:`\tilde r_i` the median radius over the frames; discs only when there are any),
+    :math:`x_i = x_0 + (a_i - a_{1,\text{first}})/s` (:math:`a` along the floor line),
+    :math:`\varphi_i = \operatorname{atan2}(m\cdot d, m\cdot n)` (:math:`m` towards the
+    marker, :math:`d`, :math:`n` the floor's direction and normal), unwrapped."""
+    t = np.array(seen.times)
+    centre_px = np.array(seen.centre)
+    radius_px = np.array(seen.radius)
     radius_m = np.array([body.radius_m for body in bodies])
     if scale is None:
         # a disc's outline is a step, measured where it is; a hoop's thin ring, once blurred,
@@ -852,31 +898,31 @@ def _track(
     heights = floor.height(centre_px)
     zero = float(system.bodies[0].x) if origin is None else float(origin)
     x = zero + (along - along[0, 0]) / measured
-    image_angle = np.array(angles)
-    offset = np.stack([np.cos(image_angle), np.sin(image_angle)], axis=-1)
-    phi = np.arctan2(offset @ floor.direction, offset @ floor.normal)
-    phi = np.unwrap(phi, axis=0)
-    edge_rms = np.array(rms_rows)
+    angle = np.array(seen.angle)
+    towards = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+    phi = np.unwrap(np.arctan2(towards @ floor.direction, towards @ floor.normal), axis=0)
+    edge_rms = np.array(seen.edge_rms)
+    contrast = np.array(seen.contrast)
     residuals = {
         body.id: {
             "circle_rms": float(np.sqrt(np.mean(edge_rms[:, i] ** 2)) / measured),
             "height_rms": float(
                 np.sqrt(np.mean((heights[:, i] - body.radius_m * measured) ** 2)) / measured
             ),
-            "marker_contrast": float(np.median(np.array(scores)[:, i])),
+            "marker_contrast": float(np.median(contrast[:, i])),
         }
         for i, body in enumerate(bodies)
     }
-    if progress is not None:
-        progress(1.0)
+    if fps <= 0:
+        fps = float(1 / np.median(np.diff(t))) if t.size > 1 else 0.0
     return TrackResult(
         video=str(video),
         ids=tuple(body.id for body in system.bodies),
         t=t,
         x=x,
         phi=phi,
-        frames=np.array(indices),
-        fps=fps if fps > 0 else float(1 / np.median(np.diff(t))) if t.size > 1 else 0.0,
+        frames=np.array(seen.indices),
+        fps=fps,
         scale=measured,
         scale_source=source,
         roll=floor.roll,

@@ -291,3 +291,23 @@ def test_three_bodies_small_and_blurred(tmp_path: Path) -> None:
     assert result.ids == ("hoop", "cylinder", "sphere")
     assert (np.sqrt(np.mean((result.x - motion.x) ** 2, axis=0)) <= 1e-3).all()
     assert (np.sqrt(np.mean((result.phi - motion.phi) ** 2, axis=0)) <= 0.02).all()
+
+
+def test_light_bodies_on_a_dark_wall(tmp_path: Path) -> None:
+    """The other contrast: a light hoop and disc with a red marker before a dark textured wall
+    and a dark table (whose edge is fainter than the wall's texture), the camera rolled by 4°."""
+    system = paper_system()
+    colours = {
+        "wall": (50, 45, 40),
+        "table": (20, 60, 90),
+        "hoop": (210, 210, 215),
+        "disc": (190, 200, 120),
+        "marker": (30, 30, 220),
+        "spring": (160, 160, 160),
+    }
+    camera = Camera(colours=colours, roll_deg=4.0, noise=5.0, blur=1.2, flicker=0.05, seed=21)
+    motion = exact_motion(system, camera.frame_times(1.0))
+    result = rollspring.track(write_video(tmp_path / "dark.mp4", system, motion, camera), system)
+    assert abs(np.degrees(result.roll) - 4.0) < 0.2
+    assert (np.sqrt(np.mean((result.x - motion.x) ** 2, axis=0)) <= 1e-3).all()
+    assert (np.sqrt(np.mean((result.phi - motion.phi) ** 2, axis=0)) <= 0.02).all()

@@ -4,17 +4,18 @@ r"""Tracking a video of rolling bodies: each body's centre x (m) and rotation φ
 — a hoop seen as a ring, a cylinder, sphere or shell as a disc, each with one contrasting
 marker on its rim — as a camera filming the experiment from the side sees them:
 
-1. **The floor line** (first frame): the strongest near-horizontal straight edge
-   (``cv2.HoughLines`` on Canny edges, within 15° of horizontal), refined to a fraction of a
-   pixel by a straight-line fit to the edge's position in every column (the bodies' outlines
-   rejected as outliers). Its angle is the **camera roll**, corrected: positions are measured
-   along the floor line and heights above it, angles from its normal.
-2. **The bodies** (first frame): circle candidates of ``cv2.HoughCircles``, each refined (step
-   3), kept when they stand on the floor line (height of the centre = radius) with an outline
-   well above the background's texture, and matched to the system's bodies in the order of
-   their x, by the ratios of their radii and by their spacing. The marker's colour, its
-   distance from the centre and the body's colour are read from a polar sampling of the body.
-3. **Every frame**, per body, in a search window around the centre predicted from the two
+1. **The floor line and the bodies** (first frame): circle candidates of
+   ``cv2.HoughCircles``, each refined (as in step 2) and kept when its outline stands well
+   above the background's texture; candidate lines, the strongest near-horizontal lines of
+   ``cv2.HoughLines`` on Canny edges (within 15° of horizontal), each refined to a fraction of
+   a pixel by a straight-line fit to the edge's position in every other column (outliers
+   dropped). The floor line is the candidate the most circles stand on (the centre's height
+   above it equal to the radius); its angle is the **camera roll**, corrected: positions are
+   measured along the floor line and heights above it, angles from its normal. The circles
+   standing on it are matched to the system's bodies in the order of their x, by the ratios
+   of their radii and by their spacing. The marker's colour, its distance from the centre and
+   the body's colour are read from a polar sampling of each body.
+2. **Every frame**, per body, in a search window around the centre predicted from the two
    frames before (constant velocity): the outer edge is located on 96 rays from the centre
    (``cv2.remap`` of the smoothed grey image along each ray, the strongest step of the
    body's contrast, to a fraction of a pixel by a parabola), and a circle fitted to those edge
@@ -282,47 +283,67 @@ def check_options(
 # ------------------------------------------------------------------------------ geometry
 
 
-def _floor_line(gray: np.ndarray) -> FloorLine:
-    """The floor line of a grey frame: the strongest near-horizontal line of the Hough
-    transform of its edges, then a least-squares line through the edge's sub-pixel row in each
-    column near it (outliers — the bodies — dropped)."""
+def _floor_lines(gray: np.ndarray, count: int = 12) -> list[FloorLine]:
+    """Candidate floor lines of a grey frame, strongest first: the ``count`` strongest distinct
+    near-horizontal lines of the Hough transform of its edges (within 15° of horizontal), each
+    refined to a least-squares line through the edge's sub-pixel row in each column near it
+    (outliers — the bodies — dropped)."""
     import cv2
 
-    width = gray.shape[1]
     smooth = cv2.GaussianBlur(gray, (0, 0), 1.5)
-    edges = cv2.Canny(smooth, 20, 60)
+    edges = cv2.Canny(smooth, 8, 24)  # low: a floor edge can be faint beside a textured wall
     lines = cv2.HoughLines(
         edges,
         1,
         math.pi / 720,
-        width // 4,
+        gray.shape[1] // 4,
         min_theta=math.pi / 2 - 0.26,
         max_theta=math.pi / 2 + 0.26,
     )
-    if lines is None:
-        raise TrackingError("no floor line found (a straight horizontal edge under the bodies)")
-    rho, theta = (float(value) for value in lines[0][0])
-    # the line: u cos(theta) + v sin(theta) = rho; its row at each column
+    found: list[FloorLine] = []
+    for rho, theta in [] if lines is None else lines[:60, 0].tolist():
+        line = _refined_line(smooth.astype(np.float32), rho, theta)
+        if line is None:
+            continue
+        if any(
+            abs(float(line.height(other.point))) < 4.0
+            and abs(float(line.direction @ other.normal)) < 0.01
+            for other in found
+        ):
+            continue
+        found.append(line)
+        if len(found) == count:
+            break
+    return found
+
+
+def _refined_line(smooth: np.ndarray, rho: float, theta: float) -> FloorLine | None:
+    """The line ``u cos(theta) + v sin(theta) = rho`` refined: the strongest step within 6 px
+    of it in every other column, located to a fraction of a pixel (a parabola through the
+    peak), and a straight line fitted to those points with outliers dropped; None when too
+    few columns show an edge."""
+    import cv2
+
+    width = smooth.shape[1]
     columns = np.arange(4, width - 4, 2, dtype=np.float64)
     rows = (rho - columns * math.cos(theta)) / math.sin(theta)
     offsets = np.arange(-6.0, 6.0 + 1e-9, 0.5)
     map_u = np.repeat(columns[:, None], offsets.size, axis=1).astype(np.float32)
     map_v = (rows[:, None] + offsets[None, :]).astype(np.float32)
-    profile = cv2.remap(smooth.astype(np.float32), map_u, map_v, cv2.INTER_LINEAR)
+    profile = cv2.remap(smooth, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
     step = np.abs(profile[:, 2:] - profile[:, :-2])
     peak = np.argmax(step, axis=1)
     inside = (peak > 0) & (peak < step.shape[1] - 1)
     k = np.clip(peak, 1, step.shape[1] - 2)
     left, mid, right = (step[np.arange(k.size), k + d] for d in (-1, 0, 1))
     curvature = left - 2 * mid + right
-    shift = np.where(
-        curvature < 0, 0.5 * (left - right) / np.where(curvature < 0, curvature, -1), 0
-    )
+    safe = np.where(curvature < 0, curvature, -1.0)
+    shift = np.where(curvature < 0, np.clip(0.5 * (left - right) / safe, -0.5, 0.5), 0.0)
     edge_rows = rows + offsets[1:-1][peak] + shift * 0.5
     strong = inside & (mid > 0.5 * np.median(mid))
     u, v = columns[strong], edge_rows[strong]
     if u.size < 10:
-        raise TrackingError("no floor line found (a straight horizontal edge under the bodies)")
+        return None
     keep = np.ones(u.size, dtype=bool)
     for _ in range(4):
         slope, intercept = np.polyfit(u[keep], v[keep], 1)
@@ -525,13 +546,21 @@ def _learn_body(
 
 
 def _find_bodies(
-    gray: np.ndarray, smooth: np.ndarray, floor: FloorLine, system: System
-) -> list[tuple[FloatArray, float, float]]:
-    """The bodies in the first frame: (centre, radius, polarity) each, in the system's order."""
+    gray: np.ndarray, smooth: np.ndarray, system: System
+) -> tuple[FloorLine, list[tuple[FloatArray, float, float]]]:
+    """The floor line and the bodies in the first frame: (centre, radius, polarity) each, in
+    the system's order. Circle candidates (``cv2.HoughCircles``) are refined on rays
+    (:func:`_fit_outline`, both contrasts tried) and kept when their outline stands well above
+    the background's texture; the floor line is the candidate line (:func:`_floor_lines`) on
+    which most of them stand (the centre's height equal to the radius), the strongest among
+    equals; then the system's bodies are matched to those standing on it."""
     import cv2
 
     height = gray.shape[0]
-    candidates = cv2.HoughCircles(
+    floors = _floor_lines(gray)
+    if not floors:
+        raise TrackingError("no floor line found (a straight horizontal edge under the bodies)")
+    circles = cv2.HoughCircles(
         cv2.GaussianBlur(gray, (0, 0), 2.0),
         cv2.HOUGH_GRADIENT,
         dp=1,
@@ -541,17 +570,16 @@ def _find_bodies(
         minRadius=max(6, height // 40),
         maxRadius=height // 2,
     )
-    if candidates is None:
+    if circles is None:
         raise TrackingError("no round body found in the first frame")
     # the typical edge of the background: a body's outline must be well above it
     slope_u = cv2.Sobel(smooth, cv2.CV_32F, 1, 0) / 8
     slope_v = cv2.Sobel(smooth, cv2.CV_32F, 0, 1) / 8
     texture = float(np.median(np.hypot(slope_u, slope_v)))
-    standing: list[tuple[FloatArray, float, float, float]] = []
     directions, _, _ = _ray_grid(1.0, 0.0)
-    usable = directions @ -floor.normal < math.cos(CONTACT_HALF_ANGLE)
-    for u, v, r in candidates[0][:40]:
-        best = None
+    usable = directions @ np.array([0.0, 1.0]) < math.cos(CONTACT_HALF_ANGLE)  # not the bottom
+    candidates: list[tuple[FloatArray, float, float, float]] = []
+    for u, v, r in circles[0][:40]:
         for polarity in (1.0, -1.0):
             centre, radius = np.array([u, v], dtype=np.float64), float(r)
             for band in (0.3 * radius, 0.12 * radius, 3.0):
@@ -560,19 +588,28 @@ def _find_bodies(
                 )
                 if used == 0:
                     break
-            if used < MIN_RAY_FRACTION * usable.sum():
-                continue
-            touch = abs(float(floor.height(centre)) - radius)
-            if touch > 0.04 * radius + 1.5 or strength < 3 * texture or rms > 0.6 + 0.01 * radius:
-                continue
-            quality = strength * used / (1.0 + rms)
-            if best is None or quality > best[3]:
-                best = (centre, radius, polarity, quality)
-        if best is not None and not any(
-            np.hypot(*(best[0] - other[0])) < 0.5 * min(best[1], other[1]) for other in standing
-        ):
-            standing.append(best)
+            if (
+                used >= MIN_RAY_FRACTION * usable.sum()
+                and strength >= 3 * texture
+                and rms <= 0.6 + 0.01 * radius
+            ):
+                candidates.append((centre, radius, polarity, strength * used / (1.0 + rms)))
     n = len(system.bodies)
+    best: tuple[int, FloorLine, list[tuple[FloatArray, float, float, float]]] | None = None
+    for floor in floors:
+        standing: list[tuple[FloatArray, float, float, float]] = []
+        for candidate in sorted(candidates, key=lambda item: -item[3]):
+            centre, radius = candidate[0], candidate[1]
+            if abs(float(floor.height(centre)) - radius) > 0.04 * radius + 1.5:
+                continue
+            if not any(
+                np.hypot(*(centre - other[0])) < 0.5 * min(radius, other[1]) for other in standing
+            ):
+                standing.append(candidate)
+        if best is None or min(len(standing), n) > best[0]:
+            best = (min(len(standing), n), floor, standing)
+    assert best is not None
+    _, floor, standing = best
     if len(standing) < n:
         raise TrackingError(
             f"{n} bodies standing on the floor line expected in the first frame, "
@@ -582,7 +619,6 @@ def _find_bodies(
     # order along the floor) whose radii have the system's ratios and whose spacing is the
     # system's, the clearest outlines breaking ties
     order = np.argsort([body.x for body in system.bodies], kind="stable")
-    standing.sort(key=lambda item: -item[3])
     standing = sorted(standing[: n + 6], key=lambda item: float(floor.along(item[0])))
     wanted = np.array([system.bodies[i].radius for i in order])
     placed = np.array([system.bodies[i].x for i in order])
@@ -593,7 +629,7 @@ def _find_bodies(
         measured = np.array([standing[j][1] for j in choice])
         ratio = np.log(measured / wanted)
         along = np.array([float(floor.along(standing[j][0])) for j in choice])
-        scale = float(np.exp(np.median(np.log(measured / wanted))))
+        scale = float(np.exp(np.median(ratio)))
         spacing = np.abs(np.diff(along) / scale - np.diff(placed)).sum() / wanted.sum()
         clarity = sum(math.log(standing[j][3]) for j in choice) / n
         cost = float(np.ptp(ratio)) + 0.1 * float(spacing) - 0.02 * clarity
@@ -603,7 +639,7 @@ def _find_bodies(
     found: list[tuple[FloatArray, float, float]] = [(np.zeros(2), 0.0, 1.0)] * n
     for slot, j in zip(order, best_choice, strict=True):
         found[int(slot)] = standing[j][:3]
-    return found
+    return floor, found
 
 
 # ------------------------------------------------------------------------------ tracking
@@ -837,8 +873,7 @@ def _first_frame(
     """The floor line, the bodies' looks and their centres (n, 2) from the first frame tracked;
     a failure names the video and the frame's time."""
     try:
-        floor = _floor_line(gray)
-        first = _find_bodies(gray, smooth, floor, system)
+        floor, first = _find_bodies(gray, smooth, system)
         bodies = [
             _learn_body(frame, c, r, p, spec)
             for (c, r, p), spec in zip(first, system.bodies, strict=True)

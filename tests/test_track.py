@@ -109,6 +109,8 @@ def test_track_recovers_the_rendered_motion(recordings: dict[str, Recording], na
     assert np.ptp(truth.x, axis=0).min() > 0.04 and np.ptp(truth.phi, axis=0).min() > 0.4
     for residual in result.residuals.values():
         assert residual["circle_rms"] < 1e-3 and residual["height_rms"] < 1e-3
+    assert result.circle_rms_px.shape == result.marker_contrast.shape == result.x.shape
+    assert (result.marker_contrast > 0.45).all()
 
 
 def test_the_exact_motion_is_the_simulated_one() -> None:

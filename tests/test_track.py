@@ -114,14 +114,22 @@ def test_track_recovers_the_rendered_motion(recordings: dict[str, Recording], na
 
 
 def test_the_exact_motion_is_the_simulated_one() -> None:
-    """The renderer's truth (the closed form of the linear equations, damped here) against the
-    simulation of the same system."""
-    system = CASES["damped-30fps"][0]
+    """The renderer's truth (the closed form of the linear equations) against the analysis'
+    modal superposition (undamped) and the simulation (damped)."""
+    from rollspring.analysis import linear_motion
+
     t = np.linspace(0.0, 2.0, 61)
-    exact = exact_motion(system, t)
-    run = rollspring.simulate(system, 2.0, rtol=1e-10, n_output=61)
+    undamped = CASES["paper-30fps"][0]
+    modal = linear_motion(rollspring.analyze(undamped), t)
+    np.testing.assert_allclose(exact_motion(undamped, t).x, modal, atol=1e-12)
+    damped = CASES["damped-30fps"][0]
+    exact = exact_motion(damped, t)
+    run = rollspring.simulate(damped, 2.0, rtol=1e-10, n_output=61)
     np.testing.assert_allclose(exact.x, run.x, atol=1e-8)
     np.testing.assert_allclose(exact.phi, run.phi, atol=1e-7)
+    radii = np.array([body.radius for body in damped.bodies])
+    x0 = np.array([body.x for body in damped.bodies])
+    np.testing.assert_allclose(exact.x, x0 + radii * exact.phi, atol=1e-15)
 
 
 def test_from_to_and_the_origin(recordings: dict[str, Recording]) -> None:

@@ -111,7 +111,8 @@ class Camera:
     standard deviation of a Gaussian blur (px); ``flicker`` the standard deviation of the
     frame-to-frame brightness factor; ``texture`` a textured wall and table; ``springs`` draw
     the springs (behind the bodies); ``codec`` the four characters of the codec; ``seed`` of
-    every random choice.
+    every random choice; ``colours`` (BGR) of the wall, the table, a hoop, a disc, the markers
+    and the springs.
     """
 
     width: int = 640

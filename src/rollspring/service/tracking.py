@@ -18,8 +18,10 @@ from collections.abc import Callable
 from contextlib import ExitStack
 from pathlib import Path
 
+import numpy as np
+
 from rollspring.errors import OutputError, TrackingError
-from rollspring.lab.tracking import FrameTrack, TrackResult, track_video
+from rollspring.lab.tracking import FrameTrack, TrackResult, draw_overlay, track_video
 from rollspring.model import System
 from rollspring.outputs.atomic import atomic_path, writable_file
 
@@ -82,10 +84,8 @@ def track_to_files(
             video_part = stack.enter_context(atomic_path(drawn, suffix=".part.mp4"))
             writers: list[cv2.VideoWriter] = []
 
-            def on_frame(frame: object, found: FrameTrack) -> None:
-                from rollspring.lab.tracking import draw_overlay
-
-                image = draw_overlay(frame, found)  # type: ignore[arg-type]
+            def on_frame(frame: np.ndarray, found: FrameTrack) -> None:
+                image = draw_overlay(frame, found)
                 if not writers:
                     fps = _fps(video)
                     height, width = image.shape[:2]

@@ -320,42 +320,75 @@ def _floor_lines(gray: np.ndarray, count: int = 12) -> list[FloorLine]:
     return found
 
 
-def _refined_line(smooth: np.ndarray, rho: float, theta: float) -> FloorLine | None:
-    """The line ``u cos(theta) + v sin(theta) = rho`` refined: the strongest step within 6 px
-    of it in every other column, located to a fraction of a pixel (a parabola through the
-    peak), and a straight line fitted to those points with outliers dropped; None when too
-    few columns show an edge."""
-    import cv2
-
+def _refined_line(
+    smooth: np.ndarray,
+    rho: float,
+    theta: float,
+    halves: tuple[float, ...] = (6.0, 2.5),
+    hidden: tuple[tuple[float, float], ...] = (),
+) -> FloorLine | None:
+    """The line ``u cos(theta) + v sin(theta) = rho`` refined in passes: in every other column
+    (but those within ``hidden``'s (u, half-width) spans, where bodies stand) the strongest
+    step within 6 px of it, located to a fraction of a pixel (a parabola through the peak), and
+    a straight line fitted to those points with outliers dropped; then again within 2.5 px of
+    that line, counting only steps of the line's own sign (the texture beside an edge has
+    both). None when too few columns show an edge."""
     width = smooth.shape[1]
     columns = np.arange(4, width - 4, 2, dtype=np.float64)
+    for centre, half_width in hidden:
+        columns = columns[np.abs(columns - centre) > half_width]
+    if columns.size < 10:
+        return None
     rows = (rho - columns * math.cos(theta)) / math.sin(theta)
-    offsets = np.arange(-6.0, 6.0 + 1e-9, 0.5)
+    sign = 0.0
+    line = None
+    for half in halves:
+        edge, strength, found = _column_edges(smooth, columns, rows, half, sign)
+        if found.sum() < 10:
+            return None
+        if sign == 0.0:
+            sign = 1.0 if np.median(strength[found]) > 0 else -1.0
+            found &= np.sign(strength) == sign
+            if found.sum() < 10:
+                return None
+        u, v = columns[found], edge[found]
+        keep = np.ones(u.size, dtype=bool)
+        for _ in range(4):
+            slope, intercept = np.polyfit(u[keep], v[keep], 1)
+            residual = v - (slope * u + intercept)
+            spread = 1.4826 * _median(np.abs(residual[keep])) + 0.02
+            keep = np.abs(residual) < 3 * spread
+        rows = slope * columns + intercept
+        direction = np.array([1.0, slope]) / math.hypot(1.0, slope)
+        normal = np.array([direction[1], -direction[0]])
+        line = FloorLine(np.array([0.0, intercept]), direction, normal)
+    return line
+
+
+def _column_edges(
+    smooth: np.ndarray, columns: FloatArray, rows: FloatArray, half: float, sign: float
+) -> tuple[FloatArray, FloatArray, np.ndarray]:
+    """In each column, the strongest vertical step within ``half`` px of ``rows`` (of ``sign``,
+    or either with 0): its sub-pixel row, its signed strength (grey levels per px) and whether
+    it is a clear one (a peak inside the window, at least half the median strength)."""
+    import cv2
+
+    offsets = np.arange(-half, half + 1e-9, 0.5)
     map_u = np.repeat(columns[:, None], offsets.size, axis=1).astype(np.float32)
     map_v = (rows[:, None] + offsets[None, :]).astype(np.float32)
     profile = cv2.remap(smooth, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
-    step = np.abs(profile[:, 2:] - profile[:, :-2])
+    signed = profile[:, 2:] - profile[:, :-2]  # per px (two samples of 0.5 px apart)
+    step = np.abs(signed) if sign == 0.0 else sign * signed
     peak = np.argmax(step, axis=1)
-    inside = (peak > 0) & (peak < step.shape[1] - 1)
     k = np.clip(peak, 1, step.shape[1] - 2)
-    left, mid, right = (step[np.arange(k.size), k + d] for d in (-1, 0, 1))
+    index = np.arange(k.size)
+    left, mid, right = step[index, k - 1], step[index, k], step[index, k + 1]
     curvature = left - 2 * mid + right
     safe = np.where(curvature < 0, curvature, -1.0)
     shift = np.where(curvature < 0, np.clip(0.5 * (left - right) / safe, -0.5, 0.5), 0.0)
-    edge_rows = rows + offsets[1:-1][peak] + shift * 0.5
-    strong = inside & (mid > 0.5 * np.median(mid))
-    u, v = columns[strong], edge_rows[strong]
-    if u.size < 10:
-        return None
-    keep = np.ones(u.size, dtype=bool)
-    for _ in range(4):
-        slope, intercept = np.polyfit(u[keep], v[keep], 1)
-        residual = v - (slope * u + intercept)
-        spread = 1.4826 * np.median(np.abs(residual[keep])) + 0.05
-        keep = np.abs(residual) < 3 * spread
-    direction = np.array([1.0, slope]) / math.hypot(1.0, slope)
-    normal = np.array([direction[1], -direction[0]])
-    return FloorLine(np.array([0.0, intercept]), direction, normal)
+    edge = rows + offsets[1:-1][k] + shift * 0.5
+    found = (peak > 0) & (peak < step.shape[1] - 1) & (mid > 0.5 * _median(np.abs(mid)))
+    return edge, signed[index, k], found
 
 
 def _ray_grid(radius: float, band: float) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -629,6 +662,11 @@ def _find_bodies(
             best = (min(len(standing), n), floor, standing)
     assert best is not None
     _, floor, standing = best
+    # the floor line again, without the columns where the bodies stand (their outlines meet it)
+    theta = math.atan2(-float(floor.normal[1]), -float(floor.normal[0]))
+    rho = float(floor.point @ np.array([math.cos(theta), math.sin(theta)]))
+    hidden = tuple((float(c[0]), 0.7 * r) for c, r, _, _ in standing)
+    floor = _refined_line(smooth, rho, theta, (2.5,), hidden) or floor
     if len(standing) < n:
         raise TrackingError(
             f"{n} bodies standing on the floor line expected in the first frame, "

@@ -10,7 +10,8 @@ marker on its rim — as a camera filming the experiment from the side sees them
    ``cv2.HoughLines`` on Canny edges (within 15° of horizontal), each refined to a fraction of
    a pixel by a straight-line fit to the edge's position in every other column (outliers
    dropped). The floor line is the candidate the most circles stand on (the centre's height
-   above it equal to the radius); its angle is the **camera roll**, corrected: positions are
+   above it equal to the radius), refined once more without the columns where they stand;
+   its angle is the **camera roll**, corrected: positions are
    measured along the floor line and heights above it, angles from its normal. The circles
    standing on it are matched to the system's bodies in the order of their x, by the ratios
    of their radii and by their spacing. The marker's colour, its distance from the centre and

@@ -239,8 +239,8 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "plot": ("matplotlib", "PIL", "imageio", "imageio_ffmpeg"),
     "symbolic": ("sympy", "latex2mathml"),
     "sweep": ("dask", "distributed", "zarr", "xarray"),
+    "lab": ("cv2", "emcee"),
 }
-EXTRAS["lab"] = ("cv2", "emcee")
 EXTRAS["report"] = EXTRAS["plot"] + EXTRAS["symbolic"]
 EXTRAS["web"] = ("fastapi", "uvicorn", "orjson") + EXTRAS["report"]
 

@@ -408,6 +408,12 @@ def test_each_steps_shared_link_reopens_it(browser: Browser, server: str, viewpo
         settle(other)
         assert not playing(other) and clock(other) == steps[3]["t"]
         assert page_system(other)["name"].startswith("Hoop and cylinder joined at their centres")
+        # another system chosen: the lesson's words no longer apply, its panel closes
+        other.select_option("#preset", "two-hoops")
+        settle(other)
+        assert lesson(other) is None
+        expect(other.locator("#lesson")).to_be_hidden()
+        assert shown_plots(other) == PLOTS and all(plotted(other, "forces")["shown"])
         fresh.check_clean()
     finally:
         fresh.page.close()

@@ -877,6 +877,14 @@ function closeLesson() {
   plots.showOnly(null);
 }
 
+/** The lesson closed, the page kept as it is (another system was chosen or applied). */
+function quitLesson() {
+  if (state.lesson === null) return;
+  closeLesson();
+  beforeLesson = null;
+  plots.showAllLines();
+}
+
 /** Leave the lesson: the page as it was when the lesson began (opened from a link to a step:
  * the step's system stays, with the page's own view). */
 function leaveLesson() {
@@ -917,6 +925,7 @@ async function applyToml(text) {
     $("#toml").removeAttribute("aria-invalid");
     tomlEdited = false;
     pendingChange = performance.now();
+    quitLesson();
     loadSystem(forms.system, "");
     $("#toml").value = forms.toml;
   } catch (error) {
@@ -1011,6 +1020,7 @@ function wireControls() {
     const p = presets.find((q) => q.name === picker.value);
     if (p) {
       pause();
+      quitLesson(); // another system: the lesson's words no longer describe it
       pendingChange = performance.now();
       loadSystem(p.system, p.name);
     }

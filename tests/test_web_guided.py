@@ -106,6 +106,7 @@ def presets(server: str) -> dict[str, dict]:
 def check_screenshot(page: Page, name: str, tmp_path: Path) -> None:
     """The viewport, halved, against ``tests/baselines/<name>.png`` (or written there)."""
     page.evaluate("() => document.activeElement && document.activeElement.blur()")
+    page.mouse.move(0, 0)  # no hover left where the last click was
     full = tmp_path / f"{name}-full.png"
     page.screenshot(path=str(full), animations="disabled", caret="hide")
     actual = tmp_path / f"{name}.png"

@@ -85,7 +85,8 @@ export const STEPS = [
     play: true,
     text: [
       "Friction acts at the contact line, so about that line it has no moment: adding the two "
-        + "bodies' rotation equations gives I′₁φ̇₁ + I′₂φ̇₂ = 0, the paper's eq. (rel1). So the point "
+        + "bodies' rotation equations about their contact lines, and integrating from rest, gives "
+        + "I′₁φ̇₁ + I′₂φ̇₂ = 0, the paper's eq. (rel1). So the point "
         + "X̂ = (I′₁x₁ + I′₂x₂)/(I′₁ + I′₂), eq. (c), never moves.",
       "Its weights are I′ = 2mR² for the hoop and 3/2·mR² for the cylinder: 4/7 and 3/7 here, "
         + "not the masses' 1/2 and 1/2. On the strip X̂'s trail is a straight line down; in "
@@ -110,8 +111,8 @@ export const STEPS = [
       "Paused at the release, where the compressed spring pushes hardest. The hoop needs the "
         + "friction f₁, the cylinder f₂, and they point opposite ways: f₁/f₂ = 3/2 in size, the "
         + "paper's ratio (after eq. (c), derived in Appendix A; −3/2 with signs).",
-      "The hoop needs more because more of its inertia is in its rim: it resists the spin the "
-        + "spring asks of it. {plot:forces|The friction plot} shows only the two frictions: one is "
+      "The hoop needs more because more of its inertia is in its rim: spinning it up as it rolls "
+        + "takes a larger torque, and only friction gives one. {plot:forces|The friction plot} shows only the two frictions: one is "
         + "always −3/2 times the other. Press Play to watch them swap sides every half period.",
     ],
   },
@@ -134,8 +135,9 @@ export const STEPS = [
         + "eq. (fric) and Fig. 3). Here the hoop's radius is 0.075 m, so both ends are 0.15 m up "
         + "and the spring is level.",
       "The friction arrows, at the same scale as before, all but vanish, and at the same ×200 "
-        + "the centre of mass hardly moves: with no horizontal external force it stays at rest, "
-        + "as in step 1. {why:why-percussion|More on percussion points}.",
+        + "the centre of mass hardly moves: to first order no horizontal external force acts, so "
+        + "it stays at rest as in step 1. The slow drift that is left is step 6. "
+        + "{why:why-percussion|More on percussion points}.",
     ],
   },
   {

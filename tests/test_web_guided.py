@@ -41,7 +41,7 @@ from rollspring.service.runs import ModeStart, mode_start
 from tests.serving import LAPTOP, PHONE
 from tests.test_web_lesson import no_horizontal_overflow, peak_to_peak, sig3, sweep
 from tests.test_web_page import Opened, canvas_hash, clock, open_page, page_system, settle
-from tests.test_web_phone import axe_violations, serious
+from tests.test_web_phone import TAP, TARGETS, axe_violations, serious
 
 BASELINES = Path(__file__).parent / "baselines"
 UPDATE = os.environ.get("ROLLSPRING_UPDATE_BASELINES") == "1"
@@ -312,6 +312,9 @@ def test_the_lesson_walks_the_paper_in_six_steps(
         CHECKS[step["key"]](page, measured)
         no_horizontal_overflow(page)
         assert serious(axe_violations(page)) == []
+        if size == "phone" and k == 0:  # the lesson's buttons and links: 44 px tap targets
+            small = [t for t in page.evaluate(TARGETS) if t["width"] < TAP or t["height"] < TAP]
+            assert small == []
         if step["play"]:
             seek(page, SHOT_T)
         else:

@@ -320,6 +320,13 @@ def test_the_lesson_walks_the_paper_in_six_steps(
         else:
             seek(page, step["t"])
         check_screenshot(page, f"lesson-{k + 1}-{step['key']}-{size}", tmp_path)
+        if step["key"] == "frictions":  # Reset all, in the lesson: the step set up again
+            page.locator("#show-normal").check()
+            page.get_by_role("button", name="Step", exact=True).click()
+            page.get_by_role("button", name="Reset all").click()
+            settle(page)
+            assert lesson(page)["step"] == k and clock(page) == step["t"]
+            assert not page.locator("#show-normal").is_checked()
         if k < 5:
             if k % 2:
                 page.keyboard.press("n")  # the key does what Next does

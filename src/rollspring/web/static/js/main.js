@@ -48,6 +48,11 @@ const FORCE_VALUES_MS = 100; // while playing, the force values' text is rewritt
 const FORCE_SCALES = { spring: 30, friction: 60, normal: 4 };
 const ZOOMS = [0.25, 0.5, 1, 2, 4, 8];
 const FORCE_NAMES = { friction: "friction f", normal: "normal force N", spring: "spring force" };
+/** The smallest tap target on a touch or narrow screen (CSS px; WCAG 2.5.5), as in page.css. */
+const TAP = 44;
+const touch = window.matchMedia("(max-width: 960px), (pointer: coarse)");
+/** A screen wide enough for the editor's column beside the animation (page.css). */
+const wide = window.matchMedia("(min-width: 961px)");
 
 const $ = (selector) => document.querySelector(selector);
 
@@ -596,10 +601,6 @@ function placeHandles(frame) {
   }));
 }
 
-/** The smallest tap target on a touch or narrow screen (CSS px; WCAG 2.5.5), as in page.css. */
-const TAP = 44;
-const touch = window.matchMedia("(max-width: 960px), (pointer: coarse)");
-
 function setStatus(text) {
   $("#status").textContent = text;
 }
@@ -812,7 +813,6 @@ function reducedMotion() {
 
 /** The lesson's panel beside the animation: at the top of the editor's column on a wide
  * screen, right under the animation (which stays in view on a phone) on a narrow one. */
-const wide = window.matchMedia("(min-width: 961px)");
 function placeLesson() {
   const panel = $("#lesson");
   if (wide.matches) $(".sidebar").prepend(panel);

@@ -24,8 +24,9 @@ const FRICTIONS_ONLY = ["hoop f", "cylinder f"];
  * `show` (the view options set on top of the page's defaults), `magnification` (the strip's,
  * or null: chosen to fit), `plots` (the plots shown, in order; the others hidden while the
  * lesson is on), `lines` ({plot key: the only series shown}), `t` (s, where the clock starts),
- * `play` (it plays on arrival, unless the reader asked for reduced motion), `text` (paragraphs;
- * a `{plot:key|words}` becomes a link to that plot, `{why:id|words}` to a "Why?" panel).
+ * `play` (it plays on arrival, unless the reader asked for reduced motion), `text` (two
+ * paragraphs, three or four sentences in all; a `{plot:key|words}` becomes a link to that
+ * plot, `{why:id|words}` to a "Why?" panel).
  */
 export const STEPS = [
   {
@@ -41,12 +42,12 @@ export const STEPS = [
     t: 0,
     play: true,
     text: [
-      "Two blocks joined by a spring slide on a floor without friction: the paper's Fig. 1 and "
-        + "its equations (f1), (f2). The spring pushes the two blocks with equal and opposite "
-        + "forces, internal forces that cancel in the sum, so (m₁ + m₂)·Ẍ = 0.",
-      "Look at the strip under the floor: it magnifies the centre of mass ×200, and its mark "
-        + "stays put while the blocks swing. In {plot:positions|the displacements} the CM is the "
-        + "flat bold line.",
+      "Two blocks joined by a spring slide on a floor without friction (the paper's Fig. 1, its "
+        + "equations (f1) and (f2)). The spring pushes them with equal and opposite forces, which "
+        + "cancel in the sum: (m₁ + m₂)·Ẍ = 0.",
+      "Watch the strip under the floor: it magnifies the centre of mass ×200, and its mark "
+        + "stays put while the blocks swing ({plot:positions|in the displacements the CM is the "
+        + "flat bold line}).",
     ],
   },
   {
@@ -62,13 +63,12 @@ export const STEPS = [
     t: 0,
     play: true,
     text: [
-      "Now a hoop and a solid cylinder of the same mass and radius roll without slipping, their "
+      "A hoop and a solid cylinder of the same mass and radius roll without slipping, their "
         + "centres joined by the spring (Fig. 2). The spring's forces still cancel, but each body "
         + "needs static friction from the floor to roll, and friction is an external force.",
-      "The frictions (red arrows) do not cancel, so the centre of mass swings: watch its mark on "
-        + "the strip, at the same ×200 as in step 1. {plot:newton|The plot of Σf beside (Σm)·a_CM} "
-        + "is Newton's second law for the whole system: the two curves are one. "
-        + "{why:why-cm|Why the CM moves}.",
+      "The two frictions (red arrows) do not cancel, so the centre of mass swings on the strip, "
+        + "at the same ×200 as in step 1: {plot:newton|Σf beside (Σm)·a_CM} is Newton's second law "
+        + "for the whole system ({why:why-cm|why the CM moves}).",
     ],
   },
   {
@@ -84,14 +84,13 @@ export const STEPS = [
     t: 0,
     play: true,
     text: [
-      "Friction acts at the contact line, so about that line it has no moment: adding the two "
-        + "bodies' rotation equations about their contact lines, and integrating from rest, gives "
-        + "I′₁φ̇₁ + I′₂φ̇₂ = 0, the paper's eq. (rel1). So the point "
-        + "X̂ = (I′₁x₁ + I′₂x₂)/(I′₁ + I′₂), eq. (c), never moves.",
-      "Its weights are I′ = 2mR² for the hoop and 3/2·mR² for the cylinder: 4/7 and 3/7 here, "
-        + "not the masses' 1/2 and 1/2. On the strip X̂'s trail is a straight line down; in "
-        + "{plot:positions|the displacements} X̂ (bold, dashed) is flat while the CM (bold) swings. "
-        + "{why:why-xhat|More on X̂}.",
+      "Friction has no moment about the contact line, so adding the rotation equations about "
+        + "the contact lines and integrating from rest gives I′₁φ̇₁ + I′₂φ̇₂ = 0, eq. (rel1): the "
+        + "point X̂ = (I′₁x₁ + I′₂x₂)/(I′₁ + I′₂), eq. (c), never moves. Its weights are 4/7 and "
+        + "3/7 here (I′ = 2mR² for the hoop, 3/2·mR² for the cylinder), not the masses' 1/2 and "
+        + "1/2.",
+      "On the strip X̂'s trail falls straight down, and in {plot:positions|the displacements} "
+        + "X̂ (bold, dashed) stays flat while the CM (bold) swings ({why:why-xhat|more on X̂}).",
     ],
   },
   {
@@ -108,12 +107,12 @@ export const STEPS = [
     t: 0,
     play: false,
     text: [
-      "Paused at the release, where the compressed spring pushes hardest. The hoop needs the "
-        + "friction f₁, the cylinder f₂, and they point opposite ways: f₁/f₂ = 3/2 in size, the "
-        + "paper's ratio (after eq. (c), derived in Appendix A; −3/2 with signs).",
-      "The hoop needs more because more of its inertia is in its rim: spinning it up as it rolls "
-        + "takes a larger torque, and only friction gives one. {plot:forces|The friction plot} shows only the two frictions: one is "
-        + "always −3/2 times the other. Press Play to watch them swap sides every half period.",
+      "Paused at the release, where the compressed spring pushes hardest: the hoop needs the "
+        + "friction f₁, the cylinder f₂, pointing opposite ways, with f₁/f₂ = 3/2 in size (the "
+        + "paper, after eq. (c); Appendix A). The hoop needs more because more of its inertia is in "
+        + "its rim: spinning it up as it rolls takes a larger torque, and only friction gives one.",
+      "{plot:forces|The friction plot} shows only the two frictions, one always −3/2 times the "
+        + "other; press Play to watch them swap sides every half period.",
     ],
   },
   {
@@ -130,14 +129,12 @@ export const STEPS = [
     t: 0,
     play: true,
     text: [
-      "Pull a rolling body at the height (1 + γ)R above its contact point, its percussion point "
-        + "(marked P), and it needs no friction: 2R on a hoop, 1.5R on a cylinder (the paper's "
-        + "eq. (fric) and Fig. 3). Here the hoop's radius is 0.075 m, so both ends are 0.15 m up "
-        + "and the spring is level.",
+      "Pulled at its percussion point, (1 + γ)R above the contact (marked P), a rolling body "
+        + "needs no friction: 2R for a hoop, 1.5R for a cylinder (eq. (fric), Fig. 3). With the "
+        + "hoop's radius 0.075 m both ends are 0.15 m up, and the spring is level.",
       "The friction arrows, at the same scale as before, all but vanish, and at the same ×200 "
-        + "the centre of mass hardly moves: to first order no horizontal external force acts, so "
-        + "it stays at rest as in step 1. The slow drift that is left is step 6. "
-        + "{why:why-percussion|More on percussion points}.",
+        + "the centre of mass hardly moves: to first order no horizontal external force acts "
+        + "({why:why-percussion|more on percussion points}; the slow drift left is step 6).",
     ],
   },
   {
@@ -154,12 +151,12 @@ export const STEPS = [
     t: 0,
     play: true,
     text: [
-      "Fig. 3 works only for small angles: the paper asks the spring to stay horizontal. Here "
-        + "the same pair starts in its mode with the hoop 2 cm out, turned by 15°, and it swings "
-        + "15° each way: its end of the spring leaves the percussion height and the spring tilts.",
-      "Friction comes back ({plot:newton|Σf}), and its average is not zero: the pair creeps "
-        + "along the floor, further at every swing, and the centre of mass goes with it. The linear "
-        + "solution (dashed) stays in place. The bodies still roll: the needed μ stays below μs = 1.",
+      "Fig. 3 holds only for small angles: the paper asks the spring to stay horizontal. Here "
+        + "the pair starts in its mode with the hoop 2 cm out, turned by 15°, so its end of the "
+        + "spring leaves the percussion height and the spring tilts.",
+      "Friction comes back ({plot:newton|Σf}) with an average that is not zero, and the pair "
+        + "creeps along the floor, the centre of mass with it, while the linear solution (dashed) "
+        + "stays; the bodies still roll, needing a μ below μs = 1.",
     ],
   },
 ];

@@ -211,10 +211,6 @@ export class LessonPanel {
     root.querySelector("#lesson-leave").addEventListener("click", () => hooks.leave());
   }
 
-  get open() {
-    return this.k !== null;
-  }
-
   /** Show step k (its text, the indicator, the buttons); `href` the step's own link. */
   show(k, href) {
     const step = STEPS[k];

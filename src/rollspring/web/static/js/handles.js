@@ -78,7 +78,8 @@ export class Handles {
     this.hooks.moveBody(id, next, "end");
   }
 
-  /** Place one overlay per body: items [{id, left, top, size, now (m), text}]. */
+  /** Place one overlay per body: items [{id, left, top, size (the target's), ring (the body's
+   * drawn size, for the focus ring; at most size), now (m), text}]. */
   sync(items) {
     const seen = new Set();
     for (const item of items) {
@@ -99,6 +100,7 @@ export class Handles {
       el.style.left = `${item.left}px`;
       el.style.top = `${item.top}px`;
       el.style.width = el.style.height = `${item.size}px`;
+      el.style.setProperty("--ring", `${item.ring ?? item.size}px`); // the focus ring: the body's size
       el.setAttribute("aria-valuenow", String(item.now));
       el.setAttribute("aria-valuemin", String(item.min));
       el.setAttribute("aria-valuemax", String(item.max));

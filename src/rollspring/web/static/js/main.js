@@ -16,7 +16,9 @@
 //                   magnification, each force arrow's signed length, the arrows' px per N,
 //                   each body's percussion mark ({id: {x, y}}) and the px per m;
 //   plotData(key) → a plot's series labels, line styles and data as plotted;
-//   plotWindow(key) → the time window [t0, t1] a plot shows (a drag zooms every plot).
+//   plotWindow(key) → the time window [t0, t1] a plot shows (a drag zooms every plot);
+//   lesson()      → the guided lesson's step shown, {step, key, count}, or null;
+//   playing()     → whether the animation plays.
 // Initial displacements are shown relative to where each body was when the system was loaded
 // (the preset, file or link): that is also where Home puts a body back.
 
@@ -26,6 +28,7 @@ import { Explainer } from "./explain.js";
 import { roundTo, sig, signedMetres } from "./format.js";
 import { attachmentFromPoint, springEnds, worldBounds } from "./geometry.js";
 import { Handles } from "./handles.js";
+import { LessonPanel, STEPS } from "./lesson.js";
 import { renderDerivation, renderEnergyBars, renderModes } from "./panels.js";
 import { watchScrollBoxes } from "./scrollbox.js";
 import { Plots } from "./plots.js";
@@ -38,12 +41,18 @@ import { advance, clockText, DURATION_DEFAULT, outputInterval, outputsFor, parse
 import { decodeState, encodeState } from "./urlstate.js";
 
 const DEBOUNCE_MS = 90;
+const FORCE_VALUES_MS = 100; // while playing, the force values' text is rewritten this often
 // The force arrows' scales at zoom ×1 (px per N), one per kind, fixed while the page is open
 // (the arrow-scale control multiplies them): the default system's frictions (≤ 0.5 N) are
 // ~30 px, its weights ~40 px, its spring's pull ~30 px.
 const FORCE_SCALES = { spring: 30, friction: 60, normal: 4 };
 const ZOOMS = [0.25, 0.5, 1, 2, 4, 8];
 const FORCE_NAMES = { friction: "friction f", normal: "normal force N", spring: "spring force" };
+/** The smallest tap target on a touch or narrow screen (CSS px; WCAG 2.5.5), as in page.css. */
+const TAP = 44;
+const touch = window.matchMedia("(max-width: 960px), (pointer: coarse)");
+/** A screen wide enough for the editor's column beside the animation (page.css). */
+const wide = window.matchMedia("(min-width: 961px)");
 
 const $ = (selector) => document.querySelector(selector);
 
@@ -59,6 +68,8 @@ const state = {
   t: 0,
   window: null, // the world window the canvas shows
   duration: DURATION_DEFAULT, // the run length (s)
+  lesson: null, // the guided lesson's step shown (its index), or null
+  strip: null, // the strip's magnification, fixed by a lesson step, or null: chosen to fit
 };
 const DEFAULT_SHOW = { ...state.show }; // the view options Reset all restores
 
@@ -84,6 +95,8 @@ const frames = [];
 let pendingChange = null;
 let lastUpdate = null;
 let drawnRun = null;
+let beforeLesson = null; // the page's state when the lesson began (Leave goes back to it)
+let forceValuesAt = -Infinity; // when the force values were last written while playing (ms)
 let resolveReady;
 const readyPromise = new Promise((resolve) => (resolveReady = resolve));
 
@@ -94,6 +107,7 @@ const scene = new Scene($("#scene"), $("#strip"));
 const plots = new Plots($("#plots"), (t) => seek(t), $("#reset-zoom"));
 const editor = new Editor($("#editor"), (kind) => edited(kind));
 const explainer = new Explainer(document, snap);
+const lessonPanel = new LessonPanel($("#lesson"), { go: goStep, leave: leaveLesson });
 const handles = new Handles($("#handles"), {
   x: (id) => body(id).x,
   home: (id) => state.loaded[id] ?? body(id).x,
@@ -516,7 +530,7 @@ function frameNow() {
     xhat: run.stationary_x ? valueAt(times, run.stationary_x, t) : null,
     ghosts: state.show.linear && run.linear
       ? Object.fromEntries(Object.entries(run.linear).map(([id, xs]) => [id, valueAt(times, xs, t)])) : null,
-    forceScale, labelled, lesson,
+    forceScale, labelled, lesson, stripMagnification: state.strip,
     preview: false,
   };
 }
@@ -542,7 +556,13 @@ function draw() {
     const i = sampleIndex(run.t, state.t);
     renderEnergyBars($("#energy-bars"), energyBars(run, i));
     renderGauges(i);
-    if (!playing) renderForceValues(frame);
+    // the force values as text: at every frame while paused; while playing, ten times a second
+    // (a number that changes at 60 Hz cannot be read, and the text costs a layout)
+    const now = performance.now();
+    if (!playing || now - forceValuesAt >= FORCE_VALUES_MS) {
+      forceValuesAt = now;
+      renderForceValues(frame);
+    }
     announceEvent();
     if (drawnRun !== run) {
       drawnRun = run;
@@ -571,9 +591,11 @@ function placeHandles(frame) {
     const { x } = frame.pose(b.id);
     const c = scene.view.toCanvas({ x, y: (b.track_height || 0) + b.radius });
     const size = Math.max(28, 2 * b.radius * scene.view.pxPerM);
+    // on a touch or narrow screen the target is at least TAP px, around a ring of the body's size
+    const box = touch.matches ? Math.max(TAP, size) : size;
     const home = state.loaded[b.id] ?? b.x;
     const d = roundTo(body(b.id) ? body(b.id).x - home : 0, 1e-9);
-    return { id: b.id, left: c.x - size / 2, top: c.y - size / 2, size, now: d,
+    return { id: b.id, left: c.x - box / 2, top: c.y - box / 2, size: box, ring: size, now: d,
       min: roundTo(state.window.xmin - home, 1e-3), max: roundTo(state.window.xmax - home, 1e-3),
       text: `${signedMetres(d)} from where it was loaded` };
   }));
@@ -751,18 +773,135 @@ function saveUrl() {
 function shareable() {
   return { preset: state.preset, system: state.system, loaded: state.loaded, show: state.show,
     onSlip: state.onSlip, speed: state.speed, start: state.start, t: state.t, window: state.window,
-    duration: state.duration };
+    duration: state.duration, lesson: state.lesson, strip: state.strip };
+}
+
+/** What a link holds: the whole state (the page as shared, in the lesson's step if it was on),
+ * or only {lesson: k}: that step, as the lesson sets it up. */
+function openSaved(saved) {
+  if (saved.system) {
+    restore(saved);
+  } else if (Number.isInteger(saved.lesson) && STEPS[saved.lesson]) {
+    goStep(saved.lesson, { focus: "title" });
+  }
 }
 
 function restore(saved) {
   loadSystem(saved.system, saved.preset || "", { compute: false });
   Object.assign(state, { loaded: saved.loaded, show: { ...state.show, ...saved.show }, onSlip: saved.onSlip,
     speed: saved.speed, start: saved.start, t: saved.t, window: saved.window,
-    duration: parseDuration(saved.duration ?? DURATION_DEFAULT).value ?? DURATION_DEFAULT });
+    duration: parseDuration(saved.duration ?? DURATION_DEFAULT).value ?? DURATION_DEFAULT,
+    strip: Number.isFinite(saved.strip) && saved.strip > 0 ? saved.strip : null });
   scene.setWindow(state.window);
   syncViewControls();
   showPicker();
+  const k = Number.isInteger(saved.lesson) && STEPS[saved.lesson] ? saved.lesson : null;
+  if (k !== null) {
+    showStep(k);
+    plots.showOnly(STEPS[k].plots, STEPS[k].lines);
+  } else if (state.lesson !== null) {
+    closeLesson();
+  }
   recomputeNow();
+}
+
+// ---------------------------------------------------------------- the guided lesson
+
+function reducedMotion() {
+  return window.matchMedia("(prefers-reduced-motion: reduce)").matches;
+}
+
+/** The lesson's panel beside the animation: at the top of the editor's column on a wide
+ * screen, right under the animation (which stays in view on a phone) on a narrow one. */
+function placeLesson() {
+  const panel = $("#lesson");
+  if (wide.matches) $(".sidebar").prepend(panel);
+  else $(".scene-row").after(panel);
+}
+
+/** Begin the lesson at its first step (the page as it is now kept for Leave). */
+function enterLesson() {
+  if (state.lesson === null) beforeLesson = structuredClone(shareable());
+  goStep(0, { focus: "title" });
+}
+
+/** Step k of the lesson: its system and view, computed; `focus`: "title" moves the keyboard
+ * focus to the step's heading, "keep" leaves it (on Back, Next or a step's number) unless the
+ * control it was on is disabled now. */
+function goStep(k, { focus = "title" } = {}) {
+  const step = STEPS[k];
+  const preset = step && presets.find((p) => p.name === step.preset);
+  if (!preset) return;
+  pause();
+  Object.assign(state, { show: { ...DEFAULT_SHOW, ...step.show }, onSlip: "stop", speed: 1,
+    duration: DURATION_DEFAULT, strip: step.magnification });
+  setArrowZoom(1);
+  syncViewControls();
+  clearStartError();
+  $("#amplitude").value = String(step.start ? step.start.amplitude : 0.01);
+  lastMode = step.start ? step.start.mode : null;
+  plots.resetZoom();
+  plots.showAllLines();
+  plots.showOnly(step.plots, step.lines);
+  pendingChange = performance.now();
+  loadSystem(preset.system, preset.name, { compute: false });
+  state.start = step.start ? { ...step.start } : null;
+  state.t = step.t;
+  autoplay = step.play && !reducedMotion();
+  renderInitial();
+  showStep(k);
+  const title = $("#lesson-step-title");
+  if (focus === "title" || (document.activeElement && document.activeElement.disabled)) {
+    title.focus({ preventScroll: true });
+  }
+  // the step's title in view: beside the animation (a wide screen), or right under it, which
+  // stays at the top of a phone's screen (page.css's scroll-padding)
+  title.scrollIntoView({ block: wide.matches ? "nearest" : "start" });
+  recomputeNow();
+}
+
+function showStep(k) {
+  state.lesson = k;
+  document.body.classList.add("in-lesson");
+  lessonPanel.show(k, "#");
+  encodeState({ lesson: k }).then((fragment) => {
+    if (state.lesson === k) $("#lesson-link").href = `${location.pathname}#${fragment}`;
+  });
+}
+
+function closeLesson() {
+  state.lesson = null;
+  state.strip = null;
+  lessonPanel.hide();
+  document.body.classList.remove("in-lesson");
+  plots.showOnly(null);
+}
+
+/** The lesson closed, the page kept as it is (another system was chosen or applied). */
+function quitLesson() {
+  if (state.lesson === null) return;
+  closeLesson();
+  beforeLesson = null;
+  plots.showAllLines();
+}
+
+/** Leave the lesson: the page as it was when the lesson began (opened from a link to a step:
+ * the step's system stays, with the page's own view). */
+function leaveLesson() {
+  pause();
+  closeLesson();
+  plots.showAllLines();
+  const saved = beforeLesson;
+  beforeLesson = null;
+  if (saved) {
+    restore({ ...saved, lesson: null });
+  } else {
+    state.show = { ...DEFAULT_SHOW };
+    syncViewControls();
+    draw();
+    saveUrl();
+  }
+  $("#lesson-start").focus();
 }
 
 // ---------------------------------------------------------------- the panels
@@ -786,6 +925,7 @@ async function applyToml(text) {
     $("#toml").removeAttribute("aria-invalid");
     tomlEdited = false;
     pendingChange = performance.now();
+    quitLesson();
     loadSystem(forms.system, "");
     $("#toml").value = forms.toml;
   } catch (error) {
@@ -853,6 +993,10 @@ function showDurationError(message) {
 /** Back to the system as loaded (its preset's own system when it came from one), the default
  * view options, arrow scale, speed and run length, at t = 0, paused. */
 function resetAll() {
+  if (state.lesson !== null) {
+    goStep(state.lesson, { focus: "keep" }); // in the lesson: the step as it was set up
+    return;
+  }
   pause();
   const preset = presets.find((p) => p.name === state.preset);
   Object.assign(state, { show: { ...DEFAULT_SHOW }, onSlip: "stop", speed: 1, duration: DURATION_DEFAULT });
@@ -876,6 +1020,7 @@ function wireControls() {
     const p = presets.find((q) => q.name === picker.value);
     if (p) {
       pause();
+      quitLesson(); // another system: the lesson's words no longer describe it
       pendingChange = performance.now();
       loadSystem(p.system, p.name);
     }
@@ -888,6 +1033,19 @@ function wireControls() {
   $("#step").addEventListener("click", step);
   $("#step-back").addEventListener("click", stepBack);
   $("#reset-all").addEventListener("click", resetAll);
+  $("#lesson-start").addEventListener("click", enterLesson);
+  $("#lesson-link").addEventListener("click", (e) => {
+    // the step afresh, as the link opens it (the link itself is for copying)
+    e.preventDefault();
+    if (state.lesson !== null) goStep(state.lesson, { focus: "title" });
+  });
+  placeLesson();
+  wide.addEventListener("change", placeLesson);
+  // a link pasted into this tab changes only the fragment: open what it holds
+  window.addEventListener("hashchange", async () => {
+    const saved = await decodeState(location.hash);
+    if (saved) openSaved(saved);
+  });
   $("#duration").addEventListener("change", () => {
     const parsed = parseDuration($("#duration").value);
     showDurationError(parsed.error);
@@ -896,7 +1054,9 @@ function wireControls() {
     pendingChange = performance.now();
     recomputeNow();
   });
-  wireShortcuts({ playPause: () => (playing ? pause() : play()), step, stepBack, restart: () => seek(0) },
+  wireShortcuts({ playPause: () => (playing ? pause() : play()), step, stepBack, restart: () => seek(0),
+    lessonNext: () => state.lesson !== null && state.lesson < STEPS.length - 1 && goStep(state.lesson + 1, { focus: "keep" }),
+    lessonBack: () => state.lesson !== null && state.lesson > 0 && goStep(state.lesson - 1, { focus: "keep" }) },
     $("#shortcuts"), $("#keys-help"));
   $("#restart").addEventListener("click", () => seek(0));
   $("#time").addEventListener("input", () => seek(Number($("#time").value)));
@@ -973,6 +1133,9 @@ window.rollspringPage = {
   drawn: () => structuredClone({ ...scene.drawn, forceScale }),
   plotData: (key) => plots.plotted(key),
   plotWindow: (key) => plots.window(key),
+  lesson: () => (state.lesson === null ? null
+    : { step: state.lesson, key: STEPS[state.lesson].key, count: STEPS.length }),
+  playing: () => playing,
 };
 
 async function main() {
@@ -980,7 +1143,7 @@ async function main() {
   wireControls();
   const saved = await decodeState(location.hash);
   if (saved) {
-    restore(saved);
+    openSaved(saved);
     return;
   }
   let start = null;

@@ -10,19 +10,20 @@ const POSITION_TITLES = {
 };
 
 const PLOTS = [
-  { key: "positions", title: POSITION_TITLES.equilibrium, unit: "x (m)", build: positionSeries },
-  { key: "newton", title: "The whole system: Σf, the frictions, is (Σm)·a_CM — friction moves the CM",
+  { key: "positions", name: "Positions", title: POSITION_TITLES.equilibrium, unit: "x (m)", build: positionSeries },
+  { key: "newton", name: "Σf and (Σm)·a_CM", title: "The whole system: Σf, the frictions, is (Σm)·a_CM — friction moves the CM",
     unit: "force (N)", build: newtonSeries },
-  { key: "forces", title: "Friction f and normal force N, with ±μs N", unit: "force (N)",
+  { key: "forces", name: "Friction and normal force", title: "Friction f and normal force N, with ±μs N", unit: "force (N)",
     build: forceSeries },
-  { key: "ratio", title: "Friction used, |f| / (μs N)", unit: "|f| / (μs N)", build: ratioSeries },
-  { key: "energy", title: "Energy: kinetic (translational + rotational), potential, total",
+  { key: "ratio", name: "Friction used", title: "Friction used, |f| / (μs N)", unit: "|f| / (μs N)", build: ratioSeries },
+  { key: "energy", name: "Energy", title: "Energy: kinetic (translational + rotational), potential, total",
     unit: "energy (J)", build: energySeries },
 ];
 
 /** One uPlot per figure in `container`; `setRun` replaces the data, `setTime` moves the
  * cursors, `onSeek(t)` is called when the user clicks a plot to set the clock. Dragging across
- * a plot zooms every plot to that time window; `zoomButton` shows the whole run again. */
+ * a plot zooms every plot to that time window, Shift + drag pans it; on a focused plot + and −
+ * zoom, ← and → pan, Home shows the whole run; `zoomButton` shows the whole run again. */
 export class Plots {
   constructor(container, onSeek, zoomButton = null) {
     this.container = container;
@@ -35,7 +36,14 @@ export class Plots {
     this.figures = PLOTS.map((spec) => {
       const figure = document.createElement("figure");
       figure.className = "plot";
+      figure.id = `plot-${spec.key}`;
       figure.dataset.plot = spec.key;
+      figure.tabIndex = 0;
+      figure.setAttribute("aria-label", `${spec.name} (plot: + and − zoom the time window, ← and → `
+        + "pan it, Home shows the whole run)");
+      figure.setAttribute("aria-keyshortcuts", "+ - ArrowLeft ArrowRight Home");
+      figure.addEventListener("keydown", (e) => this.key(e, figure));
+      this.panByDrag(figure);
       const caption = document.createElement("figcaption");
       caption.textContent = spec.title;
       figure.append(caption);
@@ -49,7 +57,7 @@ export class Plots {
       lines.append(summary, boxes);
       figure.append(lines);
       return { spec, figure, caption, boxes, hidden: new Set(), plot: null, signature: "", cursor: null,
-        revision: 0, built: null };
+        revision: 0, built: null, only: null };
     });
     new ResizeObserver(() => this.resize()).observe(container);
   }
@@ -104,6 +112,14 @@ export class Plots {
     }
     if (built.reference) f.caption.textContent = POSITION_TITLES[built.reference];
     f.built = built;
+    if (f.only) {
+      // the lines a lesson step keeps: the others hidden (the reader can show them again)
+      series.forEach((s, i) => {
+        const want = f.only.has(s.label);
+        if (f.plot.series[i + 1].show !== want) f.plot.setSeries(i + 1, { show: want });
+      });
+      f.only = null;
+    }
     f.revision += 1;
     f.figure.dataset.revision = String(f.revision);
   }
@@ -163,9 +179,19 @@ export class Plots {
     }));
   }
 
+  /** Only the plots `keys` shown (null: every plot), and in a plot of `lines` ({key: [labels]})
+   * only those lines, from its next data on. */
+  showOnly(keys, lines = {}) {
+    for (const f of this.figures) {
+      f.figure.hidden = Boolean(keys) && !keys.includes(f.spec.key);
+      f.only = keys && lines[f.spec.key] ? new Set(lines[f.spec.key]) : null;
+    }
+  }
+
   /** Every line of every plot shown again. */
   showAllLines() {
     for (const f of this.figures) {
+      f.only = null;
       f.hidden.clear();
       if (f.plot) f.plot.series.forEach((s, i) => i > 0 && !s.show && f.plot.setSeries(i, { show: true }));
     }
@@ -209,6 +235,98 @@ export class Plots {
       f.plot.setScale("x", { min: t[0], max: t[t.length - 1] });
     }
     this.showZoom();
+  }
+
+  /** The whole run: [first, last] output time (null before any data). */
+  range() {
+    const f = this.figures.find((g) => g.built);
+    if (!f) return null;
+    const t = f.built.data[0];
+    return [t[0], t[t.length - 1]];
+  }
+
+  /** Show [t0, t1], kept inside the run (the same width when it can be), in every plot; the
+   * whole run when it covers it. */
+  setWindow(t0, t1) {
+    const range = this.range();
+    if (!range) return;
+    const [start, end] = range;
+    const width = Math.min(t1 - t0, end - start);
+    const a = Math.max(start, Math.min(t0, end - width));
+    if (width >= end - start - 1e-12) {
+      this.resetZoom();
+      return;
+    }
+    this.zoom(a, a + width);
+  }
+
+  /** The time window shown now: [t0, t1]. */
+  shown() {
+    return this.zoomed ? [...this.zoomed] : this.range();
+  }
+
+  /** The keys of a focused plot: + zoom in (about the clock, when it is in the window, or the
+   * window's middle), − zoom out, ← → pan by a quarter of the window, Home the whole run. */
+  key(e, figure) {
+    if (e.target !== figure || e.ctrlKey || e.altKey || e.metaKey) return;
+    const shown = this.shown();
+    if (!shown) return;
+    const [a, b] = shown;
+    const w = b - a;
+    const range = this.range();
+    const least = Math.max((range[1] - range[0]) / 1000, 1e-9);
+    const centre = this.t >= a && this.t <= b ? this.t : (a + b) / 2;
+    if (e.key === "+" || e.key === "=") {
+      const half = Math.max(w / 4, least / 2);
+      this.setWindow(centre - half, centre + half);
+    } else if (e.key === "-" || e.key === "_" || e.key === "−") {
+      this.setWindow((a + b) / 2 - w, (a + b) / 2 + w);
+    } else if (e.key === "ArrowLeft" || e.key === "ArrowRight") {
+      const d = (e.key === "ArrowLeft" ? -w : w) / 4;
+      if (this.zoomed) this.setWindow(a + d, b + d);
+    } else if (e.key === "Home") {
+      this.resetZoom();
+    } else {
+      return;
+    }
+    e.preventDefault();
+  }
+
+  /** Shift + drag across a plot pans every plot's time window (a plain drag zooms). */
+  panByDrag(figure) {
+    let pan = null;
+    let panned = false;
+    const move = (e) => {
+      if (!pan) return;
+      const dt = ((e.clientX - pan.x) / pan.width) * (pan.window[1] - pan.window[0]);
+      if (Math.abs(e.clientX - pan.x) > 2) panned = true;
+      this.setWindow(pan.window[0] - dt, pan.window[1] - dt);
+    };
+    const up = () => {
+      pan = null;
+      window.removeEventListener("mousemove", move);
+      window.removeEventListener("mouseup", up);
+    };
+    figure.addEventListener("mousedown", (e) => {
+      const over = e.target.closest && e.target.closest(".u-over");
+      if (!e.shiftKey || !over || e.button !== 0) return;
+      // before uPlot's own handler (a drag that selects a window to zoom to)
+      e.stopPropagation();
+      e.preventDefault();
+      const shown = this.shown();
+      if (!shown) return;
+      pan = { x: e.clientX, width: Math.max(1, over.clientWidth), window: shown };
+      panned = false;
+      window.addEventListener("mousemove", move);
+      window.addEventListener("mouseup", up);
+    }, true);
+    figure.addEventListener("click", (e) => {
+      if (panned) {
+        // the click that ends a pan does not also move the clock
+        e.stopPropagation();
+        panned = false;
+      }
+    }, true);
   }
 
   /** The time window plot `key` shows: [min, max]. */

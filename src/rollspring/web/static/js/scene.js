@@ -130,7 +130,8 @@ class Strip {
       this.drawn.xhat = null;
       return;
     }
-    const mag = magnification(lesson.halfRange * pxPerM, 0.3 * width);
+    // fixed by a lesson step (so that steps compare), or the largest that fits
+    const mag = frame.stripMagnification || magnification(lesson.halfRange * pxPerM, 0.3 * width);
     const k = pxPerM * mag; // px per metre in the strip
     const cx = width / 2;
     // two bands under the title, each with its marker on top and its trail falling below
@@ -535,11 +536,15 @@ function valueLabel(ctx, drawn, id, x, y, text, colour, align = "center") {
   ctx.textAlign = align;
   ctx.textBaseline = "middle";
   const w = ctx.measureText(text).width;
-  const left = align === "left" ? x : align === "right" ? x - w : x - w / 2;
+  // kept on the canvas (a body near its edge would cut its label)
+  const room = ctx.canvas.width / (window.devicePixelRatio || 1);
+  const wanted = align === "left" ? x : align === "right" ? x - w : x - w / 2;
+  const left = Math.max(3, Math.min(wanted, room - w - 3));
   ctx.fillStyle = "rgba(255,255,255,0.88)";
   ctx.fillRect(left - 3, y - 8, w + 6, 16);
   ctx.fillStyle = colour;
-  ctx.fillText(text, x, y);
+  ctx.textAlign = "left";
+  ctx.fillText(text, left, y);
 }
 
 /** An arrow from p by (dx, dy) px, cut at `maxPx` (then it ends in a bar instead of a head);

@@ -8,12 +8,17 @@ export const SHORTCUTS = [
   [[","], "step back one output interval", "stepBack"],
   [["."], "step forward one output interval", "step"],
   [["0"], "back to t = 0", "restart"],
+  [["N"], "the lesson's next step (while the lesson is on)", "lessonNext"],
+  [["P"], "the lesson's previous step", "lessonBack"],
+  [["+", "−"], "on a focused plot: zoom every plot's time window in or out", null],
+  [["←", "→"], "on a focused plot: pan the time window (Shift + drag across a plot pans too)", null],
+  [["Home"], "on a focused plot: show the whole run", null],
   [["?"], "this list of shortcuts", "help"],
   [["Esc"], "close this list", null],
 ];
 
 const KEYS = { " ": "playPause", k: "playPause", K: "playPause", ",": "stepBack", ".": "step",
-  0: "restart", "?": "help" };
+  0: "restart", "?": "help", n: "lessonNext", N: "lessonNext", p: "lessonBack", P: "lessonBack" };
 
 function typing(el) {
   if (!el || !el.tagName) return false;

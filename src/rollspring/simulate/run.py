@@ -187,7 +187,11 @@ class _Run(RollingSegments, GeneralSegments):
         state = self.general_state(*initial)
         slipping = np.zeros(self.n, dtype=bool)
         sign = np.zeros(self.n)
-        observed = self.observe(state[None, :], slipping[None], sign[None])
+        if a.resisted:  # each resisted body turns the way it moves, or rests, or is driven
+            self.spin = np.where(a.rolling_resistance > 0, np.sign(a.v0), 0.0)
+            for i in np.flatnonzero((a.rolling_resistance > 0) & (a.v0 == 0)):
+                self.spin[i] = self._resting_spin(state, slipping, sign, int(i))
+        observed = self.observe(state[None, :], slipping[None], sign[None], self.spin[None])
         # the first output row: recorded with the first rolling segment's rows (one block),
         # or on its own before anything else happens
         self.pending = state
@@ -204,7 +208,9 @@ class _Run(RollingSegments, GeneralSegments):
             if done:
                 return
         while t < self.grid[-1] and self.status == RunStatus.FINISHED:
-            if not slipping.any() and not self.plan.damped and self.plan.scheme != "dop853":
+            if not (
+                slipping.any() or self.plan.damped or a.resisted or self.plan.scheme == "dop853"
+            ):
                 if self.pending is not None:  # from the release: its state and energy known
                     t, state, slipping, sign = self._rolling_segment(t, state, self.e0, initial)
                 else:

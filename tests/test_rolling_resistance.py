@@ -4,10 +4,13 @@ independent SciPy integration with events, the energy balance, and bad input."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
 import scipy.integrate
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from rollspring.errors import ModelError
 from rollspring.model import as_system
@@ -321,3 +324,105 @@ def test_batch_runs_refuse_rolling_resistance_naming_the_path():
         ModelError, match=r"bodies\.cylinder\.rolling_resistance.*rollspring.simulate"
     ):
         simulate_batch(system, {"springs.0.stiffness": [90.0, 110.0]}, 1.0)
+
+
+def test_the_analysis_says_the_motion_is_not_linear_and_gives_the_exact_decay_per_period():
+    from rollspring.analysis import analyze
+
+    amplitude, c_rr, k, mass = 0.1, 0.01, 10.0, 1.0
+    system = wall_cylinder(amplitude, c_rr, k, mass)
+    analysis = analyze(system)
+    [mode] = analysis.oscillating
+    n = mass * G
+    assert mode.resistance_decay == pytest.approx(4 * c_rr * n / k, rel=1e-12)  # (M23)
+    assert any("not linear" in w and "cyl" in w for w in analysis.warnings)
+    entry = analysis.to_dict()["modes"][0]
+    assert entry["resistance_decay_per_period"] == pytest.approx(4 * c_rr * n / k, rel=1e-12)
+    # the simulated turning points a period apart (outputs 0, 1000 and 2000) fall by that much,
+    # exactly; after 2.5 periods the body rests
+    tr = simulate(system, 2 * mode.period, rtol=1e-10, n_output=2001)
+    turning = tr.x[[0, 1000, 2000], 0]
+    np.testing.assert_allclose(-np.diff(turning), mode.resistance_decay, rtol=1e-8)
+    assert "resistance_decay_per_period" not in analyze("hoop-cylinder").to_dict()["modes"][0]
+
+
+@pytest.mark.parametrize("value", ["-0.01", "nan", "true", "0.9", '"0.1"'])
+def test_the_command_line_refuses_bad_rolling_resistance_in_one_line(tmp_path, value):
+    from typer.testing import CliRunner
+
+    from rollspring.cli import app
+
+    path = tmp_path / "bad.toml"
+    path.write_text(
+        '[[bodies]]\nid = "hoop"\nshape = "hoop"\nmass = 1.0\nradius = 0.1\nx = 0.0\n'
+        f"rolling_resistance = {value}\n"
+    )
+    result = CliRunner().invoke(app, ["simulate", str(path), "--duration", "1"])
+    assert result.exit_code == 2
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1
+    assert "bodies[0].rolling_resistance" in lines[0] and lines[0].startswith("error:")
+
+
+@settings(max_examples=30)
+@given(
+    c_rr=st.floats(0.0, 0.5),
+    normal=st.floats(-1e3, 1e3),
+    radius=st.floats(1e-3, 1e3),
+    omega=st.floats(-1e3, 1e3),
+)
+def test_the_law_and_the_physics_state_the_resistance_alike(c_rr, normal, radius, omega):
+    from rollspring.simulate.kernels.law import resistance_limit, rolling_resistance
+
+    arrays = system_arrays(lone_body("cylinder", 0.0, c_rr, radius=radius))
+    spin = float(np.sign(omega))
+    torque = rolling_resistance_torque(arrays, np.array([normal]), np.array([omega]))
+    assert rolling_resistance(c_rr, normal, radius, spin) == torque[0]
+    assert resistance_limit(c_rr, normal, radius) == -torque[0] * spin or spin == 0.0
+    power = dissipated_power(
+        arrays, np.zeros(0), np.zeros(0), np.zeros(1), np.zeros(1), [normal], [omega]
+    )
+    assert power[2] == pytest.approx(resistance_limit(c_rr, normal, radius) * abs(omega))
+
+
+def test_newton_and_lagrange_derive_the_resistance_as_a_generalised_force():
+    import sympy as sp
+
+    from rollspring import derive
+
+    system = as_system("hoop-cylinder").model_dump()
+    system["bodies"][0]["rolling_resistance"] = 0.03
+    derivation = derive(system, method=["newton", "lagrange"], symbols=True)
+    c_rr, radius, g, m1 = sp.symbols("C_rr1 R g m_1", positive=True)
+    phidot = sp.Symbol("phidot_1", real=True)
+    by_hand = -c_rr * (m1 * g) * radius * sp.sign(phidot)  # N = m g: a level centre spring
+    for name in ("newton", "lagrange"):
+        result = derivation.methods[name]
+        [step] = [s for s in result.section.steps if "(M21)" in s.ref]
+        [resisted] = step.equation
+        exact = result.nonlinear[0]
+        assert sp.simplify(resisted.lhs - exact.lhs) == 0
+        added = sp.simplify(resisted.rhs - exact.rhs)
+        mine = {str(s): s for s in (c_rr, radius, g, m1, phidot)}
+        assert {str(s) for s in added.free_symbols} == set(mine)
+        ours = added.subs({s: mine[str(s)] for s in added.free_symbols})
+        assert sp.simplify(ours - by_hand) == 0
+    notes = "; ".join(derivation.symbolic.notes)
+    assert "energy conservation and Hamilton's equations do not take it" in notes
+
+
+def test_the_report_shows_the_coefficient_and_the_energy_it_dissipated():
+    from rollspring import build_report
+
+    system = as_system("hoop-cylinder").model_dump()
+    system["bodies"][0]["rolling_resistance"] = 0.03
+    resisted = build_report(system, duration=3.0, derivation=False)
+    html = resisted.html
+    assert "<th>C_rr</th>" in html and ">0.03</td>" in html
+    [line] = re.findall(r"energy dissipated \(J\)[^<]*</td><td[^>]*>([^<]*)</td>", html)
+    by = simulate(system, 3.0).summary["dissipated_by"]
+    shown = [float(v) for v in line.split(", ")]
+    assert shown[:2] == [0.0, 0.0]
+    assert shown[2] == pytest.approx(by["rolling_resistance"], rel=1e-5) and shown[2] > 0
+    plain = build_report("hoop-cylinder", duration=3.0, derivation=False).html
+    assert "C_rr" not in plain and "energy dissipated" not in plain

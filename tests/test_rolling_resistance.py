@@ -426,3 +426,47 @@ def test_the_report_shows_the_coefficient_and_the_energy_it_dissipated():
     assert shown[2] == pytest.approx(by["rolling_resistance"], rel=1e-5) and shown[2] > 0
     plain = build_report("hoop-cylinder", duration=3.0, derivation=False).html
     assert "C_rr" not in plain and "energy dissipated" not in plain
+
+
+def test_while_slipping_the_resistance_acts_on_the_rotation_alone():
+    # docs/physics.md section 9's cylinder on a wall spring, slipping from release, with C_rr:
+    # the centre moves as without it, x = x_e + (x0 - x_e) cos(w0 t); the rotation, braked by
+    # kinetic friction's torque R mu_k N and turned back by the resistance's C_rr N R (it turns
+    # clockwise-negative), follows phi = -(mu_k - C_rr) g t^2 / R; the body sticks where the
+    # contact point's velocity x' - R phi' is 0 again
+    from scipy.optimize import brentq
+
+    stretch, mu_s, mu_k, c_rr, k, radius = 0.1, 0.3, 0.25, 0.05, 100.0, 0.1
+    system = make_system(
+        [
+            body(
+                "c",
+                "cylinder",
+                mass=1.0,
+                radius=radius,
+                x=0.5 + stretch,
+                mu_static=mu_s,
+                mu_kinetic=mu_k,
+                rolling_resistance=c_rr,
+            )
+        ],
+        [spring("wall", "c", stiffness=k, rest_length=0.5)],
+        anchors=[{"id": "wall", "x": 0.0, "y": radius}],
+    )
+    w0, x_e, x0 = 10.0, 0.5 + mu_k * G / k, 0.5 + stretch
+
+    def slip_velocity(t):
+        return -(x0 - x_e) * w0 * np.sin(w0 * t) + 2 * (mu_k - c_rr) * G * t
+
+    t_stick = brentq(slip_velocity, 1e-6, math.pi / w0)
+    tr = simulate(system, 1.0, rtol=1e-12, on_slip="continue", n_output=1001)
+    assert tr.events[0] == {"kind": "slip", "time": 0.0, "body": "c"}
+    assert tr.events[1]["kind"] == "stick"
+    assert tr.events[1]["time"] == pytest.approx(t_stick, abs=1e-9)
+    during = (tr.t > 0) & (tr.t < t_stick)
+    t = tr.t[during]
+    np.testing.assert_allclose(tr.x[during, 0], x_e + (x0 - x_e) * np.cos(w0 * t), atol=1e-9)
+    np.testing.assert_allclose(tr.phi[during, 0], -(mu_k - c_rr) * G * t**2 / radius, atol=1e-9)
+    by = tr.summary["dissipated_by"]
+    assert by["kinetic_friction"] > 0 and by["rolling_resistance"] > 0
+    assert tr.summary["energy_error"] < 1e-9

@@ -1,11 +1,16 @@
 r"""The general segment of a run: SciPy's adaptive DOP853 on :math:`[x, \varphi, u, \omega]`.
 
 Used while a spring is damped, a body slips (kinetic friction, docs/physics.md (M19), with
-``on_slip="continue"``) or ``integrator="dop853"`` is asked for. The events are SciPy's
-terminal events, located to the instant on the step: a rolling body's needed friction reaching
-:math:`\mu_s N` (slip), a slipping body's contact speed reaching zero (stick, or reverse when
-static friction cannot hold it), a normal force falling to zero (lift-off). The segment's
-dense output is its interpolant (extremes and period, :mod:`rollspring.simulate.extremes`).
+``on_slip="continue"``), a body has rolling resistance ((M21), (M22)) or ``integrator="dop853"``
+is asked for. The events are SciPy's terminal events, located to the instant on the step: a
+rolling body's needed friction reaching :math:`\mu_s N` (slip), a slipping body's contact speed
+reaching zero (stick, or reverse when static friction cannot hold it), a normal force falling to
+zero (lift-off), a resisted body's rotation reaching zero (``rest`` when the torque driving it is
+within :math:`C_{rr} N R`, else it turns back) and a resting body's drive exceeding that bound
+(``release``); between events each resisted body's resistance keeps its direction
+(:attr:`~rollspring.simulate.run_state.RunState.spin`), so the right-hand side is smooth. The
+segment's dense output is its interpolant (extremes and period,
+:mod:`rollspring.simulate.extremes`).
 """
 
 from __future__ import annotations

@@ -6,8 +6,9 @@ a fixed step chosen from the highest linear frequency :math:`\omega` and ``rtol`
 frequency error of an order-p scheme is :math:`C_p(\omega h)^p`, and the step keeps the phase
 error over the run, :math:`\omega T C_p (\omega h)^p`, and the outputs within the accuracy
 contract (:mod:`rollspring.simulate.integrators`, README "Accuracy"). Damped springs, a
-slipping body (docs/physics.md (M19)) or ``integrator="dop853"`` use SciPy's adaptive DOP853
-on the general state :math:`[x, \varphi, u, \omega]`.
+slipping body (docs/physics.md (M19)), rolling resistance ((M21): the instants a resisted body
+stops, turns back or is released located like a slip, (M22)) or ``integrator="dop853"`` use
+SciPy's adaptive DOP853 on the general state :math:`[x, \varphi, u, \omega]`.
 
 Events are found to the instant: after every step the friction each body needs and its normal
 force are checked (:math:`|f_i| \ge \mu_s N_i` slip, :math:`N_i < 0` lift-off) and the crossing

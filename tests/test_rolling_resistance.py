@@ -506,3 +506,23 @@ def test_random_chains_with_rolling_resistance_match_the_independent_integration
     np.testing.assert_allclose([t for *_, t in events], [t for *_, t in seen], atol=1e-9)
     np.testing.assert_allclose(tr.x, x_ref, atol=1e-8)
     assert tr.summary["energy_error"] < 1e-9
+
+
+def test_a_body_held_at_rest_needs_the_friction_that_balances_the_spring():
+    # the wall cylinder comes to rest 1.9 mm on the near side, the spring pulling it with
+    # k |x| = 0.019 N < C_rr N = 0.0981 N: the friction holding it is -F_x, in the simulation
+    # and in the physics (M22)
+    tr = simulate(wall_cylinder(0.1, 0.01), 8.0, rtol=1e-10, n_output=81)
+    arrays = system_arrays(wall_cylinder(0.1, 0.01))
+    rest = tr.t > 6.1
+    x = tr.x[rest, 0]
+    np.testing.assert_allclose(tr.friction[rest, 0], 10.0 * x, rtol=1e-9)  # -F_x = +k x
+    q = tr.phi[rest]
+    friction, normal = resisted_contact_forces(arrays, q, np.zeros_like(q))
+    np.testing.assert_allclose(friction[:, 0], tr.friction[rest, 0], rtol=1e-12)
+    np.testing.assert_allclose(normal[:, 0], G, rtol=1e-15)
+    # driven beyond what the resistance holds, it rolls away at once, the resistance against it
+    far = np.array([1.0])  # 0.2 m out: k x = 2 N > 0.0981 N, pulling it back
+    friction, _ = resisted_contact_forces(arrays, far, np.zeros(1))
+    plain, _ = contact_forces(arrays, far)
+    assert friction[0] - plain[0] == pytest.approx(+0.01 * G / 1.5, rel=1e-12)

@@ -590,7 +590,7 @@ def resisted_contact_forces(
     system: SystemArrays, q: FloatArray, qdot: FloatArray
 ) -> tuple[FloatArray, FloatArray]:
     r"""Friction and normal force of every body rolling with rates ``qdot`` when bodies have
-    rolling resistance, docs/physics.md (M8) with (M21):
+    rolling resistance, docs/physics.md (M8) with (M21), (M22):
 
     .. math:: f_i = \frac{Q_i + \Gamma_i}{(1+\gamma_i)R_i} - F_{ix}
               = \frac{Q_i}{(1+\gamma_i)R_i} - F_{ix}
@@ -600,17 +600,24 @@ def resisted_contact_forces(
     (:func:`rolling_resistance_torque` :math:`\Gamma_i`; Newton's law for the centre,
     :math:`m\ddot x = F_x + f`, with :math:`J\ddot\varphi = Q + \Gamma`). The resistance
     takes :math:`C_{rr} N/(1+\gamma)` from the friction the rolling needs: the normal force's
-    torque about the centre does part of the braking, the friction the rest. Equal to
-    :func:`contact_forces` where :math:`C_{rr} = 0` or the body does not turn.
+    torque about the centre does part of the braking, the friction the rest. A resisted body at
+    rest (:math:`\dot\varphi_i = 0`) is held while :math:`|Q_i| \le C_{rr} N_i R_i` (M22), and
+    needs :math:`f_i = -F_{ix}`; beyond, it starts to roll the way :math:`Q_i` drives it, the
+    resistance against it. Equal to :func:`contact_forces` where :math:`C_{rr} = 0`.
     Shapes: ``q``, ``qdot`` (..., n) -> two arrays (..., n), newtons."""
     friction, normal = contact_forces(system, q, qdot)
-    q = _as_state(system, q)
-    omega = system.rolls * _as_state(system, qdot)
-    torque = rolling_resistance_torque(system, normal, omega)
-    rolling = system.rolls > 0
-    friction = friction + np.where(
-        rolling, system.mass * system.scale * torque / system.inertia, 0.0
-    )
+    q, qdot = _as_state(system, q), _as_state(system, qdot)
+    omega = system.rolls * qdot
+    resisted = (system.rolling_resistance > 0) & (system.rolls > 0)
+    drive = generalized_forces(system, q, qdot)
+    limit = system.rolling_resistance * normal * system.radius
+    at_rest = resisted & (omega == 0.0)
+    held = at_rest & (np.abs(drive) <= limit)
+    spin = np.where(at_rest, np.sign(drive), np.sign(omega))
+    torque = -system.rolling_resistance * normal * system.radius * spin
+    moving = system.mass * system.scale * torque / system.inertia
+    friction = np.where(resisted & ~held, friction + moving, friction)
+    friction = np.where(held, -body_forces(system, q, qdot)[..., 0], friction)
     return friction, normal
 
 

@@ -399,7 +399,7 @@ def test_kernels_agree_with_the_numpy_physics(r1, a1, r2, a2, q1, q2):
     state = np.concatenate([arrays.x0 + arrays.scale * q, q, [0.0, 0.0], [0.0, 0.0]])
     derivative = np.empty(8)
     kernels.slipping_derivatives(
-        model, state, np.zeros(2, dtype=bool), np.zeros(2), False, derivative
+        model, state, np.zeros(2, dtype=bool), np.zeros(2), np.zeros(2), False, derivative
     )
     np.testing.assert_allclose(
         derivative[6:] * arrays.inertia, generalized_forces(arrays, q), atol=1e-12
@@ -410,6 +410,7 @@ def test_kernels_agree_with_the_numpy_physics(r1, a1, r2, a2, q1, q2):
         model,
         state[None, :],
         np.zeros((1, 2), dtype=bool),
+        np.zeros((1, 2)),
         np.zeros((1, 2)),
         False,
         *out,

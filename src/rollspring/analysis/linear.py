@@ -46,6 +46,7 @@ __all__ = [
     "find_equilibrium",
     "linear_motion",
     "normal_modes",
+    "resistance_decay",
     "stationary_weights",
 ]
 
@@ -514,6 +515,30 @@ def _placement_vectors(system: SystemArrays) -> tuple[FloatArray, FloatArray]:
     return np.array(dx, dtype=float), np.array(dy, dtype=float)
 
 
+def resistance_decay(
+    system: SystemArrays, normal: FloatArray, omega: float, vector: FloatArray
+) -> float:
+    r"""How much a mode's amplitude falls each period under rolling resistance, docs/physics.md
+    (M23): with the mode's :math:`M`-orthonormal ``vector`` :math:`v` (:math:`v^T M v = 1`),
+    frequency ``omega`` and the normal forces ``normal`` at the equilibrium, the resistance
+    (M21) takes :math:`4 A_\eta\sum_i C_{rr,i} N_i s_i |v_i|` each period from the energy
+    :math:`\tfrac12\omega^2 A_\eta^2` of the mode's coordinate, so
+
+    .. math:: \Delta A_\eta = \frac{4}{\omega^2}\sum_i C_{rr,i} N_i s_i |v_i| ,
+
+    returned as the fall of the largest centre displacement, :math:`\max_i s_i|v_i|\,\Delta
+    A_\eta` (m per period): a linear fall, not an exponential one (Coulomb damping). For one body
+    on a spring of stiffness :math:`k'` in its rolling coordinate it is :math:`4 C_{rr} N/k'`,
+    twice :math:`2 C_{rr} N/k'` per half period, exactly; for a mode moving alone exact too (every
+    body's velocity keeps its sign for half a period), a first-order estimate otherwise.
+    0 without rolling resistance, or for a mode that does not oscillate."""
+    if not system.resisted or not omega > 0:
+        return 0.0
+    lever = system.scale * np.abs(vector)
+    drag = float(np.sum(system.rolling_resistance * np.asarray(normal) * lever))
+    return 4.0 * drag / omega**2 * float(np.max(lever))
+
+
 @dataclass(frozen=True)
 class Mode:
     r"""One normal mode :math:`K v = \omega^2 M v`.
@@ -525,6 +550,8 @@ class Mode:
     ``"unstable"`` (negative eigenvalue; ``omega`` is then the growth rate).
     ``damping_ratio`` is :math:`\zeta = v^T C v/(2\omega)` (M-normalised ``v``, spring damping
     :math:`C = \sum_s c_s b_s b_s^T`): exact for modally damped systems, a projection otherwise.
+    ``resistance_decay`` is how much the amplitude (the largest centre displacement, m) falls
+    each period under rolling resistance, :func:`resistance_decay` (docs/physics.md (M23)).
     """
 
     eigenvalue: float
@@ -536,6 +563,7 @@ class Mode:
     friction: FloatArray
     normal_force: FloatArray
     damping_ratio: float = 0.0
+    resistance_decay: float = 0.0
 
     @property
     def frequency(self) -> float:
@@ -796,6 +824,8 @@ class LinearAnalysis:
                 "period": _num(mode.period),
                 "damping_ratio": _num(mode.damping_ratio),
             }
+            if arrays.resisted:  # (M23): the amplitude's fall per period (m)
+                entry["resistance_decay_per_period"] = _num(mode.resistance_decay)
             if sparse:  # n numbers per mode and field: summarised, the shapes in Python
                 entry["peak_friction"] = _num(float(np.max(np.abs(mode.friction), initial=0)))
                 entry["peak_normal_force"] = _num(

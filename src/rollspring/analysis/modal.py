@@ -27,6 +27,7 @@ from rollspring.analysis.linear import (
     Mode,
     find_equilibrium,
     normal_modes,
+    resistance_decay,
     stationary_weights,
 )
 from rollspring.errors import AnalysisError
@@ -254,6 +255,22 @@ def run_analysis(system: System, request: AnalysisRequest) -> LinearAnalysis:
             "springs have damping: the modes are the undamped ones, with modal damping ratios "
             f"({', '.join(ratios)}) from the modal projection of C; the response amplitudes are "
             "those of the undamped motion (the first swing)"
+        )
+    if arrays.resisted:
+        drops = []
+        for k, mode in enumerate(modes_list):
+            if mode.kind == "oscillating":
+                drop = resistance_decay(arrays, normal_eq, mode.omega, vectors[:, k])
+                modes_list[k] = replace(mode, resistance_decay=drop)
+                drops.append(f"{drop:.4g}")
+        resisted = [i for i, c in zip(arrays.ids, arrays.rolling_resistance, strict=True) if c > 0]
+        warnings.append(
+            f"rolling resistance ({', '.join(resisted)}): the motion is not linear (the "
+            "resistance's torque C_rr N R takes the sign of each body's rotation, and holds a "
+            "body at rest while the torque driving it is within it); each mode's amplitude "
+            f"falls by about ({', '.join(drops)}) m a period, linearly, not exponentially "
+            "(docs/physics.md (M23)); the response amplitudes are those of the motion without "
+            "it (the first swing)"
         )
     analysis = LinearAnalysis(
         system=system,

@@ -17,8 +17,10 @@ from pydantic import (
     BaseModel,
     ConfigDict,
     Field,
+    SerializerFunctionWrapHandler,
     WithJsonSchema,
     field_validator,
+    model_serializer,
     model_validator,
 )
 
@@ -74,6 +76,9 @@ RANGES: dict[str, tuple[float, float, str]] = {
     "attachment": (0.0, 1e4, "m"),  # an attachment's height or radius (2 R and more)
     "angle": (-360.0, 360.0, "degrees"),
     "friction": (0.0, 1e6, ""),  # mu_static (which may also be inf) and mu_kinetic
+    # C_rr: the normal force acts C_rr R ahead of the contact point (docs/physics.md section 5);
+    # real wheels have 1e-4 (steel on steel) to 0.05 (a soft tyre), half a radius is no contact
+    "rolling_resistance": (0.0, 0.5, ""),
 }
 
 #: How many of each a system may hold, and how long its texts may be (characters): a system file
@@ -124,6 +129,7 @@ ForceComponent = Annotated[float, _bounds("force"), _within("force")]
 Distance = Annotated[float, _bounds("attachment"), _within("attachment")]
 Angle = Annotated[float, _bounds("angle"), _within("angle")]
 Friction = Annotated[float, _bounds("friction"), _within("friction")]
+RollingResistance = Annotated[float, _bounds("rolling_resistance"), _within("rolling_resistance")]
 
 #: Control characters (a terminal obeys them: ESC starts its escape sequences) and the
 #: bidirectional overrides that reorder what is shown; a description may hold line breaks and
@@ -238,6 +244,12 @@ class Body(_Strict):
         description="Kinetic friction coefficient, at most mu_static; default mu_static "
         "(0 when mu_static is inf).",
     )
+    rolling_resistance: RollingResistance = Field(
+        default=0.0,
+        description="Rolling resistance coefficient C_rr (a length ratio): the floor's normal "
+        "force acts C_rr R ahead of the contact point, a torque C_rr N R opposing the rolling. "
+        "Not for sliders.",
+    )
 
     @field_validator("mu_static", mode="before")
     @classmethod
@@ -262,6 +274,10 @@ class Body(_Strict):
         if self.shape != "custom" and self.inertia_factor is not None:
             raise ValueError(
                 f"`inertia_factor` is only for shape 'custom' (a {self.shape} has its own)"
+            )
+        if self.shape == "slider" and self.rolling_resistance > 0.0:
+            raise ValueError(
+                "`rolling_resistance` is for rolling bodies; a slider slides without friction"
             )
         if self.mu_kinetic is not None and self.mu_kinetic > self.mu_static:
             raise ValueError(
@@ -308,6 +324,15 @@ class Body(_Strict):
         if self.mu_kinetic is not None:
             return self.mu_kinetic
         return self.mu_static if math.isfinite(self.mu_static) else 0.0
+
+    @model_serializer(mode="wrap")
+    def _without_default_resistance(self, handler: SerializerFunctionWrapHandler) -> Any:
+        """The written form leaves out a rolling resistance of 0 (the default): the files and
+        JSON forms of systems without it stay as they were."""
+        data = handler(self)
+        if isinstance(data, dict) and data.get("rolling_resistance") == 0.0:
+            del data["rolling_resistance"]
+        return data
 
     def point_at_rest(self, at: Attachment) -> tuple[float, float]:
         """Position (x, y) of an attachment point in the initial placement, (M1) at phi = 0."""

@@ -47,6 +47,8 @@ class SystemArrays:
     inertia: FloatArray  # (n,) J_i, the (constant) diagonal of the mass matrix, (M4)
     mu_static: FloatArray  # (n,)
     mu_kinetic: FloatArray  # (n,)
+    #: (n,) C_rr: the normal force acts C_rr R ahead of the contact (0 for a slider)
+    rolling_resistance: FloatArray
     gravity: float
     # springs
     stiffness: FloatArray  # (S,) N/m
@@ -71,6 +73,12 @@ class SystemArrays:
     def n_springs(self) -> int:
         """Number of springs."""
         return len(self.spring_names)
+
+    @cached_property
+    def resisted(self) -> bool:
+        """True when a body has rolling resistance (C_rr > 0): the motion is dissipative and
+        piecewise smooth (docs/physics.md section 5)."""
+        return bool(np.any(self.rolling_resistance > 0))
 
     @property
     def has_anchors(self) -> bool:
@@ -141,6 +149,7 @@ _PER_BODY = (
     "inertia",
     "mu_static",
     "mu_kinetic",
+    "rolling_resistance",
 )
 _PER_SPRING = ("stiffness", "rest_length", "damping")
 
@@ -173,11 +182,12 @@ def system_arrays(system: System | dict[str, Any] | str | os.PathLike[str]) -> S
                 b.contact_inertia,
                 b.mu_static,
                 b.mu_kinetic_value,
+                b.rolling_resistance,
             ]
             for b in bodies
         ],
         dtype=np.float64,
-    ).T.copy()  # (11, n): each row a contiguous view
+    ).T.copy()  # (12, n): each row a contiguous view
     per_body.setflags(write=False)
     springs = system.springs
     n_s = len(springs)

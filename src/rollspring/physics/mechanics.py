@@ -40,6 +40,8 @@ __all__ = [
     "kinetic_energy",
     "mass_matrix",
     "potential_energy",
+    "resisted_contact_forces",
+    "rolling_resistance_torque",
     "spring_energies",
     "spring_pair_matrix",
     "spring_state",
@@ -526,22 +528,29 @@ def dissipated_power(
     tension: FloatArray,
     friction: FloatArray,
     slip_velocity: FloatArray,
+    normal: FloatArray | None = None,
+    angular_velocity: FloatArray | None = None,
 ) -> FloatArray:
-    r"""The power turned into heat, by spring damping and by kinetic friction (W; the last axis
-    of the result: ``[damping, friction]``), from a state's spring lengths and tensions (``(...,
-    S)``) and the bodies' friction forces and slip velocities :math:`v_{s,i} = \dot x_i -
-    R_i\dot\varphi_i` (``(..., n)``; zero for a rolling body):
+    r"""The power turned into heat, by spring damping, by kinetic friction and by rolling
+    resistance (W; the last axis of the result: ``[damping, friction, rolling_resistance]``),
+    from a state's spring lengths and tensions (``(..., S)``) and the bodies' friction forces,
+    slip velocities :math:`v_{s,i} = \dot x_i - R_i\dot\varphi_i` (``(..., n)``; zero for a
+    rolling body), normal forces and angular velocities (``(..., n)``; needed only when a body
+    has rolling resistance):
 
     .. math::
         P_c = \sum_{s:\,c_s > 0} c_s \dot l_s^{\,2}
             = \sum_{s:\,c_s > 0} \frac{\bigl(T_s - k_s(l_s - L_{0s})\bigr)^2}{c_s},
         \qquad P_f = \sum_i \lvert f_i\, v_{s,i}\rvert,
+        \qquad P_r = \sum_i C_{rr,i} N_i R_i \lvert\dot\varphi_i\rvert,
 
     the damping part :math:`c_s\dot l_s` of the tension (docs/physics.md section 2) read back
-    from the tension, and the kinetic friction (M19) opposing the slip. With :math:`W = \int
-    (P_c + P_f)\,dt` the exact motion keeps :math:`E + W = E_0`."""
+    from the tension, the kinetic friction (M19) opposing the slip, and the rolling
+    resistance's torque (M21) opposing the rotation (for a rolling body
+    :math:`C_{rr} N \lvert v\rvert`; a body it holds at rest does not turn). With
+    :math:`W = \int (P_c + P_f + P_r)\,dt` the exact motion keeps :math:`E + W = E_0`."""
     length, tension = np.asarray(length, dtype=float), np.asarray(tension, dtype=float)
-    power = np.zeros((*length.shape[:-1], 2))
+    power = np.zeros((*length.shape[:-1], 3))
     damped = system.damping > 0
     if np.any(damped):
         viscous = tension[..., damped] - system.stiffness[damped] * (
@@ -549,7 +558,67 @@ def dissipated_power(
         )
         power[..., 0] = np.sum(viscous**2 / system.damping[damped], axis=-1)
     power[..., 1] = np.sum(np.abs(np.asarray(friction) * np.asarray(slip_velocity)), axis=-1)
+    if system.resisted and normal is not None and angular_velocity is not None:
+        torque = system.rolling_resistance * np.asarray(normal) * system.radius
+        power[..., 2] = np.sum(torque * np.abs(np.asarray(angular_velocity)), axis=-1)
     return power
+
+
+def rolling_resistance_torque(
+    system: SystemArrays, normal: FloatArray, angular_velocity: FloatArray
+) -> FloatArray:
+    r"""The clockwise torque of rolling resistance on each body turning with
+    ``angular_velocity`` (N m, shape (..., n)), docs/physics.md (M21): the normal force acts
+    :math:`C_{rr} R` ahead of the contact point,
+
+    .. math:: \Gamma_i = -C_{rr,i} N_i R_i\,\mathrm{sign}\,\dot\varphi_i ,
+
+    about the contact point and the centre alike (the force is vertical). For a rolling body it
+    is a generalised force beside :math:`Q_i`: :math:`(1+\gamma_i) m_i \ddot x_i = Q_i/R_i -
+    C_{rr,i} N_i\,\mathrm{sign}\,\dot x_i`. At rest (:math:`\dot\varphi_i = 0`) it is 0 here;
+    the torque then holds the body up to :math:`C_{rr} N R` (M22), as the simulation decides."""
+    result: FloatArray = (
+        -system.rolling_resistance
+        * np.asarray(normal, dtype=float)
+        * system.radius
+        * np.sign(angular_velocity)
+    )
+    return result
+
+
+def resisted_contact_forces(
+    system: SystemArrays, q: FloatArray, qdot: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    r"""Friction and normal force of every body rolling with rates ``qdot`` when bodies have
+    rolling resistance, docs/physics.md (M8) with (M21), (M22):
+
+    .. math:: f_i = \frac{Q_i + \Gamma_i}{(1+\gamma_i)R_i} - F_{ix}
+              = \frac{Q_i}{(1+\gamma_i)R_i} - F_{ix}
+                - \frac{C_{rr,i} N_i\,\mathrm{sign}\,\dot x_i}{1+\gamma_i},
+              \qquad N_i = m_i g - F_{iy}
+
+    (:func:`rolling_resistance_torque` :math:`\Gamma_i`; Newton's law for the centre,
+    :math:`m\ddot x = F_x + f`, with :math:`J\ddot\varphi = Q + \Gamma`). The resistance
+    takes :math:`C_{rr} N/(1+\gamma)` from the friction the rolling needs: the normal force's
+    torque about the centre does part of the braking, the friction the rest. A resisted body at
+    rest (:math:`\dot\varphi_i = 0`) is held while :math:`|Q_i| \le C_{rr} N_i R_i` (M22), and
+    needs :math:`f_i = -F_{ix}`; beyond, it starts to roll the way :math:`Q_i` drives it, the
+    resistance against it. Equal to :func:`contact_forces` where :math:`C_{rr} = 0`.
+    Shapes: ``q``, ``qdot`` (..., n) -> two arrays (..., n), newtons."""
+    friction, normal = contact_forces(system, q, qdot)
+    q, qdot = _as_state(system, q), _as_state(system, qdot)
+    omega = system.rolls * qdot
+    resisted = (system.rolling_resistance > 0) & (system.rolls > 0)
+    drive = generalized_forces(system, q, qdot)
+    limit = system.rolling_resistance * normal * system.radius
+    at_rest = resisted & (omega == 0.0)
+    held = at_rest & (np.abs(drive) <= limit)
+    spin = np.where(at_rest, np.sign(drive), np.sign(omega))
+    torque = -system.rolling_resistance * normal * system.radius * spin
+    moving = system.mass * system.scale * torque / system.inertia
+    friction = np.where(resisted & ~held, friction + moving, friction)
+    friction = np.where(held, -body_forces(system, q, qdot)[..., 0], friction)
+    return friction, normal
 
 
 def kinetic_energy(system: SystemArrays, qdot: FloatArray) -> FloatArray:

@@ -114,7 +114,10 @@ def request_cost(
     n = len(system.bodies)
     springs = len(system.springs)
     omega, rate = _highest_rates(system)
-    damped = any(spring.damping > 0 for spring in system.springs)
+    # dissipative (damped springs, rolling resistance): DOP853 with its events
+    damped = any(spring.damping > 0 for spring in system.springs) or any(
+        body.rolling_resistance > 0 for body in system.bodies
+    )
     if n <= DENSE_LIMIT:
         setup = 0.05 + _SETUP_PER_SQUARED_THOUSAND * (n / 1000.0) ** 2
     else:

@@ -1,11 +1,16 @@
 r"""The general segment of a run: SciPy's adaptive DOP853 on :math:`[x, \varphi, u, \omega]`.
 
 Used while a spring is damped, a body slips (kinetic friction, docs/physics.md (M19), with
-``on_slip="continue"``) or ``integrator="dop853"`` is asked for. The events are SciPy's
-terminal events, located to the instant on the step: a rolling body's needed friction reaching
-:math:`\mu_s N` (slip), a slipping body's contact speed reaching zero (stick, or reverse when
-static friction cannot hold it), a normal force falling to zero (lift-off). The segment's
-dense output is its interpolant (extremes and period, :mod:`rollspring.simulate.extremes`).
+``on_slip="continue"``), a body has rolling resistance ((M21), (M22)) or ``integrator="dop853"``
+is asked for. The events are SciPy's terminal events, located to the instant on the step: a
+rolling body's needed friction reaching :math:`\mu_s N` (slip), a slipping body's contact speed
+reaching zero (stick, or reverse when static friction cannot hold it), a normal force falling to
+zero (lift-off), a resisted body's rotation reaching zero (``rest`` when the torque driving it is
+within :math:`C_{rr} N R`, else it turns back) and a resting body's drive exceeding that bound
+(``release``); between events each resisted body's resistance keeps its direction
+(:attr:`~rollspring.simulate.run_state.RunState.spin`), so the right-hand side is smooth. The
+segment's dense output is its interpolant (extremes and period,
+:mod:`rollspring.simulate.extremes`).
 """
 
 from __future__ import annotations
@@ -35,11 +40,12 @@ class GeneralSegments(RunState):
         n, a, model, damped = self.n, self.arrays, self.packed, self.plan.damped
         slipping = slipping.copy()
         sign = sign.copy()
+        spin = self.spin.copy()  # the rolling resistance's directions (M21), (M22)
         mu_s = a.mu_static
 
         def rhs(_t: float, y: FloatArray) -> FloatArray:
             out = np.empty(4 * n)
-            kernels.slipping_derivatives(model, y, slipping, sign, damped, out)
+            kernels.slipping_derivatives(model, y, slipping, sign, spin, damped, out)
             return out
 
         # SciPy calls every event function with the same state array after a step: observed
@@ -48,7 +54,9 @@ class GeneralSegments(RunState):
 
         def contacts(y: FloatArray) -> tuple[FloatArray, FloatArray]:
             if last[0] is not y:
-                friction, normal, *_ = self.observe(y[None, :], slipping[None], sign[None])
+                friction, normal, *_ = self.observe(
+                    y[None, :], slipping[None], sign[None], spin[None]
+                )
                 last[:] = [y, (friction[0], normal[0])]
             result: tuple[FloatArray, FloatArray] = last[1]
             return result
@@ -68,6 +76,13 @@ class GeneralSegments(RunState):
                 labels.append(("stick", i))
             events.append(lambda _t, y, i=i: contacts(y)[1][i])
             labels.append(("liftoff", i))
+            if self.rolls[i] and a.rolling_resistance[i] > 0:
+                if spin[i] != 0.0:  # turning: the rotation stops (M21)
+                    events.append(lambda _t, y, i=i: spin[i] * y[3 * n + i])
+                    labels.append(("turn", i))
+                else:  # held at rest: the drive exceeds what the resistance holds (M22)
+                    events.append(lambda _t, y, i=i: self._resistance_margin(y, slipping, sign, i))
+                    labels.append(("release", i))
         for event, (kind, i) in zip(events, labels, strict=True):
             event.terminal = True
             event.direction = (sign[i] * -1.0) if kind == "stick" else -1.0
@@ -119,6 +134,7 @@ class GeneralSegments(RunState):
                 sign.copy(),
                 dense_state,
                 np.asarray(dense.ts),
+                spin=spin.copy() if a.resisted else None,
             )
         )
         self._report(t_end)
@@ -127,11 +143,19 @@ class GeneralSegments(RunState):
         which = next(j for j, te in enumerate(solution.t_events) if len(te))
         kind, body = labels[which]
         y_event = np.asarray(solution.y_events[which][0], dtype=float)
+        if kind in ("turn", "release"):
+            self._resistance_event(kind, body, t_end, y_event, slipping, sign)
+            return t_end, y_event, slipping, sign
         if kind == "stick":
             y_event[2 * n + body] = a.radius[body] * y_event[3 * n + body]  # v_s = 0 exactly
             trial = slipping.copy()
             trial[body] = False
-            friction, normal, *_ = self.observe(y_event[None, :], trial[None], sign[None])
+            if a.rolling_resistance[body] > 0 and spin[body] == 0.0:
+                # its rotation was held while it slipped: now wholly at rest, held or driven
+                self.spin[body] = self._resting_spin(y_event, trial, sign, body)
+            friction, normal, *_ = self.observe(
+                y_event[None, :], trial[None], sign[None], self.spin[None]
+            )
             if abs(friction[0, body]) <= mu_s[body] * normal[0, body]:
                 slipping[body] = False
                 sign[body] = 0.0
@@ -143,3 +167,57 @@ class GeneralSegments(RunState):
         if self._event(kind, body, t_end, y_event, slipping, sign):
             self._record(t_end, y_event, slipping, sign)
         return t_end, y_event, slipping, sign
+
+    def _resistance_drive(
+        self, state: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> tuple[FloatArray, FloatArray]:
+        """:func:`kernels.resistance_drives` of a general state: per body the torque driving
+        its rotation and the most the rolling resistance holds it against, :math:`C_{rr} N R`."""
+        drive, limit = np.empty(self.n), np.empty(self.n)
+        kernels.resistance_drives(
+            self.packed, state, slipping, sign, self.plan.damped, drive, limit
+        )
+        return drive, limit
+
+    def _resistance_margin(
+        self, state: FloatArray, slipping: BoolArray, sign: FloatArray, i: int
+    ) -> float:
+        """:math:`C_{rr} N R - |D|` of body ``i``: it stays at rest while this is >= 0 (M22)."""
+        drive, limit = self._resistance_drive(state, slipping, sign)
+        return float(limit[i] - abs(drive[i]))
+
+    def _resting_spin(
+        self, state: FloatArray, slipping: BoolArray, sign: FloatArray, i: int
+    ) -> float:
+        """The rolling resistance's direction for body ``i`` whose rotation is at rest in
+        ``state``: 0 (held) while the drive is within :math:`C_{rr} N R` (M22), else the
+        drive's sign (it turns that way)."""
+        drive, limit = self._resistance_drive(state, slipping, sign)
+        return 0.0 if abs(drive[i]) <= limit[i] else float(np.sign(drive[i]))
+
+    def _resistance_event(
+        self,
+        kind: str,
+        body: int,
+        t: float,
+        state: FloatArray,
+        slipping: BoolArray,
+        sign: FloatArray,
+    ) -> None:
+        """A body with rolling resistance whose rotation stopped (``turn``: it comes to rest,
+        event ``rest``, or turns back) or is released (``release``: the drive exceeds
+        :math:`C_{rr} N R`, it starts to turn the drive's way); ``state`` is made exact (the
+        rotation, and a rolling body's centre, at rest)."""
+        n, a = self.n, self.arrays
+        if kind == "turn":
+            state[3 * n + body] = 0.0
+            if not slipping[body]:
+                state[2 * n + body] = 0.0
+            spin = self._resting_spin(state, slipping, sign, body)
+            self.spin[body] = spin
+            if spin == 0.0:
+                self.events.append({"kind": "rest", "time": t, "body": a.ids[body]})
+            return
+        drive, _ = self._resistance_drive(state, slipping, sign)
+        self.spin[body] = float(np.sign(drive[body])) or 1.0
+        self.events.append({"kind": "release", "time": t, "body": a.ids[body]})

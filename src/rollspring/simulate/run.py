@@ -6,8 +6,9 @@ a fixed step chosen from the highest linear frequency :math:`\omega` and ``rtol`
 frequency error of an order-p scheme is :math:`C_p(\omega h)^p`, and the step keeps the phase
 error over the run, :math:`\omega T C_p (\omega h)^p`, and the outputs within the accuracy
 contract (:mod:`rollspring.simulate.integrators`, README "Accuracy"). Damped springs, a
-slipping body (docs/physics.md (M19)) or ``integrator="dop853"`` use SciPy's adaptive DOP853
-on the general state :math:`[x, \varphi, u, \omega]`.
+slipping body (docs/physics.md (M19)), rolling resistance ((M21): the instants a resisted body
+stops, turns back or is released located like a slip, (M22)) or ``integrator="dop853"`` use
+SciPy's adaptive DOP853 on the general state :math:`[x, \varphi, u, \omega]`.
 
 Events are found to the instant: after every step the friction each body needs and its normal
 force are checked (:math:`|f_i| \ge \mu_s N_i` slip, :math:`N_i < 0` lift-off) and the crossing
@@ -187,7 +188,11 @@ class _Run(RollingSegments, GeneralSegments):
         state = self.general_state(*initial)
         slipping = np.zeros(self.n, dtype=bool)
         sign = np.zeros(self.n)
-        observed = self.observe(state[None, :], slipping[None], sign[None])
+        if a.resisted:  # each resisted body turns the way it moves, or rests, or is driven
+            self.spin = np.where(a.rolling_resistance > 0, np.sign(a.v0), 0.0)
+            for i in np.flatnonzero((a.rolling_resistance > 0) & (a.v0 == 0)):
+                self.spin[i] = self._resting_spin(state, slipping, sign, int(i))
+        observed = self.observe(state[None, :], slipping[None], sign[None], self.spin[None])
         # the first output row: recorded with the first rolling segment's rows (one block),
         # or on its own before anything else happens
         self.pending = state
@@ -204,7 +209,9 @@ class _Run(RollingSegments, GeneralSegments):
             if done:
                 return
         while t < self.grid[-1] and self.status == RunStatus.FINISHED:
-            if not slipping.any() and not self.plan.damped and self.plan.scheme != "dop853":
+            if not (
+                slipping.any() or self.plan.damped or a.resisted or self.plan.scheme == "dop853"
+            ):
                 if self.pending is not None:  # from the release: its state and energy known
                     t, state, slipping, sign = self._rolling_segment(t, state, self.e0, initial)
                 else:

@@ -99,6 +99,8 @@ class Segment:
     samples: FloatArray  # times inside the segment at which to look for extremes
     #: for a two-step segment around a kernel extreme: the state it starts from
     start: Start | None = None
+    #: the rolling resistance's direction per body (:attr:`RunState.spin`), None without it
+    spin: np.ndarray | None = None
 
 
 def general_state(arrays: SystemArrays, q: FloatArray, v: FloatArray, x0: FloatArray) -> FloatArray:
@@ -155,6 +157,10 @@ class RunState:
         self.central = np.ascontiguousarray(arrays.gamma * arrays.mass * arrays.radius**2)
         self.row_slipping: list[np.ndarray] = []
         self.row_sign: list[np.ndarray] = []
+        #: per body with rolling resistance (docs/physics.md (M21), (M22)), the sign of the
+        #: rotation it opposes, +1 or -1, or 0 while it holds the body at rest; 0 for every body
+        #: without it. Only the general segments change it (a resisted run has no other).
+        self.spin = np.zeros(n)
         self.times: list[FloatArray] = []
         self.segments: list[Segment] = []
         self.events: list[dict[str, Any]] = []
@@ -245,7 +251,9 @@ class RunState:
         self.rows.append(np.array(states, dtype=float, order="C"))
         self.row_slipping.append(_rows_of(slipping, rows, bool))
         self.row_sign.append(_rows_of(sign, rows, float))
-        observed = self.observe(self.rows[-1], self.row_slipping[-1], self.row_sign[-1])
+        observed = self.observe(
+            self.rows[-1], self.row_slipping[-1], self.row_sign[-1], self.spin[None]
+        )
         self.observed.append(observed)
         return observed
 
@@ -253,8 +261,21 @@ class RunState:
         observed = self.observe(states, slipping, sign)
         return observed.potential + observed.kinetic
 
-    def observe(self, states: FloatArray, slipping: BoolArray, sign: FloatArray) -> Observed:
+    def observe(
+        self,
+        states: FloatArray,
+        slipping: BoolArray,
+        sign: FloatArray,
+        spin: FloatArray | None = None,
+    ) -> Observed:
+        """:func:`kernels.observe` of rows of general states with, per row, the bodies
+        slipping, their slip directions and the rolling resistance's directions (``spin``, as
+        :attr:`spin`; none by default)."""
         rows = states.shape[0]
+        if spin is None or not self.arrays.resisted:
+            spin = np.zeros((rows, self.n))
+        else:
+            spin = np.broadcast_to(np.asarray(spin, dtype=float), (rows, self.n))
         ns = self.arrays.n_springs
         out = Observed(
             np.empty((rows, self.n)),
@@ -270,6 +291,7 @@ class RunState:
             np.ascontiguousarray(states),
             np.asarray(slipping),
             np.asarray(sign, dtype=float),
+            spin,
             self.plan.damped,
             out.friction,
             out.normal,
@@ -288,7 +310,9 @@ class RunState:
         """('liftoff' | 'slip', body) if a rolling body violates its contact now, else None.
         ``observed``: the state observed already (with no slip direction)."""
         if observed is None:
-            observed = self.observe(state[None, :], slipping[None], np.zeros((1, self.n)))
+            observed = self.observe(
+                state[None, :], slipping[None], np.zeros((1, self.n)), self.spin[None]
+            )
         friction, normal = observed.friction, observed.normal
         mu = self.arrays.mu_static
         for i in range(self.n):
@@ -332,7 +356,7 @@ class RunState:
             )
             return True
         if kind == "slip":
-            friction, *_ = self.observe(state[None, :], slipping[None], sign[None])
+            friction, *_ = self.observe(state[None, :], slipping[None], sign[None], self.spin[None])
             slipping[body] = True
             # the kinetic friction takes the sign of the static friction that was needed
             sign[body] = -np.sign(friction[0, body]) or 1.0

@@ -43,7 +43,7 @@ class KernelModel(NamedTuple):
     kernels are called with the plain tuple (:attr:`Plan.packed`): Numba dispatches a named
     tuple about three times slower (9 µs against 3 µs a call, a few dozen calls a run)."""
 
-    #: (n, 11) per body: reference x, scale, rolls, centre height, inertia, mass, mu_s, ...
+    #: (n, 12) per body: reference x, scale, rolls, centre height, inertia, mass, mu_s, ...
     bodies: FloatArray
     #: (S, 11) per spring: its ends' attachments and anchors, stiffness, rest length, damping
     springs: FloatArray
@@ -235,7 +235,7 @@ def plan(
     name, step = pick_scheme(  # the step suits the outputs (on step ends or between)
         request.integrator,
         request.step,
-        damped,
+        damped or arrays.resisted,  # dissipative: DOP853 with its events
         linear.omega_max,
         request.duration,
         request.rtol,

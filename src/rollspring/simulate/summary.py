@@ -38,14 +38,19 @@ def summary(trajectory: Trajectory, run: RunState) -> dict[str, Any]:
     n = arrays.n_bodies
     ids = arrays.ids
     extremes = continuous_extremes(run, trajectory)
-    conservative = not run.plan.damped and not any(e["kind"] == "slip" for e in run.events)
+    conservative = (
+        not run.plan.damped
+        and not arrays.resisted
+        and not any(e["kind"] == "slip" for e in run.events)
+    )
     energy = trajectory.energy
     e0 = float(energy[0])
     high, low = float(energy.max()), float(energy.min())  # NaN if any is
     # relative to the energy at release, as the run's own check (a blow-up to 385 E0 is an
     # error of 384, not ~1); the largest |E| only when E0 is 0
     scale = abs(e0) or max(max(abs(high), abs(low)) if high == high else math.nan, 1e-300)
-    # what damping and kinetic friction turned into heat (0 for a conservative run)
+    # what damping, kinetic friction and rolling resistance turned into heat (0 for a
+    # conservative run)
     dissipated = dissipated_energy(run, trajectory.t)
     if conservative:  # the largest |E - E0|: at the largest or the smallest E
         energy_error = (max(high - e0, e0 - low) if high == high else math.nan) / scale
@@ -95,6 +100,7 @@ def summary(trajectory: Trajectory, run: RunState) -> dict[str, Any]:
         "dissipated_by": {
             "damping": float(dissipated[-1, 0]),
             "kinetic_friction": float(dissipated[-1, 1]),
+            "rolling_resistance": float(dissipated[-1, 2]),
         },
         "period_measured": period,
         "period_linear": period_linear,

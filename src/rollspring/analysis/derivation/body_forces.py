@@ -16,6 +16,8 @@ import sympy as sp
 
 from rollspring.analysis.derivation.energies import EnergiesMixin, cheap_form
 from rollspring.analysis.derivation.parts import Attachment, derivatives_at_reference
+from rollspring.analysis.derivation.steps import named
+from rollspring.model import System
 
 __all__ = ["BodyForcesMixin"]
 
@@ -25,6 +27,8 @@ class BodyForcesMixin(EnergiesMixin):
     :class:`~.symbolic.SymbolicSystem`."""
 
     g: sp.Expr
+    system: System
+    symbolic: bool
 
     @cached_property
     def spring_end_forces(self) -> list[tuple[tuple[sp.Expr, sp.Expr], tuple[sp.Expr, sp.Expr]]]:
@@ -95,6 +99,30 @@ class BodyForcesMixin(EnergiesMixin):
     def normal(self) -> list[sp.Expr]:
         r"""Normal force :math:`N_i = m_i g - F_{iy}` (M9), in q."""
         return [b.m * self.g - F[1] for b, F in zip(self.bodies, self.body_forces, strict=True)]
+
+    @cached_property
+    def rolling_resistance(self) -> list[sp.Expr]:
+        r"""The generalised force of rolling resistance on each body, docs/physics.md (M21):
+
+        .. math:: \Gamma_i = -C_{rr,i}\, N_i\, R_i\,\operatorname{sgn}\dot\varphi_i
+
+        (:math:`N_i` of :attr:`normal`, in q), the torque about the contact line of the normal
+        force acting :math:`C_{rr} R` ahead of it: a dissipative force beside
+        :math:`Q_i = -\partial V/\partial q_i`, with no potential. 0 for a body without it
+        (and for a slider). :math:`C_{rr,i}` is the exact rational of the system's value, or
+        with ``symbols=True`` the symbol ``C_rr<i>``."""
+        out: list[sp.Expr] = []
+        for b, body, normal in zip(self.bodies, self.system.bodies, self.normal, strict=True):
+            if body.rolling_resistance <= 0 or not b.rolls:
+                out.append(sp.Integer(0))
+                continue
+            c_rr: sp.Expr = (
+                named(f"C_rr{b.label}", rf"C_{{\mathrm{{rr}},{b.label}}}", positive=True)
+                if self.symbolic
+                else sp.Rational(repr(body.rolling_resistance))
+            )
+            out.append(-c_rr * normal * b.R * sp.sign(b.qd))
+        return out
 
     @cached_property
     def reference_body_forces(self) -> list[tuple[sp.Expr, sp.Expr]]:

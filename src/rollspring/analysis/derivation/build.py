@@ -293,6 +293,10 @@ def symbolic_system(
         )
     if any(s.damping > 0 for s in system.springs):
         notes.append("spring damping is left out of the derivations (conservative forces only)")
+    if any(b.rolling_resistance > 0 for b in system.bodies):
+        from rollspring.analysis.derivation.resistance import RESISTANCE_NOTE
+
+        notes.append(RESISTANCE_NOTE)
     return SymbolicSystem(
         system=system,
         symbolic=symbols,

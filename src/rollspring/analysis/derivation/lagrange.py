@@ -24,6 +24,7 @@ from rollspring.analysis.derivation.method import (
     method_section,
     short,
 )
+from rollspring.analysis.derivation.resistance import resistance_step
 from rollspring.analysis.derivation.setup import setup_tags
 from rollspring.analysis.derivation.steps import DEFINE, How, Section, Step, eq, inline, named
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
@@ -100,6 +101,7 @@ def lagrange(sym: SymbolicSystem, budget: float | None) -> MethodResult:
             law=[eq(pdot[i], forces_names[i]) for i in range(sym.n)],
         ),
     )
+    resistance_step(section, sym, "lagrange", nonlinear, exact.tag)
     result = MethodResult("lagrange", TITLES["lagrange"], True, "", section, nonlinear=nonlinear)
     result.extras["mechanics"] = mechanics_lagrange_check(sym, budget=budget)
     linearised = linearise_in_angles(

@@ -15,6 +15,7 @@ from __future__ import annotations
 import sympy as sp
 
 from rollspring.analysis.derivation.method import TITLES, MethodResult, method_section, short
+from rollspring.analysis.derivation.resistance import resistance_step
 from rollspring.analysis.derivation.setup import length_symbols, setup_tags
 from rollspring.analysis.derivation.steps import GIVEN, How, eq
 from rollspring.analysis.derivation.symbolic import SymbolicSystem
@@ -89,6 +90,7 @@ def newton(sym: SymbolicSystem, budget: float | None) -> MethodResult:
             "paper (w2), (w22); (M7)",
             how=How("substitute", (law_step.tag, tension.tag), args=tuple(forces)),
         ).tag
+    resistance_step(section, sym, "newton", nonlinear, exact_tag)
     result = MethodResult("newton", TITLES["newton"], True, "", section, nonlinear=nonlinear)
     linearise_in_angles(result, sym, exact_tag, budget)
     return result

@@ -45,6 +45,21 @@ def section_animation(page: Page, frames: int) -> Markup:
                 "energy (J), max relative error",
                 Markup(f"{fmt(summary.get('energy'))}, {fmt(summary.get('energy_error'))}"),
             ],
+            *(
+                [
+                    [
+                        "energy dissipated (J): by damping, kinetic friction, rolling resistance",
+                        Markup(
+                            ", ".join(
+                                fmt(summary["dissipated_by"].get(kind))
+                                for kind in ("damping", "kinetic_friction", "rolling_resistance")
+                            )
+                        ),
+                    ]
+                ]
+                if summary.get("energy_dissipated")
+                else []
+            ),
             [
                 "period (s): measured, linear",
                 Markup(

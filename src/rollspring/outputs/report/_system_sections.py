@@ -90,6 +90,8 @@ def section_diagram(page: Page) -> Markup:
 
 def section_parameters(page: Page) -> Markup:
     system, arrays = page.system, page.arrays
+    # the rolling resistance coefficient, a column only when a body has it
+    resisted_header = ["C_rr"] if arrays.resisted else []
     bodies = table(
         [
             "body",
@@ -103,6 +105,7 @@ def section_parameters(page: Page) -> Markup:
             "v₀ (m/s)",
             "μs",
             "μk",
+            *resisted_header,
         ],
         [
             [
@@ -117,6 +120,7 @@ def section_parameters(page: Page) -> Markup:
                 Num(b.v),
                 Num(b.mu_static) if b.rolls else "–",
                 Num(b.mu_kinetic_value) if b.rolls else "–",
+                *([Num(b.rolling_resistance) if b.rolls else "–"] if resisted_header else []),
             ]
             for i, b in enumerate(system.bodies)
         ],

@@ -256,7 +256,9 @@ def simulate_batch(
     attachments, forces) is the system's. Unknown paths, wrong lengths and values outside the
     range a system file takes (``rollspring.model.RANGES``) raise
     :class:`~rollspring.errors.ModelError` naming the key and the first run; damped springs are
-    refused (the batch integrators are symplectic: use :func:`rollspring.simulate`). ``system`` is a
+    refused, and so is rolling resistance (``bodies.<id>.rolling_resistance`` > 0 in the system,
+    or as a path: the batch integrators are symplectic: use :func:`rollspring.simulate`).
+    ``system`` is a
     :class:`~rollspring.model.System`, its JSON form (a dict) or a file path or preset name
     (:func:`rollspring.model.as_system`).
 
@@ -354,6 +356,12 @@ def simulate_batch(
         raise ModelError(
             f"springs[{damped[0]}].damping: batch runs need undamped springs "
             "(symplectic integrators); use rollspring.simulate"
+        )
+    resisted = [b.id for b in system.bodies if b.rolling_resistance > 0]
+    if resisted:
+        raise ModelError(
+            f"bodies.{resisted[0]}.rolling_resistance: batch runs need bodies without rolling "
+            "resistance (symplectic integrators, no stick events); use rollspring.simulate"
         )
     n_runs = count_runs(parameters)  # before any array of the runs' size is made
     cost = batch_cost(

@@ -69,6 +69,12 @@ def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Run
             _, ident, quantity = parts
             if ident not in index:
                 raise _bad(key, f"no body '{ident}' (bodies: {', '.join(index)})")
+            if quantity == "rolling_resistance":
+                raise _bad(
+                    key,
+                    "batch runs take no rolling resistance (symplectic integrators, no stick "
+                    "events); use rollspring.simulate",
+                )
             if quantity not in PARAMETER_QUANTITIES["bodies"]:
                 raise _bad(
                     key,

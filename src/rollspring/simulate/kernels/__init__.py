@@ -50,6 +50,7 @@ from rollspring.simulate.kernels.model import kernel_model
 from rollspring.simulate.kernels.observation import (
     observe,
     observe_rolling,
+    resistance_drives,
     row_extremes,
     slipping_derivatives,
 )
@@ -85,6 +86,7 @@ __all__ = [
     "observe_rolling",
     "refine_extremes",
     "refine_windowed",
+    "resistance_drives",
     "rolling_forces",
     "row_extremes",
     "run_fixed_step",

@@ -34,6 +34,10 @@ The terms, with the equations they implement:
   :func:`rolling_friction` -- the same from the centre's acceleration, :math:`m\ddot x - F_x`;
 * :func:`normal_force` -- :math:`N = m g - F_y` (M9);
 * :func:`kinetic_friction` -- :math:`-\mu_k N\,\mathrm{sign}\,v_s` while slipping (M19);
+* :func:`rolling_resistance` -- the torque :math:`-C_{rr} N R\,\mathrm{sign}\,\omega` of the
+  normal force acting :math:`C_{rr} R` ahead of the contact (docs/physics.md (M21));
+  :func:`resistance_limit` -- the largest torque it holds a body at rest against,
+  :math:`C_{rr} N R`;
 * :func:`spring_energy` -- :math:`\tfrac12 k (l - L_0)^2`; :func:`work` -- a constant force's
   work :math:`F\cdot\Delta P`.
 
@@ -62,7 +66,9 @@ __all__ = [
     "pull",
     "pull_rate",
     "reduced_force",
+    "resistance_limit",
     "rolling_friction",
+    "rolling_resistance",
     "spring_energy",
     "spring_length",
     "torque",
@@ -214,6 +220,23 @@ def normal_force(weight, fy):
 def kinetic_friction(mu_k, normal, sign):
     r"""(M19) Kinetic friction while slipping, :math:`-\mu_k N\,\mathrm{sign}(v_s)`."""
     return -mu_k * normal * sign
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def rolling_resistance(c_rr, normal, radius, spin):
+    r"""(M21) Rolling resistance: the floor's normal force acts :math:`C_{rr} R` ahead of the
+    contact point, a clockwise torque :math:`-C_{rr} N R\,\mathrm{sign}\,\omega` about the
+    contact (and about the centre) opposing the rotation (``spin`` the sign of
+    :math:`\omega`, +1 or -1). For a rolling body it is a generalised force beside Q:
+    :math:`(1+\gamma) m\ddot x = Q/R - C_{rr} N\,\mathrm{sign}\,\dot x`."""
+    return -c_rr * normal * radius * spin
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def resistance_limit(c_rr, normal, radius):
+    r"""(M22) The largest torque the shifted normal force holds a body at rest against,
+    :math:`C_{rr} N R`: a body at rest stays so while the torque driving it is within it."""
+    return c_rr * normal * radius
 
 
 @njit(cache=True, inline="always", error_model="numpy")

@@ -24,6 +24,7 @@ __all__ = [
     "ALPHA_B",
     "CENTRAL",
     "CY",
+    "C_RR",
     "DAMP",
     "FALPHA",
     "FR",
@@ -46,7 +47,7 @@ __all__ = [
 ]
 
 # columns of the packed per-body, per-spring and per-force arrays of the kernel model
-X0, SCALE, ROLLS, CY, INERTIA, MASS, MU_S, CENTRAL, MU_K, RADIUS, INV_INERTIA = range(11)
+X0, SCALE, ROLLS, CY, INERTIA, MASS, MU_S, CENTRAL, MU_K, RADIUS, INV_INERTIA, C_RR = range(12)
 # a spring's end b has its columns two after end a's (RB = RA + 2, ..., ABY = AAY + 2): the
 # kernels read end e (0: a, 1: b) at RA + 2 e, ALPHA_A + 2 e, AAX + 2 e, AAY + 2 e
 RA, ALPHA_A, RB, ALPHA_B, AAX, AAY, ABX, ABY, STIFF, REST, DAMP = range(11)
@@ -54,7 +55,7 @@ FR, FALPHA, FX, FY = range(4)
 
 
 def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple[Any, ...]:
-    """The model the kernels take: ``(bodies (n, 11), springs (S, 11), spring_ends (S, 2) int,
+    """The model the kernels take: ``(bodies (n, 12), springs (S, 11), spring_ends (S, 2) int,
     forces (F, 4), force_body (F,) int, gravity)`` (columns named by the module constants).
     ``x0`` overrides the reference centre positions (after a body re-sticks:
     ``x_i - R_i phi_i``). Few packed arrays keep the compiled calls cheap."""
@@ -73,6 +74,7 @@ def kernel_model(arrays: SystemArrays, x0: np.ndarray | None = None) -> tuple[An
             a.mu_kinetic,
             a.radius,
             1.0 / a.inertia,
+            a.rolling_resistance,
         ],
         dtype=np.float64,
     ).T

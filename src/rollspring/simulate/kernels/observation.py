@@ -24,21 +24,33 @@ from rollspring.simulate.kernels.law import (
     kinetic_friction,
     needed_friction,
     normal_force,
+    resistance_limit,
+    rolling_resistance,
     spring_energy,
     work,
 )
 
-__all__ = ["observe", "observe_rolling", "row_extremes", "slipping_derivatives"]
+__all__ = [
+    "observe",
+    "observe_rolling",
+    "resistance_drives",
+    "row_extremes",
+    "slipping_derivatives",
+]
 
 
 @njit(cache=True, error_model="numpy")
-def slipping_derivatives(model, state, slipping, sign, damped, out):
-    r"""Time derivative of the general state ``[x, phi, u, omega]`` (4n), docs/physics.md (M19).
+def slipping_derivatives(model, state, slipping, sign, spin, damped, out):
+    r"""Time derivative of the general state ``[x, phi, u, omega]`` (4n), docs/physics.md (M19),
+    (M21).
 
-    Rolling body: :math:`J\dot\omega = R F_x + \tau`, :math:`\dot u = R\dot\omega`; slider:
-    :math:`m\dot u = F_x`; slipping body (``slipping[i]``, slip direction ``sign[i]`` = sign of
-    the contact-point velocity :math:`v_s = u - R\omega`): :math:`f = -\mu_k N\,\mathrm{sign}`,
-    :math:`m\dot u = F_x + f`, :math:`I\dot\omega = \tau - R f`.
+    Rolling body: :math:`J\dot\omega = R F_x + \tau + \Gamma`, :math:`\dot u = R\dot\omega`;
+    slider: :math:`m\dot u = F_x`; slipping body (``slipping[i]``, slip direction ``sign[i]`` =
+    sign of the contact-point velocity :math:`v_s = u - R\omega`): :math:`f = -\mu_k N\,
+    \mathrm{sign}`, :math:`m\dot u = F_x + f`, :math:`I\dot\omega = \tau - R f + \Gamma`.
+    :math:`\Gamma = -C_{rr} N R\,\mathrm{spin}` is the rolling resistance (M21) of a body with
+    :math:`C_{rr} > 0` turning with ``spin[i]`` = sign of :math:`\omega`; ``spin[i]`` 0 holds its
+    rotation (and, rolling, its centre) at rest (M22).
     """
     n = slipping.shape[0]
     b, g = model[0], model[5]
@@ -56,17 +68,30 @@ def slipping_derivatives(model, state, slipping, sign, damped, out):
     for i in range(n):
         out[i] = u[i]
         out[n + i] = w[i]
+        c_rr = b[i, col.C_RR]
         if b[i, col.ROLLS] == 0.0:
             out[2 * n + i] = fx[i] / b[i, col.MASS]
             out[3 * n + i] = 0.0
         elif slipping[i]:
-            friction = kinetic_friction(
-                b[i, col.MU_K], normal_force(b[i, col.MASS] * g, fy[i]), sign[i]
-            )
+            normal = normal_force(b[i, col.MASS] * g, fy[i])
+            friction = kinetic_friction(b[i, col.MU_K], normal, sign[i])
             out[2 * n + i] = (fx[i] + friction) / b[i, col.MASS]
-            out[3 * n + i] = (tau[i] - b[i, col.RADIUS] * friction) / b[i, col.CENTRAL]
+            drive = tau[i] - b[i, col.RADIUS] * friction
+            if c_rr > 0.0:
+                if spin[i] == 0.0:
+                    drive = 0.0
+                else:
+                    drive += rolling_resistance(c_rr, normal, b[i, col.RADIUS], spin[i])
+            out[3 * n + i] = drive / b[i, col.CENTRAL]
         else:
-            alpha = generalized_force(b[i, col.SCALE], fx[i], tau[i]) / b[i, col.INERTIA]
+            gen = generalized_force(b[i, col.SCALE], fx[i], tau[i])
+            if c_rr > 0.0:
+                if spin[i] == 0.0:
+                    gen = 0.0
+                else:
+                    normal = normal_force(b[i, col.MASS] * g, fy[i])
+                    gen += rolling_resistance(c_rr, normal, b[i, col.SCALE], spin[i])
+            alpha = gen / b[i, col.INERTIA]
             out[2 * n + i] = b[i, col.SCALE] * alpha
             out[3 * n + i] = alpha
 
@@ -77,6 +102,7 @@ def observe(
     states,
     slipping,
     sign,
+    spin,
     damped,
     friction,
     normal,
@@ -95,7 +121,9 @@ def observe(
     energy :math:`\sum \tfrac12 (m_i u_i^2 + I_i \omega_i^2)` (``central`` holds the central
     inertias :math:`I_i`) and the friction ratio :math:`|f|/(\mu_s N)` (0 for sliders and for
     :math:`\mu_s = \infty`, :math:`\infty` when :math:`N \le 0`).
-    ``slipping``/``sign`` are per row."""
+    ``slipping``/``sign``/``spin`` are per row (``spin``: :func:`slipping_derivatives`'; a
+    rolling body with rolling resistance needs the friction of (M8) with the resistance's
+    torque (M21) beside Q, or, held at rest (``spin`` 0), :math:`f = -F_x`)."""
     n = states.shape[1] // 4
     b, springs, forces, force_body, g = model[0], model[1], model[3], model[4], model[5]
     fx = np.empty(n)
@@ -139,6 +167,14 @@ def observe(
                 friction[row, i] = kinetic_friction(b[i, col.MU_K], normal[row, i], sign[row, i])
             else:
                 gen = generalized_force(b[i, col.SCALE], fx[i], tau[i])
+                c_rr = b[i, col.C_RR]
+                if c_rr > 0.0:
+                    if spin[row, i] == 0.0:
+                        gen = 0.0
+                    else:
+                        gen += rolling_resistance(
+                            c_rr, normal[row, i], b[i, col.SCALE], spin[row, i]
+                        )
                 friction[row, i] = needed_friction(
                     b[i, col.MASS], b[i, col.SCALE], b[i, col.INERTIA], gen, fx[i]
                 )
@@ -348,3 +384,44 @@ def row_extremes(friction, normal, slipping):
         best_normal[i] = low
         normal_row[i] = at
     return best_ratio, ratio_row, best_normal, normal_row
+
+
+@njit(cache=True, error_model="numpy")
+def resistance_drives(model, state, slipping, sign, damped, drive, limit):
+    r"""Per body of the general ``state``: the torque driving its rotation, the rolling
+    resistance left out -- :math:`Q_i` (M7) of a rolling body, :math:`\tau_i - R_i f_i` (M19)
+    of a slipping one, 0 for a slider -- into ``drive``, and the largest torque the
+    resistance holds it at rest against, :math:`C_{rr} N R` (M22), into ``limit``. A body at
+    rest stays so while :math:`|D| \le C_{rr} N R` and starts to turn the way :math:`D` drives
+    it when :math:`|D|` exceeds it."""
+    n = slipping.shape[0]
+    b, g = model[0], model[5]
+    ns = model[1].shape[0]
+    fx = np.empty(n)
+    fy = np.empty(n)
+    tau = np.empty(n)
+    length = np.empty(ns)
+    tension = np.empty(ns)
+    body_loads(
+        model,
+        state[:n],
+        state[n : 2 * n],
+        state[2 * n : 3 * n],
+        state[3 * n :],
+        damped,
+        fx,
+        fy,
+        tau,
+        length,
+        tension,
+    )
+    for i in range(n):
+        normal = normal_force(b[i, col.MASS] * g, fy[i])
+        limit[i] = resistance_limit(b[i, col.C_RR], normal, b[i, col.RADIUS])
+        if b[i, col.ROLLS] == 0.0:
+            drive[i] = 0.0
+        elif slipping[i]:
+            friction = kinetic_friction(b[i, col.MU_K], normal, sign[i])
+            drive[i] = tau[i] - b[i, col.RADIUS] * friction
+        else:
+            drive[i] = generalized_force(b[i, col.SCALE], fx[i], tau[i])

@@ -1,0 +1,528 @@
+"""Rolling resistance (docs/physics.md (M21), (M22)): exact against closed forms, against an
+independent SciPy integration with events, the energy balance, and bad input."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+import scipy.integrate
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from rollspring.errors import ModelError
+from rollspring.model import as_system
+from rollspring.physics import (
+    contact_forces,
+    dissipated_power,
+    resisted_contact_forces,
+    rolling_resistance_torque,
+    system_arrays,
+)
+from rollspring.simulate import simulate
+from tests.conftest import body, make_system, spring
+
+G = 9.81
+
+
+def lone_body(shape: str, v0: float, c_rr: float, mass: float = 2.0, radius: float = 0.15):
+    return make_system(
+        bodies=[
+            body("wheel", shape, mass=mass, radius=radius, x=0.0, v=v0, rolling_resistance=c_rr)
+        ]
+    )
+
+
+@pytest.mark.parametrize(
+    ("shape", "gamma", "v0", "c_rr"),
+    [("sphere", 0.4, 1.5, 0.02), ("hoop", 1.0, -0.8, 0.005)],
+)
+def test_a_lone_body_decelerates_uniformly_stops_at_the_closed_form_time_and_stays(
+    shape, gamma, v0, c_rr
+):
+    # (1 + gamma) m x'' = -C_rr N sign(x'), N = m g: a = C_rr g / (1 + gamma), constant
+    deceleration = c_rr * G / (1 + gamma)
+    t_stop = abs(v0) / deceleration
+    distance = v0 * abs(v0) / (2 * deceleration)
+    tr = simulate(lone_body(shape, v0, c_rr), 1.5 * t_stop, rtol=1e-10)
+    assert tr.status == "finished"
+    [rest] = [e for e in tr.events if e["kind"] == "rest"]
+    assert rest["time"] == pytest.approx(t_stop, abs=1e-9)
+    moving = tr.t < t_stop
+    t = tr.t[moving]
+    direction = math.copysign(1.0, v0)
+    np.testing.assert_allclose(tr.v[moving, 0], v0 - direction * deceleration * t, atol=1e-9)
+    np.testing.assert_allclose(
+        tr.x[moving, 0], v0 * t - direction * deceleration * t**2 / 2, atol=1e-9
+    )
+    # then it stays: at rest exactly where the closed form says
+    assert np.all(tr.v[~moving, 0] == 0.0)
+    np.testing.assert_allclose(tr.x[~moving, 0], distance, atol=1e-9)
+    # the friction the rolling needs: f = -C_rr N sign(v) / (1 + gamma) (M8 with M21), then 0
+    np.testing.assert_allclose(
+        tr.friction[moving, 0], -direction * c_rr * 2.0 * G / (1 + gamma), rtol=1e-12
+    )
+    assert np.all(tr.friction[~moving, 0] == 0.0)
+    # all the kinetic energy went into rolling resistance
+    e0 = 0.5 * (1 + gamma) * 2.0 * v0**2
+    assert tr.summary["energy"] == pytest.approx(e0, rel=1e-14)
+    assert tr.summary["dissipated_by"]["rolling_resistance"] == pytest.approx(e0, rel=1e-9)
+    assert tr.summary["energy_error"] < 1e-9
+
+
+def wall_cylinder(amplitude: float, c_rr: float, k: float = 10.0, mass: float = 1.0):
+    radius = 0.1
+    return make_system(
+        bodies=[
+            body("cyl", "cylinder", mass=mass, radius=radius, x=amplitude, rolling_resistance=c_rr)
+        ],
+        anchors=[{"id": "wall", "x": -1.0, "y": radius}],
+        springs=[spring("wall", "cyl", stiffness=k, rest_length=1.0)],
+    )
+
+
+def coulomb_oscillator(x0: float, k: float, inertia: float, r: float, t: np.ndarray):
+    """The exact motion of M x'' = -k x - r sign(x') from rest at x0 (|x0| > r/k): half
+    periods about x_e = r sign(x_n)/k, each amplitude 2 r/k smaller, until a turning point
+    with |x| <= r/k, where it stays. Returns x(t), the turning points and the stop time."""
+    omega = math.sqrt(k / inertia)
+    half = math.pi / omega
+    turning = [x0]
+    while abs(turning[-1]) > r / k:
+        xn = turning[-1]
+        turning.append(-(xn - 2 * r / k * math.copysign(1.0, xn)))
+    stop = (len(turning) - 1) * half
+    x = np.empty_like(t)
+    for j, tj in enumerate(t):
+        n = min(int(tj // half), len(turning) - 1)
+        if n == len(turning) - 1:
+            x[j] = turning[-1]
+            continue
+        xn = turning[n]
+        centre = r / k * math.copysign(1.0, xn)
+        x[j] = centre + (xn - centre) * math.cos(omega * (tj - n * half))
+    return x, turning, stop
+
+
+def test_a_body_on_a_spring_loses_2_crr_n_over_k_each_half_period_and_stops_exactly():
+    amplitude, c_rr, k, mass = 0.1, 0.01, 10.0, 1.0
+    tr = simulate(wall_cylinder(amplitude, c_rr, k, mass), 10.0, rtol=1e-10, n_output=4001)
+    r = c_rr * mass * G  # C_rr N; k' = k (a level centre spring)
+    x, turning, stop = coulomb_oscillator(amplitude, k, 1.5 * mass, r, tr.t)
+    assert len(turning) == 6  # five half periods, each 2 C_rr N / k' = 0.01962 m smaller
+    np.testing.assert_allclose(np.abs(np.diff(np.abs(turning))), 2 * r / k, rtol=1e-12)
+    np.testing.assert_allclose(tr.x[:, 0], x, atol=2e-9)
+    [rest] = [e for e in tr.events if e["kind"] == "rest"]
+    assert rest["time"] == pytest.approx(stop, abs=1e-9)
+    assert tr.summary["final"]["bodies"]["cyl"]["x"] == pytest.approx(turning[-1], abs=1e-9)
+    assert abs(turning[-1]) <= r / k  # the spring's pull at the last turning point is held
+    assert tr.summary["final"]["bodies"]["cyl"]["v"] == 0.0
+    # the energy it lost is the spring energy between the first and the last turning point
+    lost = 0.5 * k * (turning[0] ** 2 - turning[-1] ** 2)
+    assert tr.summary["dissipated_by"]["rolling_resistance"] == pytest.approx(lost, rel=1e-8)
+
+
+def reference_level_chain(masses, gammas, c_rr, k, rest, x0, duration, times):
+    """An independent integration of bodies on one level joined by centre springs (in a row),
+    with rolling resistance: (1+gamma_i) m_i x_i'' = F_i(x) - C_i m_i g s_i while moving
+    (s_i the sign of x_i'), x_i' = 0 while |F_i| <= C_i m_i g at rest; SciPy's DOP853 with
+    terminal events at every stop and release. Returns x at ``times`` and the events."""
+    masses, gammas, c_rr = (np.asarray(a, dtype=float) for a in (masses, gammas, c_rr))
+    n = masses.size
+    inertia = (1 + gammas) * masses
+    limit = c_rr * masses * G
+
+    def spring_forces(x):
+        stretch = np.diff(x) - rest
+        force = np.zeros(n)
+        force[:-1] += k * stretch
+        force[1:] -= k * stretch
+        return force
+
+    spin = np.zeros(n)
+    free = limit == 0.0  # no resistance: never held, no events
+    for i in range(n):
+        force = spring_forces(np.asarray(x0))[i]
+        spin[i] = 0.0 if abs(force) <= limit[i] and not free[i] else math.copysign(1.0, force)
+    y = np.concatenate([x0, np.zeros(n)])
+    t = 0.0
+    out = np.empty((times.size, n))
+    events_seen = []
+    while t < duration:
+        held = (spin == 0.0) & ~free  # this stretch's resting bodies
+        direction = spin.copy()  # and every body's resistance direction
+
+        def rhs(_t, state, held=held, direction=direction):
+            x, v = state[:n], state[n:]
+            acc = (spring_forces(x) - limit * direction) / inertia
+            acc[held] = 0.0
+            return np.concatenate([np.where(held, 0.0, v), acc])
+
+        functions, labels = [], []
+        for i in np.flatnonzero(~free):
+            if spin[i] != 0.0:
+                functions.append(lambda _t, s, i=i, d=spin[i]: d * s[n + i])
+                labels.append(("rest", i))
+            else:
+                functions.append(lambda _t, s, i=i: limit[i] - abs(spring_forces(s[:n])[i]))
+                labels.append(("release", i))
+        for f in functions:
+            f.terminal, f.direction = True, -1.0
+        solution = scipy.integrate.solve_ivp(
+            rhs,
+            (t, duration),
+            y,
+            method="DOP853",
+            rtol=1e-13,
+            atol=1e-16,
+            events=functions,
+            dense_output=True,
+        )
+        end = solution.t[-1]
+        inside = (times >= t) & (times <= end)
+        out[inside] = solution.sol(times[inside])[:n].T
+        if solution.status != 1:
+            break
+        which = next(j for j, te in enumerate(solution.t_events) if len(te))
+        kind, i = labels[which]
+        y = solution.y_events[which][0].copy()
+        t = float(solution.t_events[which][0])
+        if kind == "rest":
+            y[n + i] = 0.0
+            force = spring_forces(y[:n])[i]
+            if abs(force) <= limit[i]:
+                spin[i] = 0.0
+                events_seen.append(("rest", i, t))
+            else:
+                spin[i] = math.copysign(1.0, force)
+        else:
+            spin[i] = math.copysign(1.0, spring_forces(y[:n])[i])
+            events_seen.append(("release", i, t))
+    return out, events_seen
+
+
+def test_hoop_and_cylinder_with_rolling_resistance_match_an_independent_integration():
+    system = as_system("hoop-cylinder").model_dump()
+    system["bodies"][0]["rolling_resistance"] = 0.03
+    system["bodies"][1]["rolling_resistance"] = 0.003
+    duration = 3.0
+    tr = simulate(system, duration, rtol=1e-11, n_output=601)
+    x_ref, seen = reference_level_chain(
+        [1.0, 1.0], [1.0, 0.5], [0.03, 0.003], 100.0, 0.5, [0.0, 0.49], duration, tr.t
+    )
+    ids = ("hoop", "cylinder")
+    events = [(e["kind"], ids.index(e["body"]), e["time"]) for e in tr.events]
+    # the hoop stops, is released by the cylinder's pull, stops again; then the cylinder stops
+    assert [(kind, ids[i]) for kind, i, _ in events] == [
+        ("rest", "hoop"),
+        ("release", "hoop"),
+        ("rest", "hoop"),
+        ("rest", "cylinder"),
+    ]
+    assert [(kind, i) for kind, i, _ in events] == [(kind, i) for kind, i, _ in seen]
+    np.testing.assert_allclose([t for *_, t in events], [t for *_, t in seen], atol=1e-9)
+    np.testing.assert_allclose(tr.x, x_ref, atol=1e-9)
+    # energy: E(t) + W(t) = E0, to the integration's tolerance
+    assert tr.summary["energy_error"] < 1e-9
+    summary = tr.summary
+    final_energy = float(tr.energy[-1])
+    assert final_energy + summary["energy_dissipated"] == pytest.approx(summary["energy"], rel=1e-9)
+
+
+def test_energy_balance_of_a_nonlinear_damped_resisted_run_with_an_off_centre_spring():
+    system = make_system(
+        bodies=[
+            body("hoop", "hoop", mass=1.0, radius=0.1, x=0.0, rolling_resistance=0.003),
+            body("ball", "sphere", mass=0.7, radius=0.08, x=0.45, v=0.3, rolling_resistance=0.01),
+        ],
+        springs=[
+            spring(
+                "hoop",
+                "ball",
+                stiffness=60.0,
+                rest_length=0.5,
+                damping=0.05,
+                at=[{"radius": 0.06, "angle": 70.0}, {"height": 0.12}],
+            )
+        ],
+    )
+    tr = simulate(system, 4.0, rtol=1e-10)
+    summary = tr.summary
+    assert summary["status"] == "finished"
+    by = summary["dissipated_by"]
+    assert by["rolling_resistance"] > 0.0 and by["damping"] > 0.0
+    assert summary["energy_error"] < 1e-8
+    assert float(tr.energy[-1]) + summary["energy_dissipated"] == pytest.approx(
+        summary["energy"], rel=1e-8
+    )
+
+
+def test_the_physics_forms_of_the_resistance_agree_with_the_simulation():
+    # a moving body: the resistance's torque, the friction (M8 with M21), the power C_rr N |v|
+    c_rr, v0 = 0.02, 1.5
+    system = lone_body("cylinder", v0, c_rr)
+    arrays = system_arrays(system)
+    q, qdot = np.zeros(1), np.array([v0 / 0.15])
+    f0, normal = contact_forces(arrays, q)
+    torque = rolling_resistance_torque(arrays, normal, qdot)
+    assert torque[0] == pytest.approx(-c_rr * 2.0 * G * 0.15, rel=1e-15)
+    friction, normal_r = resisted_contact_forces(arrays, q, qdot)
+    assert normal_r[0] == normal[0] == 2.0 * G
+    assert friction[0] - f0[0] == pytest.approx(-c_rr * 2.0 * G / 1.5, rel=1e-14)
+    power = dissipated_power(arrays, np.zeros(0), np.zeros(0), friction, np.zeros(1), normal, qdot)
+    assert power[2] == pytest.approx(c_rr * 2.0 * G * v0, rel=1e-14)
+    tr = simulate(system, 0.5, rtol=1e-10, n_output=11)
+    np.testing.assert_allclose(tr.friction[:, 0], friction[0], rtol=1e-13)
+
+
+def test_without_rolling_resistance_the_written_system_is_unchanged():
+    system = as_system("hoop-cylinder")
+    assert all(b.rolling_resistance == 0.0 for b in system.bodies)
+    assert "rolling_resistance" not in system.model_dump()["bodies"][0]
+    resisted = system.model_dump()
+    resisted["bodies"][0]["rolling_resistance"] = 0.01
+    again = as_system(as_system(resisted).model_dump())
+    assert again.bodies[0].rolling_resistance == 0.01
+
+
+@pytest.mark.parametrize(
+    ("value", "words"),
+    [
+        (-0.01, "must be between 0 and 0.5"),
+        (0.75, "must be between 0 and 0.5"),
+        (math.nan, "finite"),
+        (math.inf, "finite"),
+        (True, "must be a number"),
+        ("0.01", "must be a number"),
+    ],
+)
+def test_bad_rolling_resistance_is_a_one_line_error_naming_the_field(value, words):
+    system = as_system("hoop-cylinder").model_dump()
+    system["bodies"][1]["rolling_resistance"] = value
+    with pytest.raises(ModelError, match=r"bodies\[1\]\.rolling_resistance") as caught:
+        as_system(system)
+    assert words in str(caught.value)
+    assert "\n" not in str(caught.value)
+
+
+def test_a_slider_takes_no_rolling_resistance():
+    system = as_system("two-masses").model_dump()
+    system["bodies"][0]["rolling_resistance"] = 0.01
+    with pytest.raises(ModelError, match=r"rolling_resistance.*slider") as caught:
+        as_system(system)
+    assert "\n" not in str(caught.value)
+
+
+def test_batch_runs_refuse_rolling_resistance_naming_the_path():
+    from rollspring.simulate.batch import simulate_batch
+
+    system = as_system("hoop-cylinder").model_dump()
+    with pytest.raises(ModelError, match=r"bodies\.hoop\.rolling_resistance.*rollspring.simulate"):
+        simulate_batch(system, {"bodies.hoop.rolling_resistance": [0.01, 0.02]}, 1.0)
+    system["bodies"][1]["rolling_resistance"] = 0.01
+    with pytest.raises(
+        ModelError, match=r"bodies\.cylinder\.rolling_resistance.*rollspring.simulate"
+    ):
+        simulate_batch(system, {"springs.0.stiffness": [90.0, 110.0]}, 1.0)
+
+
+def test_the_analysis_says_the_motion_is_not_linear_and_gives_the_exact_decay_per_period():
+    from rollspring.analysis import analyze
+
+    amplitude, c_rr, k, mass = 0.1, 0.01, 10.0, 1.0
+    system = wall_cylinder(amplitude, c_rr, k, mass)
+    analysis = analyze(system)
+    [mode] = analysis.oscillating
+    n = mass * G
+    assert mode.resistance_decay == pytest.approx(4 * c_rr * n / k, rel=1e-12)  # (M23)
+    assert any("not linear" in w and "cyl" in w for w in analysis.warnings)
+    entry = analysis.to_dict()["modes"][0]
+    assert entry["resistance_decay_per_period"] == pytest.approx(4 * c_rr * n / k, rel=1e-12)
+    # the simulated turning points a period apart (outputs 0, 1000 and 2000) fall by that much,
+    # exactly; after 2.5 periods the body rests
+    tr = simulate(system, 2 * mode.period, rtol=1e-10, n_output=2001)
+    turning = tr.x[[0, 1000, 2000], 0]
+    np.testing.assert_allclose(-np.diff(turning), mode.resistance_decay, rtol=1e-8)
+    assert "resistance_decay_per_period" not in analyze("hoop-cylinder").to_dict()["modes"][0]
+
+
+@pytest.mark.parametrize("value", ["-0.01", "nan", "true", "0.9", '"0.1"'])
+def test_the_command_line_refuses_bad_rolling_resistance_in_one_line(tmp_path, value):
+    from typer.testing import CliRunner
+
+    from rollspring.cli import app
+
+    path = tmp_path / "bad.toml"
+    path.write_text(
+        '[[bodies]]\nid = "hoop"\nshape = "hoop"\nmass = 1.0\nradius = 0.1\nx = 0.0\n'
+        f"rolling_resistance = {value}\n"
+    )
+    result = CliRunner().invoke(app, ["simulate", str(path), "--duration", "1"])
+    assert result.exit_code == 2
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1
+    assert "bodies[0].rolling_resistance" in lines[0] and lines[0].startswith("error:")
+
+
+@settings(max_examples=30)
+@given(
+    c_rr=st.floats(0.0, 0.5),
+    normal=st.floats(-1e3, 1e3),
+    radius=st.floats(1e-3, 1e3),
+    omega=st.floats(-1e3, 1e3),
+)
+def test_the_law_and_the_physics_state_the_resistance_alike(c_rr, normal, radius, omega):
+    from rollspring.simulate.kernels.law import resistance_limit, rolling_resistance
+
+    arrays = system_arrays(lone_body("cylinder", 0.0, c_rr, radius=radius))
+    spin = float(np.sign(omega))
+    torque = rolling_resistance_torque(arrays, np.array([normal]), np.array([omega]))
+    assert rolling_resistance(c_rr, normal, radius, spin) == torque[0]
+    assert resistance_limit(c_rr, normal, radius) == -torque[0] * spin or spin == 0.0
+    power = dissipated_power(
+        arrays, np.zeros(0), np.zeros(0), np.zeros(1), np.zeros(1), [normal], [omega]
+    )
+    assert power[2] == pytest.approx(resistance_limit(c_rr, normal, radius) * abs(omega))
+
+
+def test_newton_and_lagrange_derive_the_resistance_as_a_generalised_force():
+    import sympy as sp
+
+    from rollspring import derive
+
+    system = as_system("hoop-cylinder").model_dump()
+    system["bodies"][0]["rolling_resistance"] = 0.03
+    derivation = derive(system, method=["newton", "lagrange"], symbols=True)
+    c_rr, radius, g, m1 = sp.symbols("C_rr1 R g m_1", positive=True)
+    phidot = sp.Symbol("phidot_1", real=True)
+    by_hand = -c_rr * (m1 * g) * radius * sp.sign(phidot)  # N = m g: a level centre spring
+    for name in ("newton", "lagrange"):
+        result = derivation.methods[name]
+        [step] = [s for s in result.section.steps if "(M21)" in s.ref]
+        [resisted] = step.equation
+        exact = result.nonlinear[0]
+        assert sp.simplify(resisted.lhs - exact.lhs) == 0
+        added = sp.simplify(resisted.rhs - exact.rhs)
+        mine = {str(s): s for s in (c_rr, radius, g, m1, phidot)}
+        assert {str(s) for s in added.free_symbols} == set(mine)
+        ours = added.subs({s: mine[str(s)] for s in added.free_symbols})
+        assert sp.simplify(ours - by_hand) == 0
+    notes = "; ".join(derivation.symbolic.notes)
+    assert "energy conservation and Hamilton's equations do not take it" in notes
+
+
+def test_the_report_shows_the_coefficient_and_the_energy_it_dissipated():
+    from rollspring import build_report
+
+    system = as_system("hoop-cylinder").model_dump()
+    system["bodies"][0]["rolling_resistance"] = 0.03
+    resisted = build_report(system, duration=3.0, derivation=False)
+    html = resisted.html
+    assert "<th>C_rr</th>" in html and ">0.03</td>" in html
+    [line] = re.findall(r"energy dissipated \(J\)[^<]*</td><td[^>]*>([^<]*)</td>", html)
+    by = simulate(system, 3.0).summary["dissipated_by"]
+    shown = [float(v) for v in line.split(", ")]
+    assert shown[:2] == [0.0, 0.0]
+    assert shown[2] == pytest.approx(by["rolling_resistance"], rel=1e-5) and shown[2] > 0
+    plain = build_report("hoop-cylinder", duration=3.0, derivation=False).html
+    assert "C_rr" not in plain and "energy dissipated" not in plain
+
+
+def test_while_slipping_the_resistance_acts_on_the_rotation_alone():
+    # docs/physics.md section 9's cylinder on a wall spring, slipping from release, with C_rr:
+    # the centre moves as without it, x = x_e + (x0 - x_e) cos(w0 t); the rotation, braked by
+    # kinetic friction's torque R mu_k N and turned back by the resistance's C_rr N R (it turns
+    # clockwise-negative), follows phi = -(mu_k - C_rr) g t^2 / R; the body sticks where the
+    # contact point's velocity x' - R phi' is 0 again
+    from scipy.optimize import brentq
+
+    stretch, mu_s, mu_k, c_rr, k, radius = 0.1, 0.3, 0.25, 0.05, 100.0, 0.1
+    system = make_system(
+        [
+            body(
+                "c",
+                "cylinder",
+                mass=1.0,
+                radius=radius,
+                x=0.5 + stretch,
+                mu_static=mu_s,
+                mu_kinetic=mu_k,
+                rolling_resistance=c_rr,
+            )
+        ],
+        [spring("wall", "c", stiffness=k, rest_length=0.5)],
+        anchors=[{"id": "wall", "x": 0.0, "y": radius}],
+    )
+    w0, x_e, x0 = 10.0, 0.5 + mu_k * G / k, 0.5 + stretch
+
+    def slip_velocity(t):
+        return -(x0 - x_e) * w0 * np.sin(w0 * t) + 2 * (mu_k - c_rr) * G * t
+
+    t_stick = brentq(slip_velocity, 1e-6, math.pi / w0)
+    tr = simulate(system, 1.0, rtol=1e-12, on_slip="continue", n_output=1001)
+    assert tr.events[0] == {"kind": "slip", "time": 0.0, "body": "c"}
+    assert tr.events[1]["kind"] == "stick"
+    assert tr.events[1]["time"] == pytest.approx(t_stick, abs=1e-9)
+    during = (tr.t > 0) & (tr.t < t_stick)
+    t = tr.t[during]
+    np.testing.assert_allclose(tr.x[during, 0], x_e + (x0 - x_e) * np.cos(w0 * t), atol=1e-9)
+    np.testing.assert_allclose(tr.phi[during, 0], -(mu_k - c_rr) * G * t**2 / radius, atol=1e-9)
+    by = tr.summary["dissipated_by"]
+    assert by["kinetic_friction"] > 0 and by["rolling_resistance"] > 0
+    assert tr.summary["energy_error"] < 1e-9
+
+
+@settings(max_examples=6)
+@given(
+    masses=st.tuples(st.floats(0.3, 3.0), st.floats(0.3, 3.0), st.floats(0.3, 3.0)),
+    shapes=st.tuples(*[st.sampled_from(["hoop", "cylinder", "sphere", "shell"])] * 3),
+    c_rr=st.tuples(st.floats(0.0, 0.02), st.floats(0.0, 0.02), st.floats(0.001, 0.02)),
+    offsets=st.tuples(st.floats(-0.02, 0.02), st.floats(-0.02, 0.02)),
+)
+def test_random_chains_with_rolling_resistance_match_the_independent_integration(
+    masses, shapes, c_rr, offsets
+):
+    gammas = {"hoop": 1.0, "cylinder": 0.5, "sphere": 0.4, "shell": 2.0 / 3.0}
+    x0 = [0.0, 0.5 + offsets[0], 1.0 + offsets[1]]
+    system = make_system(
+        bodies=[
+            body(f"b{i}", shapes[i], mass=masses[i], x=x0[i], rolling_resistance=c_rr[i])
+            for i in range(3)
+        ],
+        springs=[
+            spring("b0", "b1", stiffness=50.0, rest_length=0.5),
+            spring("b1", "b2", stiffness=50.0, rest_length=0.5),
+        ],
+    )
+    duration = 2.0
+    tr = simulate(system, duration, rtol=1e-11, n_output=401)
+    x_ref, seen = reference_level_chain(
+        masses, [gammas[s] for s in shapes], c_rr, 50.0, 0.5, x0, duration, tr.t
+    )
+    events = [(e["kind"], int(e["body"][1:]), e["time"]) for e in tr.events]
+    assert [(kind, i) for kind, i, _ in events] == [(kind, i) for kind, i, _ in seen]
+    np.testing.assert_allclose([t for *_, t in events], [t for *_, t in seen], atol=1e-9)
+    np.testing.assert_allclose(tr.x, x_ref, atol=1e-8)
+    assert tr.summary["energy_error"] < 1e-9
+
+
+def test_a_body_held_at_rest_needs_the_friction_that_balances_the_spring():
+    # the wall cylinder comes to rest 1.9 mm on the near side, the spring pulling it with
+    # k |x| = 0.019 N < C_rr N = 0.0981 N: the friction holding it is -F_x, in the simulation
+    # and in the physics (M22)
+    tr = simulate(wall_cylinder(0.1, 0.01), 8.0, rtol=1e-10, n_output=81)
+    arrays = system_arrays(wall_cylinder(0.1, 0.01))
+    rest = tr.t > 6.1
+    x = tr.x[rest, 0]
+    np.testing.assert_allclose(tr.friction[rest, 0], 10.0 * x, rtol=1e-9)  # -F_x = +k x
+    q = tr.phi[rest]
+    friction, normal = resisted_contact_forces(arrays, q, np.zeros_like(q))
+    np.testing.assert_allclose(friction[:, 0], tr.friction[rest, 0], rtol=1e-12)
+    np.testing.assert_allclose(normal[:, 0], G, rtol=1e-15)
+    # driven beyond what the resistance holds, it rolls away at once, the resistance against it
+    far = np.array([1.0])  # 0.2 m out: k x = 2 N > 0.0981 N, pulling it back
+    friction, _ = resisted_contact_forces(arrays, far, np.zeros(1))
+    plain, _ = contact_forces(arrays, far)
+    assert friction[0] - plain[0] == pytest.approx(+0.01 * G / 1.5, rel=1e-12)

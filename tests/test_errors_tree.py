@@ -208,6 +208,7 @@ def test_the_docstring_groups_the_tree_by_layer() -> None:
         "model",
         "analysis",
         "simulate",
+        "lab",
         "outputs",
         "service",
         "web",

@@ -12,6 +12,7 @@ springs to each other and to walls. Quick start::
     rollspring.check_paper()                              # the paper's claims with verdicts
     rollspring.build_report(system)                       # the self-contained HTML report
     rollspring.sweep(system, {"springs.0.stiffness": k}, 10.0)   # a grid of runs -> xarray
+    rollspring.fit("tracks.csv", system, free=["springs.0.stiffness"])  # a measured table fitted
 
 Every name loads its part on first use (SciPy for the analysis, the compiled kernels for the
 simulation, SymPy and Matplotlib for derivations and reports), so ``import rollspring`` stays
@@ -31,6 +32,7 @@ TYPE_CHECKING = False  # as typing.TYPE_CHECKING, without importing typing (10 m
 if TYPE_CHECKING:  # what the names below load on first use, for type checkers and editors
     from rollspring import analysis as analysis
     from rollspring import cli as cli
+    from rollspring import lab as lab
     from rollspring import model as model
     from rollspring import outputs as outputs
     from rollspring import physics as physics
@@ -41,6 +43,7 @@ if TYPE_CHECKING:  # what the names below load on first use, for type checkers a
     from rollspring.analysis.derivation import Derivation, derive, symbolic_system
     from rollspring.analysis.dispersion import dispersion
     from rollspring.analysis.paper import check_paper, paper_claims
+    from rollspring.lab.api import fit
     from rollspring.model import (
         Anchor,
         Attachment,
@@ -113,7 +116,15 @@ def _register_presenters() -> None:
         to_pandas=_shown_by("trajectory_to_pandas"),
         to_xarray=_shown_by("trajectory_to_xarray"),
         animate=_shown_by("animate_inline"),
+        fit_html=_fit_html,
     )
+
+
+def _fit_html(*args, **kwargs):
+    """``FitResult._repr_html_``: :func:`rollspring.outputs.lab.fit_html`, imported when called."""
+    from rollspring.outputs.lab import fit_html
+
+    return fit_html(*args, **kwargs)
 
 
 _register_presenters()
@@ -194,12 +205,13 @@ _LAZY = {
     "sweep": "rollspring.service.sweeps",
     "dispersion": "rollspring.analysis.dispersion",
     "export_mjcf": "rollspring.outputs.mjcf",
+    "fit": "rollspring.lab.api",
     "create_app": "rollspring.web.app",
 }
 
 #: The subpackages, also loaded on first use (``rollspring.simulate`` is one of them).
 _SUBPACKAGES = frozenset(
-    {"analysis", "cli", "model", "outputs", "physics", "service", "simulate", "web"}
+    {"analysis", "cli", "lab", "model", "outputs", "physics", "service", "simulate", "web"}
 )
 
 #: Names that need an optional extra (``pip install 'rollspring[extra]'``).
@@ -278,6 +290,7 @@ __all__ = [
     "dispersion",
     "export_mjcf",
     "find_equilibrium",
+    "fit",
     "generalized_forces",
     "kinetic_energy",
     "load_system",

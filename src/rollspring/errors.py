@@ -19,6 +19,9 @@ The tree, grouped by the layer that raises each class (bottom layer first)::
     ├── CostTooHigh             a run's estimated time or memory is above the bound (--yes)
     │ simulate
     ├── SimulationError         invalid simulation arguments (duration, tolerance, integrator)
+    │ lab
+    ├── DataError               a measured table cannot be read or matched to the system's bodies
+    ├── FitError                a fit cannot be set up as asked (a PATH, too few points)
     │ outputs
     ├── OutputError             an output file or directory cannot be written
     ├── ReportError             the report cannot be made or written as asked
@@ -57,8 +60,10 @@ __all__ = [
     "AnimationError",
     "BudgetExceeded",
     "CostTooHigh",
+    "DataError",
     "DerivationError",
     "ExportError",
+    "FitError",
     "JobFailed",
     "MapError",
     "MathConversionError",
@@ -123,6 +128,20 @@ class CostTooHigh(RollspringError, ValueError):
 
 class SimulationError(RollspringError, ValueError):
     """A simulation was requested with invalid arguments (duration, tolerance, integrator)."""
+
+
+# ------------------------------------------------------------------------------------ lab
+
+
+class DataError(RollspringError, ValueError):
+    """A measured table (a ``track`` CSV, a plain CSV, a Tracker export) cannot be read or
+    matched to the system's bodies: the one-line message names the file, the row or column and
+    the reason (no time column, unsorted or repeated times, an unknown track)."""
+
+
+class FitError(RollspringError, ValueError):
+    """A fit cannot be set up as asked: a ``--free`` PATH that is not a number of the system,
+    fewer measured points than fitted parameters (the message names the PATH or the file)."""
 
 
 # -------------------------------------------------------------------------------- outputs

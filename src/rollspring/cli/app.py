@@ -22,6 +22,7 @@ from rollspring.cli.commands import (
     derive,
     dispersion,
     export,
+    fit,
     paper_check,
     presets,
     report,
@@ -157,6 +158,7 @@ COMMANDS = (
     sweep_plot,
     chain,
     dispersion,
+    fit,
 )
 
 

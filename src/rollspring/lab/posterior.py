@@ -1,0 +1,139 @@
+r"""A posterior of a fit by MCMC (emcee's affine-invariant ensemble sampler).
+
+The likelihood is Gaussian in the residuals with the fit's noise :math:`s` (the tracking noise
+estimated from the residuals), the prior flat within the model's ranges:
+
+.. math:: \ln p(\theta\mid d) = -\frac{1}{2s^2}\sum_{jb} r_{jb}(\theta)^2 + \text{const}.
+
+The walkers start in a small ball (a tenth of a standard error) around the least-squares
+minimum and are evaluated as one batch (``vectorize=True``): on the linear route every walker's
+motion :math:`e^{B\tau}z_0` comes from one batched matrix exponential and one batched product
+(:func:`rollspring.lab.motion.transition_matrices` over a leading axis of systems). Credible
+intervals are the 2.5 % and 97.5 % quantiles of the chain after its first half is discarded.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from rollspring.errors import FitError
+from rollspring.lab import parameters as paths_module
+from rollspring.lab.fit import FitResult
+from rollspring.lab.motion import transition_matrices
+from rollspring.physics.arrays import FloatArray
+
+__all__ = ["Posterior", "sample_posterior"]
+
+
+@dataclass(frozen=True)
+class Posterior:
+    """The chain (steps, walkers, parameters) after burn-in, the parameters' names, their
+    medians and 95 % credible intervals, and the mean acceptance fraction."""
+
+    names: tuple[str, ...]
+    samples: FloatArray
+    median: FloatArray
+    low: FloatArray
+    high: FloatArray
+    acceptance: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """``{name: {"median", "low", "high"}}`` (the 95 % credible interval), the acceptance."""
+        return {
+            "credible_intervals": {
+                name: {"median": float(m), "low": float(lo), "high": float(hi)}
+                for name, m, lo, hi in zip(
+                    self.names, self.median, self.low, self.high, strict=True
+                )
+            },
+            "acceptance": float(self.acceptance),
+            "samples": int(self.samples.shape[0] * self.samples.shape[1]),
+        }
+
+
+def _log_probability(result: FitResult, points: FloatArray) -> FloatArray:
+    """The log-posterior of each row of ``points`` (walkers, fitted parameters)."""
+    problem = result.problem
+    layout = problem.layout
+    names = layout.names
+    fitted = [names.index(name) for name in result.fitted]
+    full = np.repeat(result.best[None, :], points.shape[0], axis=0)
+    full[:, fitted] = points
+    out = np.full(points.shape[0], -np.inf)
+    p, n = layout.n_paths, len(problem.ids)
+    low = np.array([paths_module.bounds_of(path, 0.0)[0] for path in layout.paths])
+    high = np.array([paths_module.bounds_of(path, 0.0)[1] for path in layout.paths])
+    inside = np.all((full[:, :p] >= low) & (full[:, :p] <= high), axis=1)
+    scale = 1.0 / (2.0 * result.noise**2)
+    if problem.level:
+        matrices, rows = [], []
+        for k in np.flatnonzero(inside):
+            try:
+                matrices.append(problem.model(full[k, :p])[2])
+            except FitError:
+                continue
+            rows.append(k)
+        if not rows:
+            return out
+        chosen = full[rows]
+        offset = chosen[:, p + 2 * n + 1]
+        start = chosen[:, p + 2 * n]
+        if np.ptp(start) == 0:  # t0 held (or equal): one batch of exponentials
+            tau = np.maximum(problem.t - start[0], 0.0)
+            phi = transition_matrices(np.stack(matrices), tau)[:, :, problem.measured, :]
+            z0 = np.concatenate([chosen[:, p : p + 2 * n], np.ones((len(rows), 1))], axis=1)
+            x = np.einsum("wnbm,wm->wnb", phi, z0) + offset[:, None, None]
+            residual = x[:, problem.mask] - problem.observed
+            out[rows] = -scale * np.sum(residual**2, axis=1)
+            return out
+    for k in np.flatnonzero(inside):
+        try:
+            residual = problem.residual(full[k])
+        except (FitError, ArithmeticError):
+            continue
+        out[k] = -scale * float(residual @ residual)
+    return out
+
+
+def sample_posterior(
+    result: FitResult, *, walkers: int | None = None, steps: int = 300, seed: int = 0
+) -> Posterior:
+    """Sample the posterior around ``result`` (the module's docstring) with ``walkers`` walkers
+    (default: four per parameter, at least 16) for ``steps`` steps, the first half discarded.
+    Seeded: the same ``seed`` gives the same chain."""
+    try:
+        import emcee  # type: ignore[import-untyped]
+    except ModuleNotFoundError:
+        from rollspring.errors import MissingExtraError
+
+        raise MissingExtraError("--posterior", ("lab",)) from None
+    names = result.fitted
+    dimension = len(names)
+    if dimension == 0:
+        raise FitError("--posterior: no parameter is fitted")
+    count = walkers or max(16, 4 * dimension)
+    count += count % 2
+    centre = np.array([result.parameters[name].value for name in names])
+    spread = np.array([result.parameters[name].stderr for name in names])
+    spread = np.where(np.isfinite(spread) & (spread > 0), spread, 1e-6 * np.maximum(1, abs(centre)))
+    rng = np.random.default_rng(seed)
+    start = centre + 0.1 * spread * rng.standard_normal((count, dimension))
+    sampler = emcee.EnsembleSampler(
+        count,
+        dimension,
+        lambda points: _log_probability(result, np.atleast_2d(points)),
+        vectorize=True,
+    )
+    sampler.random_state = np.random.RandomState(seed).get_state()
+    sampler.run_mcmc(start, steps, progress=False)
+    chain = sampler.get_chain(discard=steps // 2)
+    flat = chain.reshape(-1, dimension)
+    low, median, high = np.percentile(flat, [2.5, 50.0, 97.5], axis=0)
+    acceptance = float(np.mean(sampler.acceptance_fraction))
+    return Posterior(
+        tuple(names), chain, median, low, high, acceptance if math.isfinite(acceptance) else 0.0
+    )

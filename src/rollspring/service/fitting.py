@@ -21,7 +21,7 @@ from rollspring.errors import FitError
 from rollspring.lab.fit import FitResult
 from rollspring.model import System
 
-__all__ = ["FitRequest", "parse_mapping", "run_fit", "write_fit_outputs"]
+__all__ = ["FitRequest", "lab_request", "parse_mapping", "run_fit", "write_fit_outputs"]
 
 
 @dataclass(frozen=True)
@@ -49,6 +49,30 @@ def parse_mapping(items: Sequence[str]) -> dict[str, str]:
             raise FitError(f"--map {item}: track '{track}' is mapped twice")
         mapping[track] = body
     return mapping
+
+
+def lab_request(
+    system: System,
+    data: str | os.PathLike[str],
+    free: Sequence[str] | None = None,
+    mapping: Mapping[str, str] | None = None,
+) -> FitRequest:
+    """The fit of a report's lab section: ``free`` PATHs, by default every spring's stiffness
+    and damping. The data file is read, matched to the bodies and the PATHs checked now, so a
+    bad one is refused before the report's work (one-line :class:`~rollspring.errors.DataError`
+    or :class:`FitError`)."""
+    from rollspring.lab.data import match_bodies, read_data
+    from rollspring.lab.parameters import check_paths
+
+    if free is None:
+        free = [
+            f"springs.{i}.{quantity}"
+            for i in range(len(system.springs))
+            for quantity in ("stiffness", "damping")
+        ]
+    match_bodies(read_data(data), system, mapping)
+    check_paths(system, list(free))
+    return FitRequest(data=os.fspath(data), free=tuple(free), mapping=dict(mapping or {}))
 
 
 def run_fit(

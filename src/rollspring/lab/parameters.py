@@ -116,12 +116,30 @@ def get_value(data: dict[str, Any], path: str) -> float:
     """The number a PATH names in the JSON form ``data``; a one-line :class:`FitError` when it
     names nothing, or something that is not a number."""
     container, key = _locate(data, path)
-    if not isinstance(container, dict) or key not in container:
+    if not isinstance(container, dict):
         raise FitError(f"--free {path}: not a number of the system (no '{key}')")
-    value = container[key]
+    value = container[key] if key in container else _default(path, key)
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise FitError(f"--free {path}: not a number of the system ({key} is {value!r})")
     return float(value)
+
+
+def _default(path: str, key: str) -> Any:
+    """The model's default of a field its JSON form leaves out (a coefficient at 0, say), or a
+    :class:`FitError` when the model has no such field."""
+    from rollspring.model import Anchor, Body, ExternalForce, Spring
+    from rollspring.model import System as SystemModel
+
+    parts = path.split(".")
+    model: Any = {
+        "bodies": Body,
+        "springs": Spring,
+        "anchors": Anchor,
+        "forces": ExternalForce,
+    }.get(parts[0], SystemModel)
+    if len(parts) not in (1, 3) or key not in model.model_fields:
+        raise FitError(f"--free {path}: not a number of the system (no '{key}')")
+    return model.model_fields[key].default
 
 
 def check_paths(system: System, paths: Sequence[str]) -> tuple[str, ...]:

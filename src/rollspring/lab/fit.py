@@ -69,6 +69,7 @@ __all__ = [
     "FitStatus",
     "Parameter",
     "fit_model",
+    "linear_route",
     "spectral_peaks",
 ]
 
@@ -148,8 +149,7 @@ class _Problem:
         self.measured = np.asarray(data_table.index, dtype=np.int64)
         self.mask = np.isfinite(data_table.x)
         self.observed = data_table.x[self.mask]
-        arrays = system_arrays(system)
-        self.level = springs_stay_level(arrays) and not _has_rolling_resistance(system)
+        self.level = linear_route(system, layout.paths)
         self._systems: dict[tuple[float, ...], tuple[System, SystemArrays, FloatArray]] = {}
 
     # -- the model at given parameters --------------------------------------------------------
@@ -243,10 +243,21 @@ def _step(value: float, exact: bool, state: bool) -> float:
     return relative * max(abs(value), floor)
 
 
-def _has_rolling_resistance(system: System) -> bool:
-    """Whether a body has a rolling resistance (once the model has one): a force that is not
-    linear in the state, so the motion is simulated."""
-    return any(float(getattr(body, "rolling_resistance", 0.0) or 0.0) > 0 for body in system.bodies)
+#: Quantities the exact linear motion leaves out (the rolling resistance, a force
+#: :math:`-C_{rr}N\,\mathrm{sign}(v)` that is not linear; the friction coefficients, which
+#: decide slipping): a fit that frees one of them, or a system with a rolling resistance, is
+#: fitted on the simulated motion.
+NONLINEAR_QUANTITIES = ("rolling_resistance", "mu_static", "mu_kinetic")
+
+
+def linear_route(system: System, paths: Sequence[str] = ()) -> bool:
+    """Whether the fit's motion is the exact linear solution: level centre-joined springs
+    (:func:`~rollspring.physics.mechanics.springs_stay_level`), no body with a rolling
+    resistance, no free PATH among :data:`NONLINEAR_QUANTITIES`."""
+    if any(path.split(".")[-1] in NONLINEAR_QUANTITIES for path in paths):
+        return False
+    resisted = any(float(getattr(b, "rolling_resistance", 0.0) or 0.0) > 0 for b in system.bodies)
+    return springs_stay_level(system_arrays(system)) and not resisted
 
 
 # ------------------------------------------------------------------------------- first guess

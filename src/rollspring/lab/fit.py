@@ -151,6 +151,8 @@ class _Problem:
         self.observed = data_table.x[self.mask]
         self.level = linear_route(system, layout.paths)
         self._systems: dict[tuple[float, ...], tuple[System, SystemArrays, FloatArray]] = {}
+        #: the posterior's affine motion matrices, by the PATHs' values they were made at
+        self.affine: dict[tuple[float, ...], tuple[FloatArray, FloatArray] | None] = {}
 
     # -- the model at given parameters --------------------------------------------------------
 

@@ -70,13 +70,21 @@ def _log_probability(result: FitResult, points: FloatArray) -> FloatArray:
     inside = np.all((full[:, :p] >= low) & (full[:, :p] <= high), axis=1)
     scale = 1.0 / (2.0 * result.noise**2)
     if problem.level:
-        matrices, rows = [], []
-        for k in np.flatnonzero(inside):
-            try:
-                matrices.append(problem.model(full[k, :p])[2])
-            except FitError:
-                continue
-            rows.append(k)
+        rows = [int(k) for k in np.flatnonzero(inside)]
+        affine = _affine_motion(result) if p else None
+        if affine is not None:
+            base, slopes = affine
+            shift = full[rows, :p] - result.best[:p]
+            matrices = list(base + np.einsum("wp,pij->wij", shift, slopes))
+        else:
+            matrices, kept = [], []
+            for k in rows:
+                try:
+                    matrices.append(problem.model(full[k, :p])[2])
+                except FitError:
+                    continue
+                kept.append(k)
+            rows = kept
         if not rows:
             return out
         chosen = full[rows]
@@ -90,13 +98,55 @@ def _log_probability(result: FitResult, points: FloatArray) -> FloatArray:
             residual = x[:, problem.mask] - problem.observed
             out[rows] = -scale * np.sum(residual**2, axis=1)
             return out
-    for k in np.flatnonzero(inside):
+    for walker in np.flatnonzero(inside).tolist():
         try:
-            residual = problem.residual(full[k])
+            residual = problem.residual(full[walker])
         except (FitError, ArithmeticError):
             continue
-        out[k] = -scale * float(residual @ residual)
+        out[walker] = -scale * float(residual @ residual)
     return out
+
+
+def _affine_motion(result: FitResult) -> tuple[FloatArray, FloatArray] | None:
+    r"""``(B(θ̂), ∂B/∂θ)`` when the motion matrix is affine in the free PATHs — as it is in the
+    springs' stiffnesses and dampings (:math:`K = \sum_s k_s b_sb_s^T`, :math:`C = \sum_s
+    c_s b_sb_s^T` with constant lever arms, docs/physics.md (M12)) — checked by finite
+    differences (second differences along each PATH and mixed ones vanish to 1e-10 of B);
+    then every walker's :math:`B = B(\hat\theta) + \sum_p \partial_pB\,\Delta\theta_p`
+    is exact, built for the whole batch at once. None otherwise (a mass enters as 1/m): each
+    walker's system is built on its own."""
+    problem = result.problem
+    theta = result.best[: problem.layout.n_paths]
+    key = tuple(theta.tolist())
+    if key in problem.affine:
+        return problem.affine[key]
+    base = problem.model(theta)[2]
+    scale = float(np.max(np.abs(base)))
+    steps = 1e-2 * np.maximum(np.abs(theta), 1e-2)
+    moved = []
+    answer: tuple[FloatArray, FloatArray] | None = None
+    try:
+        for i, step in enumerate(steps):
+            once, twice = theta.copy(), theta.copy()
+            once[i] += step
+            twice[i] += 2 * step
+            b1, b2 = problem.model(once)[2], problem.model(twice)[2]
+            if np.max(np.abs(b2 - 2 * b1 + base)) > 1e-10 * scale:
+                raise ArithmeticError
+            moved.append(b1)
+        for i in range(len(steps)):
+            for j in range(i + 1, len(steps)):
+                both = theta.copy()
+                both[[i, j]] += steps[[i, j]]
+                mixed = problem.model(both)[2] - moved[i] - moved[j] + base
+                if np.max(np.abs(mixed)) > 1e-10 * scale:
+                    raise ArithmeticError
+        slopes = np.stack([(b - base) / s for b, s in zip(moved, steps, strict=True)])
+        answer = (base, slopes)
+    except (ArithmeticError, FitError):
+        answer = None
+    problem.affine[key] = answer
+    return answer
 
 
 def sample_posterior(

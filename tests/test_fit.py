@@ -500,3 +500,34 @@ def test_the_notebook_view() -> None:
     data = match_bodies(parse_data(_csv_text(t, x), "m.csv"), load_system("hoop-cylinder"))
     view = rollspring.fit(data, DAMPED.system(), ["springs.0.stiffness"])._repr_html_()
     assert "<table>" in view and "springs.0.stiffness" in view and "data:image/png;base64," in view
+
+
+def test_a_long_posterior_is_refused_with_its_estimate(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """On the simulated motion every walker and step is a simulation: above the bound the
+    posterior is refused with its estimate (here the bound lowered to 1 ms), unless --yes."""
+    from rollspring.analysis import costs
+
+    system = load_system("frictionless")
+    run = rollspring.simulate(system, 0.5, n_output=16, rtol=1e-10)
+    x = run.x + np.random.default_rng(13).normal(0, 5e-4, run.x.shape)
+    header = "t," + ",".join(f"x_{i}" for i in run.ids)
+    rows = [",".join(map(repr, map(float, (ti, *xi)))) for ti, xi in zip(run.t, x, strict=True)]
+    data = tmp_path / "f.csv"
+    data.write_text("\n".join([header, *rows]) + "\n")
+    monkeypatch.setattr(costs, "MAX_SECONDS", 1e-3)
+    code, out, err = _cli(
+        "fit",
+        str(data),
+        "--system",
+        "frictionless",
+        "--free",
+        "springs.0.stiffness",
+        "--posterior",
+        "-o",
+        str(tmp_path / "fitted.toml"),
+    )
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert err.startswith("error: the posterior would take about") and "--yes" in err
+    assert not (tmp_path / "fitted.toml").exists()

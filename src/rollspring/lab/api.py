@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from rollspring.lab.data import BodyData, Recording, match_bodies, read_data
@@ -24,6 +24,8 @@ def fit(
     posterior: bool = False,
     claims: bool = True,
     seed: int = 0,
+    confirm: bool = False,
+    progress: Callable[[float], None] | None = None,
 ) -> FitResult:
     r"""Fit ``system`` to the measured table ``data`` (a file: a ``track`` CSV, a plain CSV
     ``t,x_<id>,phi_<id>`` or a Tracker data file; or a :class:`~rollspring.lab.data.Recording`)
@@ -35,8 +37,10 @@ def fit(
     matches tracks to bodies (``{"mass A": "hoop"}``). For two bodies the paper's claims are
     measured (:func:`rollspring.lab.claims.measure_claims`: the CM's and X̂'s peak-to-peak
     motion, the frictions' ratio, whether each body rolled); ``posterior`` adds an MCMC
-    posterior (:func:`rollspring.lab.posterior.sample_posterior`) as ``result.posterior``. In
-    Jupyter the result shows itself as a table and a figure.
+    posterior (:func:`rollspring.lab.posterior.sample_posterior`) as ``result.posterior``,
+    refused with its estimate (:class:`~rollspring.errors.CostTooHigh`) above 5 minutes unless
+    ``confirm``. ``progress`` is told the fraction done (0..1). In Jupyter the result shows
+    itself as a table and a figure.
     """
     from rollspring.model.files import as_system
 
@@ -46,7 +50,15 @@ def fit(
     else:
         recording = data if isinstance(data, Recording) else read_data(data)
         table = match_bodies(recording, model, mapping)
-    result = fit_model(table, model, free, fix_initial=fix_initial)
+    share = 0.3 if posterior else 0.9
+
+    def part(low: float, high: float) -> Callable[[float], None] | None:
+        if progress is None:
+            return None
+        report = progress
+        return lambda fraction: report(low + (high - low) * fraction)
+
+    result = fit_model(table, model, free, fix_initial=fix_initial, progress=part(0.0, share))
     measured: dict[str, Any] = {}
     if claims:
         from rollspring.lab.claims import measure_claims
@@ -54,7 +66,11 @@ def fit(
         measured = measure_claims(result)
     sampled = None
     if posterior:
-        from rollspring.lab.posterior import sample_posterior
+        from rollspring.analysis.costs import check_cost
+        from rollspring.lab.posterior import posterior_cost, sample_posterior
 
-        sampled = sample_posterior(result, seed=seed).to_dict()
+        check_cost(posterior_cost(result), confirmed=confirm)
+        sampled = sample_posterior(result, seed=seed, progress=part(share, 1.0)).to_dict()
+    if progress is not None:
+        progress(1.0)
     return dataclasses.replace(result, claims=measured, posterior=sampled)

@@ -62,7 +62,7 @@ def _friction_ratio(result: FitResult, full: FloatArray) -> float:
     from rollspring.analysis import analyze
     from rollspring.lab.fit import fitted_system_of
 
-    analysis = analyze(fitted_system_of(result.problem, full))
+    analysis = analyze(fitted_system_of(result.problem, full), confirm=True)  # two bodies
     amplitude = analysis.friction_amplitude
     if amplitude is None or not amplitude[1] > 0:
         return math.nan

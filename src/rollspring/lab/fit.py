@@ -47,8 +47,10 @@ the data do not constrain (the right singular vector).
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from collections.abc import Sequence
+import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -499,6 +501,7 @@ class FitResult:
     best: FloatArray = field(repr=False)
     claims: dict[str, Any] = field(default_factory=dict)
     posterior: dict[str, Any] | None = None
+    seconds: float = 0.0  # the fit's wall time (first guess, solver, standard errors)
 
     @property
     def converged(self) -> bool:
@@ -593,6 +596,7 @@ def fit_model(
     fix_initial: bool = False,
     first_guess: bool = True,
     max_evaluations: int | None = None,
+    progress: Callable[[float], None] | None = None,
 ) -> FitResult:
     r"""Fit ``system`` to the measured ``data`` (:func:`rollspring.lab.data.match_bodies`),
     freeing the PATHs ``free`` (``springs.0.stiffness``, ``springs.0.damping``,
@@ -604,6 +608,7 @@ def fit_model(
     known to be close). A PATH that is no number of the system, or fewer measured points
     than fitted parameters, is a one-line :class:`~rollspring.errors.FitError`; a fit whose
     solver runs out of its budget returns with status ``not_converged`` and the best values.
+    ``progress`` is told the fraction done (0..1) after the first guess and each evaluation.
     """
     from scipy.optimize import least_squares
 
@@ -638,7 +643,10 @@ def fit_model(
     )
     if not fix_initial:
         full = _initial_from_data(problem, full)
+    began = time.perf_counter()
     start = _first_guess(problem, full) if first_guess else _start_as_given(problem, full)
+    if progress is not None:
+        progress(0.2)
     low = np.full(full.size, -np.inf)
     high = np.full(full.size, np.inf)
     for i, path in enumerate(paths):
@@ -652,16 +660,18 @@ def fit_model(
         return out
 
     evaluations = 0
+    budget = max(1, max_evaluations or MAX_EVALUATIONS_PER_PARAMETER * (len(fitted) + 1))
 
     def residual(values: FloatArray) -> FloatArray:
         nonlocal evaluations
         evaluations += 1
+        if progress is not None:
+            progress(0.2 + 0.8 * min(evaluations / budget, 1.0))
         return problem.residual(expand(values))
 
     def jacobian(values: FloatArray) -> FloatArray:
         return problem.jacobian(expand(values))
 
-    budget = max(1, max_evaluations or MAX_EVALUATIONS_PER_PARAMETER * (len(fitted) + 1))
     tolerance = 1e-10 if problem.level else 1e-8
     solution = least_squares(
         residual,
@@ -682,7 +692,9 @@ def fit_model(
         if solution.status > 0
         else f"the fit did not converge within {budget} evaluations: the best values are shown"
     )
-    return _result(problem, best, status, message, evaluations, fix_initial)
+    result = _result(problem, best, status, message, evaluations, fix_initial)
+    seconds = time.perf_counter() - began
+    return dataclasses.replace(result, seconds=seconds)
 
 
 def _initial_from_data(problem: _Problem, full: FloatArray) -> FloatArray:

@@ -15,18 +15,20 @@ intervals are the 2.5 % and 97.5 % quantiles of the chain after its first half i
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from rollspring.analysis.costs import Cost
 from rollspring.errors import FitError
 from rollspring.lab import parameters as paths_module
 from rollspring.lab.fit import FitResult
 from rollspring.lab.motion import transition_matrices
 from rollspring.physics.arrays import FloatArray
 
-__all__ = ["Posterior", "sample_posterior"]
+__all__ = ["Posterior", "posterior_cost", "sample_posterior"]
 
 
 @dataclass(frozen=True)
@@ -149,8 +151,33 @@ def _affine_motion(result: FitResult) -> tuple[FloatArray, FloatArray] | None:
     return answer
 
 
+def posterior_cost(result: FitResult, *, walkers: int | None = None, steps: int = 300) -> Cost:
+    """The estimated cost of :func:`sample_posterior`: on the simulated motion one evaluation
+    of the residuals per walker and step, each as long as the fit's took on average; on the
+    exact linear motion (evaluated as a batch) a small fraction of that."""
+    count = _walkers(result, walkers)
+    per_evaluation = result.seconds / max(result.evaluations, 1)
+    factor = 0.05 if result.level else 1.0
+    return Cost(
+        what="the posterior",
+        bodies=len(result.problem.ids),
+        seconds=factor * count * steps * per_evaluation,
+        smaller="fewer steps or walkers, a shorter record",
+    )
+
+
+def _walkers(result: FitResult, walkers: int | None) -> int:
+    count = walkers or max(16, 4 * len(result.fitted))
+    return count + count % 2
+
+
 def sample_posterior(
-    result: FitResult, *, walkers: int | None = None, steps: int = 300, seed: int = 0
+    result: FitResult,
+    *,
+    walkers: int | None = None,
+    steps: int = 300,
+    seed: int = 0,
+    progress: Callable[[float], None] | None = None,
 ) -> Posterior:
     """Sample the posterior around ``result`` (the module's docstring) with ``walkers`` walkers
     (default: four per parameter, at least 16) for ``steps`` steps, the first half discarded.
@@ -165,8 +192,7 @@ def sample_posterior(
     dimension = len(names)
     if dimension == 0:
         raise FitError("--posterior: no parameter is fitted")
-    count = walkers or max(16, 4 * dimension)
-    count += count % 2
+    count = _walkers(result, walkers)
     centre = np.array([result.parameters[name].value for name in names])
     spread = np.array([result.parameters[name].stderr for name in names])
     spread = np.where(np.isfinite(spread) & (spread > 0), spread, 1e-6 * np.maximum(1, abs(centre)))
@@ -179,7 +205,9 @@ def sample_posterior(
         vectorize=True,
     )
     sampler.random_state = np.random.RandomState(seed).get_state()
-    sampler.run_mcmc(start, steps, progress=False)
+    for step, _ in enumerate(sampler.sample(start, iterations=steps), start=1):
+        if progress is not None:
+            progress(step / steps)
     chain = sampler.get_chain(discard=steps // 2)
     flat = chain.reshape(-1, dimension)
     low, median, high = np.percentile(flat, [2.5, 50.0, 97.5], axis=0)

@@ -34,6 +34,7 @@ class FitRequest:
     mapping: dict[str, str]
     fix_initial: bool = False
     posterior: bool = False
+    confirm: bool = False
 
 
 def parse_mapping(items: Sequence[str]) -> dict[str, str]:
@@ -79,22 +80,19 @@ def run_fit(
     system: System, request: FitRequest, progress: Callable[[float], None] | None = None
 ) -> FitResult:
     """The fit of ``request`` on ``system`` (:func:`rollspring.lab.api.fit`), the claims
-    measured; ``progress`` told 0 at the start and 1 at the end."""
+    measured; ``progress`` told the fraction done (0..1)."""
     from rollspring.lab.api import fit
 
-    if progress is not None:
-        progress(0.0)
-    result = fit(
+    return fit(
         request.data,
         system,
         request.free,
         mapping=request.mapping,
         fix_initial=request.fix_initial,
         posterior=request.posterior,
+        confirm=request.confirm,
+        progress=progress,
     )
-    if progress is not None:
-        progress(1.0)
-    return result
 
 
 def write_fit_outputs(

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from rollspring.cli.common import ProgressBar, add_command, load, print_json, say, stdout_console
-from rollspring.cli.options import JsonOpt, out_option
+from rollspring.cli.options import JsonOpt, out_option, yes_option
 
 if TYPE_CHECKING:
     from rollspring.lab.fit import FitResult
@@ -80,6 +80,7 @@ def fit(
         ),
     ] = None,
     as_json: JsonOpt = False,
+    yes: Annotated[bool, yes_option(note=" (the posterior on a simulated motion)")] = False,
 ) -> None:
     """Fit a system to a measured table: values ± standard errors, residuals, the paper's claims."""
     from rollspring.outputs.atomic import writable_file
@@ -98,6 +99,7 @@ def fit(
         mapping=parse_mapping(mapping or ()),
         fix_initial=fix_initial,
         posterior=posterior,
+        confirm=yes,
     )
     model = load(system)
     with ProgressBar("fitting") as progress:

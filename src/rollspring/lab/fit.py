@@ -249,9 +249,19 @@ def _step(value: float, exact: bool, state: bool) -> float:
 
 #: Quantities the exact linear motion leaves out (the rolling resistance, a force
 #: :math:`-C_{rr}N\,\mathrm{sign}(v)` that is not linear; the friction coefficients, which
-#: decide slipping): a fit that frees one of them, or a system with a rolling resistance, is
-#: fitted on the simulated motion.
-NONLINEAR_QUANTITIES = ("rolling_resistance", "mu_static", "mu_kinetic")
+#: decide slipping) or that may tilt the springs when they change (a radius, a track's height,
+#: an attachment, an anchor's height): a fit that frees one of them, or a system with a rolling
+#: resistance, is fitted on the simulated motion.
+NONLINEAR_QUANTITIES = (
+    "rolling_resistance",
+    "mu_static",
+    "mu_kinetic",
+    "radius",
+    "track_height",
+    "height",
+    "angle",
+    "y",
+)
 
 
 def linear_route(system: System, paths: Sequence[str] = ()) -> bool:

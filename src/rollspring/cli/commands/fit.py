@@ -93,6 +93,13 @@ def fit(
         from rollspring.errors import require_extra
 
         require_extra("plot", "rollspring fit --figure")
+    if posterior:  # emcee, of the lab extra (checked alone: the fit itself needs no extra)
+        from importlib.util import find_spec
+
+        from rollspring.errors import MissingExtraError
+
+        if find_spec("emcee") is None:
+            raise MissingExtraError("rollspring fit --posterior", ("lab",))
     request = FitRequest(
         data=data,
         free=tuple(free or ()),

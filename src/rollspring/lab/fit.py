@@ -411,11 +411,24 @@ def _profile(problem: _Problem, full: FloatArray) -> tuple[float, FloatArray]:
         design.append(column)
     result = full.copy()
     if design:
-        matrix = np.stack(design, axis=1)
-        solution, *_ = np.linalg.lstsq(matrix, problem.observed - constant, rcond=None)
-        result[linear] = solution
+        result[linear] = _linear_least_squares(
+            np.stack(design, axis=1), problem.observed - constant
+        )
     residual = problem.residual(result)
     return float(residual @ residual), result
+
+
+def _linear_least_squares(matrix: FloatArray, target: FloatArray) -> FloatArray:
+    r"""The least-squares solution of :math:`Az = y` for a tall :math:`A` with a few columns,
+    by the normal equations of the column-normalised :math:`A` (a p × p solve; the minimum-norm
+    solution along directions the columns do not separate)."""
+    scale = np.sqrt(np.einsum("ij,ij->j", matrix, matrix))
+    scale = np.where(scale > 0, scale, 1.0)
+    normalised = matrix / scale
+    solution: FloatArray = np.linalg.pinv(
+        normalised.T @ normalised, rcond=1e-12, hermitian=True
+    ) @ (normalised.T @ target)
+    return solution / scale
 
 
 def _first_guess(problem: _Problem, full: FloatArray) -> FloatArray:
@@ -784,16 +797,23 @@ def _result(
 def _covariance(
     jacobian: FloatArray, noise: float, names: Sequence[str]
 ) -> tuple[FloatArray, list[str]]:
-    r""":math:`s^2 (J^TJ)^{-1}` from the SVD of the column-normalised Jacobian, and a warning for
-    each direction of parameter space the data do not constrain (a singular value below
+    r""":math:`s^2 (J^TJ)^{-1}` from the eigen-decomposition of the column-normalised
+    :math:`\tilde J^T\tilde J = V\Sigma^2V^T` (the singular values and right singular vectors
+    of :math:`\tilde J`; the small p × p problem, not a factorisation of the tall Jacobian,
+    whose LAPACK call is a hundred times slower on a machine whose cores are busy), and a warning
+    for each direction of parameter space the data do not constrain (a singular value below
     :math:`1/` :data:`IDENTIFIABLE_CONDITION` of the largest): the combination named by its
     right singular vector, in units of each parameter's column scale."""
     count = jacobian.shape[1]
     if count == 0:
         return np.zeros((0, 0)), []
-    scale = np.linalg.norm(jacobian, axis=0)
+    scale = np.sqrt(np.einsum("ij,ij->j", jacobian, jacobian))
     scale = np.where(scale > 0, scale, 1.0)
-    _, singular, vt = np.linalg.svd(jacobian / scale, full_matrices=False)
+    normalised_j = jacobian / scale
+    values, vectors = np.linalg.eigh(normalised_j.T @ normalised_j)
+    order = np.argsort(values)[::-1]
+    singular = np.sqrt(np.maximum(values[order], 0.0))
+    vt = vectors[:, order].T
     warnings = []
     largest = float(singular[0]) if singular.size else 0.0
     keep = singular > largest / IDENTIFIABLE_CONDITION

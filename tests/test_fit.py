@@ -531,3 +531,25 @@ def test_a_long_posterior_is_refused_with_its_estimate(
     assert code == 2 and out == "" and err.count("\n") == 1
     assert err.startswith("error: the posterior would take about") and "--yes" in err
     assert not (tmp_path / "fitted.toml").exists()
+
+
+def test_hostile_data_files(tmp_path: Path) -> None:
+    """A folder, a FIFO, binary bytes, NUL bytes: one line each, never a hang or a traceback;
+    CRLF lines, a BOM and semicolons with decimal commas are read."""
+    import os
+
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)
+    binary = tmp_path / "binary.csv"
+    binary.write_bytes(bytes(range(256)) * 4)
+    for path, message in (
+        (tmp_path, "is a folder, not a data file"),
+        (fifo, "is a FIFO (named pipe), not a data file"),
+        (binary, "not a text file"),
+    ):
+        code, out, err = _cli("fit", str(path), "--system", "hoop-cylinder")
+        assert code == 2 and out == "" and err.count("\n") == 1 and message in err, err
+    text = "\ufefft;x_hoop;x_cylinder\r\n0;0,001;0,49\r\n0,1;0,002;0,488\r\n"
+    table = parse_data(text.encode("utf-8").decode("utf-8-sig"), "semi.csv")
+    np.testing.assert_array_equal(table.t, [0.0, 0.1])
+    np.testing.assert_array_equal(table.x, [[0.001, 0.49], [0.002, 0.488]])

@@ -26,9 +26,9 @@ from __future__ import annotations
 
 import math
 import os
+import stat
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
@@ -91,12 +91,23 @@ def read_data(path: str | os.PathLike[str]) -> Recording:
     file and the reason."""
     shown = os.fspath(path)
     try:
-        size = os.path.getsize(path)
-        if size > MAX_BYTES:
-            raise DataError(f"{shown}: {size / 1e6:.0f} MB, larger than a data file is read")
-        raw = Path(path).read_bytes()
+        info = os.stat(path)
+        kind = _not_regular(info.st_mode)
+        if kind is not None:  # a FIFO would block, a folder or a device is no table
+            raise DataError(f"{shown}: is {kind}, not a data file (give a regular file)")
+        if info.st_size > MAX_BYTES:
+            raise DataError(
+                f"{shown}: {info.st_size / 1e6:.0f} MB, larger than a data file is read"
+            )
+        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(descriptor, "rb") as handle:
+            if _not_regular(os.fstat(handle.fileno()).st_mode) is not None:
+                raise DataError(f"{shown}: not a regular file (it changed while being opened)")
+            raw = handle.read(MAX_BYTES + 1)
     except OSError as exc:
         raise DataError(f"{shown}: cannot read ({exc.strerror or exc})") from None
+    except ValueError as exc:  # a path with a NUL byte
+        raise DataError(f"{shown!r}: not a valid path ({exc})") from None
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -105,6 +116,22 @@ def read_data(path: str | os.PathLike[str]) -> Recording:
         except UnicodeDecodeError:  # pragma: no cover - latin-1 decodes every byte
             raise DataError(f"{shown}: not a text file") from None
     return parse_data(text, shown)
+
+
+_KINDS = (
+    (stat.S_ISDIR, "a folder"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
+
+
+def _not_regular(mode: int) -> str | None:
+    """What a file of ``mode`` is when it is not a regular file (None for a regular file)."""
+    if stat.S_ISREG(mode):
+        return None
+    return next((kind for test, kind in _KINDS if test(mode)), "not a regular file")
 
 
 def parse_data(text: str, source: str = "<data>") -> Recording:
@@ -123,10 +150,13 @@ def parse_data(text: str, source: str = "<data>") -> Recording:
                 f"{source}: a Tracker '#multi:' file needs a line of track names and a line of "
                 "column names"
             )
-        separator = _separator(lines[1] + lines[2])
+        separator = _separator(lines[2])
         names, header = _cells(lines[1], separator), _cells(lines[2], separator)
         return _tracker(source, names, header, lines[3:], separator, 4, "tracker-multi")
-    separator = _separator(lines[0] + (lines[1] if len(lines) > 1 else ""))
+    header_line = lines[0]
+    if len(lines) > 1 and not any(mark in lines[0] for mark in _SEPARATORS):
+        header_line = lines[1]  # a Tracker file of one track: its name alone on the first line
+    separator = _separator(header_line)
     head = _cells(lines[0], separator)
     second = _cells(lines[1], separator) if len(lines) > 1 else []
     named = [cell for cell in head if cell]
@@ -135,10 +165,14 @@ def parse_data(text: str, source: str = "<data>") -> Recording:
     return _table(source, head, lines[1:], separator)
 
 
-def _separator(sample: str) -> str:
-    """The column separator of a file: tab (Tracker), else comma, else semicolon."""
-    for separator in ("\t", ",", ";"):
-        if separator in sample:
+_SEPARATORS = ("\t", ";", ",")
+
+
+def _separator(header: str) -> str:
+    """The column separator of a file, read from its header line (the numbers below may use
+    decimal commas): tab (Tracker), else semicolon, else comma."""
+    for separator in _SEPARATORS:
+        if separator in header:
             return separator
     return ","
 

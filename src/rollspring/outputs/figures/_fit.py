@@ -26,7 +26,7 @@ def plot_fit(result: FitResult, fig: Figure | None = None) -> Figure:
         top, bottom = fig.subplots(
             2, 1, sharex=True, gridspec_kw={"height_ratios": [2.2, 1.0], "hspace": 0.08}
         )
-        fig.subplots_adjust(left=0.12, right=0.97, bottom=0.1, top=0.92)
+        fig.subplots_adjust(left=0.12, right=0.97, bottom=0.1, top=0.88)
         t = data.t
         for column, body in enumerate(data.bodies):
             color = BODY_COLORS[data.index[column] % len(BODY_COLORS)]
@@ -53,7 +53,14 @@ def plot_fit(result: FitResult, fig: Figure | None = None) -> Figure:
         bottom.set_xlabel("t (s)")
         status = "" if result.converged else " (not converged)"
         top.set_title(f"Fit to {_short(data.source)}{status}", loc="left")
-        top.legend(fontsize=8, ncols=2, loc="upper right", frameon=False)
+        top.legend(
+            fontsize=7.5,
+            ncols=2,
+            loc="lower right",
+            bbox_to_anchor=(1.0, 1.0),
+            frameon=False,
+            borderaxespad=0.2,
+        )
     return fig
 
 

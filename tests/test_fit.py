@@ -553,3 +553,21 @@ def test_hostile_data_files(tmp_path: Path) -> None:
     table = parse_data(text.encode("utf-8").decode("utf-8-sig"), "semi.csv")
     np.testing.assert_array_equal(table.t, [0.0, 0.1])
     np.testing.assert_array_equal(table.x, [[0.001, 0.49], [0.002, 0.488]])
+
+
+def test_a_path_left_at_its_default_and_the_route_it_takes() -> None:
+    """A number the system file leaves out (the model's default, as a coefficient at 0 is left
+    out of the JSON form) is a PATH; a rolling resistance, a friction coefficient or a radius
+    is fitted on the simulated motion (the exact linear motion leaves it out, or may stop being
+    exact when it changes)."""
+    from rollspring.lab.fit import linear_route
+    from rollspring.lab.parameters import get_value, pinned_json
+
+    system = load_system("hoop-cylinder")
+    data = pinned_json(system)
+    del data["springs"][0]["damping"]
+    assert get_value(data, "springs.0.damping") == 0.0
+    assert linear_route(system, ["springs.0.stiffness", "springs.0.damping", "bodies.hoop.mass"])
+    for path in ("bodies.hoop.rolling_resistance", "bodies.hoop.mu_static", "bodies.hoop.radius"):
+        assert not linear_route(system, [path])
+    assert not linear_route(load_system("frictionless"))

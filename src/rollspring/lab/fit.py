@@ -459,7 +459,10 @@ def _first_guess(problem: _Problem, full: FloatArray) -> FloatArray:
             _, arrays, _ = problem.model(candidate)
             omegas = _model_frequencies(arrays)
             period = 2 * math.pi / float(omegas.min()) if omegas.size else 1.0
+            onset = _motion_onset(problem)
             starts = list(problem.t[0] + np.linspace(-period, period, 41))
+            if onset > problem.t[0] + period:  # held still at first: scan around the release
+                starts += list(onset + np.linspace(-period, period, 41))
         for start in starts:
             trial[t0_index] = start
             if problem.level:
@@ -477,6 +480,27 @@ def _start_as_given(problem: _Problem, full: FloatArray) -> FloatArray:
     if problem.level:
         return _profile(problem, full)[1]
     return _linearised_profile(problem, full)[1]
+
+
+def _motion_onset(problem: _Problem) -> float:
+    r"""The first time any measured body has moved from where it started (the median of its
+    first five positions) by more than six times the tracking noise (estimated from the second
+    differences, :math:`\sigma^2 = \langle(\Delta^2x)^2\rangle/6`) in three frames running:
+    where a release from rest shows."""
+    onset = float(problem.t[-1])
+    for column in range(problem.table.x.shape[1]):
+        x = problem.table.x[:, column]
+        ok = np.isfinite(x)
+        if ok.sum() < 8:
+            continue
+        values, times = x[ok], problem.t[ok]
+        noise = math.sqrt(float(np.mean(np.diff(values, 2) ** 2)) / 6.0)
+        away = np.abs(values - np.median(values[:5])) > 6.0 * noise + 1e-12
+        running = away[:-2] & away[1:-1] & away[2:]
+        moved = np.flatnonzero(running)
+        if moved.size:
+            onset = min(onset, float(times[moved[0]]))
+    return onset
 
 
 def _linearised_profile(problem: _Problem, full: FloatArray) -> tuple[float, FloatArray]:

@@ -575,3 +575,24 @@ def test_a_path_left_at_its_default_and_the_route_it_takes() -> None:
     for path in ("bodies.hoop.rolling_resistance", "bodies.hoop.mu_static", "bodies.hoop.radius"):
         assert not linear_route(system, [path])
     assert not linear_route(load_system("frictionless"))
+
+
+@pytest.mark.parametrize("uniform", [True, False])
+def test_the_exact_motion_is_the_closed_form(uniform: bool) -> None:
+    """e^{Bt} z0 of the damped hoop-cylinder equals the closed form (tests/fit_data.py) to
+    rounding, on a video's frames (powers of one step) and at scattered times (one exponential
+    each), and the exponential equals SciPy's."""
+    import scipy.linalg
+
+    from rollspring.lab.motion import expm, motion_matrix, transition_matrices
+    from rollspring.physics import system_arrays
+
+    truth = Truth(c=0.3, x2=0.47, v1=0.02, v2=-0.01)
+    arrays = system_arrays(system_from_dict(truth.system()))
+    rng = np.random.default_rng(17)
+    t = np.arange(900) / 90 if uniform else np.sort(rng.uniform(0, 10, 300))
+    b = motion_matrix(arrays)
+    z = transition_matrices(b, t) @ np.concatenate([arrays.x0, arrays.v0, [1.0]])
+    np.testing.assert_allclose(z[:, :2], truth.positions(t), rtol=0, atol=1e-12)
+    for tau in (1 / 60, 1.0, 10.0):
+        np.testing.assert_allclose(expm(b * tau), scipy.linalg.expm(b * tau), rtol=0, atol=1e-12)

@@ -27,9 +27,6 @@ used only for the fit's first guess.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any
-
 import numpy as np
 
 from rollspring.model import System
@@ -42,7 +39,6 @@ __all__ = [
     "expm",
     "motion_matrix",
     "simulated_states",
-    "state_vector",
     "transition_matrices",
     "uniform_steps",
 ]
@@ -194,8 +190,3 @@ def _hermite(
 
     spline = CubicHermiteSpline(t, x, v, axis=0)
     return spline(tau), spline(tau, 1)
-
-
-def state_vector(x0: Sequence[float] | FloatArray, v0: Sequence[float] | FloatArray) -> Any:
-    """:math:`z(0) = (x_0, v_0, 1)` of :func:`motion_matrix`'s state."""
-    return np.concatenate([np.asarray(x0, float), np.asarray(v0, float), [1.0]])

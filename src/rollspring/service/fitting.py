@@ -15,7 +15,6 @@ import os
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 from rollspring.errors import FitError
 from rollspring.lab.fit import FitResult
@@ -133,13 +132,3 @@ def _figure_bytes(result: FitResult, path: Path) -> bytes:
         with theme():
             return figure_svg(plot_fit(result)).encode("utf-8")
     return fit_figure_png(result)
-
-
-def fit_summary(result: FitResult) -> dict[str, Any]:
-    """The JSON object ``rollspring fit --json`` prints (:meth:`FitResult.to_dict`)."""
-    return result.to_dict()
-
-
-def mapping_items(mapping: Mapping[str, str]) -> list[str]:
-    """``{track: body}`` back as ``track=body`` items (for messages)."""
-    return [f"{track}={body}" for track, body in mapping.items()]

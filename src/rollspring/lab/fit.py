@@ -24,7 +24,10 @@ period. Before the local solver the data's spectrum gives its strongest frequenc
 terms, until a mode of the model has that frequency (:func:`_match_frequency`); the initial
 state that best fits each such guess is then a linear least-squares problem (the motion is
 linear in :math:`z_0` and :math:`\Delta x`: variable projection), and the best guess starts the
-local solver.
+local solver. When ``t0`` is fitted it is scanned over a period around the data's start and
+around the instant the recording shows the bodies start to move (:func:`_motion_onset`).
+Damping-like PATHs that start at 0 stay there until the local solver, which finds them: the
+decay moves the residuals smoothly, without local minima.
 
 **The time offset and the initial state.** For an autonomous system a shift of the time origin
 is a change of initial state: :math:`t_0` and :math:`(x_0, v_0)` cannot both be fitted. By
@@ -38,8 +41,9 @@ them: it is not fitted (the fitted positions are in the data's origin). With anc
 with the initial state fixed, the offset is identifiable and fitted as ``x_offset``.
 
 **Uncertainties.** With the Jacobian :math:`J` at the minimum and
-:math:`s^2 = \sum r^2/(N - p)`, the covariance is :math:`s^2 (J^TJ)^{-1}` (from the SVD of
-:math:`J`); the standard errors are its diagonal's roots, the correlations its normalised form.
+:math:`s^2 = \sum r^2/(N - p)`, the covariance is :math:`s^2 (J^TJ)^{-1}` (from the singular
+values and vectors of the column-normalised :math:`J`); the standard errors are its diagonal's
+roots, the correlations its normalised form.
 A near-singular :math:`J` (column-normalised condition number above
 :data:`IDENTIFIABLE_CONDITION`) is reported as a warning naming the combination of parameters
 the data do not constrain (the right singular vector).

@@ -13,6 +13,7 @@ springs to each other and to walls. Quick start::
     rollspring.build_report(system)                       # the self-contained HTML report
     rollspring.sweep(system, {"springs.0.stiffness": k}, 10.0)   # a grid of runs -> xarray
     rollspring.track("film.mp4", system).x                # a video of the bodies tracked
+    rollspring.fit("tracks.csv", system, free=["springs.0.stiffness"])  # a measured table fitted
 
 Every name loads its part on first use (SciPy for the analysis, the compiled kernels for the
 simulation, SymPy and Matplotlib for derivations and reports), so ``import rollspring`` stays
@@ -43,6 +44,7 @@ if TYPE_CHECKING:  # what the names below load on first use, for type checkers a
     from rollspring.analysis.derivation import Derivation, derive, symbolic_system
     from rollspring.analysis.dispersion import dispersion
     from rollspring.analysis.paper import check_paper, paper_claims
+    from rollspring.lab.api import fit
     from rollspring.lab.tracking import TrackResult, track
     from rollspring.model import (
         Anchor,
@@ -116,7 +118,15 @@ def _register_presenters() -> None:
         to_pandas=_shown_by("trajectory_to_pandas"),
         to_xarray=_shown_by("trajectory_to_xarray"),
         animate=_shown_by("animate_inline"),
+        fit_html=_fit_html,
     )
+
+
+def _fit_html(*args, **kwargs):
+    """``FitResult._repr_html_``: :func:`rollspring.outputs.lab.fit_html`, imported when called."""
+    from rollspring.outputs.lab import fit_html
+
+    return fit_html(*args, **kwargs)
 
 
 _register_presenters()
@@ -197,6 +207,7 @@ _LAZY = {
     "sweep": "rollspring.service.sweeps",
     "dispersion": "rollspring.analysis.dispersion",
     "export_mjcf": "rollspring.outputs.mjcf",
+    "fit": "rollspring.lab.api",
     "create_app": "rollspring.web.app",
     "track": "rollspring.lab.tracking",
     "TrackResult": "rollspring.lab.tracking",
@@ -286,6 +297,7 @@ __all__ = [
     "dispersion",
     "export_mjcf",
     "find_equilibrium",
+    "fit",
     "generalized_forces",
     "kinetic_energy",
     "load_system",

@@ -21,6 +21,8 @@ The tree, grouped by the layer that raises each class (bottom layer first)::
     ├── SimulationError         invalid simulation arguments (duration, tolerance, integrator)
     │ lab
     ├── TrackingError           a video cannot be tracked as asked (unreadable, a body not found)
+    ├── DataError               a measured table cannot be read or matched to the system's bodies
+    ├── FitError                a fit cannot be set up as asked (a PATH, too few points)
     │ outputs
     ├── OutputError             an output file or directory cannot be written
     ├── ReportError             the report cannot be made or written as asked
@@ -59,8 +61,10 @@ __all__ = [
     "AnimationError",
     "BudgetExceeded",
     "CostTooHigh",
+    "DataError",
     "DerivationError",
     "ExportError",
+    "FitError",
     "JobFailed",
     "MapError",
     "MathConversionError",
@@ -135,6 +139,17 @@ class TrackingError(RollspringError, ValueError):
     """A video cannot be tracked as asked: an unreadable or empty video, a body or its marker
     not found in a range of frames, a bad time range or scale (one line naming the file or the
     option and the reason)."""
+
+
+class DataError(RollspringError, ValueError):
+    """A measured table (a ``track`` CSV, a plain CSV, a Tracker export) cannot be read or
+    matched to the system's bodies: the one-line message names the file, the row or column and
+    the reason (no time column, unsorted or repeated times, an unknown track)."""
+
+
+class FitError(RollspringError, ValueError):
+    """A fit cannot be set up as asked: a ``--free`` PATH that is not a number of the system,
+    fewer measured points than fitted parameters (the message names the PATH or the file)."""
 
 
 # -------------------------------------------------------------------------------- outputs

@@ -22,6 +22,7 @@ from rollspring.cli.commands import (
     derive,
     dispersion,
     export,
+    fit,
     paper_check,
     presets,
     report,
@@ -159,6 +160,7 @@ COMMANDS = (
     chain,
     dispersion,
     track,
+    fit,
 )
 
 

@@ -19,6 +19,7 @@ Public API::
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import numbers
@@ -47,6 +48,7 @@ from rollspring.service import exercises
 
 if TYPE_CHECKING:
     from rollspring.outputs.report import Report
+    from rollspring.service.fitting import FitRequest
 
 # The report's renderer (Matplotlib) and the simulation (Numba, SciPy) are imported by the
 # functions that use them: the worksheets and the paper's claims need neither.
@@ -77,9 +79,17 @@ def build_report(
     derivation: bool = True,
     progress: Callable[[float], None] | None = None,
     confirm: bool = False,
+    data: str | os.PathLike[str] | None = None,
+    free: Sequence[str] | None = None,
+    mapping: Mapping[str, str] | None = None,
 ) -> Report:
     """Analyse and simulate ``system``, derive it, check the paper's claims about it, and render
     its self-contained report page (:func:`rollspring.outputs.report.render_report`).
+
+    With ``data`` (a measured table: a ``track`` CSV, a plain CSV or a Tracker file) the page
+    has a lab section: the system fitted to it (:func:`rollspring.fit`, the PATHs ``free``;
+    default every spring's stiffness and damping; ``mapping`` matches tracks to bodies), the
+    data over the fitted model, the fitted values and the paper's claims measured.
 
     ``duration`` is the simulated time (default
     :func:`~rollspring.outputs.report.default_duration`); ``derivation=False`` leaves out the
@@ -123,6 +133,10 @@ def build_report(
 
     system = as_system(system)
     request = report_request(duration=duration, rtol=rtol, derivation=derivation)
+    if data is not None:
+        from rollspring.service.fitting import lab_request
+
+        request = dataclasses.replace(request, lab=lab_request(system, data, free, mapping))
     if not isinstance(confirm, bool):
         raise ReportError(f"confirm: must be True or False, got {confirm!r}")
     cost = report_cost(
@@ -142,6 +156,8 @@ class ReportRequest:
     rtol: float
     #: include the derivations and the paper's claims
     derivation: bool
+    #: a recording to fit the system to, shown in the lab section (None: no lab section)
+    lab: FitRequest | None = None
 
 
 def report_request(
@@ -202,6 +218,12 @@ def run_report(
     trajectory = run_request(system, run)
     computed = 0.2
     done("simulate", computed)
+    fitted = None
+    if request.lab is not None:
+        from rollspring.service.fitting import run_fit
+
+        fitted = run_fit(system, request.lab)
+        done("fit the recording", computed)
     derived = error = paper = None
     if derivation:
         try:
@@ -220,6 +242,7 @@ def run_report(
         derivation=derived,
         derivation_error=error,
         paper=paper,
+        lab=fitted,
         stage=lambda name, f: done(name, computed + (1.0 - computed) * f),
     )
     timings["total"] = time.perf_counter() - started

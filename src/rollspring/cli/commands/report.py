@@ -64,6 +64,27 @@ def report(
             show_default=False,
         ),
     ] = None,
+    data: Annotated[
+        str | None,
+        typer.Option(
+            "--data",
+            help="A measured table (track CSV, plain CSV, Tracker file): adds a lab section, "
+            "the system fitted to it.",
+            show_default=False,
+        ),
+    ] = None,
+    free: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--free",
+            help="With --data: a PATH to fit (default: every spring's stiffness and damping).",
+            show_default=False,
+        ),
+    ] = None,
+    mapping: Annotated[
+        list[str] | None,
+        typer.Option("--map", help="With --data: TRACK=BODY.", show_default=False),
+    ] = None,
     yes: Annotated[bool, yes_option()] = False,
 ) -> None:
     """Write a self-contained report (HTML, or PDF through headless Chromium): diagram,
@@ -88,6 +109,13 @@ def report(
     if format == "pdf":
         find_chromium(chromium)  # fail before the work when Chromium is missing
     model = load(system)
+    if data is not None:
+        import dataclasses
+
+        from rollspring.service.fitting import lab_request, parse_mapping
+
+        lab = lab_request(model, data, free, parse_mapping(mapping or ()))
+        request = dataclasses.replace(request, lab=lab)
     # estimated once, as a whole: the report's analysis, run and derivation estimate nothing
     confirm_cost(report_cost(model, duration=duration, derivation=derivation), yes=yes)
     with ProgressBar("building the report") as progress:

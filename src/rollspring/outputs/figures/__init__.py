@@ -27,6 +27,8 @@ Public functions
   velocity, one panel per body.
 * :func:`plot_modes` ``(analysis, fig=None) -> Figure``: one panel per normal mode, arrows on
   the diagram, with :math:`\omega`.
+* :func:`plot_fit` ``(fit, fig=None) -> Figure``: a measured table over the fitted model, and
+  the residuals (:class:`~rollspring.lab.fit.FitResult`).
 * Long chains (more than :data:`~rollspring.model.chains.LONG_CHAIN` bodies), summarised
   instead of one curve per body:
   :func:`plot_space_time` ``(trajectory, waves, fig=None) -> Figure``: space–time images (body
@@ -46,13 +48,14 @@ Public functions
 Modules, by figure kind: ``_style`` (palette, :func:`theme`, saving), ``_geometry`` (end points,
 extent, the zigzag, :class:`ForceScale`), ``_scene`` (:class:`SystemScene`), ``_system``
 (:func:`plot_system`, :func:`scene_for_trajectory`, :func:`states_at`), ``_time`` (the time
-plots), ``_modes`` (:func:`plot_modes`) and ``_chain`` (long chains); this package re-exports
-their public names.
+plots), ``_modes`` (:func:`plot_modes`), ``_fit`` (:func:`plot_fit`) and ``_chain`` (long
+chains); this package re-exports their public names.
 """
 
 from __future__ import annotations
 
 from rollspring.outputs.figures._chain import plot_space_time, signed_friction_ratio
+from rollspring.outputs.figures._fit import plot_fit
 from rollspring.outputs.figures._geometry import ForceScale
 from rollspring.outputs.figures._modes import plot_modes
 from rollspring.outputs.figures._scene import SceneState, SystemScene
@@ -86,6 +89,7 @@ __all__ = [
     "new_figure",
     "plot_contact_forces",
     "plot_energy",
+    "plot_fit",
     "plot_friction_ratio",
     "plot_modes",
     "plot_phase_portraits",

@@ -4,8 +4,9 @@ derivation, the paper's claims checked) and their pictures.
 Each ``section_*`` function of a :class:`~rollspring.outputs.report._page.Page` returns one
 ``<section>`` of the page (Markup); they live by page section in ``_system_sections`` (overview,
 diagram, parameters, equilibrium), ``_mode_sections`` (modes, stationary point, friction),
-``_motion_sections`` (animation, plots) and ``_check_sections`` (derivation, paper check,
-warnings, data), and :func:`render_report` puts them in order. What the page shows is computed by
+``_motion_sections`` (animation, plots), ``_lab_section`` (the model fitted to a recording)
+and ``_check_sections`` (derivation, paper check, warnings, data), and :func:`render_report`
+puts them in order. What the page shows is computed by
 :func:`rollspring.service.documents.build_report`, which calls it.
 """
 
@@ -15,6 +16,7 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from rollspring.analysis import LinearAnalysis
 from rollspring.analysis.derivation import Derivation
@@ -30,6 +32,7 @@ from rollspring.outputs.report._check_sections import (
     section_warnings,
 )
 from rollspring.outputs.report._html import ReportError
+from rollspring.outputs.report._lab_section import section_lab
 from rollspring.outputs.report._mode_sections import (
     section_friction,
     section_modes,
@@ -48,6 +51,9 @@ from rollspring.outputs.report._system_sections import (
     section_parameters,
 )
 from rollspring.simulate import Trajectory
+
+if TYPE_CHECKING:
+    from rollspring.lab.fit import FitResult
 
 __all__ = [
     "FORMATS",
@@ -109,6 +115,7 @@ def render_report(
     derivation: Derivation | None = None,
     derivation_error: str | None = None,
     paper: tuple[str, Sequence[ClaimCheck]] | None = None,
+    lab: FitResult | None = None,
     stage: Callable[[str, float], None] | None = None,
 ) -> Report:
     """The self-contained report page of ``system`` from its ``analysis`` and ``trajectory``.
@@ -116,7 +123,8 @@ def render_report(
     ``frames``: animation frames the player stores (:func:`animation_frames`); ``derivation``:
     the symbolic derivation to show, or ``derivation_error`` (why there is none) — with neither
     the page has no derivation; ``paper``: ``(label of the paper's figure, its claims checked)``
-    when the system is one of the paper's; ``stage`` is called after each stage of the
+    when the system is one of the paper's; ``lab``: the system fitted to a recording
+    (:func:`rollspring.fit`), shown in a lab section; ``stage`` is called after each stage of the
     rendering with its name and the fraction of the rendering done (0..1).
     """
 
@@ -145,6 +153,8 @@ def render_report(
     if paper is not None:
         sections.append(section_paper_check(page, *paper))
         done("paper check", 0.95)
+    if lab is not None:
+        sections.append(section_lab(page, lab))
     sections.append(section_warnings(page))
     sections.append(section_data(page))
     html = page_document(system, page.titles, [s for s in sections if s])

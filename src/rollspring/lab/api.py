@@ -1,0 +1,76 @@
+"""``rollspring.fit``: a measured table of a real experiment becomes a fitted model."""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+from rollspring.lab.data import BodyData, Recording, match_bodies, read_data
+from rollspring.lab.fit import FitResult, fit_model
+from rollspring.model import System
+
+__all__ = ["fit"]
+
+
+def fit(
+    data: str | os.PathLike[str] | Recording | BodyData,
+    system: System | dict[str, Any] | str | os.PathLike[str],
+    free: Sequence[str] = (),
+    *,
+    mapping: Mapping[str, str] | None = None,
+    fix_initial: bool = False,
+    posterior: bool = False,
+    claims: bool = True,
+    seed: int = 0,
+    confirm: bool = False,
+    progress: Callable[[float], None] | None = None,
+) -> FitResult:
+    r"""Fit ``system`` to the measured table ``data`` (a file: a ``track`` CSV, a plain CSV
+    ``t,x_<id>,phi_<id>`` or a Tracker data file; or a :class:`~rollspring.lab.data.Recording`)
+    by least squares on the exact motion (:func:`rollspring.lab.fit.fit_model`).
+
+    ``free`` are PATHs of the system (``springs.0.stiffness``, ``springs.0.damping``,
+    ``bodies.hoop.mass``, ...); each body's initial position and velocity are fitted too (the
+    system's own held, and the start time ``t0`` fitted, with ``fix_initial``); ``mapping``
+    matches tracks to bodies (``{"mass A": "hoop"}``). For two bodies the paper's claims are
+    measured (:func:`rollspring.lab.claims.measure_claims`: the CM's and X̂'s peak-to-peak
+    motion, the frictions' ratio, whether each body rolled); ``posterior`` adds an MCMC
+    posterior (:func:`rollspring.lab.posterior.sample_posterior`) as ``result.posterior``,
+    refused with its estimate (:class:`~rollspring.errors.CostTooHigh`) above 5 minutes unless
+    ``confirm``. ``progress`` is told the fraction done (0..1). In Jupyter the result shows
+    itself as a table and a figure.
+    """
+    from rollspring.model.files import as_system
+
+    model = as_system(system)
+    if isinstance(data, BodyData):
+        table = data
+    else:
+        recording = data if isinstance(data, Recording) else read_data(data)
+        table = match_bodies(recording, model, mapping)
+    share = 0.3 if posterior else 0.9
+
+    def part(low: float, high: float) -> Callable[[float], None] | None:
+        if progress is None:
+            return None
+        report = progress
+        return lambda fraction: report(low + (high - low) * fraction)
+
+    result = fit_model(table, model, free, fix_initial=fix_initial, progress=part(0.0, share))
+    measured: dict[str, Any] = {}
+    if claims:
+        from rollspring.lab.claims import measure_claims
+
+        measured = measure_claims(result)
+    sampled = None
+    if posterior:
+        from rollspring.analysis.costs import check_cost
+        from rollspring.lab.posterior import posterior_cost, sample_posterior
+
+        check_cost(posterior_cost(result), confirmed=confirm)
+        sampled = sample_posterior(result, seed=seed, progress=part(share, 1.0)).to_dict()
+    if progress is not None:
+        progress(1.0)
+    return dataclasses.replace(result, claims=measured, posterior=sampled)

@@ -1,0 +1,381 @@
+r"""Measured tables of a real experiment, read and matched to the bodies of a system.
+
+Three formats, told apart by their first lines:
+
+* **a ``track`` CSV or a plain CSV** (comma-separated): a header ``t,x_<id>,phi_<id>,...`` —
+  the time ``t`` (s), each body's centre position ``x_<id>`` (m) and, optionally, its rotation
+  angle ``phi_<id>`` (rad, clockwise positive), one row per frame. ``rollspring track`` writes
+  it (one pair per body, in the system's order); any order of the columns is read.
+* **a Tracker data file** (Open Source Physics' Tracker, "Export Data", tab-separated; commas
+  and semicolons are read too): one track — its name on the first line, the column names
+  (``t x y``, and whatever else was exported) on the second — or several tracks in one file: a
+  first line ``#multi:``, a line of track names (each above its first column), then the column
+  names. A track's ``x`` column is its centre position (m, as calibrated in Tracker); ``y`` and
+  the other columns are not used.
+
+Tracks are matched to bodies by name (``x_hoop`` and a track ``hoop`` are the body ``hoop``), or
+by a mapping ``{track: body}`` (``--map track=body``). Empty cells (frames where a track was
+not marked) are skipped: they are NaN in :attr:`Recording.x` and take no part in a fit.
+
+Every refusal is a :class:`~rollspring.errors.DataError` with one line naming the file, the row
+or column and the reason: no time column, a time that is not a number, times unsorted or
+repeated, an unknown track or body, no position at all.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import stat
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from rollspring.errors import DataError
+from rollspring.model import System
+from rollspring.physics.arrays import FloatArray
+
+__all__ = ["BodyData", "DataError", "Recording", "match_bodies", "parse_data", "read_data"]
+
+#: The largest data file read (bytes): a minute at 1000 frames/s of twenty bodies is 3 MB.
+MAX_BYTES = 200_000_000
+
+
+@dataclass(frozen=True)
+class Recording:
+    """A measured table as read: per track the centre position and, if measured, the angle.
+
+    ``t`` (N,) strictly increasing times (s); ``x`` and ``phi`` (N, T) per track (m, rad), NaN
+    where a frame has no mark (``phi`` all NaN for a track without angles); ``tracks`` the T
+    names (a body id for a CSV, a Tracker track's name); ``source`` the file it came from.
+    """
+
+    source: str
+    t: FloatArray
+    tracks: tuple[str, ...]
+    x: FloatArray
+    phi: FloatArray
+    format: str  # "csv", "tracker" or "tracker-multi"
+
+
+@dataclass(frozen=True)
+class BodyData:
+    """A recording matched to a system: per measured body, its centre positions and angles.
+
+    ``bodies`` the ids measured (in the system's order), ``index`` their indices among the
+    system's bodies, ``t`` (N,), ``x`` and ``phi`` (N, B) with NaN where a frame has no mark.
+    """
+
+    source: str
+    t: FloatArray
+    bodies: tuple[str, ...]
+    index: tuple[int, ...]
+    x: FloatArray
+    phi: FloatArray
+
+    @property
+    def has_angles(self) -> bool:
+        """Whether any body's angle was measured."""
+        return bool(np.isfinite(self.phi).any())
+
+    @property
+    def n_points(self) -> int:
+        """How many positions were measured (every body's marked frames)."""
+        return int(np.isfinite(self.x).sum())
+
+
+def read_data(path: str | os.PathLike[str]) -> Recording:
+    """Read a measured table (a ``track`` CSV, a plain CSV or a Tracker data file; see the
+    module's docstring): a :class:`Recording`, or a one-line :class:`DataError` naming the
+    file and the reason."""
+    shown = os.fspath(path)
+    try:
+        info = os.stat(path)
+        kind = _not_regular(info.st_mode)
+        if kind is not None:  # a FIFO would block, a folder or a device is no table
+            raise DataError(f"{shown}: is {kind}, not a data file (give a regular file)")
+        if info.st_size > MAX_BYTES:
+            raise DataError(
+                f"{shown}: {info.st_size / 1e6:.0f} MB, larger than a data file is read"
+            )
+        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(descriptor, "rb") as handle:
+            if _not_regular(os.fstat(handle.fileno()).st_mode) is not None:
+                raise DataError(f"{shown}: not a regular file (it changed while being opened)")
+            raw = handle.read(MAX_BYTES + 1)
+    except OSError as exc:
+        raise DataError(f"{shown}: cannot read ({exc.strerror or exc})") from None
+    except ValueError as exc:  # a path with a NUL byte
+        raise DataError(f"{shown!r}: not a valid path ({exc})") from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        try:
+            text = raw.decode("latin-1")  # Tracker on older Windows systems
+        except UnicodeDecodeError:  # pragma: no cover - latin-1 decodes every byte
+            raise DataError(f"{shown}: not a text file") from None
+    return parse_data(text, shown)
+
+
+_KINDS = (
+    (stat.S_ISDIR, "a folder"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
+
+
+def _not_regular(mode: int) -> str | None:
+    """What a file of ``mode`` is when it is not a regular file (None for a regular file)."""
+    if stat.S_ISREG(mode):
+        return None
+    return next((kind for test, kind in _KINDS if test(mode)), "not a regular file")
+
+
+def parse_data(text: str, source: str = "<data>") -> Recording:
+    """A measured table from its text (``source`` names it in messages): see :func:`read_data`."""
+    lines = [line.rstrip("\r") for line in text.replace("\r\n", "\n").split("\n")]
+    while lines and not lines[-1].strip():
+        lines.pop()
+    if not lines or not any(line.strip() for line in lines):
+        raise DataError(f"{source}: the file is empty")
+    if "\x00" in text:
+        raise DataError(f"{source}: not a text file (it holds NUL bytes)")
+    first = lines[0].strip()
+    if first.lower().startswith("#multi"):
+        if len(lines) < 3:
+            raise DataError(
+                f"{source}: a Tracker '#multi:' file needs a line of track names and a line of "
+                "column names"
+            )
+        separator = _separator(lines[2])
+        names, header = _cells(lines[1], separator), _cells(lines[2], separator)
+        return _tracker(source, names, header, lines[3:], separator, 4, "tracker-multi")
+    header_line = lines[0]
+    if len(lines) > 1 and not any(mark in lines[0] for mark in _SEPARATORS):
+        header_line = lines[1]  # a Tracker file of one track: its name alone on the first line
+    separator = _separator(header_line)
+    head = _cells(lines[0], separator)
+    second = _cells(lines[1], separator) if len(lines) > 1 else []
+    named = [cell for cell in head if cell]
+    if len(named) == 1 and second and second[0].strip().lower() == "t" and named[0] != "t":
+        return _tracker(source, head, second, lines[2:], separator, 3, "tracker")
+    return _table(source, head, lines[1:], separator)
+
+
+_SEPARATORS = ("\t", ";", ",")
+
+
+def _separator(header: str) -> str:
+    """The column separator of a file, read from its header line (the numbers below may use
+    decimal commas): tab (Tracker), else semicolon, else comma."""
+    for separator in _SEPARATORS:
+        if separator in header:
+            return separator
+    return ","
+
+
+def _cells(line: str, separator: str) -> list[str]:
+    return [cell.strip().strip('"').strip() for cell in line.split(separator)]
+
+
+def _number(cell: str) -> float:
+    """A cell's number (NaN for an empty cell); ValueError for text that is no number."""
+    if not cell:
+        return math.nan
+    value = float(cell.replace(",", ".") if cell.count(",") == 1 and "." not in cell else cell)
+    if not math.isfinite(value):
+        raise ValueError(cell)
+    return value
+
+
+def _rows(
+    source: str, lines: list[str], separator: str, columns: int, first_row: int
+) -> FloatArray:
+    """The numbers of the data lines (N, columns), NaN for empty cells; a line that is blank is
+    skipped; a cell that is no number a :class:`DataError` naming its row and column."""
+    rows = []
+    for offset, line in enumerate(lines):
+        if not line.strip():
+            continue
+        cells = _cells(line, separator)
+        cells = (cells + [""] * columns)[:columns]
+        values = []
+        for column, cell in enumerate(cells):
+            try:
+                values.append(_number(cell))
+            except ValueError:
+                raise DataError(
+                    f"{source}: row {first_row + offset}, column {column + 1}: {cell!r} is not "
+                    "a finite number"
+                ) from None
+        rows.append(values)
+    if not rows:
+        raise DataError(f"{source}: no data rows after the header")
+    return np.array(rows, dtype=np.float64).reshape(len(rows), columns)
+
+
+def _times(source: str, table: FloatArray, column: int, first_row: int) -> tuple[FloatArray, ...]:
+    """The rows with a time (a row without one is an unmarked frame: skipped), checked strictly
+    increasing: ``(t, kept rows)``."""
+    keep = np.isfinite(table[:, column])
+    if not keep.any():
+        raise DataError(f"{source}: column 't' holds no time")
+    t = table[keep, column]
+    step = np.diff(t)
+    if np.any(step <= 0):
+        bad = int(np.flatnonzero(step <= 0)[0])
+        row = first_row + int(np.flatnonzero(keep)[bad + 1])
+        what = "repeats" if step[bad] == 0 else "is earlier than"
+        raise DataError(
+            f"{source}: row {row}: the time {t[bad + 1]:g} s {what} the row before "
+            f"({t[bad]:g} s): times must be strictly increasing (sort the rows, drop repeats)"
+        )
+    return t, table[keep]
+
+
+def _table(source: str, header: list[str], lines: list[str], separator: str) -> Recording:
+    """A plain or ``track`` CSV: ``t``, ``x_<id>``, optional ``phi_<id>``."""
+    lowered = [cell.lower() for cell in header]
+    if "t" not in lowered:
+        raise DataError(
+            f"{source}: no time column: the header needs a column 't' (s) beside the "
+            f"x_<body> columns (got {', '.join(header) or 'nothing'})"
+        )
+    seen: set[str] = set()
+    for cell in header:
+        if cell in seen and cell:
+            raise DataError(f"{source}: column '{cell}' appears twice in the header")
+        seen.add(cell)
+    tracks: list[str] = []
+    x_column: dict[str, int] = {}
+    phi_column: dict[str, int] = {}
+    for column, cell in enumerate(header):
+        if cell.lower() == "t" or not cell:
+            continue
+        kind, _, name = cell.partition("_")
+        if kind == "x" and name:
+            x_column[name] = column
+            if name not in tracks:
+                tracks.append(name)
+        elif kind == "phi" and name:
+            phi_column[name] = column
+        else:
+            raise DataError(
+                f"{source}: column '{cell}': not a data column (expected t, x_<body id> or "
+                "phi_<body id>)"
+            )
+    for name in phi_column:
+        if name not in x_column:
+            raise DataError(f"{source}: column 'phi_{name}' has no position column 'x_{name}'")
+    if not tracks:
+        raise DataError(f"{source}: no position column: the header needs x_<body id> columns")
+    table = _rows(source, lines, separator, len(header), 2)
+    t, table = _times(source, table, lowered.index("t"), 2)
+    x = np.stack([table[:, x_column[name]] for name in tracks], axis=1)
+    phi = np.stack(
+        [
+            table[:, phi_column[name]] if name in phi_column else np.full(len(t), np.nan)
+            for name in tracks
+        ],
+        axis=1,
+    )
+    return Recording(source, t, tuple(tracks), x, phi, "csv")
+
+
+def _tracker(
+    source: str,
+    names: list[str],
+    header: list[str],
+    lines: list[str],
+    separator: str,
+    first_row: int,
+    kind: str,
+) -> Recording:
+    """A Tracker data file: the track names (each above its first column), the column names,
+    the rows."""
+    lowered = [cell.lower() for cell in header]
+    if not lowered or lowered[0] != "t":
+        raise DataError(
+            f"{source}: no time column: Tracker's column names must start with 't' (got "
+            f"{', '.join(header) or 'nothing'})"
+        )
+    owner: list[str | None] = []
+    current: str | None = None
+    for column in range(len(header)):
+        name = names[column] if column < len(names) else ""
+        if name:
+            current = name
+        owner.append(current if column > 0 else None)
+    if not any(owner):  # one track named on the first line, in the time column's cell
+        single = next((n for n in names if n), "")
+        owner = [None] + [single] * (len(header) - 1)
+    tracks: list[str] = []
+    x_column: dict[str, int] = {}
+    for column, (owned, cell) in enumerate(zip(owner, lowered, strict=True)):
+        if owned is None or cell != "x":
+            continue
+        name = owned
+        if name in x_column:
+            raise DataError(f"{source}: track '{name}' has two 'x' columns")
+        x_column[name] = column
+        tracks.append(name)
+    if not tracks:
+        raise DataError(f"{source}: no 'x' column of any track (columns: {', '.join(header)})")
+    table = _rows(source, lines, separator, len(header), first_row)
+    t, table = _times(source, table, 0, first_row)
+    x = np.stack([table[:, x_column[name]] for name in tracks], axis=1)
+    return Recording(source, t, tuple(tracks), x, np.full_like(x, np.nan), kind)
+
+
+def match_bodies(
+    recording: Recording, system: System, mapping: Mapping[str, str] | None = None
+) -> BodyData:
+    """Each track of ``recording`` matched to a body of ``system``: by ``mapping`` (track ->
+    body id, ``--map track=body``), else by name. A track or a mapped body that is not in the
+    system, a body measured twice, or no position at all is a one-line :class:`DataError`."""
+    mapping = dict(mapping or {})
+    ids = [body.id for body in system.bodies]
+    for track, body in mapping.items():
+        if track not in recording.tracks:
+            raise DataError(
+                f"--map {track}={body}: {recording.source} has no track '{track}' (tracks: "
+                f"{', '.join(recording.tracks)})"
+            )
+        if body not in ids:
+            raise DataError(f"--map {track}={body}: no body '{body}' (bodies: {', '.join(ids)})")
+    by_body: dict[str, int] = {}
+    for column, track in enumerate(recording.tracks):
+        body = mapping.get(track, track)
+        if body not in ids:
+            what = "column 'x_" + track + "'" if recording.format == "csv" else f"track '{track}'"
+            raise DataError(
+                f"{recording.source}: {what}: no body '{body}' in the system (bodies: "
+                f"{', '.join(ids)}); match it with --map {track}=BODY"
+            )
+        if body in by_body:
+            raise DataError(
+                f"{recording.source}: body '{body}' is measured twice (tracks "
+                f"'{recording.tracks[by_body[body]]}' and '{track}')"
+            )
+        by_body[body] = column
+    order = [i for i, body in enumerate(ids) if body in by_body]
+    columns = [by_body[ids[i]] for i in order]
+    x, phi = recording.x[:, columns], recording.phi[:, columns]
+    for j, i in enumerate(order):
+        if not np.isfinite(x[:, j]).any():
+            raise DataError(
+                f"{recording.source}: body '{ids[i]}' has no position (every cell empty)"
+            )
+        angles = np.isfinite(phi[:, j])
+        if angles.any() and np.any(angles & ~np.isfinite(x[:, j])):
+            row = int(np.flatnonzero(angles & ~np.isfinite(x[:, j]))[0])
+            raise DataError(
+                f"{recording.source}: body '{ids[i]}': an angle without a position at "
+                f"t = {recording.t[row]:g} s"
+            )
+    return BodyData(
+        recording.source, recording.t, tuple(ids[i] for i in order), tuple(order), x, phi
+    )

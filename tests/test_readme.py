@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import importlib.util
 import math
+import re
 from pathlib import Path
 
 import numpy as np
+import pytest
 from typer.testing import CliRunner
 
 from rollspring import analyze, load_system
@@ -84,3 +87,46 @@ def test_error_example_is_real(tmp_path: Path) -> None:
 def test_python_example_values() -> None:
     result = analyze(load_system("hoop-cylinder"))
     np.testing.assert_allclose(result.stationary_weights, [4 / 7, 3 / 7], rtol=1e-12)
+
+
+def _walkthrough():
+    spec = importlib.util.spec_from_file_location(
+        "lab_walkthrough", Path(__file__).resolve().parents[1] / "tools" / "lab_walkthrough.py"
+    )
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.mark.slow
+def test_lab_walkthrough_is_real_output(tmp_path: Path) -> None:
+    """The "Lab" section shows what its commands print (tools/lab_walkthrough.py runs them):
+    every output line of its walk-through, the hand-marked fits and the comparisons with the
+    truth. The tracking's speed (``frames_per_second``) is the one line that differs."""
+    pytest.importorskip("cv2")
+    section = README.split("## The lab:", 1)[1].split("\n## ", 1)[0]
+    walkthrough = section.split("### The files", 1)[0]
+    lab = _walkthrough()
+    out = lab.walk(tmp_path)
+    printed = {line.strip() for text in out.values() for line in text.splitlines()}
+    printed |= set((tmp_path / "tracks.csv").read_text().splitlines())
+    checked = 0
+    for block in walkthrough.split("```text\n")[1:]:
+        for line in block.split("```", 1)[0].splitlines():
+            shown = line.strip()
+            if shown.startswith(("$", "--", "…", '"frames_per_second"', "wrote ")) or not shown:
+                continue
+            assert shown in printed, line
+            checked += 1
+    assert checked >= 60
+    section = " ".join(section.split())  # the prose, its lines joined
+    assert "129.974 ± 0.017" in out["fit hoop.txt"] and "129.974 ± 0.017" in section
+    assert "129.984 ± 0.011" in out["fit both.txt"] and "129.984 ± 0.011" in section
+    for line in lab.tracking_errors(tmp_path / "tracks.csv"):
+        for number in re.findall(r"\d\.\d{3,4}", line):
+            assert number in section, (line, number)
+    for line in lab.against_truth(out["fit"]):
+        off = re.search(r"([+-]\d\.\d) standard errors", line)
+        assert off is not None
+        assert f"{off.group(1).replace('-', '−')} standard errors" in section, line

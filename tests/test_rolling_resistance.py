@@ -526,3 +526,73 @@ def test_a_body_held_at_rest_needs_the_friction_that_balances_the_spring():
     friction, _ = resisted_contact_forces(arrays, far, np.zeros(1))
     plain, _ = contact_forces(arrays, far)
     assert friction[0] - plain[0] == pytest.approx(+0.01 * G / 1.5, rel=1e-12)
+
+
+OFF_CENTRE = make_system(
+    bodies=[
+        body("hoop", "hoop", mass=1.0, radius=0.1, x=0.0, rolling_resistance=0.02),
+        body("ball", "sphere", mass=0.7, radius=0.08, x=0.45, rolling_resistance=0.05),
+    ],
+    springs=[
+        spring(
+            "hoop",
+            "ball",
+            stiffness=60.0,
+            rest_length=0.4,
+            at=[{"radius": 0.06, "angle": 70.0}, {"height": 0.14}],
+        )
+    ],
+)
+
+
+@settings(max_examples=20)
+@given(
+    q=st.tuples(st.floats(-0.6, 0.6), st.floats(-0.6, 0.6)),
+    rates=st.tuples(st.floats(-5.0, 5.0), st.floats(-5.0, 5.0)).filter(lambda r: all(r)),
+)
+def test_the_kernels_physics_and_sympy_forms_of_the_resistance_agree(q, rates):
+    """The force law's parity (docs/force-law.md) for rolling resistance, where the normal force
+    varies with the configuration (an off-centre, tilted spring): the compiled kernels' motion
+    and friction against the NumPy physics, and the SymPy generalised force against both."""
+    from rollspring.analysis.derivation.build import symbolic_system
+    from rollspring.physics import generalized_forces
+    from rollspring.simulate import kernels
+
+    arrays = system_arrays(OFF_CENTRE)
+    model = kernels.kernel_model(arrays)
+    q, qdot = np.array(q), np.array(rates)
+    state = np.concatenate([arrays.x0 + arrays.scale * q, q, arrays.scale * qdot, qdot])
+    spin = np.sign(qdot)
+    derivative = np.empty(8)
+    none = np.zeros(2, dtype=bool)
+    kernels.slipping_derivatives(model, state, none, np.zeros(2), spin, False, derivative)
+    friction, normal = resisted_contact_forces(arrays, q, qdot)
+    torque = rolling_resistance_torque(arrays, normal, qdot)
+    expected = (generalized_forces(arrays, q) + torque) / arrays.inertia
+    np.testing.assert_allclose(derivative[6:], expected, rtol=1e-12, atol=1e-12)
+    out = [np.empty((1, 2)) for _ in range(3)] + [np.empty((1, 1)), np.empty((1, 1))]
+    kernel_friction, kernel_normal = out[0], out[1]
+    kernels.observe(
+        model,
+        state[None, :],
+        none[None],
+        np.zeros((1, 2)),
+        spin[None],
+        False,
+        kernel_friction,
+        kernel_normal,
+        out[3],
+        out[4],
+        np.empty(1),
+        arrays.gamma * arrays.mass * arrays.radius**2,
+        out[2],
+        np.empty(1),
+    )
+    np.testing.assert_allclose(kernel_friction[0], friction, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(kernel_normal[0], normal, rtol=1e-13)
+    sym = symbolic_system(OFF_CENTRE)  # its angles measured from the equilibrium
+    shifted = q - np.asarray(sym.q_reference)
+    values = {b.q: v for b, v in zip(sym.bodies, shifted, strict=True)}
+    values.update({b.qd: v for b, v in zip(sym.bodies, qdot, strict=True)})
+    symbolic = [float(term.subs(values)) for term in sym.rolling_resistance]
+    np.testing.assert_allclose(symbolic, torque, rtol=1e-12)

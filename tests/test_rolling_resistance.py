@@ -224,6 +224,13 @@ def test_hoop_and_cylinder_with_rolling_resistance_match_an_independent_integrat
     assert [(kind, i) for kind, i, _ in events] == [(kind, i) for kind, i, _ in seen]
     np.testing.assert_allclose([t for *_, t in events], [t for *_, t in seen], atol=1e-9)
     np.testing.assert_allclose(tr.x, x_ref, atol=1e-9)
+    # the friction each body needs is largest at release (the spring's largest push, the
+    # resistance against it): |f| = |F_x|/2 + C_rr N/2 for the hoop, |F_x|/3 + 2 C_rr N/3 for
+    # the cylinder (M8 with M21); the run's extremes see the resistance too
+    push = 100.0 * 0.01  # N
+    ratios = tr.summary["max_friction_ratio"]
+    assert ratios["hoop"] == pytest.approx((push / 2 + 0.03 * G / 2) / G, rel=1e-12)
+    assert ratios["cylinder"] == pytest.approx((push / 3 + 2 * 0.003 * G / 3) / G, rel=1e-12)
     # energy: E(t) + W(t) = E0, to the integration's tolerance
     assert tr.summary["energy_error"] < 1e-9
     summary = tr.summary

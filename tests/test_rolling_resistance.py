@@ -17,6 +17,7 @@ from rollspring.model import as_system
 from rollspring.physics import (
     contact_forces,
     dissipated_power,
+    resisted_accelerations,
     resisted_contact_forces,
     rolling_resistance_torque,
     system_arrays,
@@ -528,11 +529,15 @@ def test_a_body_held_at_rest_needs_the_friction_that_balances_the_spring():
     friction, normal = resisted_contact_forces(arrays, q, np.zeros_like(q))
     np.testing.assert_allclose(friction[:, 0], tr.friction[rest, 0], rtol=1e-12)
     np.testing.assert_allclose(normal[:, 0], G, rtol=1e-15)
+    assert np.all(resisted_accelerations(arrays, q, np.zeros_like(q)) == 0.0)
     # driven beyond what the resistance holds, it rolls away at once, the resistance against it
     far = np.array([1.0])  # 0.2 m out: k x = 2 N > 0.0981 N, pulling it back
     friction, _ = resisted_contact_forces(arrays, far, np.zeros(1))
     plain, _ = contact_forces(arrays, far)
     assert friction[0] - plain[0] == pytest.approx(+0.01 * G / 1.5, rel=1e-12)
+    # (1 + gamma) m x'' = F_x + C_rr N: -2 N + 0.0981 N on the 1.5 kg of the cylinder
+    acceleration = resisted_accelerations(arrays, far, np.zeros(1))[0] * 0.1
+    assert acceleration == pytest.approx((-2.0 + 0.01 * G) / 1.5, rel=1e-12)
 
 
 OFF_CENTRE = make_system(
@@ -576,6 +581,7 @@ def test_the_kernels_physics_and_sympy_forms_of_the_resistance_agree(q, rates):
     friction, normal = resisted_contact_forces(arrays, q, qdot)
     torque = rolling_resistance_torque(arrays, normal, qdot)
     expected = (generalized_forces(arrays, q) + torque) / arrays.inertia
+    np.testing.assert_allclose(resisted_accelerations(arrays, q, qdot), expected, rtol=1e-15)
     np.testing.assert_allclose(derivative[6:], expected, rtol=1e-12, atol=1e-12)
     out = [np.empty((1, 2)) for _ in range(3)] + [np.empty((1, 1)), np.empty((1, 1))]
     kernel_friction, kernel_normal = out[0], out[1]

@@ -609,3 +609,13 @@ def test_the_kernels_physics_and_sympy_forms_of_the_resistance_agree(q, rates):
     values.update({b.qd: v for b, v in zip(sym.bodies, qdot, strict=True)})
     symbolic = [float(term.subs(values)) for term in sym.rolling_resistance]
     np.testing.assert_allclose(symbolic, torque, rtol=1e-12)
+
+
+def test_a_resisted_system_is_not_exactly_linear():
+    from rollspring.analysis import analyze
+    from rollspring.analysis.checks import is_exactly_linear
+
+    system = as_system("hoop-cylinder").model_dump()
+    assert is_exactly_linear(analyze(system))
+    system["bodies"][1]["rolling_resistance"] = 0.001
+    assert not is_exactly_linear(analyze(system))

@@ -17,6 +17,7 @@ from rollspring.model import as_system
 from rollspring.physics import (
     contact_forces,
     dissipated_power,
+    resisted_accelerations,
     resisted_contact_forces,
     rolling_resistance_torque,
     system_arrays,
@@ -224,6 +225,13 @@ def test_hoop_and_cylinder_with_rolling_resistance_match_an_independent_integrat
     assert [(kind, i) for kind, i, _ in events] == [(kind, i) for kind, i, _ in seen]
     np.testing.assert_allclose([t for *_, t in events], [t for *_, t in seen], atol=1e-9)
     np.testing.assert_allclose(tr.x, x_ref, atol=1e-9)
+    # the friction each body needs is largest at release (the spring's largest push, the
+    # resistance against it): |f| = |F_x|/2 + C_rr N/2 for the hoop, |F_x|/3 + 2 C_rr N/3 for
+    # the cylinder (M8 with M21); the run's extremes see the resistance too
+    push = 100.0 * 0.01  # N
+    ratios = tr.summary["max_friction_ratio"]
+    assert ratios["hoop"] == pytest.approx((push / 2 + 0.03 * G / 2) / G, rel=1e-12)
+    assert ratios["cylinder"] == pytest.approx((push / 3 + 2 * 0.003 * G / 3) / G, rel=1e-12)
     # energy: E(t) + W(t) = E0, to the integration's tolerance
     assert tr.summary["energy_error"] < 1e-9
     summary = tr.summary
@@ -521,8 +529,93 @@ def test_a_body_held_at_rest_needs_the_friction_that_balances_the_spring():
     friction, normal = resisted_contact_forces(arrays, q, np.zeros_like(q))
     np.testing.assert_allclose(friction[:, 0], tr.friction[rest, 0], rtol=1e-12)
     np.testing.assert_allclose(normal[:, 0], G, rtol=1e-15)
+    assert np.all(resisted_accelerations(arrays, q, np.zeros_like(q)) == 0.0)
     # driven beyond what the resistance holds, it rolls away at once, the resistance against it
     far = np.array([1.0])  # 0.2 m out: k x = 2 N > 0.0981 N, pulling it back
     friction, _ = resisted_contact_forces(arrays, far, np.zeros(1))
     plain, _ = contact_forces(arrays, far)
     assert friction[0] - plain[0] == pytest.approx(+0.01 * G / 1.5, rel=1e-12)
+    # (1 + gamma) m x'' = F_x + C_rr N: -2 N + 0.0981 N on the 1.5 kg of the cylinder
+    acceleration = resisted_accelerations(arrays, far, np.zeros(1))[0] * 0.1
+    assert acceleration == pytest.approx((-2.0 + 0.01 * G) / 1.5, rel=1e-12)
+
+
+OFF_CENTRE = make_system(
+    bodies=[
+        body("hoop", "hoop", mass=1.0, radius=0.1, x=0.0, rolling_resistance=0.02),
+        body("ball", "sphere", mass=0.7, radius=0.08, x=0.45, rolling_resistance=0.05),
+    ],
+    springs=[
+        spring(
+            "hoop",
+            "ball",
+            stiffness=60.0,
+            rest_length=0.4,
+            at=[{"radius": 0.06, "angle": 70.0}, {"height": 0.14}],
+        )
+    ],
+)
+
+
+@settings(max_examples=20)
+@given(
+    q=st.tuples(st.floats(-0.6, 0.6), st.floats(-0.6, 0.6)),
+    rates=st.tuples(st.floats(-5.0, 5.0), st.floats(-5.0, 5.0)).filter(lambda r: all(r)),
+)
+def test_the_kernels_physics_and_sympy_forms_of_the_resistance_agree(q, rates):
+    """The force law's parity (docs/force-law.md) for rolling resistance, where the normal force
+    varies with the configuration (an off-centre, tilted spring): the compiled kernels' motion
+    and friction against the NumPy physics, and the SymPy generalised force against both."""
+    from rollspring.analysis.derivation.build import symbolic_system
+    from rollspring.physics import generalized_forces
+    from rollspring.simulate import kernels
+
+    arrays = system_arrays(OFF_CENTRE)
+    model = kernels.kernel_model(arrays)
+    q, qdot = np.array(q), np.array(rates)
+    state = np.concatenate([arrays.x0 + arrays.scale * q, q, arrays.scale * qdot, qdot])
+    spin = np.sign(qdot)
+    derivative = np.empty(8)
+    none = np.zeros(2, dtype=bool)
+    kernels.slipping_derivatives(model, state, none, np.zeros(2), spin, False, derivative)
+    friction, normal = resisted_contact_forces(arrays, q, qdot)
+    torque = rolling_resistance_torque(arrays, normal, qdot)
+    expected = (generalized_forces(arrays, q) + torque) / arrays.inertia
+    np.testing.assert_allclose(resisted_accelerations(arrays, q, qdot), expected, rtol=1e-15)
+    np.testing.assert_allclose(derivative[6:], expected, rtol=1e-12, atol=1e-12)
+    out = [np.empty((1, 2)) for _ in range(3)] + [np.empty((1, 1)), np.empty((1, 1))]
+    kernel_friction, kernel_normal = out[0], out[1]
+    kernels.observe(
+        model,
+        state[None, :],
+        none[None],
+        np.zeros((1, 2)),
+        spin[None],
+        False,
+        kernel_friction,
+        kernel_normal,
+        out[3],
+        out[4],
+        np.empty(1),
+        arrays.gamma * arrays.mass * arrays.radius**2,
+        out[2],
+        np.empty(1),
+    )
+    np.testing.assert_allclose(kernel_friction[0], friction, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(kernel_normal[0], normal, rtol=1e-13)
+    sym = symbolic_system(OFF_CENTRE)  # its angles measured from the equilibrium
+    shifted = q - np.asarray(sym.q_reference)
+    values = {b.q: v for b, v in zip(sym.bodies, shifted, strict=True)}
+    values.update({b.qd: v for b, v in zip(sym.bodies, qdot, strict=True)})
+    symbolic = [float(term.subs(values)) for term in sym.rolling_resistance]
+    np.testing.assert_allclose(symbolic, torque, rtol=1e-12)
+
+
+def test_a_resisted_system_is_not_exactly_linear():
+    from rollspring.analysis import analyze
+    from rollspring.analysis.checks import is_exactly_linear
+
+    system = as_system("hoop-cylinder").model_dump()
+    assert is_exactly_linear(analyze(system))
+    system["bodies"][1]["rolling_resistance"] = 0.001
+    assert not is_exactly_linear(analyze(system))

@@ -180,7 +180,13 @@ def _geometry_warnings(analysis: LinearAnalysis) -> list[str]:
 
 def is_exactly_linear(analysis: LinearAnalysis) -> bool:
     """True when the equations of motion are linear at any amplitude (docs/physics.md section 8):
-    every spring attached at centres (or anchors) and horizontal, external forces at centres."""
+    every spring attached at centres (or anchors) and horizontal, external forces at centres,
+    and no rolling resistance (its sign follows the motion, section 5.1)."""
+    return _linear_geometry(analysis) and not analysis.arrays.resisted
+
+
+def _linear_geometry(analysis: LinearAnalysis) -> bool:
+    """The springs and forces give forces linear in the coordinates at any amplitude."""
     arrays = analysis.arrays
     centres = bool(np.all(arrays.end_r == 0)) and bool(np.all(arrays.force_r == 0))
     return centres and bool(np.all(analysis.spring_tilt_deg == 0))
@@ -188,7 +194,7 @@ def is_exactly_linear(analysis: LinearAnalysis) -> bool:
 
 def _amplitude_warnings(analysis: LinearAnalysis) -> list[str]:
     arrays = analysis.arrays
-    if analysis.amplitude is None or is_exactly_linear(analysis):
+    if analysis.amplitude is None or _linear_geometry(analysis):
         return []
     out = []
     for i, body in enumerate(arrays.ids):

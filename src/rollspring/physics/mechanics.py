@@ -40,6 +40,7 @@ __all__ = [
     "kinetic_energy",
     "mass_matrix",
     "potential_energy",
+    "resisted_accelerations",
     "resisted_contact_forces",
     "rolling_resistance_torque",
     "spring_energies",
@@ -583,6 +584,30 @@ def rolling_resistance_torque(
         * system.radius
         * np.sign(angular_velocity)
     )
+    return result
+
+
+def resisted_accelerations(system: SystemArrays, q: FloatArray, qdot: FloatArray) -> FloatArray:
+    r"""Exact equations of motion while every body rolls, with rolling resistance,
+    docs/physics.md (M7), (M21), (M22):
+
+    .. math:: J_i\ddot q_i = Q_i + \Gamma_i, \qquad
+              \Gamma_i = -C_{rr,i} N_i R_i\,\mathrm{sign}\,\dot\varphi_i ,
+
+    i.e. :math:`(1+\gamma_i) m_i\ddot x_i = Q_i/R_i - C_{rr,i} N_i\,\mathrm{sign}\,\dot x_i`. A
+    resisted body at rest is held (:math:`\ddot q_i = 0`) while :math:`|Q_i| \le C_{rr} N_i R_i`,
+    else it starts the way :math:`Q_i` drives it, the resistance against it. Equal to
+    :func:`accelerations` where :math:`C_{rr} = 0`. Shapes: (..., n)."""
+    q, qdot = _as_state(system, q), _as_state(system, qdot)
+    drive = generalized_forces(system, q, qdot)
+    _, normal = contact_forces(system, q, qdot)
+    resisted = (system.rolling_resistance > 0) & (system.rolls > 0)
+    limit = system.rolling_resistance * normal * system.radius
+    at_rest = resisted & (qdot == 0.0)
+    held = at_rest & (np.abs(drive) <= limit)
+    spin = np.where(at_rest, np.sign(drive), np.sign(qdot))
+    torque = np.where(resisted, -limit * spin, 0.0)
+    result: FloatArray = np.where(held, 0.0, (drive + torque) / system.inertia)
     return result
 
 

@@ -66,7 +66,7 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
         states = segment.evaluate(segment.samples)
         slip = np.broadcast_to(segment.slipping, states[:, :n].shape)
         sign = np.broadcast_to(segment.sign, states[:, :n].shape)
-        friction, normal, *_ = run.observe(states, slip, sign)
+        friction, normal, *_ = run.observe(states, slip, sign, segment.spin)
         width = float(np.max(np.diff(segment.samples)))
         for i in range(n):
             if run.rolls[i] and not segment.slipping[i]:
@@ -169,7 +169,7 @@ def _refine(
         states = segment.evaluate(times)
         slipping = np.broadcast_to(segment.slipping, (len(times), run.n))
         sign = np.broadcast_to(segment.sign, (len(times), run.n))
-        f, nn, *_ = run.observe(states, slipping, sign)
+        f, nn, *_ = run.observe(states, slipping, sign, segment.spin)
         if kind == "ratio":
             with np.errstate(divide="ignore", invalid="ignore"):
                 return np.where(nn[:, i] > 0, np.abs(f[:, i]) / nn[:, i], np.inf)

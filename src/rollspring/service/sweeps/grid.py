@@ -25,6 +25,7 @@ import numpy as np
 
 from rollspring.errors import RollspringError, SweepError
 from rollspring.model import System, system_from_dict, system_to_json
+from rollspring.simulate.batch.parameters import NO_ROLLING_RESISTANCE
 from rollspring.simulate.costs import MAX_RUNS
 
 __all__ = [
@@ -87,6 +88,8 @@ def path_kind(system: System, path: str) -> tuple[str, tuple[Any, ...]]:
     if parts[0] == "bodies" and len(parts) == 3:
         if parts[1] not in ids:
             raise bad(f"no body '{parts[1]}' (bodies: {', '.join(ids)})")
+        if parts[2] == "rolling_resistance":
+            raise bad(NO_ROLLING_RESISTANCE)
         if parts[2] not in BATCH_BODY_QUANTITIES:
             raise bad(
                 f"unknown body quantity '{parts[2]}' (one of {', '.join(BATCH_BODY_QUANTITIES)})"

@@ -15,7 +15,13 @@ from rollspring.model import RANGES, System
 from rollspring.physics import system_arrays
 from rollspring.physics.arrays import FloatArray
 
-__all__ = ["PARAMETER_QUANTITIES", "Runs", "parse_parameters", "system_runs"]
+__all__ = [
+    "NO_ROLLING_RESISTANCE",
+    "PARAMETER_QUANTITIES",
+    "Runs",
+    "parse_parameters",
+    "system_runs",
+]
 
 #: Quantities a parameter path may name: ``bodies.<id>.<q>``, ``springs.<index>.<q>``, ``gravity``.
 PARAMETER_QUANTITIES = {
@@ -23,6 +29,13 @@ PARAMETER_QUANTITIES = {
     "springs": ("stiffness", "rest_length"),
     "gravity": (),
 }
+
+
+#: Why a batch (and so a sweep) refuses a rolling resistance, varied or in the system.
+NO_ROLLING_RESISTANCE = (
+    "batch runs take no rolling resistance (symplectic integrators, no stick events); "
+    "use rollspring.simulate"
+)
 
 
 def _bad(key: str, reason: str) -> ModelError:
@@ -70,11 +83,7 @@ def parse_parameters(system: System, parameters: Mapping[str, ArrayLike]) -> Run
             if ident not in index:
                 raise _bad(key, f"no body '{ident}' (bodies: {', '.join(index)})")
             if quantity == "rolling_resistance":
-                raise _bad(
-                    key,
-                    "batch runs take no rolling resistance (symplectic integrators, no stick "
-                    "events); use rollspring.simulate",
-                )
+                raise _bad(key, NO_ROLLING_RESISTANCE)
             if quantity not in PARAMETER_QUANTITIES["bodies"]:
                 raise _bad(
                     key,

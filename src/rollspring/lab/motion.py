@@ -18,8 +18,8 @@ damping included, zero modes (a free pair's uniform drift, a defective eigenvalu
 integration error — a matrix exponential per sampling step, then products. A fit of 600 frames
 costs a few hundred microseconds per evaluation.
 
-**Any other system** (attachments off the centres, tilted springs, rolling resistance once the
-model has it) is integrated by :func:`rollspring.simulate` at ``rtol = 1e-9`` (with
+**Any other system** (attachments off the centres, tilted springs, a rolling resistance) is
+integrated by :func:`rollspring.simulate` at ``rtol = 1e-9`` (with
 ``on_slip="continue"``: a slipping body continues with kinetic friction), its outputs at the
 data's times. The same :func:`motion_matrix` then gives the linearisation about the placement,
 used only for the fit's first guess.

@@ -1,8 +1,8 @@
 """The numbers of a system a fit may free: the sweep's PATHs, and any other number of the system.
 
 A PATH walks the system's JSON form (:func:`rollspring.model.system_to_json`): ``gravity``,
-``bodies.<id>.<field>`` (``mass``, ``radius``, ``mu_static``, ``rolling_resistance`` once the
-model has it, ...), ``springs.<index>.<field>`` (``stiffness``, ``damping``, ``rest_length``),
+``bodies.<id>.<field>`` (``mass``, ``radius``, ``mu_static``, ``rolling_resistance``, ...),
+``springs.<index>.<field>`` (``stiffness``, ``damping``, ``rest_length``),
 ``springs.<index>.at.<end>.<field>``, ``anchors.<id>.<field>``, ``forces.<index>.<field>``.
 Whatever the model validates as a number is a PATH; the value set is checked by the model
 itself (:func:`rollspring.model.system_from_dict`), so a value outside a range is refused in

@@ -7,7 +7,7 @@ import os
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-from rollspring.lab.data import BodyData, Recording, match_bodies, read_data
+from rollspring.lab.data import BodyData, Recording, Tracks, as_recording, match_bodies
 from rollspring.lab.fit import FitResult, fit_model
 from rollspring.model import System
 
@@ -15,7 +15,7 @@ __all__ = ["fit"]
 
 
 def fit(
-    data: str | os.PathLike[str] | Recording | BodyData,
+    data: str | os.PathLike[str] | Recording | BodyData | Tracks,
     system: System | dict[str, Any] | str | os.PathLike[str],
     free: Sequence[str] = (),
     *,
@@ -28,7 +28,8 @@ def fit(
     progress: Callable[[float], None] | None = None,
 ) -> FitResult:
     r"""Fit ``system`` to the measured table ``data`` (a file: a ``track`` CSV, a plain CSV
-    ``t,x_<id>,phi_<id>`` or a Tracker data file; or a :class:`~rollspring.lab.data.Recording`)
+    ``t,x_<id>,phi_<id>`` or a Tracker data file; a :class:`~rollspring.lab.data.Recording`; or
+    the tracks :func:`rollspring.track` returns)
     by least squares on the exact motion (:func:`rollspring.lab.fit.fit_model`).
 
     ``free`` are PATHs of the system (``springs.0.stiffness``, ``springs.0.damping``,
@@ -45,11 +46,7 @@ def fit(
     from rollspring.model.files import as_system
 
     model = as_system(system)
-    if isinstance(data, BodyData):
-        table = data
-    else:
-        recording = data if isinstance(data, Recording) else read_data(data)
-        table = match_bodies(recording, model, mapping)
+    table = data if isinstance(data, BodyData) else match_bodies(as_recording(data), model, mapping)
     share = 0.3 if posterior else 0.9
 
     def part(low: float, high: float) -> Callable[[float], None] | None:

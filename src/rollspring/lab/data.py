@@ -29,6 +29,7 @@ import os
 import stat
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Protocol, cast
 
 import numpy as np
 
@@ -36,7 +37,16 @@ from rollspring.errors import DataError
 from rollspring.model import System
 from rollspring.physics.arrays import FloatArray
 
-__all__ = ["BodyData", "DataError", "Recording", "match_bodies", "parse_data", "read_data"]
+__all__ = [
+    "BodyData",
+    "DataError",
+    "Recording",
+    "Tracks",
+    "as_recording",
+    "match_bodies",
+    "parse_data",
+    "read_data",
+]
 
 #: The largest data file read (bytes): a minute at 1000 frames/s of twenty bodies is 3 MB.
 MAX_BYTES = 200_000_000
@@ -83,6 +93,33 @@ class BodyData:
     def n_points(self) -> int:
         """How many positions were measured (every body's marked frames)."""
         return int(np.isfinite(self.x).sum())
+
+
+class Tracks(Protocol):
+    """What :func:`rollspring.track` returns, as the fit sees it: the CSV it writes and the video
+    it came from (:class:`rollspring.lab.tracking.TrackResult`)."""
+
+    video: str
+
+    def to_csv(self, path: str | os.PathLike[str] | None = None) -> str: ...
+
+
+def as_recording(data: object) -> Recording:
+    """What a fit is given, as a :class:`Recording`: a file path (:func:`read_data`), a
+    :class:`Recording`, or the tracks of a video (:func:`rollspring.track`'s result, read from
+    the CSV it writes, so that a file and the object give the same fit); anything else is a
+    one-line :class:`DataError`."""
+    if isinstance(data, Recording):
+        return data
+    if isinstance(data, str | os.PathLike):
+        return read_data(data)
+    if callable(getattr(data, "to_csv", None)) and isinstance(getattr(data, "video", None), str):
+        tracks = cast(Tracks, data)
+        return parse_data(tracks.to_csv(), f"the tracks of {tracks.video}")
+    raise DataError(
+        "data: expected a data file's path, a Recording or the result of rollspring.track, "
+        f"got {type(data).__name__}"
+    )
 
 
 def read_data(path: str | os.PathLike[str]) -> Recording:

@@ -43,7 +43,16 @@ with the initial state fixed, the offset is identifiable and fitted as ``x_offse
 **Uncertainties.** With the Jacobian :math:`J` at the minimum and
 :math:`s^2 = \sum r^2/(N - p)`, the covariance is :math:`s^2 (J^TJ)^{-1}` (from the singular
 values and vectors of the column-normalised :math:`J`); the standard errors are its diagonal's
-roots, the correlations its normalised form.
+roots, the correlations its normalised form. That assumes independent errors. Tracking errors
+are often not (a blurred outline is off the same way for several frames), and a model that
+does not describe the data leaves residuals that follow each other: the residuals' lag-1
+autocorrelation :math:`\rho = \sum_j r_j r_{j+1} / \sum_j r_j^2` (each body's consecutive
+marked frames, pooled) is measured, and when it is above what independent errors give
+(:math:`2/\sqrt N`) the errors are taken as an AR(1) process in the frames,
+:math:`\Sigma_{ij} = s^2\rho^{|i-j|}` within a body, and the covariance is the least-squares
+estimate's under them, :math:`(J^TJ)^{-1}J^T\Sigma J(J^TJ)^{-1}` (the sandwich; with
+:math:`\rho = 0` it is :math:`s^2(J^TJ)^{-1}`). Above :data:`MODEL_MISMATCH_CORRELATION` a
+warning says that the residuals are not noise: the model, as fitted, does not describe the data.
 A near-singular :math:`J` (column-normalised condition number above
 :data:`IDENTIFIABLE_CONDITION`) is reported as a warning naming the combination of parameters
 the data do not constrain (the right singular vector).
@@ -82,6 +91,10 @@ __all__ = [
 #: A column-normalised Jacobian whose condition number exceeds this has a combination of
 #: parameters the data do not constrain (a warning names it).
 IDENTIFIABLE_CONDITION = 1e4
+
+#: Residuals whose lag-1 autocorrelation exceeds this are not noise: a warning says that the
+#: model, as fitted, does not describe the data (free more parameters or check the system).
+MODEL_MISMATCH_CORRELATION = 0.5
 
 #: The local solver's budget: evaluations of the residuals per fitted parameter.
 MAX_EVALUATIONS_PER_PARAMETER = 100
@@ -782,7 +795,20 @@ def _result(
     points, count = residual.size, len(fitted)
     dof = max(points - count, 1)
     noise = math.sqrt(float(residual @ residual) / dof)
+    model_x = problem.states(best)[:, problem.measured]
+    rho = residual_correlation(model_x - problem.table.x, problem.mask)
     covariance, warnings = _covariance(jacobian, noise, [names[i] for i in fitted])
+    if rho > 2.0 / math.sqrt(points) and count:
+        independent = covariance
+        covariance = correlated_covariance(jacobian, problem.mask, rho, independent, noise)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            widened = float(np.nanmax(np.sqrt(np.diag(covariance) / np.diag(independent))))
+        if rho > MODEL_MISMATCH_CORRELATION:
+            warnings.append(
+                f"the residuals are not noise (lag-1 autocorrelation {rho:.2f}): the model, as "
+                "fitted, does not describe the data; free more parameters or check the system "
+                f"(standard errors widened up to {widened:.3g}× for it)"
+            )
     errors = np.sqrt(np.maximum(np.diag(covariance), 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         correlation = covariance / np.outer(errors, errors)
@@ -794,7 +820,6 @@ def _result(
             parameters[name] = Parameter(name, float(best[i]), float(errors[k]), False, _unit(name))
         else:
             parameters[name] = Parameter(name, float(best[i]), 0.0, True, _unit(name))
-    model_x = problem.states(best)[:, problem.measured]
     rms = {}
     for column, body in enumerate(problem.table.bodies):
         ok = problem.mask[:, column]
@@ -820,6 +845,48 @@ def _result(
         problem=problem,
         best=best,
     )
+
+
+def residual_correlation(residuals: FloatArray, marked: np.ndarray) -> float:
+    r"""The residuals' lag-1 autocorrelation, pooled over the bodies:
+    :math:`\rho = \sum_b\sum_j r_{j,b}\,r_{j+1,b} / \sum_b\sum_j r_{j,b}^2` over each body's
+    consecutive marked frames (``residuals`` (N, B) model minus data, ``marked`` (N, B) where a
+    frame has a mark); 0 for independent errors, near 1 for a model that misses the motion,
+    clipped to [0, 0.99]."""
+    pairs = marked[1:] & marked[:-1]
+    current = np.where(marked, residuals, 0.0)
+    lagged = float(np.sum(np.where(pairs, current[1:] * current[:-1], 0.0)))
+    energy = float(np.sum(current**2))
+    if energy <= 0.0:
+        return 0.0
+    return min(max(lagged / energy, 0.0), 0.99)
+
+
+def correlated_covariance(
+    jacobian: FloatArray, marked: np.ndarray, rho: float, independent: FloatArray, noise: float
+) -> FloatArray:
+    r"""The covariance of the least-squares estimate when each body's errors follow an AR(1)
+    process in the frames, :math:`\Sigma_{ij} = s^2\rho^{|i-j|}`:
+    :math:`C = (J^TJ)^{-1}J^T\Sigma J(J^TJ)^{-1} = A\,J^T\tilde\Sigma J\,A/s^2` with
+    :math:`A = s^2(J^TJ)^{-1}` (``independent``, from :func:`_covariance`), :math:`s` the
+    ``noise`` and :math:`\tilde\Sigma = \Sigma/s^2`. The rows of ``jacobian`` are the marked
+    entries of the (frames, bodies) table ``marked`` in row-major order; :math:`\tilde\Sigma J`
+    is a forward and a backward first-order filter along the frames (SciPy's ``lfilter``),
+    :math:`y^f_i = J_i + \rho y^f_{i-1}`, :math:`y^b_i = J_i + \rho y^b_{i+1}`,
+    :math:`\tilde\Sigma J = y^f + y^b - J` (an unmarked frame counts in the lag). Where a
+    direction is not constrained (infinite variances) the long-run factor
+    :math:`(1+\rho)/(1-\rho)` widens what is finite."""
+    from scipy.signal import lfilter
+
+    if not np.isfinite(independent).all() or noise <= 0.0:
+        return independent * ((1.0 + rho) / (1.0 - rho))
+    table = np.zeros((*marked.shape, jacobian.shape[1]))
+    table[marked] = jacobian
+    forward = lfilter([1.0], [1.0, -rho], table, axis=0)
+    backward = lfilter([1.0], [1.0, -rho], table[::-1], axis=0)[::-1]
+    filtered = (forward + backward - table)[marked]
+    meat = jacobian.T @ filtered
+    return np.asarray(independent @ meat @ independent, dtype=float) / noise**2
 
 
 def _covariance(

@@ -6,6 +6,9 @@ reader's or the fit's one-line message, located at the field it is about."""
 
 from __future__ import annotations
 
+import multiprocessing
+import os
+import signal
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -194,3 +197,42 @@ def test_the_request_is_checked_before_any_work(client: TestClient) -> None:
         )
     )
     assert loc == ["body", "fix_initial"]
+
+
+def test_a_tracker_file_is_read_and_its_tracks_mapped_to_the_bodies(client: TestClient) -> None:
+    t, x = recording()
+    lines = ["#multi:", "\tmass A\t\tmass B\t", "t\tx\ty\tx\ty"]
+    lines += [
+        f"{float(a)!r}\t{float(b)!r}\t0.1\t{float(c)!r}\t0.1"
+        for a, (b, c) in zip(t, x, strict=True)
+    ]
+    text = "\n".join(lines) + "\n"
+    mapping = {"mass A": "hoop", "mass B": "cylinder"}
+    request = {"system": rough_start(), "data": text, "filename": "tracker.txt"}
+    loc, message = refusal(client.post("/api/lab/data", json=request))
+    assert loc == ["body", "data"]
+    assert message.startswith("tracker.txt: track 'mass A': no body 'mass A' in the system")
+    answer = client.post("/api/lab/data", json={**request, "mapping": mapping})
+    assert answer.status_code == 200, answer.text
+    assert answer.json()["bodies"]["cylinder"]["x"] == x[:, 1].tolist()
+    loc, message = refusal(client.post("/api/fit", json={**request, "mapping": {"mass C": "hoop"}}))
+    assert loc == ["body", "mapping"]
+    assert message.startswith("mapping mass C=hoop: tracker.txt has no track 'mass C'")
+
+
+def test_a_fit_past_the_time_budget_is_a_503() -> None:
+    """Deterministic: the only worker is stopped (SIGSTOP), so the fit cannot be answered
+    within the budget at all; the pool abandons it with 503 (and replaces the worker)."""
+    before = set(multiprocessing.active_children())
+    t, x = recording()
+    with TestClient(create_app(budget=1.0, workers=1)) as budgeted:
+        workers = [
+            p
+            for p in multiprocessing.active_children()
+            if p.name == "rollspring-worker" and p not in before
+        ]
+        assert len(workers) == 1 and workers[0].pid is not None
+        os.kill(workers[0].pid, signal.SIGSTOP)
+        stuck = budgeted.post("/api/fit", json={"system": rough_start(), "data": csv_text(t, x)})
+        assert stuck.status_code == 503
+        assert "time budget of 1 s" in stuck.json()["detail"]

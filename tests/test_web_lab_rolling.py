@@ -16,6 +16,7 @@ from playwright.sync_api import Browser, expect
 
 import rollspring
 from rollspring.model import system_from_dict
+from rollspring.model.schema import RANGES
 from tests.test_web_page import Opened, open_page, page_system, settle
 
 #: The slider's step (C_rr) and the presses to the value asked for.
@@ -38,8 +39,9 @@ def test_the_c_rr_slider_sends_it_and_the_page_shows_the_engines_dissipation(
             f'input[type="range"][data-slider-for="bodies.{i}.rolling_resistance"]'
         )
         expect(slider).to_have_count(1)
-        assert float(slider.get_attribute("min")) == 0.0
-        assert 0.0 < float(slider.get_attribute("max")) <= 0.5
+        low, high, _ = RANGES["rolling_resistance"]  # the model's range
+        assert float(slider.get_attribute("min")) == low
+        assert float(slider.get_attribute("max")) == high
     expect(page.locator("#energy-note")).to_be_hidden()  # nothing dissipated without it
     slider = page.locator('input[type="range"][data-slider-for="bodies.0.rolling_resistance"]')
     slider.focus()
@@ -88,6 +90,21 @@ def test_the_c_rr_slider_sends_it_and_the_page_shows_the_engines_dissipation(
             if want["kind"] == "rest"
             else f"{want['body']} starts to roll again"
         )
+    # a body held at rest is drawn so, as a slipping one is: the longest rest of the run, the
+    # clock moved into its middle with the time slider (which moves in output intervals)
+    held = []
+    for k, event in enumerate(rests):
+        if event["kind"] == "rest":
+            later = [e["time"] for e in rests[k + 1 :] if e["body"] == event["body"]]
+            held.append((event["time"], later[0] if later else request["duration"], event["body"]))
+    start, end, who = max(held, key=lambda h: h[1] - h[0])
+    dt = page.evaluate("() => window.rollspringPage.dt()")
+    assert end - start > 4 * dt
+    page.locator("#time").fill(repr((start + end) / 2))
+    assert start < page.evaluate("() => window.rollspringPage.time()") < end
+    assert who in page.evaluate("() => window.rollspringPage.drawn().held")
+    page.locator("#time").fill("0")
+    assert page.evaluate("() => window.rollspringPage.drawn().held") == []
     # the energy plotted decays: the engine's total, which falls, never rising beyond the
     # integrator's error
     energy = page.evaluate("() => window.rollspringPage.plotData('energy')")

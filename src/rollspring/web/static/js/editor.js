@@ -13,7 +13,7 @@ const BODY_FIELDS = [
   { key: "mu_static", label: "μs (static friction; inf = no slip)", unit: "", text: true },
   { key: "mu_kinetic", label: "μk (kinetic friction; empty = μs)", unit: "", optional: true },
   { key: "rolling_resistance", label: "rolling resistance C_rr (0 to 0.5; empty = 0)", unit: "",
-    optional: true, not: "slider", slider: [0, 0.05, 0.0005] },
+    optional: true, not: "slider", slider: [0, 0.5, 0.0005] }, // the model's range (schema RANGES)
   { key: "track_height", label: "track height", unit: "m" },
   { key: "x", label: "initial x", unit: "m" },
   { key: "v", label: "initial v", unit: "m/s" },

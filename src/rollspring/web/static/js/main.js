@@ -14,7 +14,9 @@
 //   settled()     → true when no change waits to be computed or drawn (for tests);
 //   drawn()       → what the last frame drew (CSS px): the strip's CM and X̂ positions and its
 //                   magnification, each force arrow's signed length, the arrows' px per N,
-//                   each body's percussion mark ({id: {x, y}}) and the px per m;
+//                   each body's percussion mark ({id: {x, y}}), the px per m, and the
+//                   ids of the bodies glowing for a slip (flashed) or held at rest by rolling
+//                   resistance (held);
 //   plotData(key) → a plot's series labels, line styles and data as plotted;
 //   plotWindow(key) → the time window [t0, t1] a plot shows (a drag zooms every plot);
 //   lesson()      → the guided lesson's step shown, {step, key, count}, or null;
@@ -572,8 +574,15 @@ function frameNow() {
   const event = firstEvent();
   if (event && t >= event.time - 1e-9) flash.add(event.body);
   for (const [id, b] of Object.entries(run.bodies)) if (b.slipping[i]) flash.add(id);
+  // bodies held at rest by rolling resistance (their last rest/release event a rest)
+  const held = new Set();
+  for (const e of restEvents()) {
+    if (e.time > t + 1e-9) break;
+    if (e.kind === "rest") held.add(e.body);
+    else held.delete(e.body);
+  }
   return {
-    system, pose, t, flash, show: state.show,
+    system, pose, t, flash, held, show: state.show,
     tensions: run.springs.map((s) => valueAt(times, s.tension, t)),
     contact: (id) => ({ f: valueAt(times, run.bodies[id].friction, t), N: valueAt(times, run.bodies[id].normal, t) }),
     cm: valueAt(times, run.cm_x, t),

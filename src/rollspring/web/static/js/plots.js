@@ -146,7 +146,7 @@ export class Plots {
       series: [{ label: "t (s)" }, ...series.map((s) => (s.markers ? {
         // a measured table: markers only, no line
         label: s.label, stroke: s.stroke, width: 1, show: !f.hidden.has(s.label),
-        paths: () => null, points: { show: true, size: 4, width: 1, stroke: s.stroke, fill: s.stroke },
+        paths: () => null, points: { show: true, size: 3, width: 1, stroke: s.stroke, fill: s.stroke },
       } : {
         label: s.label, stroke: s.stroke, width: s.width || 1.6, dash: s.dash, spanGaps: Boolean(s.spanGaps),
         show: !f.hidden.has(s.label),

@@ -36,6 +36,8 @@ MAX_BODIES = 50
 MAX_DURATION = 600.0
 MAX_OUTPUTS = 20_000
 MAX_REQUEST_BYTES = 256 * 1024
+#: The most PATHs one fit frees.
+MAX_FREE = 40
 #: Default time budget of one computation (s).
 DEFAULT_BUDGET = 10.0
 
@@ -122,6 +124,44 @@ class ReportRequest(SystemRequest):
 
     duration: float | None = Field(
         default=None, gt=0, le=MAX_DURATION, allow_inf_nan=False, strict=True
+    )
+
+
+class LabDataRequest(SystemRequest):
+    """A measured table, sent as text, for the system's bodies."""
+
+    data: str = Field(
+        max_length=MAX_REQUEST_BYTES,
+        description="The text of the table: a track CSV or a plain CSV (t, x_<id>, phi_<id>), "
+        "or a Tracker data file.",
+    )
+    filename: str = Field(
+        default="data",
+        min_length=1,
+        max_length=200,
+        description="The file's name, as messages name it.",
+    )
+    mapping: dict[str, str] = Field(
+        default_factory=dict,
+        max_length=MAX_BODIES,
+        description="Tracks matched to bodies, {track: body id} (default: by name).",
+    )
+
+
+class FitRequest(LabDataRequest):
+    """What to fit (= rollspring fit DATA --system SYSTEM --free PATH ...)."""
+
+    free: list[str] | None = Field(
+        default=None,
+        max_length=MAX_FREE,
+        description="PATHs of the system to fit (springs.0.stiffness, bodies.<id>.mass, ...); "
+        "default: every spring's stiffness and damping.",
+    )
+    fix_initial: bool = Field(
+        default=False,
+        strict=True,
+        description="Hold the system's initial state and fit the data's time t0 at which it "
+        "holds (default: each body's initial x and v are fitted).",
     )
 
 
@@ -433,6 +473,41 @@ def create_app(
             Response,
             media_type="text/html",
         )
+
+    def lab_job(request: LabDataRequest) -> dict[str, Any] | Response:
+        resolved = _resolve(request)
+        if isinstance(resolved, Response):
+            return resolved
+        return {
+            "system": resolved,
+            "data": request.data,
+            "filename": request.filename,
+            "mapping": dict(request.mapping),
+        }
+
+    @app.post(
+        "/api/lab/data",
+        response_class=JSONBytes,
+        responses={**_OBJECT, **_ERRORS},
+        summary="A measured table read and matched to the system's bodies",
+    )
+    def lab_data(request: LabDataRequest) -> Response:
+        job = lab_job(request)
+        return job if isinstance(job, Response) else compute("lab_data", job)
+
+    @app.post(
+        "/api/fit",
+        response_class=JSONBytes,
+        responses={**_OBJECT, **_ERRORS},
+        summary="Fit the system to a measured table (fit = rollspring fit --json)",
+    )
+    def fit(request: FitRequest) -> Response:
+        job = lab_job(request)
+        if isinstance(job, Response):
+            return job
+        job["free"] = None if request.free is None else list(request.free)
+        job["fix_initial"] = request.fix_initial
+        return compute("fit", job)
 
     @app.get("/static/node_modules/{rest:path}", include_in_schema=False)
     def not_served(rest: str) -> Response:

@@ -74,12 +74,67 @@ def report(request: dict[str, Any]) -> bytes:
     return built.html.encode()
 
 
+class Located(Exception):
+    """A job's refusal of one field of its request: the one-line message and its location."""
+
+    def __init__(self, message: str, loc: list[str | int]) -> None:
+        super().__init__(message)
+        self.message = message
+        self.loc = loc
+
+
+def _lab_refusal(exc: RollspringError, request: dict[str, Any]) -> Located:
+    """A lab error located: a PATH of ``free`` when the message names one, else ``data``."""
+    message = " ".join(str(exc).split())
+    for index, path in enumerate(request.get("free") or ()):
+        if message.startswith((f"--free {path}:", f"free {path}:")):
+            return Located(message.replace("--free ", "free ", 1), ["body", "free", index])
+    if message.startswith(("--free", "free")):
+        return Located(message.replace("--free", "free", 1), ["body", "free"])
+    if message.startswith("--map"):
+        return Located(message.replace("--map", "mapping", 1), ["body", "mapping"])
+    return Located(message, ["body", "data"])
+
+
+def lab_data(request: dict[str, Any]) -> bytes:
+    """``POST /api/lab/data``: the measured table read and matched to the system's bodies."""
+    from rollspring.service import lab_payloads
+
+    try:
+        payload = lab_payloads.data_payload(
+            request["data"], request["filename"], request["system"], request.get("mapping")
+        )
+    except RollspringError as exc:
+        raise _lab_refusal(exc, request) from None
+    return _json(payload)
+
+
+def fit(request: dict[str, Any]) -> bytes:
+    """``POST /api/fit``: the fit of ``rollspring fit --json``, the fitted system and its TOML."""
+    from rollspring.service import lab_payloads
+
+    try:
+        payload = lab_payloads.fit_payload(
+            request["data"],
+            request["filename"],
+            request["system"],
+            request.get("free"),
+            request.get("mapping"),
+            fix_initial=request.get("fix_initial", False),
+        )
+    except RollspringError as exc:
+        raise _lab_refusal(exc, request) from None
+    return _json(payload)
+
+
 JOBS: dict[str, Callable[[dict[str, Any]], bytes]] = {
     "analyze": analyze,
     "simulate": simulate,
     "simulate_csv": simulate_csv,
     "derive": derive,
     "report": report,
+    "lab_data": lab_data,
+    "fit": fit,
 }
 
 #: A message that starts with one of the request's fields names it (``duration: must be …``).
@@ -97,6 +152,8 @@ def execute(job: str, request: dict[str, Any]) -> tuple[str, Any]:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore", RuntimeWarning)
             return "ok", JOBS[job](request)
+    except Located as exc:
+        return "error", ("invalid", exc.message, exc.loc)
     except RollspringError as exc:
         message = " ".join(str(exc).split())
         match = _FIELD.match(message)

@@ -12,6 +12,8 @@ const BODY_FIELDS = [
     slider: [0.01, 1, 0.01] },
   { key: "mu_static", label: "μs (static friction; inf = no slip)", unit: "", text: true },
   { key: "mu_kinetic", label: "μk (kinetic friction; empty = μs)", unit: "", optional: true },
+  { key: "rolling_resistance", label: "rolling resistance C_rr (0 to 0.5; empty = 0)", unit: "",
+    optional: true, not: "slider", slider: [0, 0.5, 0.0005] }, // the model's range (schema RANGES)
   { key: "track_height", label: "track height", unit: "m" },
   { key: "x", label: "initial x", unit: "m" },
   { key: "v", label: "initial v", unit: "m/s" },
@@ -191,9 +193,11 @@ export class Editor {
     const fields = [this.select(`${base}.shape`, "shape", SHAPES, (shape) => {
       if (shape === "custom") body.inertia_factor ??= 0.5;
       else delete body.inertia_factor;
+      if (shape === "slider") delete body.rolling_resistance; // a slider does not roll
     })];
     for (const f of BODY_FIELDS) {
       if (f.only && body.shape !== f.only) continue;
+      if (f.not && body.shape === f.not) continue;
       fields.push(this.numberField(`${base}.${f.key}`, f.label, f.unit, f.slider || null,
         { text: !!f.text, optional: !!f.optional }));
     }

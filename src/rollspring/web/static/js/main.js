@@ -14,11 +14,14 @@
 //   settled()     → true when no change waits to be computed or drawn (for tests);
 //   drawn()       → what the last frame drew (CSS px): the strip's CM and X̂ positions and its
 //                   magnification, each force arrow's signed length, the arrows' px per N,
-//                   each body's percussion mark ({id: {x, y}}) and the px per m;
+//                   each body's percussion mark ({id: {x, y}}), the px per m, and the
+//                   ids of the bodies glowing for a slip (flashed) or held at rest by rolling
+//                   resistance (held);
 //   plotData(key) → a plot's series labels, line styles and data as plotted;
 //   plotWindow(key) → the time window [t0, t1] a plot shows (a drag zooms every plot);
 //   lesson()      → the guided lesson's step shown, {step, key, count}, or null;
-//   playing()     → whether the animation plays.
+//   playing()     → whether the animation plays;
+//   labBusy()     → whether the lab is reading a file or fitting.
 // Initial displacements are shown relative to where each body was when the system was loaded
 // (the preset, file or link): that is also where Home puts a body back.
 
@@ -28,6 +31,7 @@ import { Explainer } from "./explain.js";
 import { roundTo, sig, signedMetres } from "./format.js";
 import { attachmentFromPoint, springEnds, worldBounds } from "./geometry.js";
 import { Handles } from "./handles.js";
+import { LabPanel } from "./lab.js";
 import { LessonPanel, STEPS } from "./lesson.js";
 import { renderDerivation, renderEnergyBars, renderModes } from "./panels.js";
 import { watchScrollBoxes } from "./scrollbox.js";
@@ -107,6 +111,11 @@ const scene = new Scene($("#scene"), $("#strip"));
 const plots = new Plots($("#plots"), (t) => seek(t), $("#reset-zoom"));
 const editor = new Editor($("#editor"), (kind) => edited(kind));
 const explainer = new Explainer(document, snap);
+const lab = new LabPanel($("#lab"), {
+  system: () => structuredClone(state.system),
+  drawn: (data) => showData(data),
+  fitted: (system, data) => showFitted(system, data),
+});
 const lessonPanel = new LessonPanel($("#lesson"), { go: goStep, leave: leaveLesson });
 const handles = new Handles($("#handles"), {
   x: (id) => body(id).x,
@@ -135,6 +144,7 @@ function loadSystem(system, preset = "", { compute = true } = {}) {
   scene.setWindow(state.window);
   $("#preset").value = preset;
   editor.load(state.system);
+  lab.syncChoices(state.system);
   run = null;
   goodStart = null;
   showPicker();
@@ -247,6 +257,7 @@ function applyMotion(sim, system) {
   run = sim;
   run.system = system;
   alerted = false;
+  restSaid = -Infinity;
   $("#alert").textContent = "";
   const end = run.t[run.t.length - 1];
   state.t = Math.min(state.t, end);
@@ -269,6 +280,7 @@ function applyMotion(sim, system) {
   plots.setRun(run, system, plotView());
   renderInitial();
   describeRun();
+  renderDissipation();
   if (autoplay && !playing && end > 0) play();
   autoplay = false;
   draw();
@@ -300,9 +312,48 @@ function describeRun() {
     setStatus(`Computed ${sig(end, 4)} s. ${event.kind === "slip" ? "Slips" : "Lifts off"}: `
       + `${event.body} at t = ${event.time.toFixed(4)} s — play to see it.`);
   } else {
+    const rest = (s.events || []).find((e) => e.kind === "rest");
     setStatus(`Computed ${sig(end, 4)} s (${s.status}); `
-      + `${rollingText(run.system.bodies, maxRatio(s))}.`);
+      + `${rollingText(run.system.bodies, maxRatio(s))}.`
+      + (rest ? ` Comes to rest: ${rest.body} at t = ${rest.time.toFixed(4)} s (rolling resistance).` : ""));
   }
+}
+
+/** What rolling resistance (M22) did: each body's coming to rest ("rest") and starting again
+ * ("release"), in time order. */
+function restEvents() {
+  return (run.summary.events || []).filter((e) => e.kind === "rest" || e.kind === "release")
+    .sort((a, b) => a.time - b.time);
+}
+
+/** The energy the run dissipated (the summary's energy_dissipated, by damping, kinetic friction
+ * and rolling resistance) and the rest/release events, beside the energy bars' "lost". */
+function renderDissipation() {
+  const note = $("#energy-note");
+  const s = run.summary;
+  const total = Number(s.energy_dissipated) || 0;
+  const by = s.dissipated_by || {};
+  const events = restEvents();
+  note.dataset.dissipated = String(total);
+  note.dataset.rollingResistance = String(by.rolling_resistance ?? 0);
+  note.dataset.events = JSON.stringify(events);
+  if (total <= 0 && !events.length) {
+    note.hidden = true;
+    note.textContent = "";
+    return;
+  }
+  const names = { rolling_resistance: "rolling resistance", damping: "spring damping",
+    kinetic_friction: "kinetic friction" };
+  const parts = Object.entries(names).filter(([key]) => Number(by[key]) > 0)
+    .map(([key, name]) => `${name} ${sig(by[key], 4)} J`);
+  const lines = [`Energy dissipated over the run: ${sig(total, 4)} J`
+    + (parts.length ? ` (${parts.join(", ")})` : "") + "; the total energy falls by it."];
+  if (events.length) {
+    lines.push(events.map((e) => `${e.body} ${e.kind === "rest" ? "comes to rest (held by rolling resistance)"
+      : "starts to roll again"} at t = ${e.time.toFixed(4)} s`).join("; ") + ".");
+  }
+  note.textContent = lines.join(" ");
+  note.hidden = false;
 }
 
 /** The first slip or lift-off: {kind, time, body} or null. */
@@ -421,6 +472,7 @@ function snap(ends, tracks = {}) {
 // the stream of "input" events while a slider or a body is being dragged is debounced.
 function edited(kind) {
   showPicker();
+  lab.syncChoices(state.system);
   explainer.update(state.system, analysis);
   renderInitial();
   draw();
@@ -522,8 +574,15 @@ function frameNow() {
   const event = firstEvent();
   if (event && t >= event.time - 1e-9) flash.add(event.body);
   for (const [id, b] of Object.entries(run.bodies)) if (b.slipping[i]) flash.add(id);
+  // bodies held at rest by rolling resistance (their last rest/release event a rest)
+  const held = new Set();
+  for (const e of restEvents()) {
+    if (e.time > t + 1e-9) break;
+    if (e.kind === "rest") held.add(e.body);
+    else held.delete(e.body);
+  }
   return {
-    system, pose, t, flash, show: state.show,
+    system, pose, t, flash, held, show: state.show,
     tensions: run.springs.map((s) => valueAt(times, s.tension, t)),
     contact: (id) => ({ f: valueAt(times, run.bodies[id].friction, t), N: valueAt(times, run.bodies[id].normal, t) }),
     cm: valueAt(times, run.cm_x, t),
@@ -576,6 +635,7 @@ function draw() {
 }
 
 function announceEvent() {
+  announceRest();
   const event = firstEvent();
   if (!event || alerted || state.t < event.time - 1e-9) return;
   alerted = true;
@@ -584,6 +644,23 @@ function announceEvent() {
     : "lifts off: its normal force reaches zero";
   $("#alert").textContent = `${event.body} ${what}, at t = ${event.time.toFixed(4)} s.`;
   if (state.onSlip === "stop" || event.kind !== "slip") pause();
+}
+
+/** A body coming to rest (or starting again) under rolling resistance, said as the clock
+ * passes it, like a slip (the animation plays on). */
+let restSaid = -Infinity;
+function announceRest() {
+  if (!run) return;
+  const passed = restEvents().filter((e) => e.time <= state.t + 1e-9);
+  if (!passed.length) {
+    restSaid = -Infinity;
+    return;
+  }
+  const last = passed[passed.length - 1];
+  if (last.time === restSaid) return;
+  restSaid = last.time;
+  $("#alert").textContent = `${last.body} ${last.kind === "rest"
+    ? "comes to rest: rolling resistance holds it" : "starts to roll again"}, at t = ${last.time.toFixed(4)} s.`;
 }
 
 function placeHandles(frame) {
@@ -612,7 +689,38 @@ function setStatus(text) {
 function plotView() {
   const eq = analysis && analysis.equilibrium && analysis.equilibrium.found ? analysis.equilibrium.x : null;
   const sp = analysis ? analysis.stationary_point : null;
-  return { absolute: state.show.absolute, equilibrium: eq, weights: sp && sp.weights ? sp.weights : null };
+  return { absolute: state.show.absolute, equilibrium: eq, weights: sp && sp.weights ? sp.weights : null,
+    measured: lab.data };
+}
+
+// ---------------------------------------------------------------- the lab
+
+/** A run long enough to cover the measured table (within the page's 1 to 60 s). */
+function coverData(data) {
+  const t = data.t.filter((v) => v != null);
+  const end = t.length ? t[t.length - 1] : 0;
+  const wanted = Math.min(60, Math.max(1, Math.ceil(end * 100 - 1e-9) / 100));
+  if (wanted > state.duration + 1e-12) {
+    state.duration = wanted;
+    $("#duration").value = String(wanted);
+    return true;
+  }
+  return false;
+}
+
+/** The measured table drawn over the positions (null: none). */
+function showData(data) {
+  if (data && coverData(data)) {
+    recomputeNow();
+    return;
+  }
+  if (run) plots.update("positions", run, run.system, plotView());
+}
+
+/** The fitted system in the editor, the plots showing its motion over the data. */
+function showFitted(system, data) {
+  coverData(data);
+  loadSystem(system, "");
 }
 
 /** The strip's series: the CM and X̂ with the middle of each one's range, and the larger
@@ -1129,10 +1237,11 @@ window.rollspringPage = {
   system: () => structuredClone(state.system),
   time: () => state.t,
   dt,
-  settled: () => timer === null && inFlight === 0 && (pendingChange === null || errorShown),
+  settled: () => timer === null && inFlight === 0 && lab.busy === 0 && (pendingChange === null || errorShown),
   drawn: () => structuredClone({ ...scene.drawn, forceScale }),
   plotData: (key) => plots.plotted(key),
   plotWindow: (key) => plots.window(key),
+  labBusy: () => lab.busy > 0,
   lesson: () => (state.lesson === null ? null
     : { step: state.lesson, key: STEPS[state.lesson].key, count: STEPS.length }),
   playing: () => playing,

@@ -86,7 +86,8 @@ export class Plots {
     const f = this.figures.find((g) => g.spec.key === key);
     if (!f || !f.built) return null;
     return { labels: f.built.series.map((s) => s.label), unit: f.built.unit ?? f.spec.unit,
-      styles: f.built.series.map((s) => ({ stroke: s.stroke, width: s.width || 1.6, dash: s.dash || [] })),
+      styles: f.built.series.map((s) => ({ stroke: s.stroke, width: s.width || 1.6, dash: s.dash || [],
+        markers: Boolean(s.markers) })),
       shown: f.built.series.map((s) => !f.hidden.has(s.label)),
       data: f.built.data.map((column) => Array.from(column)) };
   }
@@ -142,8 +143,12 @@ export class Plots {
         setScale: [(u, key) => key === "x" && this.placeCursor(u)],
         setSeries: [(u, i, opts) => i != null && opts && "show" in opts && this.seriesShown(f, i - 1, opts.show)],
       },
-      series: [{ label: "t (s)" }, ...series.map((s) => ({
-        label: s.label, stroke: s.stroke, width: s.width || 1.6, dash: s.dash, spanGaps: false,
+      series: [{ label: "t (s)" }, ...series.map((s) => (s.markers ? {
+        // a measured table: markers only, no line
+        label: s.label, stroke: s.stroke, width: 1, show: !f.hidden.has(s.label),
+        paths: () => null, points: { show: true, size: 3, width: 1, stroke: s.stroke, fill: s.stroke },
+      } : {
+        label: s.label, stroke: s.stroke, width: s.width || 1.6, dash: s.dash, spanGaps: Boolean(s.spanGaps),
         show: !f.hidden.has(s.label),
         points: { show: false },
       }))],
@@ -352,6 +357,19 @@ function lineMarkers(plot, series) {
     const width = s.width || 1.6;
     const dash = s.dash || [];
     const svg = document.createElementNS(SVG, "svg");
+    if (s.markers) {
+      svg.setAttribute("viewBox", "0 0 32 10");
+      svg.setAttribute("aria-hidden", "true");
+      for (const cx of [6, 16, 26]) {
+        const dot = document.createElementNS(SVG, "circle");
+        Object.entries({ cx, cy: 5, r: 2.2, fill: s.stroke }).forEach(([k, v]) => dot.setAttribute(k, String(v)));
+        svg.append(dot);
+      }
+      marker.classList.add("line-marker");
+      marker.dataset.markers = "true";
+      marker.replaceChildren(svg);
+      return;
+    }
     svg.setAttribute("viewBox", "0 0 32 10");
     svg.setAttribute("preserveAspectRatio", "none");
     svg.setAttribute("aria-hidden", "true");

@@ -66,7 +66,9 @@ export class Scene {
   }
 
   /** Paint one instant. `frame`: {system, pose(id) → {x, phi}, tensions[], contact(id) →
-   * {f, N}, cm, xhat (or null), t, ghosts {id: x} or null, flash Set of ids, show {spring,
+   * {f, N}, cm, xhat (or null), t, ghosts {id: x} or null, flash Set of ids (slipping or at
+   * the run's first slip: a red glow), held Set of ids or absent (at rest under rolling
+   * resistance: a grey glow), show {spring,
    * friction, normal, markers, values}, forceScale {spring, friction, normal} (px per N),
    * labelled (a Set of body ids whose forces get value labels), lesson (see Strip.draw) or
    * null}. */
@@ -82,6 +84,8 @@ export class Scene {
     frame.system.bodies.forEach((body, i) => drawBody(ctx, view, frame, body, i, wanted));
     drawPercussion(ctx, view, frame, this.drawn.percussion);
     this.drawn.pxPerM = view.pxPerM;
+    this.drawn.held = frame.held ? [...frame.held] : [];
+    this.drawn.flashed = [...frame.flash];
     if (frame.show.markers) drawMarkers(ctx, view, frame);
     drawForces(ctx, view, frame, this.drawn, this.width * ARROW_MAX);
     ctx.fillStyle = INK;
@@ -334,6 +338,10 @@ function drawBody(ctx, view, frame, body, i, labels) {
   if (frame.flash.has(body.id)) {
     ctx.shadowColor = "#ff1a1a";
     ctx.shadowBlur = 18;
+  } else if (frame.held && frame.held.has(body.id)) {
+    // held at rest by rolling resistance: a grey glow, as a slip's red one
+    ctx.shadowColor = "#4a5568";
+    ctx.shadowBlur = 14;
   }
   if (body.shape === "slider") {
     ctx.fillStyle = tint(colour);

@@ -58,7 +58,51 @@ export function positionSeries(run, system = null, view = {}) {
   }
   const unit = reference === "absolute" ? "x (m)"
     : reference === "equilibrium" ? "x − x_eq (mm)" : "x − x(0) (mm)";
+  const measured = view.measured;
+  if (measured && ids.some((id) => measured.bodies[id])) {
+    const columns = [];
+    const labels = [];
+    ids.forEach((id, i) => {
+      if (!measured.bodies[id]) return;
+      columns.push(origin(measured.bodies[id].x, zeroOf(id)));
+      labels.push({ label: `${id} data`, stroke: bodyColour(i), markers: true });
+    });
+    const merged = withMeasured(data, measured.t, columns);
+    return { data: merged, series: [...series.map((s) => ({ ...s, spanGaps: true })), ...labels], unit, reference };
+  }
   return { data, series, unit, reference };
+}
+
+/** The columns `data` (over data[0], the model's times) and `columns` (over `times`, a measured
+ * table's) on one time axis, the union of both in order: each column null at the other's
+ * times. */
+export function withMeasured(data, times, columns) {
+  const model = data[0];
+  const t = [];
+  const fromModel = [];
+  const fromData = [];
+  let i = 0;
+  let j = 0;
+  while (i < model.length || j < times.length) {
+    const a = i < model.length ? model[i] : Infinity;
+    const b = j < times.length ? times[j] : Infinity;
+    if (a === b) {
+      t.push(a);
+      fromModel.push(i++);
+      fromData.push(j++);
+    } else if (a < b) {
+      t.push(a);
+      fromModel.push(i++);
+      fromData.push(-1);
+    } else {
+      t.push(b);
+      fromModel.push(-1);
+      fromData.push(j++);
+    }
+  }
+  const pick = (column, index) => index.map((k) => (k < 0 ? null : column[k] ?? null));
+  return [t, ...data.slice(1).map((column) => pick(column, fromModel)),
+    ...columns.map((column) => pick(column, fromData))];
 }
 
 /** Newton's second law for the whole system: Σf (the frictions: the only horizontal external

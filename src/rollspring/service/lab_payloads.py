@@ -1,0 +1,110 @@
+"""The lab on the page (``POST /api/lab/data``, ``POST /api/fit``): a measured table sent as
+text, read by :mod:`rollspring.lab.data` and matched to the system's bodies, and the fit of
+:func:`rollspring.lab.api.fit` on it (as ``rollspring fit`` does) as JSON.
+
+Nothing here reads a file: the table arrives as text with the name it had on the client's
+machine, which every one-line message names (``tracks.csv: no time column``). The drawn data are
+in the fitted system's frame: time from the instant the system's initial state holds (``t0``),
+positions in the system's x origin (``x_offset`` removed), so that they lie over the simulated
+motion of the fitted system from t = 0.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from rollspring.errors import FitError
+from rollspring.model import System, system_to_json
+
+__all__ = ["DEFAULT_FREE_QUANTITIES", "data_payload", "default_free", "fit_payload"]
+
+#: The quantities of each spring fitted unless the request names its own PATHs.
+DEFAULT_FREE_QUANTITIES = ("stiffness", "damping")
+
+
+def default_free(system: System) -> list[str]:
+    """Every spring's stiffness and damping: the PATHs a fit frees by default."""
+    return [
+        f"springs.{i}.{quantity}"
+        for i in range(len(system.springs))
+        for quantity in DEFAULT_FREE_QUANTITIES
+    ]
+
+
+def _column(values: Any) -> list[float | None]:
+    return [float(v) if math.isfinite(v) else None for v in values.tolist()]
+
+
+def _table(text: str, source: str, system: System, mapping: Mapping[str, str] | None) -> Any:
+    from rollspring.lab.data import match_bodies, parse_data
+
+    return match_bodies(parse_data(text, source), system, mapping)
+
+
+def _drawn(table: Any, t0: float, x_offset: float) -> dict[str, Any]:
+    """The measured table as the page draws it: ``t`` from ``t0``, ``x`` less ``x_offset``."""
+    return {
+        "source": table.source,
+        "t": _column(table.t - t0),
+        "bodies": {
+            body: {
+                "x": _column(table.x[:, column] - x_offset),
+                "phi": _column(table.phi[:, column]),
+            }
+            for column, body in enumerate(table.bodies)
+        },
+        "points": table.n_points,
+    }
+
+
+def data_payload(
+    text: str, source: str, system: System, mapping: Mapping[str, str] | None = None
+) -> dict[str, Any]:
+    """The table ``text`` (named ``source``) read and matched to ``system``'s bodies:
+    ``{"source", "t", "bodies": {id: {"x", "phi"}}, "points", "free"}`` (``t`` from the table's
+    first time; ``free`` the PATHs a fit frees by default). A one-line
+    :class:`~rollspring.errors.DataError` for a table that cannot be read or matched."""
+    table = _table(text, source, system, mapping)
+    return {**_drawn(table, float(table.t[0]), 0.0), "free": default_free(system)}
+
+
+def fit_payload(
+    text: str,
+    source: str,
+    system: System,
+    free: Sequence[str] | None = None,
+    mapping: Mapping[str, str] | None = None,
+    *,
+    fix_initial: bool = False,
+) -> dict[str, Any]:
+    """The fit of ``system`` to the table ``text`` (named ``source``) freeing the PATHs ``free``
+    (default :func:`default_free`) and each body's initial state (``rollspring fit``):
+
+    ``{"fit": <rollspring fit --json's object>, "system": <the fitted system, JSON form>,
+    "toml": <the fitted system file>, "data": <the table in the fitted system's frame>}``.
+
+    One-line :class:`~rollspring.errors.DataError` or :class:`~rollspring.errors.FitError` for a
+    table that cannot be read, a PATH that is no number of the system, too few points."""
+    from rollspring.lab.api import fit
+    from rollspring.lab.parameters import check_paths
+    from rollspring.outputs.lab import fitted_toml
+
+    paths = default_free(system) if free is None else list(free)
+    check_paths(system, paths)  # before the data, as the CLI: a bad PATH is named first
+    table = _table(text, source, system, mapping)
+    if not paths and fix_initial:
+        raise FitError("free: nothing to fit (no PATH, and the initial state held)")
+    result = fit(table, system, paths, fix_initial=fix_initial)
+    offset = result.parameters.get("x_offset")
+    return {
+        "fit": result.to_dict(),
+        "system": system_to_json(result.system),
+        "toml": fitted_toml(result),
+        "data": _drawn(
+            table,
+            result.parameters["t0"].value,
+            0.0 if offset is None else offset.value,
+        ),
+    }

@@ -20,7 +20,6 @@ from __future__ import annotations
 import io
 import logging
 import math
-import os
 import re
 from pathlib import Path
 
@@ -47,12 +46,9 @@ from rollspring.outputs.figures import (
     plot_system,
 )
 from rollspring.simulate import simulate
+from tests.image_baselines import BASELINES, TOLERANCE, check_against_baseline
 
-BASELINES = Path(__file__).parent / "baselines"
 BASELINE_DPI = 50
-#: RMS pixel difference (0-255) below which a figure matches its baseline.
-TOLERANCE = 2.0
-UPDATE = os.environ.get("ROLLSPRING_UPDATE_BASELINES") == "1"
 
 #: Every shape, a wall, a raised track, off-centre and height attachments, an applied force.
 GALLERY = {
@@ -120,18 +116,9 @@ def slipping():
 
 def check_baseline(fig, name: str, tmp_path: Path) -> None:
     """Compare ``fig`` at BASELINE_DPI with ``tests/baselines/<name>.png`` (or write it)."""
-    expected = BASELINES / f"{name}.png"
     actual = tmp_path / f"{name}.png"
     actual.write_bytes(figure_png(fig, dpi=BASELINE_DPI))
-    if UPDATE:
-        BASELINES.mkdir(exist_ok=True)
-        expected.write_bytes(actual.read_bytes())
-    assert expected.exists(), (
-        f"no baseline {expected.name}; create it with ROLLSPRING_UPDATE_BASELINES=1 "
-        f".venv/bin/python -m pytest {Path(__file__).name}"
-    )
-    result = compare_images(str(expected), str(actual), tol=TOLERANCE)
-    assert result is None, f"{name}: {result} (see {tmp_path})"
+    check_against_baseline(actual, name, __file__)
 
 
 # -- baselines --------------------------------------------------------------------------------

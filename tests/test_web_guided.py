@@ -24,29 +24,24 @@ Nothing here waits on wall-clock time: every wait is for a condition in the page
 
 from __future__ import annotations
 
-import os
 import re
 from pathlib import Path
 
 import numpy as np
 import pytest
 import requests
-from matplotlib.testing.compare import compare_images
 from PIL import Image
 from playwright.sync_api import Browser, Page, expect
 
 import rollspring
 from rollspring.model import load_system, system_from_dict
 from rollspring.service.runs import ModeStart, mode_start
+from tests.image_baselines import check_against_baseline
 from tests.serving import LAPTOP, PHONE
 from tests.test_web_lesson import no_horizontal_overflow, peak_to_peak, sig3, sweep
 from tests.test_web_page import Opened, canvas_hash, clock, open_page, page_system, settle
 from tests.test_web_phone import TAP, TARGETS, axe_violations, serious
 
-BASELINES = Path(__file__).parent / "baselines"
-UPDATE = os.environ.get("ROLLSPRING_UPDATE_BASELINES") == "1"
-#: RMS difference (0–255) below which a screenshot matches its baseline (as test_figures.py).
-TOLERANCE = 2.0
 #: Where the baselines' clock stands in the steps that play (paused there): an output time.
 SHOT_T = 1.0
 
@@ -114,15 +109,7 @@ def check_screenshot(page: Page, name: str, tmp_path: Path) -> None:
         image.convert("RGB").resize(
             (image.width // 2, image.height // 2), Image.Resampling.BOX
         ).save(actual)
-    expected = BASELINES / f"{name}.png"
-    if UPDATE:
-        expected.write_bytes(actual.read_bytes())
-    assert expected.exists(), (
-        f"no baseline {expected.name}; create it with ROLLSPRING_UPDATE_BASELINES=1 "
-        f".venv/bin/python -m pytest {Path(__file__).name}"
-    )
-    result = compare_images(str(expected), str(actual), tol=TOLERANCE)
-    assert result is None, f"{name}: {result} (see {tmp_path})"
+    check_against_baseline(actual, name, __file__)
 
 
 # ---------------------------------------------------------------------- what each step shows

@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import math
 import os
-import stat
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Protocol, cast
@@ -35,6 +34,7 @@ import numpy as np
 
 from rollspring.errors import DataError
 from rollspring.model import System
+from rollspring.model.files import not_regular
 from rollspring.physics.arrays import FloatArray
 
 __all__ = [
@@ -129,7 +129,7 @@ def read_data(path: str | os.PathLike[str]) -> Recording:
     shown = os.fspath(path)
     try:
         info = os.stat(path)
-        kind = _not_regular(info.st_mode)
+        kind = not_regular(info.st_mode)
         if kind is not None:  # a FIFO would block, a folder or a device is no table
             raise DataError(f"{shown}: is {kind}, not a data file (give a regular file)")
         if info.st_size > MAX_BYTES:
@@ -138,7 +138,7 @@ def read_data(path: str | os.PathLike[str]) -> Recording:
             )
         descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
         with os.fdopen(descriptor, "rb") as handle:
-            if _not_regular(os.fstat(handle.fileno()).st_mode) is not None:
+            if not_regular(os.fstat(handle.fileno()).st_mode) is not None:
                 raise DataError(f"{shown}: not a regular file (it changed while being opened)")
             raw = handle.read(MAX_BYTES + 1)
     except OSError as exc:
@@ -153,22 +153,6 @@ def read_data(path: str | os.PathLike[str]) -> Recording:
         except UnicodeDecodeError:  # pragma: no cover - latin-1 decodes every byte
             raise DataError(f"{shown}: not a text file") from None
     return parse_data(text, shown)
-
-
-_KINDS = (
-    (stat.S_ISDIR, "a folder"),
-    (stat.S_ISFIFO, "a FIFO (named pipe)"),
-    (stat.S_ISCHR, "a character device"),
-    (stat.S_ISBLK, "a block device"),
-    (stat.S_ISSOCK, "a socket"),
-)
-
-
-def _not_regular(mode: int) -> str | None:
-    """What a file of ``mode`` is when it is not a regular file (None for a regular file)."""
-    if stat.S_ISREG(mode):
-        return None
-    return next((kind for test, kind in _KINDS if test(mode)), "not a regular file")
 
 
 def parse_data(text: str, source: str = "<data>") -> Recording:

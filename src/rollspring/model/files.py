@@ -24,6 +24,7 @@ __all__ = [
     "MAX_FILE_BYTES",
     "as_system",
     "load_system",
+    "not_regular",
     "preset_names",
     "preset_path",
     "system_from_dict",
@@ -105,7 +106,7 @@ _KINDS = (
 )
 
 
-def _not_regular(mode: int) -> str | None:
+def not_regular(mode: int) -> str | None:
     """What a file of ``mode`` is when it is not a regular file (None for a regular file)."""
     if stat.S_ISREG(mode):
         return None
@@ -121,7 +122,7 @@ def _read_text(path: Path) -> str:
         info = os.stat(path)
     except OSError as exc:
         raise ModelError(f"{shown}: cannot read ({exc.strerror or exc})") from None
-    kind = _not_regular(info.st_mode)
+    kind = not_regular(info.st_mode)
     if kind == "a folder":
         raise ModelError(f"{shown}: is a folder, not a system file")
     if kind is not None:
@@ -134,7 +135,7 @@ def _read_text(path: Path) -> str:
     except OSError as exc:
         raise ModelError(f"{shown}: cannot read ({exc.strerror or exc})") from None
     try:
-        kind = _not_regular(os.fstat(descriptor).st_mode)
+        kind = not_regular(os.fstat(descriptor).st_mode)
         if kind is not None:  # replaced between the two looks
             raise ModelError(f"{shown}: is {kind}, not a system file (give a regular file)")
         chunks, size = [], 0

@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
@@ -24,6 +25,7 @@ import rollspring
 from rollspring.cli import app
 from rollspring.errors import RollspringError
 from rollspring.model import load_system
+from tests.fit_data import Truth, recording, write_csv
 
 runner = CliRunner()
 SYSTEMS = {name: load_system(name) for name in ("hoop-cylinder", "two-masses", "frictionless")}
@@ -206,5 +208,79 @@ def test_the_command_line_with_any_option(
     assert "Traceback" not in result.output and "internal error" not in result.output
     if result.exit_code == 2:
         assert result.stdout == "" and result.stderr.startswith("error: "), result.output
+        assert result.stderr.count("\n") == 1, result.stderr
+        assert list(folder.iterdir()) == [], args  # nothing written, not even half
+
+
+@pytest.fixture(scope="module")
+def measured(tmp_path_factory: Any) -> Path:
+    """A short recording of the paper's hoop and cylinder (closed form, 1 mm of noise)."""
+    t, x, phi = recording(Truth(c=0.2), duration=1.0, fps=30.0, seed=2)
+    return write_csv(tmp_path_factory.mktemp("lab") / "tracks.csv", t, x, phi)
+
+
+PATHS = st.sampled_from(
+    [
+        "springs.0.stiffness",
+        "springs.0.damping",
+        "bodies.hoop.mass",
+        "bodies.cylinder.rolling_resistance",
+        "springs.9.stiffness",
+        "bodies.nobody.mass",
+        "bodies.hoop.shape",
+        "bodies.hoop.x",
+        "gravity",
+        "",
+        "springs..stiffness",
+        1,
+        None,
+        True,
+    ]
+)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    free=st.one_of(st.lists(PATHS, max_size=3), PATHS, st.none()),
+    mapping=st.sampled_from([None, {}, {"hoop": "hoop"}, {"x": "hoop"}, {"hoop": 1}, "hoop", 3]),
+    fix_initial=st.sampled_from([False, True, "yes", 1, None, 0.0]),
+    claims=st.sampled_from([True, False, "no", 1]),
+    seed=st.sampled_from([0, 7, -1, 1.5, True, "1", None, 2**70]),
+)
+def test_fit_any_arguments(
+    measured: Path, free: Any, mapping: Any, fix_initial: Any, claims: Any, seed: Any
+) -> None:
+    _clean(
+        lambda: rollspring.fit(
+            measured,
+            "hoop-cylinder",
+            free=free,
+            mapping=mapping,
+            fix_initial=fix_initial,
+            claims=claims,
+            seed=seed,
+        )
+    )
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    option=st.sampled_from(["--free", "--map", "--figure", "-o", "--system"]),
+    value=st.sampled_from(
+        ["", "springs.0.stiffness", "nope", "hoop=cylinder", "=", "x" * 300, "a.png", "nan"]
+    ),
+)
+def test_the_fit_command_with_any_option(
+    measured: Path, option: str, value: str, tmp_path_factory: Any
+) -> None:
+    folder: Path = tmp_path_factory.mktemp("fitout")
+    args = ["fit", str(measured), "--free", "springs.0.stiffness", option, value]
+    if option in ("--figure", "-o"):
+        args[-1] = str(folder / value) if value else value
+    result = runner.invoke(app, args)
+    assert result.exit_code in (0, 2), (args, result.output)
+    assert "Traceback" not in result.output and "internal error" not in result.output
+    if result.exit_code == 2:
+        assert result.stderr.startswith("error: "), result.output
         assert result.stderr.count("\n") == 1, result.stderr
         assert list(folder.iterdir()) == [], args  # nothing written, not even half

@@ -7,11 +7,50 @@ import os
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+from rollspring.errors import FitError
 from rollspring.lab.data import BodyData, Recording, Tracks, as_recording, match_bodies
 from rollspring.lab.fit import FitResult, fit_model
 from rollspring.model import System
+from rollspring.simulate.arguments import check_callback, check_count, check_flag
 
 __all__ = ["fit"]
+
+
+def _check_arguments(
+    free: Any,
+    mapping: Any,
+    fix_initial: Any,
+    posterior: Any,
+    claims: Any,
+    seed: Any,
+    confirm: Any,
+) -> tuple[tuple[str, ...], dict[str, str] | None]:
+    """:func:`fit`'s arguments checked before any work, each refused in one line naming it:
+    ``free`` a PATH or a sequence of PATHs (text), ``mapping`` None or track name → body id
+    (text to text), the flags True or False, ``seed`` an integer >= 0."""
+    for name, value in (
+        ("fix_initial", fix_initial),
+        ("posterior", posterior),
+        ("claims", claims),
+        ("confirm", confirm),
+    ):
+        check_flag(name, value)
+    check_count("seed", seed, 0)
+    if isinstance(free, str):
+        free = (free,)
+    if not isinstance(free, Sequence) or not all(isinstance(path, str) for path in free):
+        raise FitError(
+            f"free: must be PATHs of the system, e.g. ['springs.0.stiffness'], got {free!r}"
+        )
+    if mapping is not None and (
+        not isinstance(mapping, Mapping)
+        or not all(isinstance(k, str) and isinstance(v, str) for k, v in mapping.items())
+    ):
+        raise FitError(
+            f"mapping: must match track names to body ids, e.g. {{'mass A': 'hoop'}}, "
+            f"got {mapping!r}"
+        )
+    return tuple(free), (dict(mapping) if mapping is not None else None)
 
 
 def fit(
@@ -45,6 +84,8 @@ def fit(
     """
     from rollspring.model.files import as_system
 
+    free, mapping = _check_arguments(free, mapping, fix_initial, posterior, claims, seed, confirm)
+    check_callback("progress", progress)
     model = as_system(system)
     table = data if isinstance(data, BodyData) else match_bodies(as_recording(data), model, mapping)
     share = 0.3 if posterior else 0.9

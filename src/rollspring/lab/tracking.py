@@ -24,7 +24,11 @@ marker on its rim — as a camera filming the experiment from the side sees them
    deviations dropped and the fit repeated; rays near the floor contact and towards another
    body left out). A blurred circle's steepest edge lies :math:`\sigma^2/2r` inside it: the
    blur's width σ is read from the curvature of the edge's peak and the radius corrected.
-   Then the marker: the ring of pixels at its distance from the centre, scored by the
+   The centre is then refined on the pixels themselves: every pixel within 3.5 px of that
+   circle, in the sectors of the rays kept, weighted by the square of its outward gradient,
+   and a weighted circle fit (an edge located along a ray carries an error of a few hundredths
+   of a pixel that depends on where the edge falls between pixels; moments over the pixels do
+   not). Then the marker: the ring of pixels at its distance from the centre, scored by the
    projection of each pixel's colour on the (marker − body) colour difference, its angle the
    midpoint of the two half-height crossings of the score's peak. A body whose outline or
    marker is not found is looked for farther in the next frame, where it was last seen.

@@ -33,11 +33,14 @@ def paper_system(
     stiffness: float = 100.0,
     damping: float = 0.0,
     gap: float = 0.49,
+    rolling_resistance: float = 0.0,
 ) -> System:
     """The paper's Fig. 2: a hoop and a cylinder (mass kg, radius m, initial velocity m/s each)
-    joined at their centres by a spring of rest length 0.5 m."""
+    joined at their centres by a spring of rest length 0.5 m; ``rolling_resistance`` C_rr of
+    each body."""
     bodies = [
         {"id": name, "shape": name, "mass": m, "radius": r, "x": x, "v": v}
+        | ({"rolling_resistance": rolling_resistance} if rolling_resistance else {})
         for name, (m, r, v), x in (("hoop", hoop, 0.0), ("cylinder", cylinder, gap))
     ]
     spring = {"ends": ["hoop", "cylinder"], "stiffness": stiffness, "rest_length": 0.5}
@@ -53,7 +56,8 @@ class Recording:
     system_file: Path
 
 
-#: Three parameter sets of the paper's system, each filmed by a different imperfect camera.
+#: Four parameter sets of the paper's system (one damped, one with rolling resistance: its
+#: motion simulated, rests and releases included), each filmed by a different imperfect camera.
 CASES = {
     "paper-30fps": (
         paper_system(),
@@ -69,6 +73,11 @@ CASES = {
         paper_system((1.0, 0.1, 0.5), (2.0, 0.1, -0.25), stiffness=150.0, damping=0.8),
         Camera(fps=30, roll_deg=1.5, noise=6.0, blur=1.5, flicker=0.05, seed=3, scale=600.0),
         2.0,
+    ),
+    "resisted-60fps": (
+        paper_system((1.0, 0.1, -0.15), (1.0, 0.1, 0.1), rolling_resistance=0.02),
+        Camera(fps=60, roll_deg=2.5, noise=4.0, blur=1.0, flicker=0.03, seed=4),
+        1.5,
     ),
 }
 

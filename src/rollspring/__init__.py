@@ -96,21 +96,22 @@ _DISPLAYS = (
 )
 
 
-def _shown_by(function: str):
-    """A call of ``rollspring.outputs.jupyter.<function>`` that imports it only when called."""
+def _shown_by(function: str, module: str = "jupyter"):
+    """A call of ``rollspring.outputs.<module>.<function>`` that imports it only when called."""
 
     def show(*args, **kwargs):
-        from rollspring.outputs import jupyter
+        from importlib import import_module
 
-        return getattr(jupyter, function)(*args, **kwargs)
+        return getattr(import_module(f"rollspring.outputs.{module}"), function)(*args, **kwargs)
 
     return show
 
 
 def _register_presenters() -> None:
     """``Trajectory.to_pandas``/``to_xarray``/``animate``: the Jupyter views of
-    :mod:`rollspring.outputs.jupyter`, registered here (this package is the composition root,
-    above every layer: the simulation never imports the outputs layer) and imported on first
+    :mod:`rollspring.outputs.jupyter`, and ``FitResult._repr_html_``
+    (:mod:`rollspring.outputs.lab`), registered here (this package is the composition root, above
+    every layer: the simulation never imports the outputs layer) and imported on first
     use (Matplotlib and pandas stay out of ``import rollspring``)."""
     from rollspring.presenters import PRESENTERS
 
@@ -118,15 +119,8 @@ def _register_presenters() -> None:
         to_pandas=_shown_by("trajectory_to_pandas"),
         to_xarray=_shown_by("trajectory_to_xarray"),
         animate=_shown_by("animate_inline"),
-        fit_html=_fit_html,
+        fit_html=_shown_by("fit_html", "lab"),
     )
-
-
-def _fit_html(*args, **kwargs):
-    """``FitResult._repr_html_``: :func:`rollspring.outputs.lab.fit_html`, imported when called."""
-    from rollspring.outputs.lab import fit_html
-
-    return fit_html(*args, **kwargs)
 
 
 _register_presenters()

@@ -8,7 +8,7 @@ plain wall (in ``plain/``: the README's comparison of the two walls). With ``--i
 the fit's figure to ``docs/images/lab-fit.png`` (the README's figure). ``--report`` also runs
 ``rollspring report hoop-cylinder --data tracks.csv`` (about a minute: the derivations).
 
-    .venv/bin/python tools/lab_walkthrough.py                 # into build/lab, about 20 s
+    .venv/bin/python tools/lab_walkthrough.py                 # into build/lab, about 30 s
     .venv/bin/python tools/lab_walkthrough.py --image         # and update the README's figure
 
 Needs the ``lab`` and ``plot`` extras (OpenCV, Matplotlib). ``tests/test_readme.py`` runs it and

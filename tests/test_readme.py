@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import json
 import math
 import re
 from pathlib import Path
@@ -103,7 +104,8 @@ def _walkthrough():
 def test_lab_walkthrough_is_real_output(tmp_path: Path) -> None:
     """The "Lab" section shows what its commands print (tools/lab_walkthrough.py runs them):
     every output line of its walk-through, the hand-marked fits and the comparisons with the
-    truth. The tracking's speed (``frames_per_second``) is the one line that differs."""
+    truth, on the textured wall and on the plain one. The tracking's speed
+    (``frames_per_second``) is the one line that differs."""
     pytest.importorskip("cv2")
     section = README.split("## The lab:", 1)[1].split("\n## ", 1)[0]
     walkthrough = section.split("### The files", 1)[0]
@@ -121,12 +123,28 @@ def test_lab_walkthrough_is_real_output(tmp_path: Path) -> None:
             checked += 1
     assert checked >= 60
     section = " ".join(section.split())  # the prose, its lines joined
-    assert "129.974 ± 0.017" in out["fit hoop.txt"] and "129.974 ± 0.017" in section
-    assert "129.984 ± 0.011" in out["fit both.txt"] and "129.984 ± 0.011" in section
-    for line in lab.tracking_errors(tmp_path / "tracks.csv"):
-        for number in re.findall(r"\d\.\d{3,4}", line):
-            assert number in section, (line, number)
-    for line in lab.against_truth(out["fit"]):
-        off = re.search(r"([+-]\d\.\d) standard errors", line)
-        assert off is not None
-        assert f"{off.group(1).replace('-', '−')} standard errors" in section, line
+    assert "129.9894 ± 0.0085" in out["fit hoop.txt"] and "129.9894 ± 0.0085" in section
+    assert "129.9947 ± 0.0060" in out["fit both.txt"] and "129.9947 ± 0.0060" in section
+    plain = lab.plain_wall(tmp_path / "plain")
+    walls = section.split("**The wall behind the bodies.**", 1)[1].split("**The report.**", 1)[0]
+    for tracks, fit, where in (
+        (tmp_path / "tracks.csv", out["fit"], section),
+        (tmp_path / "plain" / "tracks.csv", plain["fit"], walls),
+    ):
+        for line in lab.tracking_errors(tracks):
+            for number in re.findall(r"\d\.\d{3,4}", line):
+                assert number in where, (line, number)
+        for line in lab.against_truth(fit):
+            off = re.search(r"([+-]\d+\.\d) standard errors", line)
+            assert off is not None
+            assert f"{off.group(1).replace('-', '−')} standard errors" in where, line
+        fitted = json.loads(fit)
+        assert not fitted["warnings"]
+        k, c = (fitted["parameters"][f"springs.0.{name}"] for name in ("stiffness", "damping"))
+        shown = [f"{k['value']:.4f} ± {k['stderr']:.4f} N/m"]
+        shown.append(f"{c['value']:.5f} ± {c['stderr']:.5f} N s/m")
+        for name in ("cm_peak_to_peak", "stationary_peak_to_peak"):
+            claim = fitted["claims"][name]
+            shown.append(f"{1e3 * claim['value']:.4f} ± {1e3 * claim['stderr']:.4f} mm")
+        for number in shown:
+            assert number in walls, number

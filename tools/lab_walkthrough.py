@@ -3,11 +3,12 @@
 Makes the synthetic recording of the paper's hoop and cylinder that the README films (the
 spring 30 % stiffer than the preset's 100 N/m and damped, 0.2 N s/m), runs ``rollspring track``
 and ``rollspring fit`` on it as the README does, prints what they print, compares the fit with
-the truth the video was rendered from, and with ``--image`` copies the fit's figure to
-``docs/images/lab-fit.png`` (the README's figure). ``--report`` also runs ``rollspring report
-hoop-cylinder --data tracks.csv`` (about a minute: the derivations).
+the truth the video was rendered from, then does the same with the recording filmed against a
+plain wall (in ``plain/``: the README's comparison of the two walls). With ``--image`` it copies
+the fit's figure to ``docs/images/lab-fit.png`` (the README's figure). ``--report`` also runs
+``rollspring report hoop-cylinder --data tracks.csv`` (about a minute: the derivations).
 
-    .venv/bin/python tools/lab_walkthrough.py                 # into build/lab, about 10 s
+    .venv/bin/python tools/lab_walkthrough.py                 # into build/lab, about 30 s
     .venv/bin/python tools/lab_walkthrough.py --image         # and update the README's figure
 
 Needs the ``lab`` and ``plot`` extras (OpenCV, Matplotlib). ``tests/test_readme.py`` runs it and
@@ -50,12 +51,15 @@ def truth_system() -> System:
     return rollspring.system_from_dict(paper)
 
 
-def make_video(path: Path, seconds: float = 6.0) -> None:
-    """The README's snippet: the paper's system with a stiffer, damped spring, filmed."""
+def make_video(path: Path, seconds: float = 6.0, *, texture: bool = True) -> None:
+    """The README's snippet: the paper's system with a stiffer, damped spring, filmed (against
+    a textured wall and table; ``texture=False``: plain ones)."""
     from rollspring.lab.synthetic import Camera, exact_motion, write_video
 
     truth = truth_system()
-    camera = Camera(fps=60, roll_deg=2.0, noise=4.0, blur=1.0, flicker=0.03, seed=1)
+    camera = Camera(
+        fps=60, roll_deg=2.0, noise=4.0, blur=1.0, flicker=0.03, texture=texture, seed=1
+    )
     motion = exact_motion(truth, camera.frame_times(seconds))  # t, x (m), phi (rad)
     write_video(path, truth, motion, camera)  # 640×360, MP4
 
@@ -136,6 +140,17 @@ def walk(where: Path, *, report: bool = False) -> dict[str, str]:
     return out
 
 
+def plain_wall(where: Path) -> dict[str, str]:
+    """The same recording filmed against a plain wall and table, tracked and fitted in
+    ``where`` as the walk-through does: the outputs of ``track`` and ``fit --json``."""
+    where.mkdir(parents=True, exist_ok=True)
+    env = dict(os.environ, NO_COLOR="1", COLUMNS="100")
+    make_video(where / "film.mp4", texture=False)
+    track = ["track", "film.mp4", "--system", "hoop-cylinder", "-o", "tracks.csv", "--json"]
+    fit = ["fit", "tracks.csv", "--system", "hoop-cylinder", *FREE, "--json"]
+    return {"track": run(track, where, env), "fit": run(fit, where, env)}
+
+
 def tracking_errors(tracks: Path) -> list[str]:
     """The tracks against the motion the video was rendered from: RMS errors, and the gain
     (the tracked displacement over the rendered one, by least squares)."""
@@ -187,6 +202,12 @@ def main() -> int:
     print("\n".join(tracking_errors(args.where / "tracks.csv")))
     print("--- the fit against the truth")
     print("\n".join(against_truth(out["fit"])))
+    plain = plain_wall(args.where.resolve() / "plain")
+    print("--- the same recording against a plain wall: the tracks against the motion")
+    print("\n".join(tracking_errors(args.where / "plain" / "tracks.csv")))
+    print("--- the same recording against a plain wall: the fit against the truth")
+    print("\n".join(against_truth(plain["fit"])))
+    print("\n".join(json.loads(plain["fit"])["warnings"]) or "(no warnings)")
     if args.image:
         shutil.copyfile(args.where / "fit.png", IMAGE)
         print(f"copied the figure to {IMAGE.relative_to(ROOT)}")

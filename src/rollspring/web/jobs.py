@@ -74,38 +74,26 @@ def report(request: dict[str, Any]) -> bytes:
     return built.html.encode()
 
 
-class Located(Exception):
-    """A job's refusal of one field of its request: the one-line message and its location."""
-
-    def __init__(self, message: str, loc: list[str | int]) -> None:
-        super().__init__(message)
-        self.message = message
-        self.loc = loc
-
-
-def _lab_refusal(exc: RollspringError, request: dict[str, Any]) -> Located:
-    """A lab error located: a PATH of ``free`` when the message names one, else ``data``."""
-    message = " ".join(str(exc).split())
+def _lab_refusal(message: str, request: dict[str, Any]) -> tuple[str, list[str | int]]:
+    """A lab error's one line in the API's words and its location: a PATH of ``free`` when the
+    message names one, ``mapping`` for a track matched by ``--map``, else ``data``."""
     for index, path in enumerate(request.get("free") or ()):
         if message.startswith((f"--free {path}:", f"free {path}:")):
-            return Located(message.replace("--free ", "free ", 1), ["body", "free", index])
+            return message.replace("--free ", "free ", 1), ["body", "free", index]
     if message.startswith(("--free", "free")):
-        return Located(message.replace("--free", "free", 1), ["body", "free"])
+        return message.replace("--free", "free", 1), ["body", "free"]
     if message.startswith("--map"):
-        return Located(message.replace("--map", "mapping", 1), ["body", "mapping"])
-    return Located(message, ["body", "data"])
+        return message.replace("--map", "mapping", 1), ["body", "mapping"]
+    return message, ["body", "data"]
 
 
 def lab_data(request: dict[str, Any]) -> bytes:
     """``POST /api/lab/data``: the measured table read and matched to the system's bodies."""
     from rollspring.service import lab_payloads
 
-    try:
-        payload = lab_payloads.data_payload(
-            request["data"], request["filename"], request["system"], request.get("mapping")
-        )
-    except RollspringError as exc:
-        raise _lab_refusal(exc, request) from None
+    payload = lab_payloads.data_payload(
+        request["data"], request["filename"], request["system"], request.get("mapping")
+    )
     return _json(payload)
 
 
@@ -113,19 +101,19 @@ def fit(request: dict[str, Any]) -> bytes:
     """``POST /api/fit``: the fit of ``rollspring fit --json``, the fitted system and its TOML."""
     from rollspring.service import lab_payloads
 
-    try:
-        payload = lab_payloads.fit_payload(
-            request["data"],
-            request["filename"],
-            request["system"],
-            request.get("free"),
-            request.get("mapping"),
-            fix_initial=request.get("fix_initial", False),
-        )
-    except RollspringError as exc:
-        raise _lab_refusal(exc, request) from None
+    payload = lab_payloads.fit_payload(
+        request["data"],
+        request["filename"],
+        request["system"],
+        request.get("free"),
+        request.get("mapping"),
+        fix_initial=request.get("fix_initial", False),
+    )
     return _json(payload)
 
+
+#: The jobs whose errors name the lab's fields (``data``, ``free``, ``mapping``).
+_LAB_JOBS = frozenset({"lab_data", "fit"})
 
 JOBS: dict[str, Callable[[dict[str, Any]], bytes]] = {
     "analyze": analyze,
@@ -152,10 +140,10 @@ def execute(job: str, request: dict[str, Any]) -> tuple[str, Any]:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore", RuntimeWarning)
             return "ok", JOBS[job](request)
-    except Located as exc:
-        return "error", ("invalid", exc.message, exc.loc)
     except RollspringError as exc:
         message = " ".join(str(exc).split())
+        if job in _LAB_JOBS:
+            return "error", ("invalid", *_lab_refusal(message, request))
         match = _FIELD.match(message)
         loc = ["body", *match.group(1).split(".")] if match else ["body"]
         return "error", ("invalid", message, loc)

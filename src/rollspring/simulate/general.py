@@ -143,8 +143,15 @@ class GeneralSegments(RunState):
         which = next(j for j, te in enumerate(solution.t_events) if len(te))
         kind, body = labels[which]
         y_event = np.asarray(solution.y_events[which][0], dtype=float)
+        acceleration = np.zeros(n)
+        if a.resisted:
+            # the rotations' scale over the run so far, and the accelerations at the event
+            # with this segment's directions: which other resisted bodies stop here too
+            peaks = np.abs(dense(np.asarray(dense.ts)))[3 * n :].max(axis=1)
+            self.omega_peak = np.maximum(self.omega_peak, peaks)
+            acceleration = rhs(t_end, y_event)[3 * n :]
         if kind in ("turn", "release"):
-            self._resistance_event(kind, body, t_end, y_event, slipping, sign)
+            self._resistance_events(t_end, y_event, slipping, sign, acceleration, (kind, body))
             return t_end, y_event, slipping, sign
         if kind == "stick":
             y_event[2 * n + body] = a.radius[body] * y_event[3 * n + body]  # v_s = 0 exactly
@@ -163,9 +170,13 @@ class GeneralSegments(RunState):
             else:
                 sign[body] = -sign[body]
                 self.events.append({"kind": "reverse", "time": t_end, "body": a.ids[body]})
+            if a.resisted:  # a body that stops turning or is driven beyond its hold here too
+                self._resistance_events(t_end, y_event, slipping, sign, acceleration)
             return t_end, y_event, slipping, sign
         if self._event(kind, body, t_end, y_event, slipping, sign):
             self._record(t_end, y_event, slipping, sign)
+        elif a.resisted:
+            self._resistance_events(t_end, y_event, slipping, sign, acceleration)
         return t_end, y_event, slipping, sign
 
     def _resistance_drive(
@@ -195,29 +206,56 @@ class GeneralSegments(RunState):
         drive, limit = self._resistance_drive(state, slipping, sign)
         return 0.0 if abs(drive[i]) <= limit[i] else float(np.sign(drive[i]))
 
-    def _resistance_event(
+    def _resistance_events(
         self,
-        kind: str,
-        body: int,
         t: float,
         state: FloatArray,
         slipping: BoolArray,
         sign: FloatArray,
+        acceleration: FloatArray,
+        trigger: tuple[str, int] | None = None,
     ) -> None:
-        """A body with rolling resistance whose rotation stopped (``turn``: it comes to rest,
-        event ``rest``, or turns back) or is released (``release``: the drive exceeds
-        :math:`C_{rr} N R`, it starts to turn the drive's way); ``state`` is made exact (the
-        rotation, and a rolling body's centre, at rest)."""
+        r"""Every resisted body's rolling resistance settled at an event at ``t`` (docs/physics.md
+        (M22)): each whose rotation stops here -- the ``trigger`` of a ``turn`` event and every
+        other turning body whose :math:`\mathrm{spin}\,\omega` has reached 0, or is within the
+        integration's tolerance of it (``rtol`` times the body's largest :math:`|\omega|` so
+        far) and falling (``acceleration``, :math:`\dot\omega` with the directions before the
+        event) -- has its rotation, and a rolling body's centre, made exactly at rest and then
+        rests (``rest``) while its own drive :math:`|D| \le C_{rr} N R`, else turns the way
+        :math:`D` drives it; each resting body whose drive exceeds that bound (the trigger of a
+        ``release`` event, or any other at the same instant) starts to turn its way
+        (``release``). Bodies whose rotations stop at the same instant (two bodies released from
+        rest in one normal mode reverse together) are all decided here, from their own drives:
+        an event already past when another is handled could never be seen again. Events are
+        recorded in the bodies' order."""
         n, a = self.n, self.arrays
-        if kind == "turn":
-            state[3 * n + body] = 0.0
-            if not slipping[body]:
-                state[2 * n + body] = 0.0
-            spin = self._resting_spin(state, slipping, sign, body)
-            self.spin[body] = spin
-            if spin == 0.0:
-                self.events.append({"kind": "rest", "time": t, "body": a.ids[body]})
-            return
-        drive, _ = self._resistance_drive(state, slipping, sign)
-        self.spin[body] = float(np.sign(drive[body])) or 1.0
-        self.events.append({"kind": "release", "time": t, "body": a.ids[body]})
+        spin = self.spin
+        resisted = self.rolls & (a.rolling_resistance > 0)
+        omega = state[3 * n :]
+        heading = spin * omega  # > 0 while a turning body turns the way its resistance opposes
+        tolerance = max(self.plan.rtol, 1e-13) * self.omega_peak
+        stopping = (
+            resisted
+            & (spin != 0.0)
+            & ((heading <= 0.0) | ((heading <= tolerance) & (spin * acceleration < 0.0)))
+        )
+        released = np.zeros(self.n, dtype=bool)
+        if trigger is not None:
+            kind, body = trigger
+            if kind == "turn":
+                stopping[body] = True
+            else:
+                released[body] = True
+        for i in np.flatnonzero(stopping):  # at rest exactly, before any drive is measured
+            state[3 * n + i] = 0.0
+            if not slipping[i]:
+                state[2 * n + i] = 0.0
+        drive, limit = self._resistance_drive(state, slipping, sign)
+        for i in np.flatnonzero(resisted):
+            if stopping[i]:
+                spin[i] = 0.0 if abs(drive[i]) <= limit[i] else float(np.sign(drive[i]))
+                if spin[i] == 0.0:
+                    self.events.append({"kind": "rest", "time": t, "body": a.ids[i]})
+            elif spin[i] == 0.0 and (released[i] or abs(drive[i]) > limit[i]):
+                spin[i] = float(np.sign(drive[i])) or 1.0
+                self.events.append({"kind": "release", "time": t, "body": a.ids[i]})

@@ -8,8 +8,9 @@ reaching zero (stick, or reverse when static friction cannot hold it), a normal 
 zero (lift-off), a resisted body's rotation reaching zero (``rest`` when the torque driving it is
 within :math:`C_{rr} N R`, else it turns back) and a resting body's drive exceeding that bound
 (``release``); between events each resisted body's resistance keeps its direction
-(:attr:`~rollspring.simulate.run_state.RunState.spin`), so the right-hand side is smooth. The
-segment's dense output is its interpolant (extremes and period,
+(:attr:`~rollspring.simulate.run_state.RunState.spin`), so the right-hand side is smooth, and at
+every event every resisted body is decided (several stop at one instant when a mode moves
+alone). The segment's dense output is its interpolant (extremes and period,
 :mod:`rollspring.simulate.extremes`).
 """
 

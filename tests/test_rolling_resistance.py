@@ -740,3 +740,42 @@ def test_a_resisted_system_is_not_exactly_linear():
     assert is_exactly_linear(analyze(system))
     system["bodies"][1]["rolling_resistance"] = 0.001
     assert not is_exactly_linear(analyze(system))
+
+
+@pytest.mark.parametrize("c_rr", [0.0, 0.01])
+def test_a_mirror_symmetric_pair_slips_and_sticks_both_bodies_at_the_same_instants(c_rr):
+    # two equal cylinders on a compressed centre spring with little friction: mirror images of
+    # each other at every instant, so every slip, stick (and stop of a resisted rotation)
+    # comes in pairs at one time; both slip at release, neither rolls beyond mu_s N
+    mu = 0.1
+    system = make_system(
+        bodies=[
+            body(
+                name,
+                "cylinder",
+                x=x,
+                mu_static=mu,
+                mu_kinetic=0.8 * mu,
+                rolling_resistance=c_rr,
+            )
+            for name, x in (("a", 0.0), ("b", 0.45))
+        ],
+        springs=[spring("a", "b", rest_length=0.5)],
+    )
+    tr = simulate(system, 1.5, rtol=1e-10, on_slip="continue", n_output=601)
+    assert tr.status == "finished"
+    assert tr.events[:2] == [
+        {"kind": "slip", "time": 0.0, "body": "a"},
+        {"kind": "slip", "time": 0.0, "body": "b"},
+    ]
+    assert len(tr.events) % 2 == 0 and len(tr.events) >= 6
+    for first, second in zip(tr.events[::2], tr.events[1::2], strict=True):
+        assert (first["body"], second["body"]) == ("a", "b")
+        assert first["kind"] == second["kind"] and first["time"] == second["time"]
+    np.testing.assert_allclose(tr.x[:, 0] + tr.x[:, 1], 0.45, atol=1e-9)  # the mirror
+    np.testing.assert_allclose(tr.omega[:, 0], -tr.omega[:, 1], atol=1e-8)
+    rolling = ~tr.slipping[1:]
+    beyond = np.abs(tr.friction[1:]) > mu * tr.normal[1:] * (1 + 1e-9)
+    assert not (rolling & beyond).any()
+    assert tr.summary["energy_error"] < 1e-8
+    assert np.max(np.diff(tr.energy)) <= 1e-8 * tr.summary["energy"]

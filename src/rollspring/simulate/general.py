@@ -41,6 +41,17 @@ class GeneralSegments(RunState):
         n, a, model, damped = self.n, self.arrays, self.packed, self.plan.damped
         slipping = slipping.copy()
         sign = sign.copy()
+        # a rolling body already beyond its friction limit (or a normal force below zero) where
+        # the segment starts: at release beside another one, or one whose event fell at the
+        # same instant as the last segment's, or whose resistance has just turned: it slips (or
+        # lifts off) here, its event function being past zero already
+        verdict = self._contact_verdict(state, slipping)
+        while verdict is not None:
+            self._flush_pending()
+            if self._event(*verdict, t, state, slipping, sign):
+                self._record(t, state, slipping, sign)
+                return t, state, slipping, sign
+            verdict = self._contact_verdict(state, slipping)
         spin = self.spin.copy()  # the rolling resistance's directions (M21), (M22)
         mu_s = a.mu_static
 
@@ -151,34 +162,51 @@ class GeneralSegments(RunState):
             peaks = np.abs(dense(np.asarray(dense.ts)))[3 * n :].max(axis=1)
             self.omega_peak = np.maximum(self.omega_peak, peaks)
             acceleration = rhs(t_end, y_event)[3 * n :]
-        if kind in ("turn", "release"):
-            self._resistance_events(t_end, y_event, slipping, sign, acceleration, (kind, body))
-            return t_end, y_event, slipping, sign
+        was_slipping = slipping.copy()  # the bodies slipping before the event
         if kind == "stick":
-            y_event[2 * n + body] = a.radius[body] * y_event[3 * n + body]  # v_s = 0 exactly
-            trial = slipping.copy()
-            trial[body] = False
-            if a.rolling_resistance[body] > 0 and spin[body] == 0.0:
-                # its rotation was held while it slipped: now wholly at rest, held or driven
-                self.spin[body] = self._resting_spin(y_event, trial, sign, body)
-            friction, normal, *_ = self.observe(
-                y_event[None, :], trial[None], sign[None], self.spin[None]
-            )
-            if abs(friction[0, body]) <= mu_s[body] * normal[0, body]:
-                slipping[body] = False
-                sign[body] = 0.0
-                self.events.append({"kind": "stick", "time": t_end, "body": a.ids[body]})
-            else:
-                sign[body] = -sign[body]
-                self.events.append({"kind": "reverse", "time": t_end, "body": a.ids[body]})
-            if a.resisted:  # a body that stops turning or is driven beyond its hold here too
-                self._resistance_events(t_end, y_event, slipping, sign, acceleration)
-            return t_end, y_event, slipping, sign
-        if self._event(kind, body, t_end, y_event, slipping, sign):
+            self._stick_or_reverse(body, t_end, y_event, slipping, sign)
+        elif kind not in ("turn", "release") and self._event(
+            kind, body, t_end, y_event, slipping, sign
+        ):
             self._record(t_end, y_event, slipping, sign)
-        elif a.resisted:
-            self._resistance_events(t_end, y_event, slipping, sign, acceleration)
+            return t_end, y_event, slipping, sign
+        # every other body is decided at this instant too: one whose event is due here as well
+        # (a mode moving alone stops, sticks or slips its bodies together) would otherwise be
+        # lost, its event function already at zero or past it when the next segment starts.
+        # A slipping body whose slip velocity has reached zero sticks or reverses:
+        for i in range(n):
+            slip_velocity = y_event[2 * n + i] - a.radius[i] * y_event[3 * n + i]
+            if was_slipping[i] and (kind, body) != ("stick", i) and sign[i] * slip_velocity < 0:
+                self._stick_or_reverse(i, t_end, y_event, slipping, sign)
+        if a.resisted:  # every resisted body stopping here rests or turns; a driven one releases
+            trigger = (kind, body) if kind in ("turn", "release") else None
+            self._resistance_events(t_end, y_event, slipping, sign, acceleration, trigger)
         return t_end, y_event, slipping, sign
+
+    def _stick_or_reverse(
+        self, body: int, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> None:
+        r"""A slipping body whose slip velocity :math:`u - R\omega` reached zero at ``t``
+        (docs/physics.md (M19)): ``state`` made exact there; it sticks (event ``stick``) when the
+        static friction rolling needs is within :math:`\mu_s N`, else it slips on the other way
+        (``reverse``). A resisted body whose rotation was held while it slipped is then wholly
+        at rest: held, or driven, by (M22)."""
+        n, a = self.n, self.arrays
+        state[2 * n + body] = a.radius[body] * state[3 * n + body]  # v_s = 0 exactly
+        trial = slipping.copy()
+        trial[body] = False
+        if a.rolling_resistance[body] > 0 and self.spin[body] == 0.0:
+            self.spin[body] = self._resting_spin(state, trial, sign, body)
+        friction, normal, *_ = self.observe(
+            state[None, :], trial[None], sign[None], self.spin[None]
+        )
+        if abs(friction[0, body]) <= a.mu_static[body] * normal[0, body]:
+            slipping[body] = False
+            sign[body] = 0.0
+            self.events.append({"kind": "stick", "time": t, "body": a.ids[body]})
+        else:
+            sign[body] = -sign[body]
+            self.events.append({"kind": "reverse", "time": t, "body": a.ids[body]})
 
     def _resistance_drive(
         self, state: FloatArray, slipping: BoolArray, sign: FloatArray

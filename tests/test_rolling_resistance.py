@@ -129,7 +129,12 @@ def reference_level_chain(masses, gammas, c_rr, k, rest, x0, duration, times):
     """An independent integration of bodies on one level joined by centre springs (in a row),
     with rolling resistance: (1+gamma_i) m_i x_i'' = F_i(x) - C_i m_i g s_i while moving
     (s_i the sign of x_i'), x_i' = 0 while |F_i| <= C_i m_i g at rest; SciPy's DOP853 with
-    terminal events at every stop and release. Returns x at ``times`` and the events."""
+    terminal events at every stop and release. At each event every body is decided: each
+    moving body that stops there too (its velocity at or past 0, or within 1e-9 of its
+    largest speed of 0 and falling: bodies released from rest in one mode stop together)
+    rests or turns back by its own force, each resting body pushed beyond C_i m_i g is
+    released; simultaneous events listed in the bodies' order. Returns x at ``times`` and the
+    events."""
     masses, gammas, c_rr = (np.asarray(a, dtype=float) for a in (masses, gammas, c_rr))
     n = masses.size
     inertia = (1 + gammas) * masses
@@ -151,6 +156,7 @@ def reference_level_chain(masses, gammas, c_rr, k, rest, x0, duration, times):
     t = 0.0
     out = np.empty((times.size, n))
     events_seen = []
+    fastest = np.zeros(n)  # each body's largest speed so far
     while t < duration:
         held = (spin == 0.0) & ~free  # this stretch's resting bodies
         direction = spin.copy()  # and every body's resistance direction
@@ -187,20 +193,28 @@ def reference_level_chain(masses, gammas, c_rr, k, rest, x0, duration, times):
         if solution.status != 1:
             break
         which = next(j for j, te in enumerate(solution.t_events) if len(te))
-        kind, i = labels[which]
+        kind, first = labels[which]
         y = solution.y_events[which][0].copy()
         t = float(solution.t_events[which][0])
+        fastest = np.maximum(fastest, np.abs(solution.sol(solution.sol.ts)[n:]).max(axis=1))
+        heading = spin * y[n:]
+        falling = spin * rhs(t, y)[n:] < 0.0
+        stopping = (
+            ~free & (spin != 0.0) & ((heading <= 0.0) | (falling & (heading <= 1e-9 * fastest)))
+        )
         if kind == "rest":
-            y[n + i] = 0.0
-            force = spring_forces(y[:n])[i]
-            if abs(force) <= limit[i]:
+            stopping[first] = True
+        y[n:][stopping] = 0.0
+        force = spring_forces(y[:n])
+        for i in np.flatnonzero(~free):
+            if stopping[i] and abs(force[i]) <= limit[i]:
                 spin[i] = 0.0
                 events_seen.append(("rest", i, t))
-            else:
-                spin[i] = math.copysign(1.0, force)
-        else:
-            spin[i] = math.copysign(1.0, spring_forces(y[:n])[i])
-            events_seen.append(("release", i, t))
+            elif stopping[i]:
+                spin[i] = math.copysign(1.0, force[i])
+            elif spin[i] == 0.0 and ((kind, first) == ("release", i) or abs(force[i]) > limit[i]):
+                spin[i] = math.copysign(1.0, force[i])
+                events_seen.append(("release", i, t))
     return out, events_seen
 
 
@@ -237,6 +251,113 @@ def test_hoop_and_cylinder_with_rolling_resistance_match_an_independent_integrat
     summary = tr.summary
     final_energy = float(tr.energy[-1])
     assert final_energy + summary["energy_dissipated"] == pytest.approx(summary["energy"], rel=1e-9)
+
+
+def assert_energy_balanced_and_never_rising(tr, tolerance=1e-9):
+    """E(t) + W(t) = E0 at every output (the summary's energy error, relative) and E never
+    rises from one output to the next, beyond the same tolerance of E0."""
+    e0 = tr.summary["energy"]
+    assert tr.summary["energy_error"] < tolerance
+    assert float(tr.energy[-1]) + tr.summary["energy_dissipated"] == pytest.approx(
+        e0, rel=tolerance
+    )
+    assert np.max(np.diff(tr.energy)) <= tolerance * e0
+
+
+@pytest.mark.parametrize("c_rr", [0.002, 0.01, 0.05])
+def test_hoop_and_cylinder_both_resisted_stop_together_as_one_coulomb_oscillator(c_rr):
+    # Both bodies resisted by C_rr N = C_rr m g with m = 1 kg: while they move apart or together
+    # the two resistances are equal and opposite, so P = 2 x1' + 1.5 x2' (M11) stays 0 and
+    # both velocities vanish at the same instant, every time; u = x2 - x1 then obeys
+    # mu u'' = -k (u - L0) - C_rr m g sign(u'), mu = 2 * 1.5 / 3.5, exactly (each body's
+    # resistance on itself: (1+gamma_i) m x_i'' = F_i - C_rr m g s_i, s_1 = -s_2), and at each
+    # turning point both feel the same |F| = k |u - L0| against the same bound C_rr m g: both
+    # rest, or both turn back, together
+    system = as_system("hoop-cylinder").model_dump()
+    for entry in system["bodies"]:
+        entry["rolling_resistance"] = c_rr
+    k, rest, inertia = 100.0, 0.5, (2.0, 1.5)
+    reduced = inertia[0] * inertia[1] / sum(inertia)
+    r = c_rr * G
+    _, turning, stop = coulomb_oscillator(-0.01, k, reduced, r, np.empty(0))
+    duration = stop + 0.3
+    tr = simulate(system, duration, rtol=1e-11, n_output=1501)
+    assert tr.status == "finished"
+    deviation, *_ = coulomb_oscillator(-0.01, k, reduced, r, tr.t)
+    centre = inertia[1] * 0.49 / sum(inertia)  # (M1 x1 + M2 x2) / (M1 + M2): fixed
+    u = rest + deviation
+    np.testing.assert_allclose(tr.x[:, 0], centre - inertia[1] / sum(inertia) * u, atol=1e-9)
+    np.testing.assert_allclose(tr.x[:, 1], centre + inertia[0] / sum(inertia) * u, atol=1e-9)
+    assert [(e["kind"], e["body"]) for e in tr.events] == [("rest", "hoop"), ("rest", "cylinder")]
+    np.testing.assert_allclose([e["time"] for e in tr.events], stop, atol=1e-9)
+    assert tr.summary["final"]["bodies"]["hoop"]["v"] == 0.0
+    assert tr.summary["final"]["bodies"]["cylinder"]["v"] == 0.0
+    # the energy lost is the spring energy between the first and the last turning point
+    lost = 0.5 * k * (turning[0] ** 2 - turning[-1] ** 2)
+    assert tr.summary["dissipated_by"]["rolling_resistance"] == pytest.approx(lost, rel=1e-9)
+    assert_energy_balanced_and_never_rising(tr)
+    # the independent integration, deciding every body at every event, agrees
+    x_ref, seen = reference_level_chain(
+        [1.0, 1.0], [1.0, 0.5], [c_rr, c_rr], k, rest, [0.0, 0.49], duration, tr.t
+    )
+    assert seen == [("rest", 0, seen[0][2]), ("rest", 1, seen[0][2])]
+    assert seen[0][2] == pytest.approx(stop, abs=1e-9)
+    np.testing.assert_allclose(tr.x, x_ref, atol=1e-9)
+
+
+@settings(max_examples=10)
+@given(
+    masses=st.tuples(st.floats(0.3, 3.0), st.floats(0.3, 3.0)),
+    shapes=st.tuples(*[st.sampled_from(["hoop", "cylinder", "sphere", "shell"])] * 2),
+    c_rr=st.floats(0.001, 0.05),
+    other=st.one_of(st.none(), st.floats(0.001, 0.05)),
+    stretch=st.floats(0.005, 0.03),
+    pushed=st.booleans(),
+    heights=st.one_of(st.none(), st.tuples(st.floats(0.0, 0.2), st.floats(0.0, 0.2))),
+)
+def test_random_resisted_pairs_released_from_rest_keep_the_energy_balance(
+    masses, shapes, c_rr, other, stretch, pushed, heights
+):
+    """Two bodies, both resisted, released from rest on a stretched or compressed spring: E + W
+    stays E0 and E never rises. ``other`` None: the second body's C_rr m equal to the first's,
+    so with a centre spring the mode moves alone and both stop at the same instants (the
+    independent integration's events, pair by pair); ``heights``: an off-centre spring
+    (normal forces that vary with the tilt)."""
+    gammas = {"hoop": 1.0, "cylinder": 0.5, "sphere": 0.4, "shell": 2.0 / 3.0}
+    resistances = [c_rr, c_rr * masses[0] / masses[1] if other is None else other]
+    x0 = [0.0, 0.5 + (stretch if not pushed else -stretch)]
+    ends = None if heights is None else [{"height": h} for h in heights]
+    system = make_system(
+        bodies=[
+            body(
+                f"b{i}",
+                shapes[i],
+                mass=masses[i],
+                x=x0[i],
+                rolling_resistance=resistances[i],
+                mu_static=math.inf,
+            )
+            for i in range(2)
+        ],
+        springs=[spring("b0", "b1", rest_length=0.5, **({"at": ends} if ends else {}))],
+    )
+    duration = 2.0
+    tr = simulate(system, duration, rtol=1e-11, n_output=401)
+    assert tr.status == "finished"
+    assert_energy_balanced_and_never_rising(tr)
+    if heights is not None:
+        return
+    x_ref, seen = reference_level_chain(
+        masses, [gammas[s] for s in shapes], resistances, 100.0, 0.5, x0, duration, tr.t
+    )
+    events = [(e["kind"], int(e["body"][1:]), e["time"]) for e in tr.events]
+    assert [(kind, i) for kind, i, _ in events] == [(kind, i) for kind, i, _ in seen]
+    np.testing.assert_allclose([t for *_, t in events], [t for *_, t in seen], atol=1e-9)
+    np.testing.assert_allclose(tr.x, x_ref, atol=1e-8)
+    if other is None:  # one mode: the bodies stop together, every time
+        assert len(events) % 2 == 0
+        for (_, a, ta), (_, b, tb) in zip(events[::2], events[1::2], strict=True):
+            assert (a, b) == (0, 1) and ta == tb
 
 
 def test_energy_balance_of_a_nonlinear_damped_resisted_run_with_an_off_centre_spring():
@@ -619,3 +740,42 @@ def test_a_resisted_system_is_not_exactly_linear():
     assert is_exactly_linear(analyze(system))
     system["bodies"][1]["rolling_resistance"] = 0.001
     assert not is_exactly_linear(analyze(system))
+
+
+@pytest.mark.parametrize("c_rr", [0.0, 0.01])
+def test_a_mirror_symmetric_pair_slips_and_sticks_both_bodies_at_the_same_instants(c_rr):
+    # two equal cylinders on a compressed centre spring with little friction: mirror images of
+    # each other at every instant, so every slip, stick (and stop of a resisted rotation)
+    # comes in pairs at one time; both slip at release, neither rolls beyond mu_s N
+    mu = 0.1
+    system = make_system(
+        bodies=[
+            body(
+                name,
+                "cylinder",
+                x=x,
+                mu_static=mu,
+                mu_kinetic=0.8 * mu,
+                rolling_resistance=c_rr,
+            )
+            for name, x in (("a", 0.0), ("b", 0.45))
+        ],
+        springs=[spring("a", "b", rest_length=0.5)],
+    )
+    tr = simulate(system, 1.5, rtol=1e-10, on_slip="continue", n_output=601)
+    assert tr.status == "finished"
+    assert tr.events[:2] == [
+        {"kind": "slip", "time": 0.0, "body": "a"},
+        {"kind": "slip", "time": 0.0, "body": "b"},
+    ]
+    assert len(tr.events) % 2 == 0 and len(tr.events) >= 6
+    for first, second in zip(tr.events[::2], tr.events[1::2], strict=True):
+        assert (first["body"], second["body"]) == ("a", "b")
+        assert first["kind"] == second["kind"] and first["time"] == second["time"]
+    np.testing.assert_allclose(tr.x[:, 0] + tr.x[:, 1], 0.45, atol=1e-9)  # the mirror
+    np.testing.assert_allclose(tr.omega[:, 0], -tr.omega[:, 1], atol=1e-8)
+    rolling = ~tr.slipping[1:]
+    beyond = np.abs(tr.friction[1:]) > mu * tr.normal[1:] * (1 + 1e-9)
+    assert not (rolling & beyond).any()
+    assert tr.summary["energy_error"] < 1e-8
+    assert np.max(np.diff(tr.energy)) <= 1e-8 * tr.summary["energy"]

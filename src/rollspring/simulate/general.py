@@ -8,8 +8,9 @@ reaching zero (stick, or reverse when static friction cannot hold it), a normal 
 zero (lift-off), a resisted body's rotation reaching zero (``rest`` when the torque driving it is
 within :math:`C_{rr} N R`, else it turns back) and a resting body's drive exceeding that bound
 (``release``); between events each resisted body's resistance keeps its direction
-(:attr:`~rollspring.simulate.run_state.RunState.spin`), so the right-hand side is smooth. The
-segment's dense output is its interpolant (extremes and period,
+(:attr:`~rollspring.simulate.run_state.RunState.spin`), so the right-hand side is smooth, and at
+every event every resisted body is decided (several stop at one instant when a mode moves
+alone). The segment's dense output is its interpolant (extremes and period,
 :mod:`rollspring.simulate.extremes`).
 """
 
@@ -40,6 +41,17 @@ class GeneralSegments(RunState):
         n, a, model, damped = self.n, self.arrays, self.packed, self.plan.damped
         slipping = slipping.copy()
         sign = sign.copy()
+        # a rolling body already beyond its friction limit (or a normal force below zero) where
+        # the segment starts: at release beside another one, or one whose event fell at the
+        # same instant as the last segment's, or whose resistance has just turned: it slips (or
+        # lifts off) here, its event function being past zero already
+        verdict = self._contact_verdict(state, slipping)
+        while verdict is not None:
+            self._flush_pending()
+            if self._event(*verdict, t, state, slipping, sign):
+                self._record(t, state, slipping, sign)
+                return t, state, slipping, sign
+            verdict = self._contact_verdict(state, slipping)
         spin = self.spin.copy()  # the rolling resistance's directions (M21), (M22)
         mu_s = a.mu_static
 
@@ -143,30 +155,58 @@ class GeneralSegments(RunState):
         which = next(j for j, te in enumerate(solution.t_events) if len(te))
         kind, body = labels[which]
         y_event = np.asarray(solution.y_events[which][0], dtype=float)
-        if kind in ("turn", "release"):
-            self._resistance_event(kind, body, t_end, y_event, slipping, sign)
-            return t_end, y_event, slipping, sign
+        acceleration = np.zeros(n)
+        if a.resisted:
+            # the rotations' scale over the run so far, and the accelerations at the event
+            # with this segment's directions: which other resisted bodies stop here too
+            peaks = np.abs(dense(np.asarray(dense.ts)))[3 * n :].max(axis=1)
+            self.omega_peak = np.maximum(self.omega_peak, peaks)
+            acceleration = rhs(t_end, y_event)[3 * n :]
+        was_slipping = slipping.copy()  # the bodies slipping before the event
         if kind == "stick":
-            y_event[2 * n + body] = a.radius[body] * y_event[3 * n + body]  # v_s = 0 exactly
-            trial = slipping.copy()
-            trial[body] = False
-            if a.rolling_resistance[body] > 0 and spin[body] == 0.0:
-                # its rotation was held while it slipped: now wholly at rest, held or driven
-                self.spin[body] = self._resting_spin(y_event, trial, sign, body)
-            friction, normal, *_ = self.observe(
-                y_event[None, :], trial[None], sign[None], self.spin[None]
-            )
-            if abs(friction[0, body]) <= mu_s[body] * normal[0, body]:
-                slipping[body] = False
-                sign[body] = 0.0
-                self.events.append({"kind": "stick", "time": t_end, "body": a.ids[body]})
-            else:
-                sign[body] = -sign[body]
-                self.events.append({"kind": "reverse", "time": t_end, "body": a.ids[body]})
-            return t_end, y_event, slipping, sign
-        if self._event(kind, body, t_end, y_event, slipping, sign):
+            self._stick_or_reverse(body, t_end, y_event, slipping, sign)
+        elif kind not in ("turn", "release") and self._event(
+            kind, body, t_end, y_event, slipping, sign
+        ):
             self._record(t_end, y_event, slipping, sign)
+            return t_end, y_event, slipping, sign
+        # every other body is decided at this instant too: one whose event is due here as well
+        # (a mode moving alone stops, sticks or slips its bodies together) would otherwise be
+        # lost, its event function already at zero or past it when the next segment starts.
+        # A slipping body whose slip velocity has reached zero sticks or reverses:
+        for i in range(n):
+            slip_velocity = y_event[2 * n + i] - a.radius[i] * y_event[3 * n + i]
+            if was_slipping[i] and (kind, body) != ("stick", i) and sign[i] * slip_velocity < 0:
+                self._stick_or_reverse(i, t_end, y_event, slipping, sign)
+        if a.resisted:  # every resisted body stopping here rests or turns; a driven one releases
+            trigger = (kind, body) if kind in ("turn", "release") else None
+            self._resistance_events(t_end, y_event, slipping, sign, acceleration, trigger)
         return t_end, y_event, slipping, sign
+
+    def _stick_or_reverse(
+        self, body: int, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> None:
+        r"""A slipping body whose slip velocity :math:`u - R\omega` reached zero at ``t``
+        (docs/physics.md (M19)): ``state`` made exact there; it sticks (event ``stick``) when the
+        static friction rolling needs is within :math:`\mu_s N`, else it slips on the other way
+        (``reverse``). A resisted body whose rotation was held while it slipped is then wholly
+        at rest: held, or driven, by (M22)."""
+        n, a = self.n, self.arrays
+        state[2 * n + body] = a.radius[body] * state[3 * n + body]  # v_s = 0 exactly
+        trial = slipping.copy()
+        trial[body] = False
+        if a.rolling_resistance[body] > 0 and self.spin[body] == 0.0:
+            self.spin[body] = self._resting_spin(state, trial, sign, body)
+        friction, normal, *_ = self.observe(
+            state[None, :], trial[None], sign[None], self.spin[None]
+        )
+        if abs(friction[0, body]) <= a.mu_static[body] * normal[0, body]:
+            slipping[body] = False
+            sign[body] = 0.0
+            self.events.append({"kind": "stick", "time": t, "body": a.ids[body]})
+        else:
+            sign[body] = -sign[body]
+            self.events.append({"kind": "reverse", "time": t, "body": a.ids[body]})
 
     def _resistance_drive(
         self, state: FloatArray, slipping: BoolArray, sign: FloatArray
@@ -195,29 +235,56 @@ class GeneralSegments(RunState):
         drive, limit = self._resistance_drive(state, slipping, sign)
         return 0.0 if abs(drive[i]) <= limit[i] else float(np.sign(drive[i]))
 
-    def _resistance_event(
+    def _resistance_events(
         self,
-        kind: str,
-        body: int,
         t: float,
         state: FloatArray,
         slipping: BoolArray,
         sign: FloatArray,
+        acceleration: FloatArray,
+        trigger: tuple[str, int] | None = None,
     ) -> None:
-        """A body with rolling resistance whose rotation stopped (``turn``: it comes to rest,
-        event ``rest``, or turns back) or is released (``release``: the drive exceeds
-        :math:`C_{rr} N R`, it starts to turn the drive's way); ``state`` is made exact (the
-        rotation, and a rolling body's centre, at rest)."""
+        r"""Every resisted body's rolling resistance settled at an event at ``t`` (docs/physics.md
+        (M22)): each whose rotation stops here -- the ``trigger`` of a ``turn`` event and every
+        other turning body whose :math:`\mathrm{spin}\,\omega` has reached 0, or is within the
+        integration's tolerance of it (``rtol`` times the body's largest :math:`|\omega|` so
+        far) and falling (``acceleration``, :math:`\dot\omega` with the directions before the
+        event) -- has its rotation, and a rolling body's centre, made exactly at rest and then
+        rests (``rest``) while its own drive :math:`|D| \le C_{rr} N R`, else turns the way
+        :math:`D` drives it; each resting body whose drive exceeds that bound (the trigger of a
+        ``release`` event, or any other at the same instant) starts to turn its way
+        (``release``). Bodies whose rotations stop at the same instant (two bodies released from
+        rest in one normal mode reverse together) are all decided here, from their own drives:
+        an event already past when another is handled could never be seen again. Events are
+        recorded in the bodies' order."""
         n, a = self.n, self.arrays
-        if kind == "turn":
-            state[3 * n + body] = 0.0
-            if not slipping[body]:
-                state[2 * n + body] = 0.0
-            spin = self._resting_spin(state, slipping, sign, body)
-            self.spin[body] = spin
-            if spin == 0.0:
-                self.events.append({"kind": "rest", "time": t, "body": a.ids[body]})
-            return
-        drive, _ = self._resistance_drive(state, slipping, sign)
-        self.spin[body] = float(np.sign(drive[body])) or 1.0
-        self.events.append({"kind": "release", "time": t, "body": a.ids[body]})
+        spin = self.spin
+        resisted = self.rolls & (a.rolling_resistance > 0)
+        omega = state[3 * n :]
+        heading = spin * omega  # > 0 while a turning body turns the way its resistance opposes
+        tolerance = max(self.plan.rtol, 1e-13) * self.omega_peak
+        stopping = (
+            resisted
+            & (spin != 0.0)
+            & ((heading <= 0.0) | ((heading <= tolerance) & (spin * acceleration < 0.0)))
+        )
+        released = np.zeros(self.n, dtype=bool)
+        if trigger is not None:
+            kind, body = trigger
+            if kind == "turn":
+                stopping[body] = True
+            else:
+                released[body] = True
+        for i in np.flatnonzero(stopping):  # at rest exactly, before any drive is measured
+            state[3 * n + i] = 0.0
+            if not slipping[i]:
+                state[2 * n + i] = 0.0
+        drive, limit = self._resistance_drive(state, slipping, sign)
+        for i in np.flatnonzero(resisted):
+            if stopping[i]:
+                spin[i] = 0.0 if abs(drive[i]) <= limit[i] else float(np.sign(drive[i]))
+                if spin[i] == 0.0:
+                    self.events.append({"kind": "rest", "time": t, "body": a.ids[i]})
+            elif spin[i] == 0.0 and (released[i] or abs(drive[i]) > limit[i]):
+                spin[i] = float(np.sign(drive[i])) or 1.0
+                self.events.append({"kind": "release", "time": t, "body": a.ids[i]})

@@ -161,6 +161,10 @@ class RunState:
         #: rotation it opposes, +1 or -1, or 0 while it holds the body at rest; 0 for every body
         #: without it. Only the general segments change it (a resisted run has no other).
         self.spin = np.zeros(n)
+        #: per body the largest :math:`|\omega|` the general segments have seen so far: the
+        #: scale of the tolerance within which a rotation is taken to stop at another body's
+        #: event (:meth:`~rollspring.simulate.general.GeneralSegments._resistance_events`)
+        self.omega_peak = np.zeros(n)
         self.times: list[FloatArray] = []
         self.segments: list[Segment] = []
         self.events: list[dict[str, Any]] = []

@@ -15,7 +15,7 @@ import typer
 from typer.testing import CliRunner
 
 from rollspring.cli.commands.export import register
-from rollspring.model import System, load_system, preset_names
+from rollspring.model import System, load_system, preset_names, system_from_dict
 from rollspring.outputs.mjcf import (
     DEFAULT_TIMESTEP,
     MAX_TRACKS,
@@ -581,3 +581,13 @@ def test_mujoco_runs_the_mixed_system_and_enforced_rolling_holds() -> None:
     assert all(w.number == 0 for w in data.warning)
     assert largest_x > 1e-3  # the constant force and the springs moved it
     assert largest_slip < 1e-3 * largest_x
+
+
+def test_a_rolling_resistance_is_said_not_to_be_exported() -> None:
+    data = SYSTEMS["hoop-cylinder"].model_dump()
+    data["bodies"][1]["rolling_resistance"] = 0.01
+    warnings = mjcf_warnings(system_from_dict(data))
+    assert warnings == [
+        "body 'cylinder': rolling_resistance = 0.01 is not exported (the contacts have "
+        "condim = 3: sliding friction only)"
+    ]

@@ -32,9 +32,10 @@ Mapping (SI units on both sides)
   on it ``contype = 0, conaffinity = bit``, so a body touches its own track only and bodies
   never touch each other (docs/physics.md section 1 models no collisions). At most 31 distinct
   track heights can be exported. Body geoms have ``priority = 1``, so a contact uses the
-  body's friction and ``condim = 3`` (sliding friction only: no rolling resistance, as in our
-  model). **Friction coefficient = mu_static**: MuJoCo has one friction coefficient (no
-  separate kinetic one). ``mu_static = 0`` gives a frictionless contact (``condim = 1``);
+  body's friction and ``condim = 3`` (sliding friction only: a body's ``rolling_resistance`` is
+  not exported, and :func:`mjcf_warnings` says so). **Friction coefficient = mu_static**:
+  MuJoCo has one friction coefficient (no separate kinetic one). ``mu_static = 0`` gives a
+  frictionless contact (``condim = 1``);
   ``mu_static = inf`` (rolling enforced, a rack) is exported as a frictionless contact plus a
   joint equality ``ID:x = R * ID:phi``. Like every MuJoCo constraint it is soft; its
   ``solref`` time constant is set to twice the time step (the stiffest MuJoCo recommends),
@@ -145,6 +146,11 @@ def mjcf_warnings(system: System) -> list[str]:
             warnings.append(
                 f"body '{b.id}': MuJoCo has one friction coefficient; mu_static = "
                 f"{b.mu_static:g} is used, mu_kinetic = {b.mu_kinetic_value:g} is not exported"
+            )
+        if b.rolling_resistance > 0:
+            warnings.append(
+                f"body '{b.id}': rolling_resistance = {b.rolling_resistance:g} is not exported "
+                "(the contacts have condim = 3: sliding friction only)"
             )
     return warnings
 

@@ -15,7 +15,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from rollspring.errors import FitError
+from rollspring.errors import DataError, FitError
 from rollspring.model import System, system_to_json
 
 __all__ = ["DEFAULT_FREE_QUANTITIES", "data_payload", "default_free", "fit_payload"]
@@ -37,16 +37,53 @@ def _column(values: Any) -> list[float | None]:
     return [float(v) if math.isfinite(v) else None for v in values.tolist()]
 
 
-def _table(text: str, source: str, system: System, mapping: Mapping[str, str] | None) -> Any:
+def _table(
+    text: str,
+    source: str,
+    system: System,
+    mapping: Mapping[str, str | None] | None,
+    unmatched: str = "refuse",
+) -> tuple[Any, list[str], dict[str, str | None]]:
+    """The table matched to ``system``'s bodies, its tracks and the match used ({track: body id,
+    or None for a track left out}). A track mapped to None is left out, and with ``unmatched``
+    "omit" so is a track that names no body and is not in ``mapping``."""
+    from dataclasses import replace
+
     from rollspring.lab.data import match_bodies, parse_data
 
-    return match_bodies(parse_data(text, source), system, mapping)
+    recording = parse_data(text, source)
+    mapping = dict(mapping or {})
+    ids = {body.id for body in system.bodies}
+    for track in mapping:
+        if track not in recording.tracks:
+            raise DataError(
+                f"--map {track}={mapping[track] or ''}: {recording.source} has no track "
+                f"'{track}' (tracks: {', '.join(recording.tracks)})"
+            )
+    if unmatched == "omit":
+        for track in recording.tracks:
+            if track not in mapping and track not in ids:
+                mapping[track] = None
+    used = [i for i, track in enumerate(recording.tracks) if mapping.get(track, track) is not None]
+    kept = replace(
+        recording,
+        tracks=tuple(recording.tracks[i] for i in used),
+        x=recording.x[:, used],
+        phi=recording.phi[:, used],
+    )
+    table = match_bodies(kept, system, {k: v for k, v in mapping.items() if v is not None})
+    match = {track: mapping.get(track, track) for track in recording.tracks}
+    return table, list(recording.tracks), match
 
 
-def _drawn(table: Any, t0: float, x_offset: float) -> dict[str, Any]:
+def _drawn(
+    table: Any, t0: float, x_offset: float, tracks: list[str], match: dict[str, str | None]
+) -> dict[str, Any]:
     """The measured table as the page draws it: ``t`` from ``t0``, ``x`` less ``x_offset``."""
     return {
         "source": table.source,
+        "tracks": tracks,
+        "mapping": match,
         "t": _column(table.t - t0),
         "bodies": {
             body: {
@@ -60,14 +97,23 @@ def _drawn(table: Any, t0: float, x_offset: float) -> dict[str, Any]:
 
 
 def data_payload(
-    text: str, source: str, system: System, mapping: Mapping[str, str] | None = None
+    text: str,
+    source: str,
+    system: System,
+    mapping: Mapping[str, str | None] | None = None,
+    *,
+    unmatched: str = "refuse",
 ) -> dict[str, Any]:
     """The table ``text`` (named ``source``) read and matched to ``system``'s bodies:
-    ``{"source", "t", "bodies": {id: {"x", "phi"}}, "points", "free"}`` (``t`` from the table's
-    first time; ``free`` the PATHs a fit frees by default). A one-line
+    ``{"source", "tracks", "mapping", "t", "bodies": {id: {"x", "phi"}}, "points", "free"}``
+    (``tracks`` the file's track names, ``mapping`` the match used, {track: body id or None};
+    ``t`` from the table's first time; ``free`` the PATHs a fit frees by default). A one-line
     :class:`~rollspring.errors.DataError` for a table that cannot be read or matched."""
-    table = _table(text, source, system, mapping)
-    return {**_drawn(table, float(table.t[0]), 0.0), "free": default_free(system)}
+    table, tracks, match = _table(text, source, system, mapping, unmatched)
+    return {
+        **_drawn(table, float(table.t[0]), 0.0, tracks, match),
+        "free": default_free(system),
+    }
 
 
 def fit_payload(
@@ -75,9 +121,10 @@ def fit_payload(
     source: str,
     system: System,
     free: Sequence[str] | None = None,
-    mapping: Mapping[str, str] | None = None,
+    mapping: Mapping[str, str | None] | None = None,
     *,
     fix_initial: bool = False,
+    unmatched: str = "refuse",
 ) -> dict[str, Any]:
     """The fit of ``system`` to the table ``text`` (named ``source``) freeing the PATHs ``free``
     (default :func:`default_free`) and each body's initial state (``rollspring fit``):
@@ -93,7 +140,7 @@ def fit_payload(
 
     paths = default_free(system) if free is None else list(free)
     check_paths(system, paths)  # before the data, as the CLI: a bad PATH is named first
-    table = _table(text, source, system, mapping)
+    table, tracks, match = _table(text, source, system, mapping, unmatched)
     if not paths and fix_initial:
         raise FitError("free: nothing to fit (no PATH, and the initial state held)")
     result = fit(table, system, paths, fix_initial=fix_initial)
@@ -106,5 +153,7 @@ def fit_payload(
             table,
             result.parameters["t0"].value,
             0.0 if offset is None else offset.value,
+            tracks,
+            match,
         ),
     }

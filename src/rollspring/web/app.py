@@ -141,10 +141,16 @@ class LabDataRequest(SystemRequest):
         max_length=200,
         description="The file's name, as messages name it.",
     )
-    mapping: dict[str, str] = Field(
+    mapping: dict[str, str | None] = Field(
         default_factory=dict,
         max_length=MAX_BODIES,
-        description="Tracks matched to bodies, {track: body id} (default: by name).",
+        description="Tracks matched to bodies, {track: body id}, null for a track left out "
+        "(default: by name).",
+    )
+    unmatched: Literal["refuse", "omit"] = Field(
+        default="refuse",
+        description="A track that names no body and is not in mapping: refused (as the CLI), or "
+        "left out.",
     )
 
 
@@ -483,6 +489,7 @@ def create_app(
             "data": request.data,
             "filename": request.filename,
             "mapping": dict(request.mapping),
+            "unmatched": request.unmatched,
         }
 
     @app.post(

@@ -92,7 +92,11 @@ def lab_data(request: dict[str, Any]) -> bytes:
     from rollspring.service import lab_payloads
 
     payload = lab_payloads.data_payload(
-        request["data"], request["filename"], request["system"], request.get("mapping")
+        request["data"],
+        request["filename"],
+        request["system"],
+        request.get("mapping"),
+        unmatched=request.get("unmatched", "refuse"),
     )
     return _json(payload)
 
@@ -108,6 +112,7 @@ def fit(request: dict[str, Any]) -> bytes:
         request.get("free"),
         request.get("mapping"),
         fix_initial=request.get("fix_initial", False),
+        unmatched=request.get("unmatched", "refuse"),
     )
     return _json(payload)
 

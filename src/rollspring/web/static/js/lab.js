@@ -1,6 +1,8 @@
 // The lab: a measured table (a track CSV, a plain CSV or a Tracker data file), loaded from the
 // file picker or dropped on the panel, is sent to the server and read there
-// (POST /api/lab/data: rollspring.lab.data), drawn over the model's positions; Fit sends it
+// (POST /api/lab/data: rollspring.lab.data), drawn over the model's positions; its tracks are
+// matched to the bodies by name or, with one select per track, as the user chooses (the
+// request's mapping, a track "not used" mapped to null); Fit sends it, with that mapping,
 // with the system and the chosen free numbers (POST /api/fit = rollspring fit --json), shows
 // the fitted values ± standard errors, the residual RMS per body and the paper's claims
 // measured, and hands the fitted system to the page (its editor and plots).
@@ -56,6 +58,9 @@ export class LabPanel {
     this.name = "";
     this.data = null; // the table as drawn ({source, t, bodies: {id: {x, phi}}, points})
     this.result = null; // the last /api/fit answer
+    this.tracks = null; // the file's track names
+    this.mapping = null; // {track: body id or null}: the match sent
+    this.asked = 0; // the last /api/lab/data request (answers to earlier ones are dropped)
     this.busy = 0;
     this.$ = (selector) => root.querySelector(selector);
     this.$("#lab-file").addEventListener("change", (e) => {
@@ -81,6 +86,9 @@ export class LabPanel {
 
   /** The free-number boxes for the system now shown (kept ticked as they were, by PATH). */
   syncChoices(system) {
+    const map = this.$("#lab-map-list");
+    if (this.tracks && !this.$("#lab-map").hidden
+        && map.dataset.signature !== system.bodies.map((b) => b.id).join("|")) this.renderMap(system);
     const box = this.$("#lab-free-list");
     const was = new Map([...box.querySelectorAll("input[data-free]")].map((i) => [i.dataset.free, i.checked]));
     const signature = freeChoices(system).map((c) => c.path).join("|");
@@ -95,6 +103,95 @@ export class LabPanel {
       label.append(input, ` ${c.label}`);
       return label;
     }));
+  }
+
+  /** One select per track of the file, each set to its body in this.mapping ("" = not used),
+   * offering the bodies of `system`. */
+  renderMap(system) {
+    const list = this.$("#lab-map-list");
+    const ids = system.bodies.map((b) => b.id);
+    list.dataset.signature = ids.join("|");
+    list.replaceChildren(...this.tracks.map((track, i) => {
+      const row = document.createElement("div");
+      row.className = "lab-map-row";
+      const label = document.createElement("label");
+      label.htmlFor = `lab-map-${i}`;
+      label.textContent = `track '${track}' is`;
+      const select = document.createElement("select");
+      select.id = `lab-map-${i}`;
+      select.dataset.track = track;
+      select.setAttribute("aria-describedby", "lab-map-error");
+      for (const [value, text] of [...ids.map((id) => [id, id]), ["", "not used"]]) {
+        const option = document.createElement("option");
+        option.value = value;
+        option.textContent = text;
+        select.append(option);
+      }
+      const body = this.mapping[track];
+      select.value = body != null && ids.includes(body) ? body : "";
+      select.addEventListener("change", () => this.remap());
+      row.append(label, select);
+      return row;
+    }));
+    this.$("#lab-map").hidden = false;
+  }
+
+  /** The match the selects show: {track: body id or null}. */
+  chosen() {
+    return Object.fromEntries([...this.$("#lab-map-list").querySelectorAll("select[data-track]")]
+      .map((s) => [s.dataset.track, s.value || null]));
+  }
+
+  /** The table read again with the match the selects show, and drawn (or the server's refusal
+   * — two tracks on one body — shown next to the selects). */
+  async remap() {
+    if (this.text == null) return;
+    const mapping = this.chosen();
+    const asked = ++this.asked;
+    this.setError("#lab-fit-error", "");
+    this.busy += 1;
+    try {
+      const answer = await postJson("/api/lab/data", { system: this.page.system(), data: this.text,
+        filename: this.name, mapping });
+      if (asked !== this.asked) return;
+      this.mapping = mapping;
+      this.mapError("");
+      this.show(answer);
+    } catch (error) {
+      if (asked !== this.asked) return;
+      this.mapping = mapping;
+      this.mapError(error.message);
+      this.data = null;
+      this.$("#lab-fit").disabled = true;
+      this.$("#lab-file-info").textContent = "";
+      this.page.drawn(null);
+    } finally {
+      this.busy -= 1;
+    }
+  }
+
+  mapError(message) {
+    this.setError("#lab-map-error", message);
+    for (const select of this.$("#lab-map-list").querySelectorAll("select")) {
+      if (message) select.setAttribute("aria-invalid", "true");
+      else select.removeAttribute("aria-invalid");
+    }
+  }
+
+  /** A /api/lab/data answer shown: what was read, and the data drawn. */
+  show(answer) {
+    this.data = answer;
+    this.result = null;
+    this.$("#lab-result").replaceChildren();
+    this.$("#lab-download").disabled = true;
+    const bodies = Object.keys(answer.bodies);
+    this.$("#lab-fit").disabled = bodies.length === 0;
+    const t = answer.t;
+    this.$("#lab-file-info").textContent = bodies.length === 0
+      ? `${this.name}: no track matched to a body — choose each track's body below.`
+      : `${this.name}: ${t.length} times over ${sig(t[t.length - 1] - t[0], 4)} s, `
+        + `${answer.points} positions of ${bodies.join(", ")} — drawn as dots over the model's positions.`;
+    this.page.drawn(bodies.length ? this.data : null);
   }
 
   /** The PATHs ticked. */
@@ -124,21 +221,21 @@ export class LabPanel {
     this.status(`Reading ${file.name}…`);
     try {
       const text = await file.text();
-      const answer = await postJson("/api/lab/data", { system: this.page.system(), data: text, filename: file.name });
+      const system = this.page.system();
+      const asked = ++this.asked;
+      const answer = await postJson("/api/lab/data", { system, data: text, filename: file.name, unmatched: "omit" });
+      if (asked !== this.asked) return;
       this.text = text;
       this.name = file.name;
-      this.data = answer;
-      this.result = null;
-      this.$("#lab-result").replaceChildren();
-      this.$("#lab-download").disabled = true;
-      this.$("#lab-fit").disabled = false;
+      this.tracks = answer.tracks;
+      this.mapping = answer.mapping;
+      this.mapError("");
       this.$("#lab-clear").disabled = false;
-      const bodies = Object.keys(answer.bodies);
-      const t = answer.t;
-      this.$("#lab-file-info").textContent = `${file.name}: ${t.length} times over ${sig(t[t.length - 1] - t[0], 4)} s, `
-        + `${answer.points} positions of ${bodies.join(", ")} — drawn as dots over the model's positions.`;
+      // the selects, when a track's name is no body's id
+      if (this.tracks.some((track) => this.mapping[track] !== track)) this.renderMap(system);
+      else this.$("#lab-map").hidden = true;
+      this.show(answer);
       this.status("");
-      this.page.drawn(this.data);
     } catch (error) {
       this.setError("#lab-file-error", error instanceof ApiError ? error.message : `${file.name}: ${error.message}`);
       this.status("");
@@ -159,7 +256,7 @@ export class LabPanel {
     this.status("Fitting…");
     try {
       const answer = await postJson("/api/fit", { system: this.page.system(), data: this.text, filename: this.name,
-        free: this.free(), fix_initial: this.$("#lab-fix-initial").checked });
+        free: this.free(), fix_initial: this.$("#lab-fix-initial").checked, mapping: this.mapping || {} });
       this.result = answer;
       this.data = answer.data;
       this.render(answer);
@@ -263,7 +360,13 @@ export class LabPanel {
 
   /** Forget the data (the plots show the model alone again). */
   clear() {
+    this.asked += 1;
     this.text = null;
+    this.tracks = null;
+    this.mapping = null;
+    this.$("#lab-map").hidden = true;
+    this.$("#lab-map-list").replaceChildren();
+    this.setError("#lab-map-error", "");
     this.data = null;
     this.result = null;
     this.$("#lab-result").replaceChildren();

@@ -236,3 +236,36 @@ def test_a_fit_past_the_time_budget_is_a_503() -> None:
         stuck = budgeted.post("/api/fit", json={"system": rough_start(), "data": csv_text(t, x)})
         assert stuck.status_code == 503
         assert "time budget of 1 s" in stuck.json()["detail"]
+
+
+def test_a_track_mapped_to_null_or_unmatched_is_left_out(client: TestClient) -> None:
+    t, x = recording()
+    lines = ["#multi:", "\tmass A\t\tmass B\t", "t\tx\ty\tx\ty"]
+    lines += [
+        f"{float(a)!r}\t{float(b)!r}\t0.1\t{float(c)!r}\t0.1"
+        for a, (b, c) in zip(t, x, strict=True)
+    ]
+    request = {"system": rough_start(), "data": "\n".join(lines) + "\n", "filename": "tr.txt"}
+    # "omit": the tracks named as no body left out, and said so
+    answer = client.post("/api/lab/data", json={**request, "unmatched": "omit"})
+    assert answer.status_code == 200, answer.text
+    body = answer.json()
+    assert body["tracks"] == ["mass A", "mass B"]
+    assert body["mapping"] == {"mass A": None, "mass B": None}
+    assert body["bodies"] == {} and body["points"] == 0
+    # one track matched, the other mapped to null
+    mapping = {"mass A": None, "mass B": "cylinder"}
+    answer = client.post("/api/lab/data", json={**request, "mapping": mapping})
+    assert answer.status_code == 200, answer.text
+    body = answer.json()
+    assert body["mapping"] == mapping
+    assert list(body["bodies"]) == ["cylinder"]
+    assert body["bodies"]["cylinder"]["x"] == x[:, 1].tolist()
+    assert body["points"] == t.size
+    # two tracks on one body: the reader's one line
+    twice = {"mass A": "hoop", "mass B": "hoop"}
+    loc, message = refusal(client.post("/api/lab/data", json={**request, "mapping": twice}))
+    assert loc == ["body", "data"]
+    with pytest.raises(DataError) as raised:
+        match_bodies(parse_data(request["data"], "tr.txt"), load_system("hoop-cylinder"), twice)
+    assert message == " ".join(str(raised.value).split())

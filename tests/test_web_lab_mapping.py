@@ -3,7 +3,8 @@
 cylinder (~1 mm of seeded noise), its tracks named as Tracker names them ("mass A", "mass B"),
 shows one select per track; matched to the hoop and the cylinder, the data drawn are the file's
 and Fit gives what :func:`rollspring.fit` gives with the same ``mapping``; two tracks on one body
-are refused next to the selects with the server's one line; a track "not used" is left out; the
+are refused next to the selects with the server's one line; a track "not used" is left out; a
+track named as a body is pre-filled, and another system's bodies are offered once it is shown; the
 selects are labelled, at least 44 px tall on the phone, axe-core clean, nothing overflows.
 
 Nothing here waits on wall-clock time: every wait is for a condition in the page."""
@@ -126,3 +127,11 @@ def test_the_selects_are_pre_filled_by_name_and_shown_only_when_needed(sized: Op
     expect(page.get_by_label("track 'wheel' is")).to_have_value("")
     expect(page.locator("#lab-file-info")).to_contain_text("wheel.csv: 60 times")
     assert page.locator("#lab-fit").is_enabled()
+    # another system: the selects offer its bodies, and the table is read again with them
+    page.select_option("#preset", "two-cylinders")
+    settle(page)
+    hoop = page.get_by_label("track 'hoop' is")
+    assert hoop.locator("option").all_inner_texts() == ["cylinder1", "cylinder2", "not used"]
+    expect(hoop).to_have_value("")
+    expect(page.locator("#lab-file-info")).to_contain_text("wheel.csv: no track matched to a body")
+    assert page.locator("#lab-fit").is_disabled()

@@ -88,7 +88,12 @@ export class LabPanel {
   syncChoices(system) {
     const map = this.$("#lab-map-list");
     if (this.tracks && !this.$("#lab-map").hidden
-        && map.dataset.signature !== system.bodies.map((b) => b.id).join("|")) this.renderMap(system);
+        && map.dataset.signature !== system.bodies.map((b) => b.id).join("|")) {
+      // the bodies renamed, added or removed: the selects offer them, and the table is read
+      // again with what they now show
+      this.renderMap(system);
+      this.remap();
+    }
     const box = this.$("#lab-free-list");
     const was = new Map([...box.querySelectorAll("input[data-free]")].map((i) => [i.dataset.free, i.checked]));
     const signature = freeChoices(system).map((c) => c.path).join("|");

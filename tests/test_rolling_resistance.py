@@ -189,14 +189,18 @@ def reference_level_chain(masses, gammas, c_rr, k, rest, x0, duration, times):
         )
         end = solution.t[-1]
         inside = (times >= t) & (times <= end)
-        out[inside] = solution.sol(times[inside])[:n].T
+        if solution.t.size > 1 and inside.any():
+            out[inside] = solution.sol(times[inside])[:n].T
+        elif inside.any():  # an event at the stretch's start: no step taken, the state is y
+            out[inside] = y[:n]
         if solution.status != 1:
             break
         which = next(j for j, te in enumerate(solution.t_events) if len(te))
         kind, first = labels[which]
         y = solution.y_events[which][0].copy()
         t = float(solution.t_events[which][0])
-        fastest = np.maximum(fastest, np.abs(solution.sol(solution.sol.ts)[n:]).max(axis=1))
+        if solution.t.size > 1:  # an event at the stretch's start has no steps to look at
+            fastest = np.maximum(fastest, np.abs(solution.sol(solution.sol.ts)[n:]).max(axis=1))
         heading = spin * y[n:]
         falling = spin * rhs(t, y)[n:] < 0.0
         stopping = (
@@ -603,16 +607,50 @@ def test_while_slipping_the_resistance_acts_on_the_rotation_alone():
     assert tr.summary["energy_error"] < 1e-9
 
 
-@settings(max_examples=6)
-@given(
-    masses=st.tuples(st.floats(0.3, 3.0), st.floats(0.3, 3.0), st.floats(0.3, 3.0)),
-    shapes=st.tuples(*[st.sampled_from(["hoop", "cylinder", "sphere", "shell"])] * 3),
-    c_rr=st.tuples(st.floats(0.0, 0.02), st.floats(0.0, 0.02), st.floats(0.001, 0.02)),
-    offsets=st.tuples(st.floats(-0.02, 0.02), st.floats(-0.02, 0.02)),
+def _random_chain(seed: int) -> tuple[tuple, tuple, tuple, tuple]:
+    """Masses (0.3-3 kg), shapes, C_rr (0-0.02, the last body's at least 0.001) and the two
+    springs' initial stretches (±0.02 m) of a three-body chain, drawn from ``seed``."""
+    rng = np.random.default_rng(seed)
+    masses = tuple(float(m) for m in rng.uniform(0.3, 3.0, 3))
+    shapes = tuple(str(s) for s in rng.choice(["hoop", "cylinder", "sphere", "shell"], 3))
+    c_rr = (
+        float(rng.uniform(0, 0.02)),
+        float(rng.uniform(0, 0.02)),
+        float(rng.uniform(1e-3, 0.02)),
+    )
+    offsets = tuple(float(o) for o in rng.uniform(-0.02, 0.02, 2))
+    return masses, shapes, c_rr, offsets
+
+
+#: A held body released when its drive crosses C_rr N R and comes back below it within about
+#: 40 ms (a drive that peaks just above the limit): the simulation releases it 18 ms late.
+GRAZING_RELEASE = (
+    (1.8794532366093317, 1.5867887386055803, 0.9916050578553093),
+    ("hoop", "hoop", "sphere"),
+    (0.011599403611281896, 0.003822205469201496, 0.01953512659010959),
+    (-0.015700910864554115, -0.0019164484669156),
 )
-def test_random_chains_with_rolling_resistance_match_the_independent_integration(
-    masses, shapes, c_rr, offsets
-):
+
+
+@pytest.mark.parametrize(
+    "chain",
+    [_random_chain(seed) for seed in range(6)]
+    + [
+        pytest.param(
+            GRAZING_RELEASE,
+            marks=pytest.mark.xfail(
+                strict=True,
+                reason=(
+                    "known bug: a release whose drive only grazes C_rr N R is found 18 ms late"
+                ),
+            ),
+        )
+    ],
+)
+def test_random_chains_with_rolling_resistance_match_the_independent_integration(chain):
+    """Seeded three-body chains (drawn with NumPy, so the same cases in every run and order)
+    against the independent SciPy integration with rest and release events."""
+    masses, shapes, c_rr, offsets = chain
     gammas = {"hoop": 1.0, "cylinder": 0.5, "sphere": 0.4, "shell": 2.0 / 3.0}
     x0 = [0.0, 0.5 + offsets[0], 1.0 + offsets[1]]
     system = make_system(

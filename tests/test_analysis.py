@@ -423,3 +423,53 @@ def test_an_equilibrium_search_without_an_exact_root_is_bounded(system) -> None:
         assert equilibrium.stiffness is not None and equilibrium.modes is not None
     else:
         assert equilibrium.reason
+
+
+def test_a_zero_mode_that_is_no_exact_symmetry_is_reported() -> None:
+    """The "frictionless" pair (Fig. 3's idea): its linear zero mode moves the centres 3 : 4
+    so both bodies turn by the same angle θ; the spring's ends then stay apart by
+    (0.5 + 0.025(θ − sin θ), 0.025(1 − cos θ)) m, worked out here by hand from the rolling
+    kinematics, so the exact potential changes along the mode and ``analyze`` says so."""
+    from rollspring.analysis.checks import zero_mode_potential_change
+    from rollspring.model import load_system
+
+    analysis = analyze(load_system("frictionless"))
+    zero = next(mode for mode in analysis.modes if mode.kind == "zero")
+    np.testing.assert_allclose(zero.shape_x, [0.75, 1.0], rtol=1e-12)
+    reach = 0.5 * math.pi * 0.075  # the largest centre displacement sampled (m)
+    theta = np.linspace(-reach, reach, 41) / 0.1  # the cylinder's (and the hoop's) turn
+    length = np.hypot(0.5 + 0.025 * (theta - np.sin(theta)), 0.025 * (1 - np.cos(theta)))
+    by_hand = float(np.ptp(0.5 * 100.0 * (length - 0.5) ** 2))
+    assert zero_mode_potential_change(analysis) == pytest.approx(by_hand, rel=1e-12)
+    assert by_hand > 1e-3
+    (warning,) = [w for w in analysis.warnings if w.startswith("the zero mode")]
+    assert f"{by_hand:.3g} J" in warning and "creep" in warning
+
+
+@pytest.mark.parametrize("preset", ["hoop-cylinder", "two-hoops", "three-bodies"])
+def test_centre_springs_make_the_zero_mode_an_exact_symmetry(preset: str) -> None:
+    """With every spring at the centres a common translation leaves every spring's length
+    alone: the potential along the zero mode is constant to rounding, and nothing is said."""
+    from rollspring.analysis.checks import zero_mode_potential_change
+    from rollspring.model import load_system
+
+    analysis = analyze(load_system(preset))
+    change = zero_mode_potential_change(analysis)
+    assert change is not None and change < 1e-20
+    assert not [w for w in analysis.warnings if w.startswith("the zero mode")]
+
+
+def test_equal_hoops_joined_at_their_tops_keep_the_symmetry() -> None:
+    """Off-centre ends that turn alike (two equal hoops, the spring between their tops): a
+    common translation turns both ends by the same angle, the spring keeps its length, the
+    zero mode is exact, and no warning is given although the springs are off the centres."""
+    from rollspring.analysis.checks import zero_mode_potential_change
+
+    system = make_system(
+        bodies=[body("a", "hoop", x=0.0, radius=0.1), body("b", "hoop", x=0.5, radius=0.1)],
+        springs=[spring("a", "b", stiffness=80.0, rest_length=0.5, at=[{"height": 0.2}] * 2)],
+    )
+    analysis = analyze(system)
+    change = zero_mode_potential_change(analysis)
+    assert change is not None and change < 1e-20
+    assert not [w for w in analysis.warnings if w.startswith("the zero mode")]

@@ -11,9 +11,14 @@ import math
 import numpy as np
 
 from rollspring.analysis.linear import LinearAnalysis
-from rollspring.physics import end_kinematics
+from rollspring.physics import end_kinematics, potential_energy
 
-__all__ = ["is_exactly_linear", "percussion_attachments", "physics_warnings"]
+__all__ = [
+    "is_exactly_linear",
+    "percussion_attachments",
+    "physics_warnings",
+    "zero_mode_potential_change",
+]
 
 
 def physics_warnings(analysis: LinearAnalysis) -> list[str]:
@@ -23,6 +28,7 @@ def physics_warnings(analysis: LinearAnalysis) -> list[str]:
     out += _percussion_warnings(analysis)
     out += _geometry_warnings(analysis)
     out += _amplitude_warnings(analysis)
+    out += _zero_mode_warnings(analysis)
     return out
 
 
@@ -207,3 +213,54 @@ def _amplitude_warnings(analysis: LinearAnalysis) -> list[str]:
                 f"approximate at this amplitude (the springs tilt as the bodies turn)"
             )
     return out
+
+
+#: Samples of the exact potential along a zero mode, over a quarter turn each way.
+_ZERO_MODE_SAMPLES = 41
+
+
+def zero_mode_potential_change(analysis: LinearAnalysis) -> float | None:
+    r"""How far the single zero mode :math:`v_0` (:math:`K v_0 = 0`, (M14)) is from a symmetry
+    of the exact motion: the range (J) of the exact potential (M5)
+
+    .. math:: \Delta U = \max_d U(q_{eq} + d\,v_0) - \min_d U(q_{eq} + d\,v_0),
+              \qquad |d| \le \tfrac{\pi}{2} R_{\min}
+
+    along it (``shape_q`` normalised to a largest centre displacement of 1 m, so :math:`d` is in
+    metres: up to a quarter of the smallest rolling body's circumference). Zero to rounding
+    when every spring is at the centres (the conserved (M11) is then exact); positive when the
+    springs' ends turn with the bodies, so that moving along the linear zero mode stretches
+    them at second order (docs/physics.md §8). None without exactly one zero mode or a found
+    equilibrium."""
+    zero = [mode for mode in analysis.modes if mode.kind == "zero"]
+    arrays = analysis.arrays
+    if len(zero) != 1 or not analysis.equilibrium.found or not np.any(arrays.rolls):
+        return None
+    reach = 0.5 * math.pi * float(np.min(arrays.radius[arrays.rolls > 0]))
+    steps = np.linspace(-reach, reach, _ZERO_MODE_SAMPLES)
+    states = analysis.equilibrium.q + steps[:, None] * zero[0].shape_q
+    return float(np.ptp(potential_energy(arrays, states)))
+
+
+def _zero_mode_warnings(analysis: LinearAnalysis) -> list[str]:
+    """The stationary point is conserved only to first order when the zero mode is not a
+    symmetry of the exact potential (:func:`zero_mode_potential_change`)."""
+    arrays = analysis.arrays
+    if _linear_geometry(analysis) or not arrays.n_springs:
+        return []
+    change = zero_mode_potential_change(analysis)
+    reach = 0.5 * math.pi * float(np.min(arrays.radius[arrays.rolls > 0], initial=np.inf))
+    scale = 0.5 * float(np.max(arrays.stiffness)) * reach**2
+    if change is None or not change > 1e-9 * scale:
+        return []
+    zero = next(mode for mode in analysis.modes if mode.kind == "zero")
+    shape = " : ".join(f"{value:.4g}" for value in zero.shape_x)
+    names = ", ".join(arrays.ids)
+    return [
+        f"the zero mode (centres {names} moving {shape}) is free only to first order: the "
+        f"spring ends turn with the bodies, so the exact potential changes by {change:.3g} J "
+        f"within ±{reach:.3g} m along it; the stationary point X̂ stays put only at small "
+        "amplitudes, and a finite oscillation can make the system creep along this mode "
+        "(docs/physics.md §8; for the paper's Fig. 3 pair the creep grows about as "
+        "exp(0.5 a Ω t), a the angular amplitude: see rollspring paper-check)"
+    ]

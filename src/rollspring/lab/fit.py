@@ -53,6 +53,11 @@ marked frames, pooled) is measured, and when it is above what independent errors
 estimate's under them, :math:`(J^TJ)^{-1}J^T\Sigma J(J^TJ)^{-1}` (the sandwich; with
 :math:`\rho = 0` it is :math:`s^2(J^TJ)^{-1}`). Above :data:`MODEL_MISMATCH_CORRELATION` a
 warning says that the residuals are not noise: the model, as fitted, does not describe the data.
+Errors the residuals cannot show are added when the data carry them: a track CSV's
+``xlocked<m>_<id>`` columns (``rollspring track``'s measure of the error a textured background
+locks to each body's position, which a fit absorbs into the initial state) add their linear
+response :math:`\sum_{b,m}\sigma_{bm}^2 v_{bm}v_{bm}^T` to the covariance
+(:func:`locked_covariance`), and so to every standard error and the claims'.
 A near-singular :math:`J` (column-normalised condition number above
 :data:`IDENTIFIABLE_CONDITION`) is reported as a warning naming the combination of parameters
 the data do not constrain (the right singular vector).

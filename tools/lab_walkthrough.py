@@ -92,16 +92,24 @@ def run(args: list[str], where: Path, env: dict[str, str]) -> str:
     return done.stdout
 
 
+def read_tracks(path: Path) -> dict[str, np.ndarray]:
+    """The columns of a track CSV, by name."""
+    header = path.read_text().split("\n", 1)[0].split(",")
+    table = np.loadtxt(path, delimiter=",", skiprows=1)
+    return {name: table[:, k] for k, name in enumerate(header)}
+
+
 def hand_marked(where: Path) -> None:
     """The README's examples of the other formats, from every third frame of ``tracks.csv``
     (20 frames/s, as a hand marking in Tracker might be): ``plain.csv`` and the Tracker files
     ``hoop.txt`` (the hoop's track alone) and ``both.txt`` (two tracks named ``mass A`` and
     ``mass B``, the second unmarked in two frames)."""
-    table = np.loadtxt(where / "tracks.csv", delimiter=",", skiprows=1)[::3]
+    table = read_tracks(where / "tracks.csv")
+    table = np.column_stack([table[name] for name in ("t", "x_hoop", "x_cylinder")])[::3]
     skipped = (4, 5)
     plain, hoop, both = ["t,x_hoop,x_cylinder"], ["hoop", "t\tx\ty"], ["#multi:"]
     both += ["mass A\t\t\tmass B\t\t", "t\tx\ty\tt\tx\ty"]
-    for row, (t, x1, _, x2, _) in enumerate(table):
+    for row, (t, x1, x2) in enumerate(table):
         second = ("", "") if row in skipped else (f"{x2:.5f}", "0.1000")
         plain.append(f"{t:.4g},{x1:.5f},{second[0]}")
         hoop.append(f"{t:.4g}\t{x1:.5f}\t0.1000")
@@ -156,11 +164,11 @@ def tracking_errors(tracks: Path) -> list[str]:
     (the tracked displacement over the rendered one, by least squares)."""
     from rollspring.lab.synthetic import exact_motion
 
-    table = np.loadtxt(tracks, delimiter=",", skiprows=1)
-    motion = exact_motion(truth_system(), table[:, 0])
+    table = read_tracks(tracks)
+    motion = exact_motion(truth_system(), table["t"])
     lines = []
     for column, body in enumerate(motion.ids):
-        x, phi = table[:, 1 + 2 * column], table[:, 2 + 2 * column]
+        x, phi = table[f"x_{body}"], table[f"phi_{body}"]
         true_x = motion.x[:, column]
         rms_x = np.sqrt(np.mean((x - true_x) ** 2))
         rms_phi = np.sqrt(np.mean((phi - motion.phi[:, column]) ** 2))

@@ -4,8 +4,10 @@ Three formats, told apart by their first lines:
 
 * **a ``track`` CSV or a plain CSV** (comma-separated): a header ``t,x_<id>,phi_<id>,...`` —
   the time ``t`` (s), each body's centre position ``x_<id>`` (m) and, optionally, its rotation
-  angle ``phi_<id>`` (rad, clockwise positive), one row per frame. ``rollspring track`` writes
-  it (one pair per body, in the system's order); any order of the columns is read.
+  angle ``phi_<id>`` (rad, clockwise positive) and the error locked to its position
+  ``xlocked1_<id>``, ``xlocked2_<id>``, ``xlocked3_<id>`` (m, the same in every row), one row
+  per frame. ``rollspring track`` writes it (in the system's order); any order of the columns
+  is read.
 * **a Tracker data file** (Open Source Physics' Tracker, "Export Data", tab-separated; commas
   and semicolons are read too): one track — its name on the first line, the column names
   (``t x y``, and whatever else was exported) on the second — or several tracks in one file: a
@@ -67,6 +69,7 @@ class Recording:
     x: FloatArray
     phi: FloatArray
     format: str  # "csv", "tracker" or "tracker-multi"
+    locked_error: FloatArray | None = None  # (T, 3) m, track's xlocked<m>_<id>; 0 if none
 
 
 @dataclass(frozen=True)
@@ -74,7 +77,10 @@ class BodyData:
     """A recording matched to a system: per measured body, its centre positions and angles.
 
     ``bodies`` the ids measured (in the system's order), ``index`` their indices among the
-    system's bodies, ``t`` (N,), ``x`` and ``phi`` (N, B) with NaN where a frame has no mark.
+    system's bodies, ``t`` (N,), ``x`` and ``phi`` (N, B) with NaN where a frame has no mark;
+    ``locked_error`` (B, 3) each body's error locked to its position, the standard deviations
+    (m) of its coefficients on :math:`P_1, P_2, P_3` of the position (``track``'s
+    ``xlocked<m>_<id>``; None when the file has none).
     """
 
     source: str
@@ -83,6 +89,7 @@ class BodyData:
     index: tuple[int, ...]
     x: FloatArray
     phi: FloatArray
+    locked_error: FloatArray | None = None
 
     @property
     def has_angles(self) -> bool:
@@ -273,6 +280,7 @@ def _table(source: str, header: list[str], lines: list[str], separator: str) -> 
     tracks: list[str] = []
     x_column: dict[str, int] = {}
     phi_column: dict[str, int] = {}
+    locked_column: dict[tuple[str, int], int] = {}
     for column, cell in enumerate(header):
         if cell.lower() == "t" or not cell:
             continue
@@ -283,14 +291,21 @@ def _table(source: str, header: list[str], lines: list[str], separator: str) -> 
                 tracks.append(name)
         elif kind == "phi" and name:
             phi_column[name] = column
+        elif kind in ("xlocked1", "xlocked2", "xlocked3") and name:
+            locked_column[(name, int(kind[-1]))] = column
         else:
             raise DataError(
-                f"{source}: column '{cell}': not a data column (expected t, x_<body id> or "
-                "phi_<body id>)"
+                f"{source}: column '{cell}': not a data column (expected t, x_<body id>, "
+                "phi_<body id> or xlocked1/2/3_<body id>)"
             )
     for name in phi_column:
         if name not in x_column:
             raise DataError(f"{source}: column 'phi_{name}' has no position column 'x_{name}'")
+    for name, degree in locked_column:
+        if name not in x_column:
+            raise DataError(
+                f"{source}: column 'xlocked{degree}_{name}' has no position column 'x_{name}'"
+            )
     if not tracks:
         raise DataError(f"{source}: no position column: the header needs x_<body id> columns")
     table = _rows(source, lines, separator, len(header), 2)
@@ -303,7 +318,18 @@ def _table(source: str, header: list[str], lines: list[str], separator: str) -> 
         ],
         axis=1,
     )
-    return Recording(source, t, tuple(tracks), x, phi, "csv")
+    locked_error = None
+    if locked_column:
+        locked_error = np.zeros((len(tracks), 3))
+        for (name, degree), column in locked_column.items():
+            cells = table[:, column][np.isfinite(table[:, column])]
+            if cells.size and (np.any(cells < 0) or np.ptp(cells) > 0):
+                raise DataError(
+                    f"{source}: column 'xlocked{degree}_{name}': must hold one error >= 0 (m), "
+                    "the same in every row"
+                )
+            locked_error[tracks.index(name), degree - 1] = float(cells[0]) if cells.size else 0.0
+    return Recording(source, t, tuple(tracks), x, phi, "csv", locked_error)
 
 
 def _tracker(
@@ -397,6 +423,13 @@ def match_bodies(
                 f"{recording.source}: body '{ids[i]}': an angle without a position at "
                 f"t = {recording.t[row]:g} s"
             )
+    locked_error = None if recording.locked_error is None else recording.locked_error[columns]
     return BodyData(
-        recording.source, recording.t, tuple(ids[i] for i in order), tuple(order), x, phi
+        recording.source,
+        recording.t,
+        tuple(ids[i] for i in order),
+        tuple(order),
+        x,
+        phi,
+        locked_error,
     )

@@ -53,6 +53,11 @@ marked frames, pooled) is measured, and when it is above what independent errors
 estimate's under them, :math:`(J^TJ)^{-1}J^T\Sigma J(J^TJ)^{-1}` (the sandwich; with
 :math:`\rho = 0` it is :math:`s^2(J^TJ)^{-1}`). Above :data:`MODEL_MISMATCH_CORRELATION` a
 warning says that the residuals are not noise: the model, as fitted, does not describe the data.
+Errors the residuals cannot show are added when the data carry them: a track CSV's
+``xlocked<m>_<id>`` columns (``rollspring track``'s measure of the error a textured background
+locks to each body's position, which a fit absorbs into the initial state) add their linear
+response :math:`\sum_{b,m}\sigma_{bm}^2 v_{bm}v_{bm}^T` to the covariance
+(:func:`locked_covariance`), and so to every standard error and the claims'.
 A near-singular :math:`J` (column-normalised condition number above
 :data:`IDENTIFIABLE_CONDITION`) is reported as a warning naming the combination of parameters
 the data do not constrain (the right singular vector).
@@ -798,8 +803,8 @@ def _result(
     model_x = problem.states(best)[:, problem.measured]
     rho = residual_correlation(model_x - problem.table.x, problem.mask)
     covariance, warnings = _covariance(jacobian, noise, [names[i] for i in fitted])
+    independent = covariance
     if rho > 2.0 / math.sqrt(points) and count:
-        independent = covariance
         covariance = correlated_covariance(jacobian, problem.mask, rho, independent, noise)
         with np.errstate(divide="ignore", invalid="ignore"):
             widened = float(np.nanmax(np.sqrt(np.diag(covariance) / np.diag(independent))))
@@ -809,6 +814,10 @@ def _result(
                 "fitted, does not describe the data; free more parameters or check the system "
                 f"(standard errors widened up to {widened:.3g}× for it)"
             )
+    if problem.table.locked_error is not None and count:
+        covariance = covariance + locked_covariance(
+            jacobian, problem.mask, problem.table.x, problem.table.locked_error, independent, noise
+        )
     errors = np.sqrt(np.maximum(np.diag(covariance), 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         correlation = covariance / np.outer(errors, errors)
@@ -887,6 +896,52 @@ def correlated_covariance(
     filtered = (forward + backward - table)[marked]
     meat = jacobian.T @ filtered
     return np.asarray(independent @ meat @ independent, dtype=float) / noise**2
+
+
+def locked_covariance(
+    jacobian: FloatArray,
+    marked: np.ndarray,
+    x: FloatArray,
+    locked: FloatArray,
+    independent: FloatArray,
+    noise: float,
+) -> FloatArray:
+    r"""The parameters' covariance from each body's error locked to its position (``track``'s
+    ``xlocked_<id>``, :func:`rollspring.lab.tracking.locked_error`): body :math:`b`'s tracked
+    positions carry an error :math:`e_b(x)`, a smooth function of the position that the fit
+    cannot see (a swing scaled by :math:`1 + \epsilon` is another initial state), of RMS
+    :math:`\sigma_b` (``locked``) over the positions measured. Written as
+    :math:`e_b = \sum_{m=1}^{3} a_{bm}P_m(	ilde x)` (Legendre polynomials of the position
+    scaled to [-1, 1] over the body's range) with independent coefficients of variance
+    :math:`\sigma_b^2(2m+1)/3` (an RMS of :math:`\sigma_b` shared alike), each moves the
+    estimate by :math:`\delta p = (J^TJ)^{-1}J^Tu_{bm}a_{bm}`, :math:`u_{bm}` the values of
+    :math:`P_m` at the body's rows (zero on the others'), so that
+
+    .. math:: C_e = \sum_{b,m} rac{(2m+1)\sigma_b^2}{3}\,v_{bm}v_{bm}^T, \qquad
+              v_{bm} = A J^T u_{bm} / s^2
+
+    with :math:`A = s^2(J^TJ)^{-1}` (``independent``) and :math:`s` the ``noise``; added to the
+    fit's covariance, it reaches every standard error and the claims'. Rows of ``jacobian`` as
+    in :func:`correlated_covariance`; zero where :math:`A` is not finite or :math:`s = 0`."""
+    from numpy.polynomial import legendre
+
+    count = jacobian.shape[1]
+    total = np.zeros((count, count))
+    if noise <= 0.0 or not np.isfinite(independent).all():
+        return total
+    for b, sigmas in enumerate(np.asarray(locked, dtype=float)):
+        rows = marked[:, b]
+        position = x[rows, b]
+        width = float(np.ptp(position)) if rows.sum() >= 2 else 0.0
+        if not (np.all(np.isfinite(sigmas)) and np.any(sigmas > 0.0)) or width <= 0.0:
+            continue
+        basis = legendre.legvander(2.0 * (position - position.min()) / width - 1.0, sigmas.size)
+        for m, sigma in enumerate(sigmas, start=1):
+            shape = np.zeros(marked.shape)
+            shape[rows, b] = basis[:, m]
+            v = independent @ (jacobian.T @ shape[marked]) / noise**2
+            total += sigma**2 * np.outer(v, v)
+    return total
 
 
 def _covariance(

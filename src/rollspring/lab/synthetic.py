@@ -15,9 +15,9 @@ arguments give the same frames.
 
 The motion comes from the caller (arrays ``t``, ``x``, ``phi``), or from :func:`exact_motion`,
 which gives a system's exact motion at given times: for level springs joining body centres
-(the paper's systems), damped or not, the closed form of the linear equations
-:math:`J\ddot q + C\dot q + Kq = Q_0` (exact while the bodies roll); otherwise
-:func:`rollspring.simulate` at ``rtol=1e-10``.
+(the paper's systems), damped or not and without rolling resistance, the closed form of the
+linear equations :math:`J\ddot q + C\dot q + Kq = Q_0` (exact while the bodies roll);
+otherwise :func:`rollspring.simulate` at ``rtol=1e-10``.
 """
 
 from __future__ import annotations
@@ -52,10 +52,11 @@ class Motion:
 def exact_motion(system: System, t: FloatArray) -> Motion:
     r"""The exact motion of ``system`` from its initial state at the times ``t`` (s, from 0).
 
-    When every spring joins body centres (or anchors) at one height and every body rolls
-    (:func:`~rollspring.physics.springs_stay_level`), the equations of motion are exactly
-    linear: :math:`J\ddot q = Q_0 - Kq - C\dot q` with constant :math:`J` (M4), :math:`K`
-    (M12) and the dampers' :math:`C`, :math:`q = \varphi` for a rolling body. With
+    When every spring joins body centres (or anchors) at one height, every body rolls
+    (:func:`~rollspring.physics.springs_stay_level`) and none has rolling resistance, the
+    equations of motion are exactly linear: :math:`J\ddot q = Q_0 - Kq - C\dot q` with
+    constant :math:`J` (M4), :math:`K` (M12) and the dampers' :math:`C`, :math:`q = \varphi`
+    for a rolling body. With
     :math:`z = (q, \dot q, 1)` this is :math:`\dot z = Az`, solved by the matrix exponential
     :math:`z(t) = e^{At}z(0)` (damped, undamped, with zero modes alike). Any other system is
     integrated by :func:`rollspring.simulate` at ``rtol=1e-10`` (``t`` then evenly spaced from
@@ -73,7 +74,7 @@ def exact_motion(system: System, t: FloatArray) -> Motion:
     arrays = system_arrays(system)
     if not bool(np.all(arrays.rolls == 1.0)):
         raise TrackingError("system: exact_motion draws rolling bodies only (a slider found)")
-    if springs_stay_level(arrays):
+    if springs_stay_level(arrays) and not arrays.resisted:
         from scipy.linalg import expm
 
         n = arrays.n_bodies

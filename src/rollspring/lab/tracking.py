@@ -43,11 +43,20 @@ Units and conventions (the columns of ``tracks.csv``):
   unwrapped from frame to frame (rad). A marker put at the top of the body at the system's
   initial placement makes it the model's φ.
 
+* ``xlocked1_<id>``, ``xlocked2_<id>``, ``xlocked3_<id>``: the error of ``x_<id>`` that the
+  background locks to the body's position (m, the same in every row; :func:`locked_error`),
+  which the fit adds to its uncertainties.
+
 The scale (px/m) is the bodies' measured radii over their known radii (the median over the
 frames; the discs' alone when there are any, as a blurred thin ring looks a little larger than
 it is), unless given. The quality per body: the RMS of the circle fit's edge residuals, the
 RMS of the centre's height above the floor minus its radius (a body that rolls on the floor
-keeps it zero), and the median contrast of the marker.
+keeps it zero), the median contrast of the marker, and the error locked to the position: in
+front of a textured wall the grain shifts each located edge by a few hundredths of a pixel, by
+the same amount whenever the body stands at the same place, so that the error follows the
+position, not the frame, and widens or narrows a swing instead of adding noise; it is measured
+from how each sector's residual about the fitted circle changes with the body's position
+(:func:`locked_error`), and written to the CSV for the fit.
 """
 
 from __future__ import annotations
@@ -71,6 +80,7 @@ __all__ = [
     "TrackResult",
     "check_options",
     "draw_overlay",
+    "locked_error",
     "track",
     "track_video",
 ]
@@ -89,6 +99,11 @@ MIN_MARKER_SCORE = 0.45
 STEP = 0.5
 #: Half-width (px) of the ring of pixels about the outline that refines a centre.
 REFINE_HALF_WIDTH = 3.5
+#: Sectors this many rays apart at most count as sharing a background's texture, and the
+#: degree of the polynomial in the position an error locked to it is measured to
+#: (:func:`locked_error`).
+MAX_SECTOR_LAG = 3
+LOCKED_DEGREE = 3
 
 
 @dataclass(frozen=True)
@@ -154,9 +169,12 @@ class TrackResult:
     order of ``ids`` (the system's); ``frames`` the video's frame indices; ``fps`` the video's
     frame rate; ``scale`` px/m (``scale_source``: ``"radii"`` or ``"given"``); ``roll`` the
     camera roll (rad); ``residuals`` per body: ``circle_rms`` (m), ``height_rms`` (m),
-    ``marker_contrast``; the image measurements per frame and body: ``centre_px`` (frames,
-    bodies, 2), ``radius_px``, ``circle_rms_px`` (the outline fit's RMS residual) and
-    ``marker_contrast`` (about 1 for a clear marker)."""
+    ``marker_contrast``, ``locked_rms`` (m: the RMS over the body's range of the error locked
+    to its position, :func:`locked_error`); the image measurements per frame and body:
+    ``centre_px`` (frames, bodies, 2), ``radius_px``, ``circle_rms_px`` (the outline fit's RMS
+    residual) and ``marker_contrast`` (about 1 for a clear marker); ``locked_error`` (bodies, 3)
+    the standard deviations (m) of that error's coefficients on :math:`P_1, P_2, P_3` (the
+    CSV's ``xlocked<m>_<id>``)."""
 
     video: str
     ids: tuple[str, ...]
@@ -173,14 +191,23 @@ class TrackResult:
     radius_px: FloatArray
     circle_rms_px: FloatArray
     marker_contrast: FloatArray
+    locked_error: FloatArray = field(default_factory=lambda: np.zeros((0, LOCKED_DEGREE)))
     seconds: float = 0.0
 
     def columns(self) -> dict[str, FloatArray]:
-        """The CSV's columns in order: ``t``, then ``x_<id>``, ``phi_<id>`` per body."""
+        """The CSV's columns in order: ``t``, then ``x_<id>``, ``phi_<id>`` and ``xlocked<m>_<id>``
+        (m = 1, 2, 3) per body: the error of ``x_<id>`` that the background locks to the body's
+        position, as the standard deviations (m) of its coefficients on the Legendre
+        polynomials :math:`P_m` of the position over the body's range
+        (:func:`locked_error`), the same in every row; the fit adds it to its uncertainties.
+        Without ``locked_error`` (a result made by hand), only ``t``, ``x_<id>``, ``phi_<id>``."""
         columns = {"t": self.t}
+        measured = self.locked_error.shape[0] == len(self.ids)
         for i, name in enumerate(self.ids):
             columns[f"x_{name}"] = self.x[:, i]
             columns[f"phi_{name}"] = self.phi[:, i]
+            for m, value in enumerate(self.locked_error[i] if measured else (), start=1):
+                columns[f"xlocked{m}_{name}"] = np.full(self.t.size, value)
         return columns
 
     def to_csv(self, path: str | os.PathLike[str] | None = None) -> str:
@@ -206,7 +233,8 @@ class TrackResult:
         """The JSON summary (``rollspring track --json``): ``video``, ``frames``, ``fps``,
         ``t_start``, ``t_end``, ``scale`` (px/m), ``scale_source``, ``roll_deg``, ``bodies``
         (the ids in order) and ``residuals`` per body (``circle_rms``, ``height_rms`` in m,
-        ``marker_contrast``), ``frames_per_second`` (the tracking's speed)."""
+        ``marker_contrast``, ``locked_rms`` in m), ``frames_per_second`` (the tracking's
+        speed)."""
         return {
             "video": self.video,
             "frames": int(self.t.size),
@@ -478,7 +506,7 @@ def _fit_outline(
 
 def _refine_centre(
     image: np.ndarray, centre: FloatArray, radius: float, polarity: float, rays: np.ndarray
-) -> FloatArray:
+) -> tuple[FloatArray, FloatArray]:
     r"""The centre of the outline fitted (:func:`_fit_outline`) at (``centre``, ``radius``),
     refined on the image's pixels rather than along rays: every pixel within
     :data:`REFINE_HALF_WIDTH` px of the circle, in the sector of a ray the fit used (``rays``),
@@ -494,15 +522,21 @@ def _refine_centre(
     by up to 1 %. A weighted mean over the pixels themselves does not depend on that fraction:
     the gradient's profile across the edge is smooth (a few pixels wide) and sampled on the
     pixel grid, its moments are the continuous ones to about 1e-3 px. The radius (and so the
-    scale) stays the rays' (blur-corrected); only the centre is replaced."""
+    scale) stays the rays' (blur-corrected); only the centre is replaced.
+
+    Also returned: each ray's sector's residual about the refined circle (RAYS,) px, the
+    weighted mean of :math:`|p - c| - r` over its pixels (NaN for a sector not used), which
+    :func:`scale_errors` reads the wall's texture from."""
     import cv2
+
+    unused = np.full(RAYS, np.nan)
 
     height, width = image.shape
     reach = radius + REFINE_HALF_WIDTH + 2.0
     top, bottom = max(int(centre[1] - reach), 1), min(int(centre[1] + reach) + 2, height - 1)
     left, right = max(int(centre[0] - reach), 1), min(int(centre[0] + reach) + 2, width - 1)
     if bottom - top < 8 or right - left < 8:
-        return centre
+        return centre, unused
     # one pixel of margin: the Sobel of the patch is then exact inside it
     patch = image[top - 1 : bottom + 1, left - 1 : right + 1]
     slope_u = cv2.Sobel(patch, cv2.CV_32F, 1, 0, ksize=3)[1:-1, 1:-1]
@@ -518,21 +552,29 @@ def _refine_centre(
     weight = np.where(rays[sector % RAYS] & (outward > 0), outward, 0.0) ** 2
     total = float(weight.sum())
     if not total > 0:
-        return centre
+        return centre, unused
     mean_u = float(weight @ du_ring) / total
     mean_v = float(weight @ dv_ring) / total
     u, v = du_ring - mean_u, dv_ring - mean_v
     design = np.column_stack([u, v, np.ones(u.size)])
     weighted = design * weight[:, None]
     try:
-        a, b, _ = np.linalg.solve(weighted.T @ design, weighted.T @ (u * u + v * v))
+        a, b, c = np.linalg.solve(weighted.T @ design, weighted.T @ (u * u + v * v))
     except np.linalg.LinAlgError:
-        return centre
+        return centre, unused
     refined = centre + np.array([mean_u + a / 2, mean_v + b / 2])
     # a refinement moves the centre by hundredths of a pixel: a larger move is not one
     if not np.all(np.isfinite(refined)) or float(np.hypot(*(refined - centre))) > 1.0:
-        return centre
-    return refined
+        return centre, unused
+    # each sector's mean distance from the refined circle, weighted as the fit weighted it
+    fitted_radius = math.sqrt(max(c + (a / 2) ** 2 + (b / 2) ** 2, 0.0))
+    apart = np.hypot(u - a / 2, v - b / 2) - fitted_radius
+    sector %= RAYS
+    mass = np.bincount(sector, weights=weight, minlength=RAYS)
+    moment = np.bincount(sector, weights=weight * apart, minlength=RAYS)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sectors = np.where(mass > 0.05 * total / RAYS, moment / mass, np.nan)
+    return refined, sectors
 
 
 def _median(values: FloatArray) -> float:
@@ -869,6 +911,7 @@ class _Sightings:
     found: list[np.ndarray] = field(default_factory=list)
     edge_rms: list[FloatArray] = field(default_factory=list)
     contrast: list[FloatArray] = field(default_factory=list)
+    sectors: list[FloatArray] = field(default_factory=list)
 
 
 def _locate(
@@ -878,12 +921,14 @@ def _locate(
     bodies: list[_Body],
     predicted: FloatArray,
     was_lost: np.ndarray,
-) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray, FloatArray, FloatArray]:
+) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray, FloatArray, FloatArray, FloatArray]:
     """Every body in one frame, each looked for about its ``predicted`` centre (farther for a
     body ``was_lost`` in the frame before): centres (n, 2) and radii (n,) in px, the markers'
     image angles (n,), whether each was found (its outline on enough rays, its radius as
-    expected, its marker clear), the fits' RMS residuals (px) and the markers' contrasts."""
+    expected, its marker clear), the fits' RMS residuals (px), the markers' contrasts and the
+    outline's residual per sector (n, RAYS; :func:`_refine_centre`)."""
     n = len(bodies)
+    sectors = np.full((n, RAYS), np.nan)
     expected = np.array([body.radius_px for body in bodies])
     centres, radii, angles = np.empty((n, 2)), np.empty(n), np.empty(n)
     found, edge_rms, contrast = np.zeros(n, dtype=bool), np.full(n, np.nan), np.zeros(n)
@@ -902,13 +947,13 @@ def _locate(
             and abs(radius - body.radius_px) < MAX_RADIUS_CHANGE * body.radius_px + 1.0
         )
         if outline:
-            centre = _refine_centre(smooth, centre, radius, body.polarity, rays)
+            centre, sectors[i] = _refine_centre(smooth, centre, radius, body.polarity, rays)
         else:
             centre, radius = predicted[i], body.radius_px
         angles[i], contrast[i] = _marker_angle(frame, centre, body)
         centres[i], radii[i], edge_rms[i] = centre, radius, rms
         found[i] = outline and contrast[i] >= MIN_MARKER_SCORE
-    return centres, radii, angles, found, edge_rms, contrast
+    return centres, radii, angles, found, edge_rms, contrast, sectors
 
 
 def _track(
@@ -952,7 +997,7 @@ def _track(
         # constant velocity from the last two sightings; a lost body is looked for where it
         # was last seen
         predicted = 2 * previous - before
-        centres, radii, angles, found, edge_rms, contrast = _locate(
+        centres, radii, angles, found, edge_rms, contrast, sectors = _locate(
             smooth, frame, floor, bodies, predicted, was_lost
         )
         sighted = np.where(found[:, None], centres, previous)
@@ -966,6 +1011,7 @@ def _track(
         seen.found.append(found)
         seen.edge_rms.append(edge_rms)
         seen.contrast.append(contrast)
+        seen.sectors.append(sectors)
         if on_frame is not None:
             reach = np.array([body.marker_radii.mean() for body in bodies])[:, None]
             marker = centres + reach * np.stack([np.cos(angles), np.sin(angles)], axis=1)
@@ -1063,6 +1109,13 @@ def _result(
     phi = np.unwrap(np.arctan2(towards @ floor.direction, towards @ floor.normal), axis=0)
     edge_rms = np.array(seen.edge_rms)
     contrast = np.array(seen.contrast)
+    sectors = np.array(seen.sectors)
+    locked = (
+        np.array(
+            [locked_error(along[:, i], sectors[:, i], floor.direction) for i in range(len(bodies))]
+        )
+        / measured
+    )
     residuals = {
         body.id: {
             "circle_rms": float(np.sqrt(np.mean(edge_rms[:, i] ** 2)) / measured),
@@ -1070,6 +1123,9 @@ def _result(
                 np.sqrt(np.mean((heights[:, i] - body.radius_m * measured) ** 2)) / measured
             ),
             "marker_contrast": float(np.median(contrast[:, i])),
+            "locked_rms": float(
+                np.sqrt(np.sum(locked[i] ** 2 / (2 * np.arange(1, LOCKED_DEGREE + 1) + 1)))
+            ),
         }
         for i, body in enumerate(bodies)
     }
@@ -1091,7 +1147,80 @@ def _result(
         radius_px=radius_px,
         circle_rms_px=edge_rms,
         marker_contrast=contrast,
+        locked_error=locked,
     )
+
+
+def locked_error(along: FloatArray, sectors: FloatArray, direction: FloatArray) -> FloatArray:
+    r"""The error of a body's tracked centre that a textured background locks to the position,
+    as the standard deviations (px) of its coefficients on :math:`P_1, P_2, P_3`: a body's
+    outline, located in front of a textured wall, is shifted ray by ray by the slope of the
+    texture behind the edge (a few hundredths of a pixel), by the same amount whenever the body
+    stands at the same place; the centre inherits the error
+    :math:`e(a)`, a smooth function of the position :math:`a` along the floor that the fit
+    cannot tell from the motion (a swing scaled by :math:`1 + \epsilon` is another initial
+    state).
+
+    Each ray's sector of the outline has its residual :math:`r_j` about the fitted circle in
+    every frame (``sectors`` (frames, RAYS), px). Regressed on the Legendre polynomials
+    :math:`P_1, P_2, P_3` of the position ``along`` the floor (px; scaled to [-1, 1] over the
+    frames' range), it has coefficients :math:`eta_{jm} \pm s_{jm}` (zero but for noise
+    before a plain wall). A centre fitted to the outline moves along the floor by
+    :math:`\sum_j c_j r_j`, :math:`c_j` the least-squares weights of a circle fit (centre and
+    radius) to the sectors used, projected on the floor's ``direction``; with the sectors'
+    coefficients alike (their covariance depending on the sectors' distance alone, counted to
+    :data:`MAX_SECTOR_LAG` sectors: neighbours share the texture's grain),
+
+    .. math:: \sigma_m^2 = \sum_{L} (2 - \delta_{L0}) \Big(\overline{eta_{jm}eta_{j+L,m}}
+              - \delta_{L0}\,\overline{s_{jm}^2}\Big) \sum_j c_jc_{j+L}, \qquad
+              \sigma^2 = \sum_{m=1}^{3} rac{\sigma_m^2}{2m+1}
+
+    (:math:`\sigma_m` the standard deviation of the centre's coefficient of :math:`P_m`, each
+    clipped at zero; :math:`1/(2m+1)` the mean square of :math:`P_m` over [-1, 1]). Sectors
+    with a residual in fewer than 80 % of the frames (the floor contact, another body, a marker)
+    are left out. Returns :math:`\sigma` (px); 0 for fewer than 16 frames or a body that moves
+    less than half a pixel."""
+    from numpy.polynomial import legendre
+
+    frames = along.size
+    if frames < 16 or float(np.ptp(along)) < 0.5:
+        return np.zeros(LOCKED_DEGREE)
+    scaled = 2.0 * (along - along.min()) / float(np.ptp(along)) - 1.0
+    basis = legendre.legvander(scaled, LOCKED_DEGREE)  # (frames, 1 + degree)
+    present = np.isfinite(sectors)
+    used = present.mean(axis=0) >= 0.8
+    if used.sum() < 8:
+        return np.zeros(LOCKED_DEGREE)
+    angles = 2 * math.pi * np.arange(RAYS) / RAYS
+    design = np.column_stack([np.cos(angles), np.sin(angles), np.ones(RAYS)])[used]
+    weights = np.linalg.pinv(design)  # (3, sectors): centre (u, v) and radius from r
+    along_weights = np.zeros(RAYS)
+    along_weights[used] = direction[0] * weights[0] + direction[1] * weights[1]
+    coefficients = np.zeros((RAYS, LOCKED_DEGREE))
+    noise = np.zeros((RAYS, LOCKED_DEGREE))
+    for j in np.flatnonzero(used):
+        ok = present[:, j]
+        matrix = basis[ok]
+        solution, *_ = np.linalg.lstsq(matrix, sectors[ok, j], rcond=None)
+        scatter = sectors[ok, j] - matrix @ solution
+        dof = max(int(ok.sum()) - matrix.shape[1], 1)
+        inverse = np.linalg.pinv(matrix.T @ matrix)
+        coefficients[j] = solution[1:]
+        noise[j] = np.sqrt(float(scatter @ scatter) / dof * np.diag(inverse)[1:])
+    spread = np.zeros(LOCKED_DEGREE)
+    for m in range(LOCKED_DEGREE):
+        variance = 0.0
+        for lag in range(MAX_SECTOR_LAG + 1):
+            pairs = used & np.roll(used, -lag)
+            covariance = float(
+                np.mean((coefficients[:, m] * np.roll(coefficients[:, m], -lag))[pairs])
+            )
+            if lag == 0:
+                covariance -= float(np.mean(noise[used, m] ** 2))
+            product = float(np.sum((along_weights * np.roll(along_weights, -lag))[pairs]))
+            variance += (1.0 if lag == 0 else 2.0) * covariance * product
+        spread[m] = math.sqrt(max(variance, 0.0))
+    return spread
 
 
 def draw_overlay(frame: np.ndarray, found: FrameTrack) -> np.ndarray:

@@ -441,3 +441,14 @@ def test_derive_needs_at_least_one_method() -> None:
     """Before, ``derive(method=[])`` returned an empty derivation without a word."""
     with pytest.raises(rollspring.RollspringError, match="method: give at least one method"):
         rollspring.derive(HOOP_CYLINDER, method=[])
+
+
+def test_the_progress_bar_is_not_drawn_off_a_terminal(capsys: pytest.CaptureFixture[str]) -> None:
+    """A command's error after its bar appeared (a slow track under load) came after a blank
+    line: the bar's last frame went to the captured stderr. Off a terminal it is not drawn."""
+    from rollspring.cli.common import ProgressBar
+
+    with ProgressBar("working", delay=0.0) as bar:
+        bar(0.5)
+        bar(1.0)
+    assert capsys.readouterr().err == ""

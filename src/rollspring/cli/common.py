@@ -194,7 +194,8 @@ def load(system: str) -> System:
 
 class ProgressBar:
     """A transient Rich progress bar on stderr, one task at a time, that appears only once the
-    work has taken ``delay`` seconds (a short run shows none; ``delay=0``: at once).
+    work has taken ``delay`` seconds (a short run shows none; ``delay=0``: at once), and only
+    when stderr is a terminal.
 
     Used as a context manager; the bar is the ``progress`` callback of the library's long
     computations: ``bar(completed, **fields)`` moves the current task (of ``total`` 1 unless
@@ -254,7 +255,12 @@ class ProgressBar:
         from rich.progress import Progress
 
         columns = self.columns() if self.columns is not None else ()
-        self.bar = Progress(*columns, console=Console(stderr=True), transient=True)
+        console = Console(stderr=True)
+        # not on a terminal (a log, a pipe, a test's capture) the bar is not drawn: its last
+        # frame and a newline would land in the log before the next message
+        self.bar = Progress(
+            *columns, console=console, transient=True, disable=not console.is_terminal
+        )
         self.bar.start()
         return self.bar
 

@@ -3,8 +3,11 @@ point): the paper's hoop and cylinder rendered from their exact motion as a came
 (a textured wall and table, noise, blur, a 2° roll, flicker, MP4; three parameter sets: a damped
 spring, a plain spring, rolling resistance; 30 and 60 fps), tracked (``rollspring.track``) and
 fitted (``rollspring.fit``): the tracks recover the rendered motion (centres within 1 mm RMS,
-angles within 0.02 rad RMS) and the CM's and X̂'s fitted peak-to-peak are within two stated
-standard errors of the truth's, computed from the exact motion the video was rendered from.
+angles within 0.02 rad RMS), the fit from the preset (the stiffness 30 % off, no damping, no
+rolling resistance) recovers k within 1 % and the damping or C_rr within 10 %, each within 3
+standard errors, and the CM's and X̂'s fitted peak-to-peak are within 3 stated standard errors
+of the truth's (24 in 26 recordings within 2), computed from the exact motion the video was
+rendered from.
 
 Behind a textured wall the grain shifts each located edge by a few hundredths of a pixel, by
 the same amount whenever a body stands at the same place: the tracked swings come out up to
@@ -56,45 +59,40 @@ def truth_claims(system: System, seconds: float, fps: float) -> tuple[float, flo
 CAMERA = {"roll_deg": 2.0, "noise": 4.0, "blur": 1.0, "flicker": 0.03}
 STIFFNESS = "springs.0.stiffness"
 RESISTANCES = ["bodies.hoop.rolling_resistance", "bodies.cylinder.rolling_resistance"]
-#: name: (the truth, its camera, seconds, the fit's starting system, the paths freed, whether
-#: the initial state is held). The damped spring is the README's walk-through's, fitted from
-#: the preset as there; with rolling resistance the motion is simulated (rests and releases),
-#: and the fit (each Jacobian column a simulation) frees the two C_rr from a wrong start.
-#: The seeds are not the README's: its recording (seed 1) is an unlucky one, its swings off by
-#: about twice the locked error measured, and its first 3 s put the CM's peak-to-peak 2.3
-#: standard errors from the truth (seeds 1 to 5 of the first two cases and 1 to 3 of the third
-#: came within 2.3, all but two within 1.4).
+#: name: (the truth, its camera, seconds, the paths freed). Every fit starts from the preset
+#: (k = 100 N/m, no damping, no rolling resistance: the stiffness 30 % off, or 43 % for the
+#: soft spring), as the README's walk-through does; with rolling resistance the motion is
+#: simulated (rests and releases) and each Jacobian column is a simulation. The cameras are the
+#: README's (seed 1). Measured over seeds 1 to 5 (1 to 3 with rolling resistance): the CM's and
+#: X̂'s peak-to-peak came within 2 stated standard errors of the truth in 24 of 26 cases and
+#: within 2.3 in all; this seed is one of the two beyond 2 (the damped case, +2.3), so a single
+#: recording is held to 3 standard errors here, as the fit's parameters are.
 CASES = {
     "damped-60fps": (
         paper(130.0, 0.2),
-        Camera(fps=60, seed=2, **CAMERA),
+        Camera(fps=60, seed=1, **CAMERA),
         3.0,
-        paper(),
         [STIFFNESS, "springs.0.damping"],
-        False,
     ),
-    "plain-30fps": (
-        paper(),
-        Camera(fps=30, seed=2, **CAMERA),
-        4.0,
-        paper(80.0),
-        [STIFFNESS],
-        False,
-    ),
+    "soft-30fps": (paper(70.0), Camera(fps=30, seed=1, **CAMERA), 4.0, [STIFFNESS]),
     "resisted-30fps": (
-        paper(rolling_resistance=0.002),
-        Camera(fps=30, seed=3, **CAMERA),
+        paper(130.0, rolling_resistance=0.002),
+        Camera(fps=30, seed=1, **CAMERA),
         2.0,
-        paper(rolling_resistance=0.001),
-        RESISTANCES,
-        False,
+        [STIFFNESS, *RESISTANCES],
     ),
 }
 
 
+def _within(value: float, stderr: float, truth: float, relative: float) -> None:
+    """A fitted value within ``relative`` of the truth and within 3 standard errors of it."""
+    assert abs(value - truth) <= relative * abs(truth), (value, truth)
+    assert abs(value - truth) <= 3 * stderr, (value, stderr, truth)
+
+
 @pytest.mark.parametrize("name", list(CASES))
 def test_the_claims_measured_on_a_textured_wall(tmp_path: Path, name: str) -> None:
-    truth, camera, seconds, start, free, held = CASES[name]
+    truth, camera, seconds, free = CASES[name]
     motion = exact_motion(truth, camera.frame_times(seconds))
     video = write_video(tmp_path / f"{name}.mp4", truth, motion, camera)
     tracks = rollspring.track(video, truth)
@@ -103,13 +101,22 @@ def test_the_claims_measured_on_a_textured_wall(tmp_path: Path, name: str) -> No
     # the wall's texture: an error locked to the position of some µm, measured and carried
     assert tracks.locked_error.shape == (2, 3)
     assert (tracks.locked_error[:, 0] > 1e-5).all(), tracks.locked_error
-    result = rollspring.fit(tracks, start, free=free, fix_initial=held)
+    result = rollspring.fit(tracks, paper(), free=free, confirm=True)
     assert result.converged, result.message
+    spring = truth.springs[0]
+    fitted = result.parameters
+    _within(fitted[STIFFNESS].value, fitted[STIFFNESS].stderr, spring.stiffness, 0.01)
+    if "springs.0.damping" in free:
+        damping = fitted["springs.0.damping"]
+        _within(damping.value, damping.stderr, spring.damping, 0.10)
+    for path, body in zip(RESISTANCES, truth.bodies, strict=True):
+        if path in free:
+            _within(fitted[path].value, fitted[path].stderr, body.rolling_resistance, 0.10)
     cm, stationary = truth_claims(truth, seconds, camera.fps)
     for claim, expected in (("cm_peak_to_peak", cm), ("stationary_peak_to_peak", stationary)):
         measured = result.claims[claim]
         off = (measured["value"] - expected) / measured["stderr"]
-        assert abs(off) <= 2.0, (claim, measured, expected, off)
+        assert abs(off) <= 3.0, (claim, measured, expected, off)
     assert cm > 50 * result.claims["cm_peak_to_peak"]["stderr"]  # the claim is measured
 
 
@@ -127,12 +134,12 @@ def test_a_plain_wall_locks_little(tmp_path: Path) -> None:
     """The same recording as the damped case, filmed against a plain wall: the error locked
     to the position is a fraction of the textured wall's, the claims' standard errors stay
     within 1.4 times the tracking noise's alone, and the claims are measured within two."""
-    truth, camera, seconds, start, free, _ = CASES["damped-60fps"]
-    plain = Camera(fps=60, seed=2, texture=False, **CAMERA)
+    truth, camera, seconds, free = CASES["damped-60fps"]
+    plain = Camera(fps=60, seed=1, texture=False, **CAMERA)
     motion = exact_motion(truth, plain.frame_times(seconds))
     tracks = rollspring.track(write_video(tmp_path / "plain.mp4", truth, motion, plain), truth)
     assert (tracks.locked_error[:, 0] < 8e-6).all(), tracks.locked_error
-    result = rollspring.fit(tracks, start, free=free)
+    result = rollspring.fit(tracks, paper(), free=free)
     bare = _fit_without_locked(tracks, tmp_path / "bare.csv")
     cm, stationary = truth_claims(truth, seconds, camera.fps)
     for claim, expected in (("cm_peak_to_peak", cm), ("stationary_peak_to_peak", stationary)):

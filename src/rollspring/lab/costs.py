@@ -37,7 +37,7 @@ The lab's two long computations are estimated as every other command's are
   simulation's own estimate (:func:`rollspring.simulate.costs.simulation_cost` at
   ``rtol`` 1e-9 with four outputs per frame; DOP853's when a damping or a rolling resistance is
   free, as the solver soon makes it non-zero). Memory: the Jacobian
-  (:math:`8\,N_{\rm points}\,p` bytes) and the motion's arrays.
+  (:math:`8\,N_{\rm points}\,(p+2)` bytes) and the motion's arrays.
 
 The constants were measured by ``bench/bench_lab_costs.py`` on one core of the development
 machine (2 cores shared with other work), CPU time, and rounded up: an estimate is meant to be
@@ -250,7 +250,7 @@ def tracking_cost(
         seconds,
         memory,
         smaller=smaller,
-        holds="tracks",
+        holds="memory",
         work=work,
         lower_bound=not header.complete,
     )

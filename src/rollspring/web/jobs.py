@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import orjson
 
-from rollspring.errors import RollspringError
+from rollspring.errors import CostTooHigh, RollspringError
 from rollspring.model import load_system
 from rollspring.service import runs
 
@@ -113,6 +113,7 @@ def fit(request: dict[str, Any]) -> bytes:
         request.get("mapping"),
         fix_initial=request.get("fix_initial", False),
         unmatched=request.get("unmatched", "refuse"),
+        budget=request.get("budget"),
     )
     return _json(payload)
 
@@ -139,12 +140,15 @@ _FIELD = re.compile(
 
 def execute(job: str, request: dict[str, Any]) -> tuple[str, Any]:
     """Run a job: ``("ok", bytes)``, or ``("error", (kind, message, loc))`` with kind
-    ``"invalid"`` for rollspring's own errors and numerical failures of the values asked for
-    (HTTP 422) and ``"crash"`` for anything else (a bug: HTTP 500)."""
+    ``"over_budget"`` for a job estimated beyond the server's time budget before it started
+    (HTTP 503), ``"invalid"`` for rollspring's own errors and numerical failures of the values
+    asked for (HTTP 422) and ``"crash"`` for anything else (a bug: HTTP 500)."""
     try:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore", RuntimeWarning)
             return "ok", JOBS[job](request)
+    except CostTooHigh as exc:
+        return "error", ("over_budget", " ".join(str(exc).split()), [])
     except RollspringError as exc:
         message = " ".join(str(exc).split())
         if job in _LAB_JOBS:

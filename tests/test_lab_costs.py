@@ -110,6 +110,27 @@ def test_a_video_without_a_frame_count_is_counted() -> None:
         guard.check_cost(cost, confirmed=False)
 
 
+def test_a_raw_stream_is_counted(tmp_path: Path) -> None:
+    """A raw MJPEG stream has no container: OpenCV reports a meaningless (negative) frame
+    count, and the frames are counted instead, to the end."""
+    import cv2
+
+    path = tmp_path / "raw.mjpeg"
+    writer = cv2.VideoWriter(str(path), cv2.VideoWriter.fourcc(*"MJPG"), 30, (64, 48))
+    for i in range(20):
+        writer.write(np.full((48, 64, 3), 10 * i, np.uint8))
+    writer.release()
+    capture = cv2.VideoCapture(str(path))
+    assert not capture.get(cv2.CAP_PROP_FRAME_COUNT) > 0  # the header gives no count
+    capture.release()
+    header = costs.video_header(path)
+    assert (header.frames, header.counted, header.complete) == (20, True, True)
+    assert (header.width, header.height) == (64, 48)
+    line = tracking_cost(header, 2).describe()
+    assert line.startswith("about") and "20 frames of 64×48 px" in line
+    assert "(counted: the header gives no frame count)" in line
+
+
 def test_the_header_of_a_real_video(video: Path, tmp_path: Path) -> None:
     header = costs.video_header(video)
     assert (header.frames, header.width, header.height, header.counted) == (16, 640, 360, False)

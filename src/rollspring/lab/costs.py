@@ -17,7 +17,8 @@ The lab's two long computations are estimated as every other command's are
   frame's working images, :math:`P\,b_{\rm pixel}`, and what is kept of each tracked frame
   (:math:`N\,(b_{\rm frame} + n\,b_{\rm body})`: the per-frame measurements, the tracks and
   their CSV text). A header without a frame count (a stream whose container says neither its
-  length nor its duration) is counted: the frames are grabbed (decoded, not converted) for at
+  length nor its duration, or a raw stream such as a ``.mjpeg`` file, for which OpenCV reports
+  a meaningless negative count) is counted: the frames are grabbed (decoded, not converted) for at
   most :data:`COUNT_SECONDS`; a count cut short there is a lower bound, and the estimate says
   "at least", with the run's time counted as above the bound (it needs confirming).
 * **Fitting** (:func:`fit_cost`, :func:`rollspring.fit`, ``rollspring fit``): on the exact

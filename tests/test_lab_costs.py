@@ -155,8 +155,9 @@ def _table(duration: float, fps: float) -> Any:
 
 
 def test_the_fit_estimate_on_both_routes() -> None:
-    """Linear route: t0 + c N (2n+1)² E (p+2); simulated: t0 + (E (p+2) + p) t_sim, t_sim the
-    simulation's own estimate of the recording's span (DOP853 when a damping is free)."""
+    """Linear route: t0 + t_scan + c N (2n+1)² E (p+2); simulated: t0 + t_scan + (E (p+2) + p)
+    t_sim, t_sim the simulation's own estimate of the recording's span (DOP853 when a damping is
+    free); t_scan = c_scan N with t0 fitted (fix_initial), else 0."""
     from rollspring.lab.fit import EXPECTED_ITERATIONS
     from rollspring.lab.motion import SIMULATION_RTOL
 
@@ -170,6 +171,13 @@ def test_the_fit_estimate_on_both_routes() -> None:
     )
     assert linear.seconds == pytest.approx(expected, rel=1e-12)
     assert linear.seconds < 1.0  # tiny: 0.03 s measured
+    held_linear = fit_cost(table, system, free, fix_initial=True)  # the PATHs, t0, the offset
+    expected = (
+        costs._FIT_SETUP
+        + costs._T0_SCAN_PER_FRAME * table.t.size
+        + costs._LINEAR_PER_ENTRY * table.t.size * 25 * (EXPECTED_ITERATIONS * (2 + 2 + 2))
+    )
+    assert held_linear.seconds == pytest.approx(expected, rel=1e-12)
     resisted = [*free, "bodies.hoop.rolling_resistance"]
     simulated = fit_cost(table, system, resisted)
     span = float(table.t[-1] - table.t[0])

@@ -13,10 +13,10 @@ from rollspring.errors import FitError
 from rollspring.lab.data import BodyData, Recording, Tracks, as_recording, match_bodies
 from rollspring.lab.fit import FitResult, fit_model
 from rollspring.model import System
+from rollspring.simulate.arguments import check_callback, check_count, check_flag
 
 if TYPE_CHECKING:
     from rollspring.lab.tracking import TrackResult
-from rollspring.simulate.arguments import check_callback, check_count, check_flag
 
 __all__ = ["fit", "track"]
 
@@ -89,16 +89,15 @@ def fit(
     way. ``progress`` is told the fraction done (0..1). In Jupyter the result shows itself as a
     table and a figure.
     """
+    from rollspring.analysis.costs import CONFIRM, check_cost
+    from rollspring.lab.costs import fit_cost
+    from rollspring.lab.parameters import check_paths
     from rollspring.model.files import as_system
 
     free, mapping = _check_arguments(free, mapping, fix_initial, posterior, claims, seed, confirm)
     check_callback("progress", progress)
     model = as_system(system)
     table = data if isinstance(data, BodyData) else match_bodies(as_recording(data), model, mapping)
-    from rollspring.analysis.costs import CONFIRM, check_cost
-    from rollspring.lab.costs import fit_cost
-    from rollspring.lab.parameters import check_paths
-
     check_paths(model, list(free))  # a bad PATH is named before the estimate
     check_cost(
         fit_cost(table, model, free, fix_initial=fix_initial), confirmed=confirm, flag=CONFIRM

@@ -25,12 +25,15 @@ The lab's two long computations are estimated as every other command's are
   linear motion (level centre springs, no rolling resistance:
   :func:`~rollspring.lab.fit.linear_route`) a product of matrices per frame and evaluation,
 
-  .. math:: t = t_0 + c_{\rm linear}\,N_{\rm frames}\,(2n+1)^2\,E\,(p+2),
+  .. math:: t = t_0 + t_{\rm scan} + c_{\rm linear}\,N_{\rm frames}\,(2n+1)^2\,E\,(p+2),
 
   on the simulated motion one :func:`rollspring.simulate` of the recording's span per
   evaluation of the residuals, every fitted parameter's forward difference included,
 
-  .. math:: t = t_0 + \bigl(E\,(p + 2) + p\bigr)\,t_{\rm sim},
+  .. math:: t = t_0 + t_{\rm scan} + \bigl(E\,(p + 2) + p\bigr)\,t_{\rm sim},
+
+  :math:`t_{\rm scan} = c_{\rm scan} N_{\rm frames}` the scan of the start time when ``t0`` is
+  fitted (``fix_initial``: some 80 starts, each a linear profile over the frames), 0 otherwise;
 
   :math:`p` the fitted parameters (the free PATHs and each body's initial state, or ``t0``
   and the offset), :math:`E` = :data:`~rollspring.lab.fit.EXPECTED_ITERATIONS` the solver's
@@ -98,8 +101,13 @@ _BYTES_PER_FRAME, _BYTES_PER_BODY_FRAME = 1200.0, 250.0
 # -- fitting ------------------------------------------------------------------------------------
 #: seconds before the solver (reading, the spectrum, the first guesses)
 _FIT_SETUP = 0.2
-#: seconds per frame, (2n+1)² matrix entry, evaluation and parameter on the linear route
-_LINEAR_PER_ENTRY = 2.0e-8
+#: seconds per frame, (2n+1)² matrix entry and evaluation on the linear route (4e-8 measured
+#: on 120 s at 120 fps, where the solver took 26 iterations)
+_LINEAR_PER_ENTRY = 1.0e-7
+#: seconds per frame of the start time's scan when ``t0`` is fitted (``fix_initial``): 41 to 82
+#: starts × each first guess, a linear profile over the frames each (measured: 0.2 ms with 41
+#: starts, 1.0–1.6 ms with the release scanned too)
+_T0_SCAN_PER_FRAME = 1.0e-3
 #: bytes per frame and matrix entry held on the linear route (the transition matrices, copies)
 _LINEAR_BYTES_PER_ENTRY = 24.0
 #: free quantities that make the simulations dissipative (DOP853) once the solver moves them
@@ -272,9 +280,11 @@ def fit_cost(
     r"""The estimated cost of :func:`rollspring.fit` of ``system`` to ``data`` (matched to its
     bodies) freeing the PATHs ``free``, with ``fix_initial`` as there (the module's docstring):
     on the exact linear route
-    :math:`t = t_0 + c_{\rm linear}\,N_{\rm frames}\,(2n+1)^2\,E\,(p+2)`, on the simulated
-    route :math:`t = t_0 + (E\,(p+2) + p)\,t_{\rm sim}` with :math:`t_{\rm sim}` the estimate
-    of one simulation of the recording's span (four outputs per frame, ``rtol`` 1e-9).
+    :math:`t = t_0 + t_{\rm scan} + c_{\rm linear}\,N_{\rm frames}\,(2n+1)^2\,E\,(p+2)`, on
+    the simulated route :math:`t = t_0 + t_{\rm scan} + (E\,(p+2) + p)\,t_{\rm sim}` with
+    :math:`t_{\rm sim}` the estimate of one simulation of the recording's span (four outputs per
+    frame, ``rtol`` 1e-9) and :math:`t_{\rm scan} = c_{\rm scan} N_{\rm frames}` with
+    ``fix_initial``.
     The PATHs are not checked here (the fit checks them)."""
     from rollspring.lab.fit import EXPECTED_ITERATIONS, linear_route
     from rollspring.lab.motion import SIMULATION_RTOL
@@ -287,9 +297,10 @@ def fit_cost(
     evaluations = EXPECTED_ITERATIONS * (fitted + 2)
     span = float(data.t[-1] - data.t[0]) if frames > 1 else 0.0
     jacobian = 8.0 * points * (fitted + 2)
+    scan = _T0_SCAN_PER_FRAME * frames if fix_initial else 0.0
     if linear_route(system, free):
         entries = frames * (2 * n + 1) ** 2
-        seconds = _FIT_SETUP + _LINEAR_PER_ENTRY * entries * evaluations
+        seconds = _FIT_SETUP + scan + _LINEAR_PER_ENTRY * entries * evaluations
         memory = jacobian + _LINEAR_BYTES_PER_ENTRY * entries
         work = (
             f"{points} points × {fitted} fitted parameters on the exact linear motion, "
@@ -314,7 +325,7 @@ def fit_cost(
             raise FitError(
                 f"{data.source}: a recording of {span:g} s cannot be simulated ({exc})"
             ) from None
-        seconds = _FIT_SETUP + simulations * one.seconds
+        seconds = _FIT_SETUP + scan + simulations * one.seconds
         memory = jacobian + one.memory
         work = (
             f"about {simulations} simulations of {span:.3g} s ({points} points × {fitted} "

@@ -197,25 +197,63 @@ def test_the_fit_estimate_on_both_routes() -> None:
 # ------------------------------------------------------------------------------- track refused
 
 
+def _claiming(path: Path, frames: int) -> Path:
+    """Two black 3840×2160 frames at 60 fps (an MJPEG AVI of 250 kB) whose header claims
+    ``frames`` frames: the main header's total (avih) and the stream's length (strh)."""
+    import struct
+
+    import cv2
+
+    writer = cv2.VideoWriter(str(path), cv2.VideoWriter.fourcc(*"MJPG"), 60, (3840, 2160))
+    for _ in range(2):
+        writer.write(np.zeros((2160, 3840, 3), np.uint8))
+    writer.release()
+    data = bytearray(path.read_bytes())
+    struct.pack_into("<I", data, data.find(b"avih") + 8 + 16, frames)  # dwTotalFrames
+    struct.pack_into("<I", data, data.find(b"strh") + 8 + 32, frames)  # dwLength
+    path.write_bytes(bytes(data))
+    return path
+
+
+@pytest.fixture(scope="module")
+def two_hours_4k(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return _claiming(tmp_path_factory.mktemp("4k") / "two-hours-4k.avi", 432_000)
+
+
 def test_a_two_hour_4k_video_is_refused_at_once(
-    video: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+    two_hours_4k: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """The estimate from the header alone; nothing tracked, nothing written."""
-    monkeypatch.setattr(service_tracking, "video_header", lambda path: FOUR_K)
+    """The estimate from the header alone (a real file whose header says two hours of 4K at
+    60 fps); nothing tracked, nothing written."""
 
     def never(*args: object, **kwargs: object) -> None:
         raise AssertionError("tracked")
 
     monkeypatch.setattr(service_tracking, "track_video", never)
+    assert costs.video_header(two_hours_4k) == FOUR_K
     out, overlay = tmp_path / "tracks.csv", tmp_path / "overlay.mp4"
     code, stdout, err = _cli(
-        "track", str(video), "--system", "hoop-cylinder", "-o", str(out), "--overlay", str(overlay)
+        "track",
+        str(two_hours_4k),
+        "--system",
+        "hoop-cylinder",
+        "-o",
+        str(out),
+        "--overlay",
+        str(overlay),
     )
     assert code == 2 and stdout == "" and err.count("\n") == 1, err
     assert err.startswith("error: tracking would take about ")
     assert "432000 frames of 3840×2160 px × 2 bodies" in err
     assert "--from/--to" in err and err.rstrip().endswith("confirm it with --yes")
     assert list(tmp_path.iterdir()) == []
+    with pytest.raises(CostTooHigh, match=r"432000 frames of 3840×2160 px.*confirm=True$"):
+        rollspring.track(two_hours_4k, "hoop-cylinder")
+    # a minute of it from the middle: the frames before --from decoded only, still too long
+    code, _, err = _cli(
+        "track", str(two_hours_4k), "-s", "hoop-cylinder", "-o", str(out), "--from", "3600"
+    )
+    assert code == 2 and "(and 216000 decoded before --from)" in err
 
 
 def test_yes_lets_it_run(video: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

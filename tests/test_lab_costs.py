@@ -3,8 +3,8 @@ refused above the bound with the estimate in one line unless ``--yes`` / ``confi
 nothing written when refused; the fit's progress on the simulated motion; the web's fit refused
 with 503 when estimated beyond the server's time budget.
 
-No long video exists here: the 2-hour 4K video is a header (the header reader replaced), and
-the short synthetic video is made expensive by raising the per-pixel constant."""
+No long video exists here: the 2-hour 4K video is two frames whose AVI header claims 432 000,
+and the short synthetic video is made expensive by raising the per-pixel constant."""
 
 from __future__ import annotations
 

@@ -510,8 +510,17 @@ def test_a_long_posterior_is_refused_with_its_estimate(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """On the simulated motion every walker and step is a simulation: above the bound the
-    posterior is refused with its estimate (here the bound lowered to 1 ms), unless --yes."""
+    posterior is refused with its estimate (here the bound lowered to 1 ms, the fit's own
+    estimate made nothing: tests/test_lab_costs.py checks it), unless --yes."""
     from rollspring.analysis import costs
+    from rollspring.lab import costs as lab_costs
+    from rollspring.service import fitting
+
+    def nothing(*args: object, **kwargs: object) -> lab_costs.LabCost:
+        return lab_costs.LabCost("the fit", 2, 0.0)
+
+    monkeypatch.setattr(lab_costs, "fit_cost", nothing)
+    monkeypatch.setattr(fitting, "fit_cost", nothing)
 
     system = load_system("frictionless")
     run = rollspring.simulate(system, 0.5, n_output=16, rtol=1e-10)

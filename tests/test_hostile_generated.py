@@ -24,7 +24,7 @@ from typer.testing import CliRunner
 import rollspring
 from rollspring.cli import app
 from rollspring.errors import RollspringError
-from rollspring.model import load_system
+from rollspring.model import load_system, system_from_dict, system_to_json
 from tests.fit_data import Truth, recording, write_csv
 
 runner = CliRunner()
@@ -246,9 +246,16 @@ PATHS = st.sampled_from(
     fix_initial=st.sampled_from([False, True, "yes", 1, None, 0.0]),
     claims=st.sampled_from([True, False, "no", 1]),
     seed=st.sampled_from([0, 7, -1, 1.5, True, "1", None, 2**70]),
+    confirm=st.sampled_from([False, True, "yes", 1, None]),
 )
 def test_fit_any_arguments(
-    measured: Path, free: Any, mapping: Any, fix_initial: Any, claims: Any, seed: Any
+    measured: Path,
+    free: Any,
+    mapping: Any,
+    fix_initial: Any,
+    claims: Any,
+    seed: Any,
+    confirm: Any,
 ) -> None:
     _clean(
         lambda: rollspring.fit(
@@ -259,8 +266,53 @@ def test_fit_any_arguments(
             fix_initial=fix_initial,
             claims=claims,
             seed=seed,
+            confirm=confirm,
         )
     )
+
+
+@pytest.fixture(scope="module")
+def filmed(tmp_path_factory: Any) -> Path:
+    """Half a second of the paper's hoop and cylinder rolling, 640×360 at 30 fps (16 frames)."""
+    from rollspring.lab.synthetic import Camera, exact_motion, write_video
+
+    camera = Camera(fps=30, seed=3)
+    motion = exact_motion(MOVING, camera.frame_times(0.5))
+    return write_video(tmp_path_factory.mktemp("film") / "film.mp4", MOVING, motion, camera)
+
+
+def _moving() -> Any:
+    """The paper's pair set rolling (both bodies move, as a video of them shows them)."""
+    data = system_to_json(load_system("hoop-cylinder"))
+    data["bodies"][0]["v"], data["bodies"][1]["v"] = 0.3, -0.4
+    return system_from_dict(data)
+
+
+MOVING = _moving()
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    start=st.sampled_from([None, 0.0, 0.1, 0.4, 5.0, -1.0, math.nan, math.inf, True, "0"]),
+    stop=st.sampled_from([None, 0.3, 0.05, 0.0, 1e300, -1.0, math.nan, True, "1"]),
+    scale=st.sampled_from([None, 700.0, 0.0, -1.0, math.inf, math.nan, True, "700"]),
+    confirm=st.sampled_from([False, True, "yes", 1, None]),
+)
+def test_track_any_arguments(filmed: Path, start: Any, stop: Any, scale: Any, confirm: Any) -> None:
+    """The estimate from the header comes after the arguments are checked: any of them is one
+    line or a result, and a tracking estimated above the bound (every one here, the bound
+    lowered) is refused unless confirmed."""
+    from rollspring.analysis import costs
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(costs, "MAX_SECONDS", 1e-9)
+        result = _clean(
+            lambda: rollspring.track(
+                filmed, MOVING, start=start, stop=stop, scale=scale, confirm=confirm
+            )
+        )
+    if result is not None:
+        assert confirm is True and result.t.size >= 1
 
 
 @settings(max_examples=40, deadline=None)

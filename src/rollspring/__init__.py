@@ -44,8 +44,8 @@ if TYPE_CHECKING:  # what the names below load on first use, for type checkers a
     from rollspring.analysis.derivation import Derivation, derive, symbolic_system
     from rollspring.analysis.dispersion import dispersion
     from rollspring.analysis.paper import check_paper, paper_claims
-    from rollspring.lab.api import fit
-    from rollspring.lab.tracking import TrackResult, track
+    from rollspring.lab.api import fit, track
+    from rollspring.lab.tracking import TrackResult
     from rollspring.model import (
         Anchor,
         Attachment,
@@ -203,7 +203,7 @@ _LAZY = {
     "export_mjcf": "rollspring.outputs.mjcf",
     "fit": "rollspring.lab.api",
     "create_app": "rollspring.web.app",
-    "track": "rollspring.lab.tracking",
+    "track": "rollspring.lab.api",
     "TrackResult": "rollspring.lab.tracking",
 }
 

@@ -213,7 +213,8 @@ class OverBudget(WebError):
 
 class JobFailed(WebError):
     """The job raised: ``kind`` ``"invalid"`` (a RollspringError: a bad request, HTTP 422,
-    ``loc`` the field it names) or ``"crash"`` (a bug or a dead worker, HTTP 500)."""
+    ``loc`` the field it names), ``"over_budget"`` (estimated beyond the time budget before it
+    started, HTTP 503) or ``"crash"`` (a bug or a dead worker, HTTP 500)."""
 
     def __init__(self, kind: str, message: str, loc: tuple[object, ...] = ()) -> None:
         super().__init__(kind, message, loc)

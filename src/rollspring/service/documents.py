@@ -133,12 +133,13 @@ def build_report(
 
     system = as_system(system)
     request = report_request(duration=duration, rtol=rtol, derivation=derivation)
+    if not isinstance(confirm, bool):
+        raise ReportError(f"confirm: must be True or False, got {confirm!r}")
     if data is not None:
         from rollspring.service.fitting import lab_request
 
-        request = dataclasses.replace(request, lab=lab_request(system, data, free, mapping))
-    if not isinstance(confirm, bool):
-        raise ReportError(f"confirm: must be True or False, got {confirm!r}")
+        lab = lab_request(system, data, free, mapping, confirm=confirm, flag=CONFIRM)
+        request = dataclasses.replace(request, lab=lab)
     cost = report_cost(
         system, duration=request.duration, derivation=request.derivation, flag=CONFIRM
     )

@@ -6,21 +6,36 @@ The computation is :func:`rollspring.lab.api.fit`; the files are rendered first,
 (:func:`rollspring.outputs.lab.fitted_toml`, :func:`~rollspring.outputs.lab.fit_figure_png`),
 then written each to a temporary file beside its place and renamed only when every one is
 complete (:func:`rollspring.outputs.atomic.atomic_path`), so a failure leaves no new file.
+
+Before the fit, its cost (:func:`fit_estimate`, :func:`rollspring.lab.costs.fit_cost`: tiny on
+the exact linear motion, a simulation of the recording per evaluation on the simulated one) is
+what the command line's ``--yes`` and a report's ``confirm`` check.
 """
 
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import os
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from rollspring.errors import FitError
+from rollspring.lab.costs import LabCost, fit_cost
+from rollspring.lab.data import BodyData
 from rollspring.lab.fit import FitResult
 from rollspring.model import System
 
-__all__ = ["FitRequest", "lab_request", "parse_mapping", "run_fit", "write_fit_outputs"]
+__all__ = [
+    "FitRequest",
+    "fit_estimate",
+    "fit_table",
+    "lab_request",
+    "parse_mapping",
+    "run_fit",
+    "write_fit_outputs",
+]
 
 
 @dataclass(frozen=True)
@@ -56,13 +71,17 @@ def lab_request(
     data: str | os.PathLike[str],
     free: Sequence[str] | None = None,
     mapping: Mapping[str, str] | None = None,
+    *,
+    confirm: bool = False,
+    flag: str = "--yes",
 ) -> FitRequest:
     """The fit of a report's lab section: ``free`` PATHs, by default every spring's stiffness
-    and damping. The data file is read, matched to the bodies and the PATHs checked now, so a
-    bad one is refused before the report's work (one-line :class:`~rollspring.errors.DataError`
-    or :class:`FitError`)."""
-    from rollspring.lab.data import match_bodies, read_data
-    from rollspring.lab.parameters import check_paths
+    and damping. The data file is read, matched to the bodies, the PATHs checked and the fit's
+    cost estimated now (:func:`fit_estimate`), so a bad one, or a fit above the bound that is
+    not confirmed (``confirm``; ``flag`` says how) is refused before the report's work (one-line
+    :class:`~rollspring.errors.DataError`, :class:`FitError` or
+    :class:`~rollspring.errors.CostTooHigh`)."""
+    from rollspring.analysis.costs import check_cost
 
     if free is None:
         free = [
@@ -70,20 +89,46 @@ def lab_request(
             for i in range(len(system.springs))
             for quantity in ("stiffness", "damping")
         ]
-    match_bodies(read_data(data), system, mapping)
-    check_paths(system, list(free))
-    return FitRequest(data=os.fspath(data), free=tuple(free), mapping=dict(mapping or {}))
+    request = FitRequest(data=os.fspath(data), free=tuple(free), mapping=dict(mapping or {}))
+    check_cost(
+        fit_estimate(system, request, fit_table(system, request)), confirmed=confirm, flag=flag
+    )
+    return dataclasses.replace(request, confirm=True)  # checked: the report's fit is not again
+
+
+def fit_table(system: System, request: FitRequest) -> BodyData:
+    """The request's data file read and matched to ``system``'s bodies (one-line
+    :class:`~rollspring.errors.DataError`)."""
+    from rollspring.lab.data import match_bodies, read_data
+
+    return match_bodies(read_data(request.data), system, request.mapping)
+
+
+def fit_estimate(system: System, request: FitRequest, table: BodyData) -> LabCost:
+    """The estimated cost of the fit of ``request`` to ``table`` (:func:`fit_table`) on
+    ``system``: :func:`rollspring.lab.costs.fit_cost`, in the command line's words; the PATHs
+    are checked first (a one-line :class:`FitError` naming a bad one)."""
+    from rollspring.lab.parameters import check_paths
+
+    check_paths(system, list(request.free))
+    return fit_cost(table, system, request.free, fix_initial=request.fix_initial)
 
 
 def run_fit(
-    system: System, request: FitRequest, progress: Callable[[float], None] | None = None
+    system: System,
+    request: FitRequest,
+    progress: Callable[[float], None] | None = None,
+    *,
+    table: BodyData | None = None,
 ) -> FitResult:
     """The fit of ``request`` on ``system`` (:func:`rollspring.lab.api.fit`), the claims
-    measured; ``progress`` told the fraction done (0..1)."""
+    measured; ``progress`` told the fraction done (0..1); ``table`` the data read already
+    (:func:`fit_table`), else the request's file is read. The cost is checked as
+    :func:`rollspring.fit` checks it (``request.confirm``)."""
     from rollspring.lab.api import fit
 
     return fit(
-        request.data,
+        request.data if table is None else table,
         system,
         request.free,
         mapping=request.mapping,

@@ -7,6 +7,13 @@ machine, which every one-line message names (``tracks.csv: no time column``). Th
 in the fitted system's frame: time from the instant the system's initial state holds (``t0``),
 positions in the system's x origin (``x_offset`` removed), so that they lie over the simulated
 motion of the fitted system from t = 0.
+
+A fit is estimated before it starts (:func:`rollspring.lab.costs.fit_cost`) against the server's
+time budget: one estimated above :data:`BUDGET_MARGIN` times the budget is refused at once
+(:class:`~rollspring.errors.CostTooHigh`, HTTP 503) rather than abandoned when the budget runs
+out. The estimates are rounded up (1.2 to 3.2 times the CPU time measured on the fits of
+bench/bench_lab_costs.py and the tests), so one between the budget and that is started, and the
+budget stops it if it must.
 """
 
 from __future__ import annotations
@@ -15,13 +22,23 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from rollspring.errors import DataError, FitError
+from rollspring.errors import CostTooHigh, DataError, FitError
 from rollspring.model import System, system_to_json
 
-__all__ = ["DEFAULT_FREE_QUANTITIES", "data_payload", "default_free", "fit_payload"]
+__all__ = [
+    "BUDGET_MARGIN",
+    "DEFAULT_FREE_QUANTITIES",
+    "data_payload",
+    "default_free",
+    "fit_payload",
+]
 
 #: The quantities of each spring fitted unless the request names its own PATHs.
 DEFAULT_FREE_QUANTITIES = ("stiffness", "damping")
+
+#: A fit estimated above this many times the time budget is refused before it starts (the
+#: estimates are up to about three times the CPU time a fit takes).
+BUDGET_MARGIN = 3.0
 
 
 def default_free(system: System) -> list[str]:
@@ -125,16 +142,21 @@ def fit_payload(
     *,
     fix_initial: bool = False,
     unmatched: str = "refuse",
+    budget: float | None = None,
 ) -> dict[str, Any]:
     """The fit of ``system`` to the table ``text`` (named ``source``) freeing the PATHs ``free``
-    (default :func:`default_free`) and each body's initial state (``rollspring fit``):
+    (default :func:`default_free`) and each body's initial state (``rollspring fit``), within
+    the time ``budget`` (s; None: the command line's bound, 5 minutes):
 
     ``{"fit": <rollspring fit --json's object>, "system": <the fitted system, JSON form>,
     "toml": <the fitted system file>, "data": <the table in the fitted system's frame>}``.
 
     One-line :class:`~rollspring.errors.DataError` or :class:`~rollspring.errors.FitError` for a
-    table that cannot be read, a PATH that is no number of the system, too few points."""
+    table that cannot be read, a PATH that is no number of the system, too few points;
+    :class:`~rollspring.errors.CostTooHigh` for a fit estimated above :data:`BUDGET_MARGIN`
+    times the ``budget``, before it starts."""
     from rollspring.lab.api import fit
+    from rollspring.lab.costs import fit_cost
     from rollspring.lab.parameters import check_paths
     from rollspring.outputs.lab import fitted_toml
 
@@ -143,7 +165,16 @@ def fit_payload(
     table, tracks, match = _table(text, source, system, mapping, unmatched)
     if not paths and fix_initial:
         raise FitError("free: nothing to fit (no PATH, and the initial state held)")
-    result = fit(table, system, paths, fix_initial=fix_initial)
+    if budget is not None:
+        cost = fit_cost(table, system, paths, fix_initial=fix_initial)
+        if cost.seconds > BUDGET_MARGIN * budget:
+            raise CostTooHigh(
+                f"the fit would take {cost.describe()}, beyond the server's time budget of "
+                f"{budget:g} s; fit a shorter recording or fewer PATHs, or run rollspring fit "
+                "on the command line"
+            )
+    # within the budget, the budget is the bound (the command line's 5 minutes are not)
+    result = fit(table, system, paths, fix_initial=fix_initial, confirm=budget is not None)
     offset = result.parameters.get("x_offset")
     return {
         "fit": result.to_dict(),

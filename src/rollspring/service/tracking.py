@@ -8,7 +8,8 @@ drawn on it (:func:`~rollspring.lab.tracking.draw_overlay`) into a temporary fil
 overlay's place, and writes the CSV into another. Only when the whole video is tracked are both
 renamed into place (:func:`~rollspring.outputs.atomic.atomic_path`): a failure — a body lost,
 an unreadable frame, Ctrl-C — leaves neither file half-written and the earlier ones as they
-were.
+were. :func:`tracking_estimate` is the cost the command line checks before that
+(:func:`rollspring.lab.costs.tracking_cost`, from the video's header).
 """
 
 from __future__ import annotations
@@ -21,11 +22,12 @@ from pathlib import Path
 import numpy as np
 
 from rollspring.errors import OutputError, TrackingError
+from rollspring.lab.costs import LabCost, tracking_cost, video_header
 from rollspring.lab.tracking import FrameTrack, TrackResult, draw_overlay, track_video
 from rollspring.model import System
 from rollspring.outputs.atomic import atomic_path, writable_file
 
-__all__ = ["check_places", "track_to_files"]
+__all__ = ["check_places", "track_to_files", "tracking_estimate"]
 
 
 def check_places(
@@ -45,6 +47,23 @@ def check_places(
         if place is not None and video is not None and _same(place, Path(video)):
             raise OutputError(f"{option} {place}: the same file as the video read")
     return csv, drawn
+
+
+def tracking_estimate(
+    video: str | os.PathLike[str],
+    system: System,
+    *,
+    start: float | None = None,
+    stop: float | None = None,
+    overlay: bool = False,
+) -> LabCost:
+    """The estimated cost of :func:`track_to_files` (:func:`rollspring.lab.costs.tracking_cost`
+    of the video's header, :func:`~rollspring.lab.costs.video_header`): the frames from
+    ``start`` to ``stop`` × their pixels, the ``overlay`` written too; in the command line's
+    words. A one-line :class:`~rollspring.errors.TrackingError` for a video that cannot be
+    read."""
+    header = video_header(video)
+    return tracking_cost(header, len(system.bodies), start=start, stop=stop, overlay=overlay)
 
 
 def _same(a: Path, b: Path) -> bool:

@@ -356,6 +356,8 @@ def create_app(
         except (OverBudget, Overloaded) as exc:
             return JSONResponse({"detail": str(exc)}, status_code=503)
         except JobFailed as exc:
+            if exc.kind == "over_budget":  # estimated beyond the budget: refused, not started
+                return JSONResponse({"detail": exc.message}, status_code=503)
             if exc.kind == "invalid":
                 return _problem(list(exc.loc) or ["body"], exc.message, "value_error")
             return JSONResponse({"detail": exc.message}, status_code=500)
@@ -514,6 +516,7 @@ def create_app(
             return job
         job["free"] = None if request.free is None else list(request.free)
         job["fix_initial"] = request.fix_initial
+        job["budget"] = holder["pool"].budget  # a fit estimated beyond it is refused (503)
         return compute("fit", job)
 
     @app.get("/static/node_modules/{rest:path}", include_in_schema=False)

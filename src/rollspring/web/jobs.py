@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import orjson
 
-from rollspring.errors import RollspringError
+from rollspring.errors import CostTooHigh, RollspringError
 from rollspring.model import load_system
 from rollspring.service import runs
 
@@ -113,12 +113,15 @@ def fit(request: dict[str, Any]) -> bytes:
         request.get("mapping"),
         fix_initial=request.get("fix_initial", False),
         unmatched=request.get("unmatched", "refuse"),
+        budget=request.get("budget"),
     )
     return _json(payload)
 
 
 #: The jobs whose errors name the lab's fields (``data``, ``free``, ``mapping``).
 _LAB_JOBS = frozenset({"lab_data", "fit"})
+#: The jobs estimated against the server's time budget before they start (a refusal: 503).
+_BUDGETED_JOBS = frozenset({"fit"})
 
 JOBS: dict[str, Callable[[dict[str, Any]], bytes]] = {
     "analyze": analyze,
@@ -139,14 +142,17 @@ _FIELD = re.compile(
 
 def execute(job: str, request: dict[str, Any]) -> tuple[str, Any]:
     """Run a job: ``("ok", bytes)``, or ``("error", (kind, message, loc))`` with kind
-    ``"invalid"`` for rollspring's own errors and numerical failures of the values asked for
-    (HTTP 422) and ``"crash"`` for anything else (a bug: HTTP 500)."""
+    ``"over_budget"`` for a fit estimated beyond the server's time budget before it started
+    (HTTP 503), ``"invalid"`` for rollspring's own errors and numerical failures of the values
+    asked for (HTTP 422) and ``"crash"`` for anything else (a bug: HTTP 500)."""
     try:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore", RuntimeWarning)
             return "ok", JOBS[job](request)
     except RollspringError as exc:
         message = " ".join(str(exc).split())
+        if job in _BUDGETED_JOBS and isinstance(exc, CostTooHigh):
+            return "error", ("over_budget", message, [])
         if job in _LAB_JOBS:
             return "error", ("invalid", *_lab_refusal(message, request))
         match = _FIELD.match(message)

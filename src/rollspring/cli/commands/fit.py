@@ -9,7 +9,10 @@ velocity (or, with ``--fix-initial``, the start time ``t0``). ``-o fitted.toml``
 system and ``--figure fit.png`` the data over the model, as a set; ``--json`` prints one JSON
 object (``parameters`` keyed by PATH with ``value`` and ``stderr``, ``residual_rms`` per body,
 ``status``, ``claims`` for two bodies). Bad input is one line and exit code 2; a fit that does
-not converge prints its status and best values and exits with code 1.
+not converge prints its status and best values and exits with code 1. Before any work the fit
+is estimated (:func:`rollspring.service.fitting.fit_estimate`: tiny on the exact linear motion,
+a simulation of the recording per evaluation on the simulated one) and refused above 5 minutes
+or 2 GiB unless ``--yes``, which also confirms a long ``--posterior``.
 """
 
 from __future__ import annotations
@@ -18,7 +21,15 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from rollspring.cli.common import ProgressBar, add_command, load, print_json, say, stdout_console
+from rollspring.cli.common import (
+    ProgressBar,
+    add_command,
+    confirm_cost,
+    load,
+    print_json,
+    say,
+    stdout_console,
+)
 from rollspring.cli.options import JsonOpt, out_option, yes_option
 
 if TYPE_CHECKING:
@@ -80,11 +91,24 @@ def fit(
         ),
     ] = None,
     as_json: JsonOpt = False,
-    yes: Annotated[bool, yes_option(note=" (the posterior on a simulated motion)")] = False,
+    yes: Annotated[
+        bool,
+        yes_option(
+            note=": a fit on the simulated motion (rolling resistance, slip, off-centre "
+            "springs: one simulation of the recording per evaluation) or its --posterior"
+        ),
+    ] = False,
 ) -> None:
     """Fit a system to a measured table: values ± standard errors, residuals, the paper's claims."""
     from rollspring.outputs.atomic import writable_file
-    from rollspring.service.fitting import FitRequest, parse_mapping, run_fit, write_fit_outputs
+    from rollspring.service.fitting import (
+        FitRequest,
+        fit_estimate,
+        fit_table,
+        parse_mapping,
+        run_fit,
+        write_fit_outputs,
+    )
 
     for place, option in ((out, "--out"), (figure, "--figure")):
         if place is not None:  # an unwritable place fails now, not after the fit
@@ -109,8 +133,10 @@ def fit(
         confirm=yes,
     )
     model = load(system)
+    table = fit_table(model, request)
+    confirm_cost(fit_estimate(model, request, table), yes=yes)
     with ProgressBar("fitting") as progress:
-        result = run_fit(model, request, progress)
+        result = run_fit(model, request, progress, table=table)
     for written in write_fit_outputs(result, system_path=out, figure_path=figure):
         say(f"wrote {written}")
     for warning in result.warnings:

@@ -114,7 +114,7 @@ def report(
 
         from rollspring.service.fitting import lab_request, parse_mapping
 
-        lab = lab_request(model, data, free, parse_mapping(mapping or ()))
+        lab = lab_request(model, data, free, parse_mapping(mapping or ()), confirm=yes)
         request = dataclasses.replace(request, lab=lab)
     # estimated once, as a whole: the report's analysis, run and derivation estimate nothing
     confirm_cost(report_cost(model, duration=duration, derivation=derivation), yes=yes)

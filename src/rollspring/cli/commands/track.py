@@ -5,7 +5,10 @@ and the camera roll, each body's outline and its rim marker) and writes the CSV
 ``t,x_<id>,phi_<id>,...`` (s, m, rad; one row per frame) with
 :func:`rollspring.service.tracking.track_to_files`, ``--overlay`` the video with what was found
 drawn on it, both as a set. ``--json`` prints the summary (frames, fps, scale, roll, per-body
-residuals) as one JSON object. The command is added to an app by :func:`register`.
+residuals) as one JSON object. Before any work the run is estimated from the video's header
+(:func:`rollspring.service.tracking.tracking_estimate`: the frames from ``--from`` to ``--to``
+× their pixels, the overlay) and refused above 5 minutes or 2 GiB unless ``--yes``. The
+command is added to an app by :func:`register`.
 """
 
 from __future__ import annotations
@@ -14,8 +17,16 @@ from typing import Annotated
 
 import typer
 
-from rollspring.cli.common import ProgressBar, add_command, load, print_json, say, stdout_console
-from rollspring.cli.options import SYSTEM_HELP, JsonOpt, out_option
+from rollspring.cli.common import (
+    ProgressBar,
+    add_command,
+    confirm_cost,
+    load,
+    print_json,
+    say,
+    stdout_console,
+)
+from rollspring.cli.options import SYSTEM_HELP, JsonOpt, out_option, yes_option
 
 __all__ = ["register", "track"]
 
@@ -49,6 +60,10 @@ def track(
         typer.Option("--overlay", help="Also write the video with what was found drawn (.mp4)."),
     ] = None,
     as_json: JsonOpt = False,
+    yes: Annotated[
+        bool,
+        yes_option(note=" (a long video: its frames from --from to --to × their pixels)"),
+    ] = False,
 ) -> None:
     """Track a video of the system's rolling bodies: each body's centre x (m) and rotation
     phi (rad, clockwise positive) in every frame, the floor line and the camera roll found."""
@@ -62,11 +77,13 @@ def track(
     if out is None and not as_json:
         raise TrackingError("--out/-o is required: the CSV file of the tracks")
     from rollspring.lab.tracking import check_options
-    from rollspring.service.tracking import check_places, track_to_files
+    from rollspring.service.tracking import check_places, track_to_files, tracking_estimate
 
     check_options(scale=scale, start=start, stop=stop, origin=origin)
     check_places(out, overlay, video)  # an unwritable place fails now, not after the work
     model = load(system)
+    cost = tracking_estimate(video, model, start=start, stop=stop, overlay=overlay is not None)
+    confirm_cost(cost, yes=yes)
     with ProgressBar("tracking") as bar:
         result, written = track_to_files(
             video,

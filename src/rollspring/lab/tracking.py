@@ -195,19 +195,21 @@ class TrackResult:
     seconds: float = 0.0
 
     def columns(self) -> dict[str, FloatArray]:
-        """The CSV's columns in order: ``t``, then ``x_<id>``, ``phi_<id>`` and ``xlocked<m>_<id>``
-        (m = 1, 2, 3) per body: the error of ``x_<id>`` that the background locks to the body's
-        position, as the standard deviations (m) of its coefficients on the Legendre
-        polynomials :math:`P_m` of the position over the body's range
-        (:func:`locked_error`), the same in every row; the fit adds it to its uncertainties.
-        Without ``locked_error`` (a result made by hand), only ``t``, ``x_<id>``, ``phi_<id>``."""
+        """The CSV's columns in order: ``t``, then ``x_<id>``, ``phi_<id>`` per body (the
+        contract's pairs, in the system's order), then ``xlocked<m>_<id>`` (m = 1, 2, 3) per
+        body: the error of ``x_<id>`` that the background locks to the body's position, as the
+        standard deviations (m) of its coefficients on the Legendre polynomials :math:`P_m` of
+        the position over the body's range (:func:`locked_error`), the same in every row; the
+        fit adds it to its uncertainties. Without ``locked_error`` (a result made by hand),
+        only ``t``, ``x_<id>``, ``phi_<id>``."""
         columns = {"t": self.t}
-        measured = self.locked_error.shape[0] == len(self.ids)
         for i, name in enumerate(self.ids):
             columns[f"x_{name}"] = self.x[:, i]
             columns[f"phi_{name}"] = self.phi[:, i]
-            for m, value in enumerate(self.locked_error[i] if measured else (), start=1):
-                columns[f"xlocked{m}_{name}"] = np.full(self.t.size, value)
+        if self.locked_error.shape[0] == len(self.ids):
+            for i, name in enumerate(self.ids):
+                for m, value in enumerate(self.locked_error[i], start=1):
+                    columns[f"xlocked{m}_{name}"] = np.full(self.t.size, value)
         return columns
 
     def to_csv(self, path: str | os.PathLike[str] | None = None) -> str:

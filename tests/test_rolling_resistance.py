@@ -740,6 +740,29 @@ def test_a_release_whose_drive_only_grazes_the_bound_is_found_at_the_closed_form
     assert tr.x[-1, 0] == pytest.approx(position(moving), abs=1e-12)
 
 
+def test_a_slip_whose_friction_only_grazes_mu_s_n_is_found_at_the_closed_form_instant():
+    # The same pair with the cylinder's pull at half its bound (it stays held) and the hoop on
+    # static friction mu_s: rolling needs f = -F_x / 2 (M8, gamma = 1), |f| = k A sin(w t) / 2,
+    # which peaks at (1 + 1e-6) mu_s N for 0.28 ms inside one step: the hoop slips at
+    # t_s = asin(1 / (1 + 1e-6)) / w, where the run stops (on_slip="stop")
+    excess, k, limit = 1e-6, 100.0, 0.01 * G
+    amplitude, w = 0.5 * limit / k, 10.0
+    mu = k * amplitude / 2 / (0.5 * G * (1 + excess))
+    system = make_system(
+        bodies=[
+            body("held", "cylinder", mass=1.0, radius=0.1, x=0.0, rolling_resistance=0.01),
+            body("free", "hoop", mass=0.5, radius=0.1, x=0.5, v=w * amplitude, mu_static=mu),
+        ],
+        springs=[spring("held", "free", stiffness=k, rest_length=0.5)],
+    )
+    tr = simulate(system, 0.5, rtol=1e-12, n_output=501)
+    assert tr.status == "slip"
+    [slip] = tr.events
+    assert (slip["kind"], slip["body"]) == ("slip", "free")
+    assert slip["time"] == pytest.approx(math.asin(1 / (1 + excess)) / w, abs=1e-9)
+    assert np.all(tr.x[:, 0] == 0.0)
+
+
 def test_event_crossings_are_found_inside_a_step_on_the_interpolant():
     """:func:`first_crossing` on closed forms, one step [0, 1] sampled at 8 parts: an excursion
     above zero 2e-3 long (between two samples) is found at its first root; one that stays

@@ -209,7 +209,8 @@ class GeneralSegments(RunState):
         if which is None:
             return self.grid[-1], values[:, -1] if times.size else state, slipping, sign
         kind, body = labels[which]
-        if kind == "turn" and t_end - t <= 16 * ROOT_TOLERANCE * (1.0 + abs(t)):
+        at_start = t_end - t <= 16 * ROOT_TOLERANCE * (1.0 + abs(t))
+        if kind == "turn" and at_start and state[3 * n + body] == 0.0:
             # a rotation set turning where the segment starts turned back against its
             # resistance at once: its drive was at the bound, not beyond it; it is held
             kind = "hold"

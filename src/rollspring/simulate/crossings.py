@@ -82,13 +82,14 @@ def first_crossing(
         return -_TINY if value == 0.0 and t == times[0] else value
 
     # per event: the crossings between samples, and the sampled local maxima near zero (the
-    # first sample, with one neighbour, where the function falls after it)
+    # first sample, with one neighbour, where the function falls after it: not one exactly at
+    # zero, a function that starts there and falls, as a rotation set turning at the start)
     crossing = (due[:-1] <= 0.0) & (due[1:] > 0.0)
     middle, left_of, right_of = due[1:-1], due[:-2], due[2:]
     rise = np.maximum(middle - left_of, middle - right_of)
     peak = (middle >= left_of) & (middle >= right_of) & (middle <= 0.0)
     peak &= middle + _NEAR * rise > 0.0
-    start = (0.0 >= due[0]) & (due[0] >= due[1]) & (due[0] + _NEAR * (due[0] - due[1]) > 0.0)
+    start = (0.0 > due[0]) & (due[0] >= due[1]) & (due[0] + _NEAR * (due[0] - due[1]) > 0.0)
     candidates = np.flatnonzero(crossing.any(axis=0) | peak.any(axis=0) | start)
     best: tuple[float, int] | None = None
     for k in (int(c) for c in candidates):

@@ -7,7 +7,9 @@ rolling body's needed friction reaching :math:`\mu_s N` (slip), a slipping body'
 reaching zero (stick, or reverse when static friction cannot hold it), a normal force falling to
 zero (lift-off), a resisted body's rotation reaching zero (``rest`` when the torque driving it is
 within :math:`C_{rr} N R`, else it turns back) and a resting body's drive exceeding that bound
-(``release``); between events each resisted body's resistance keeps its direction
+(``release``), each looked for inside the steps too, where SciPy compares signs at their ends
+only (:func:`~rollspring.simulate.crossings.first_crossing`: a drive that grazes the bound);
+between events each resisted body's resistance keeps its direction
 (:attr:`~rollspring.simulate.run_state.RunState.spin`), so the right-hand side is smooth, and at
 every event every resisted body is decided (several stop at one instant when a mode moves
 alone). The segment's dense output is its interpolant (extremes and period,
@@ -23,10 +25,24 @@ import numpy as np
 
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import kernels
+from rollspring.simulate.crossings import ROOT_TOLERANCE, first_crossing
 from rollspring.simulate.run_state import BoolArray, Handover, RunState, Segment
 from rollspring.simulate.status import RunStatus
 
 __all__ = ["GeneralSegments"]
+
+_TINY = float(np.finfo(float).tiny)
+
+
+def _off_zero_at(start: float, event: Any, side: float) -> Any:
+    """``event(t, y)``, but the smallest float on the ``side`` (+1 or -1) of zero where it is
+    exactly zero at ``t == start``."""
+
+    def shifted(t: float, y: FloatArray) -> float:
+        value = float(event(t, y))
+        return side * _TINY if value == 0.0 and t == start else value
+
+    return shifted
 
 
 class GeneralSegments(RunState):
@@ -45,10 +61,17 @@ class GeneralSegments(RunState):
         # the segment starts: at release beside another one, or one whose event fell at the
         # same instant as the last segment's, or whose resistance has just turned: it slips (or
         # lifts off) here, its event function being past zero already
+        # A resisted body past its bound where the segment starts is decided here too: one held
+        # while its |D| exceeds C_rr N R (its drive changed with a slip taken just above, or
+        # with the other bodies' resistances decided at the last event) is released, one turning
+        # against its resistance stops: its event function, past zero already, would never
+        # cross zero in this segment. Each pass settles one body for good: it ends.
         verdict = self._contact_verdict(state, slipping)
-        while verdict is not None:
+        while verdict is not None or self._resistance_violated(t, state, slipping, sign):
             self._flush_pending()
-            if self._event(*verdict, t, state, slipping, sign):
+            if verdict is None:
+                self._resistance_events(t, state, slipping, sign, np.zeros(n))
+            elif self._event(*verdict, t, state, slipping, sign):
                 self._record(t, state, slipping, sign)
                 return t, state, slipping, sign
             verdict = self._contact_verdict(state, slipping)
@@ -95,9 +118,20 @@ class GeneralSegments(RunState):
                 else:  # held at rest: the drive exceeds what the resistance holds (M22)
                     events.append(lambda _t, y, i=i: self._resistance_margin(y, slipping, sign, i))
                     labels.append(("release", i))
-        for event, (kind, i) in zip(events, labels, strict=True):
+        direction = np.array([-sign[i] if kind == "stick" else -1.0 for kind, i in labels])
+        # A function exactly at zero where the segment starts (a rotation set at rest and
+        # turning from this instant, a slip velocity made 0 where a slip reverses) is taken as
+        # on its side before a crossing, by the smallest float: SciPy would otherwise take the
+        # start itself as the root whenever the function is past zero at the end of the first
+        # step, even after it first left zero the other way (a body released where its drive
+        # grazes the bound turns and stops again inside that step)
+        events = [
+            _off_zero_at(t, event, -float(falling))
+            for event, falling in zip(events, direction, strict=True)
+        ]
+        for event, falling in zip(events, direction, strict=True):
             event.terminal = True
-            event.direction = (sign[i] * -1.0) if kind == "stick" else -1.0
+            event.direction = float(falling)
         t_eval = self.grid[(self.grid > t + 1e-12 * self.grid[-1])]
         scale = max(float(np.max(np.abs(state))), float(np.max(a.radius)))
         import scipy.integrate  # on demand: only the general (DOP853) segments need it
@@ -125,15 +159,37 @@ class GeneralSegments(RunState):
         # (a body that slips at once, an early slip): arrays of no columns then
         times = np.asarray(solution.t, dtype=float)
         values = np.asarray(solution.y, dtype=float).reshape(state.size, times.size)
+        dense = solution.sol
+        which: int | None = None  # the event that ends the segment, None at the run's end
+        t_end = self.grid[-1]
+        y_event = state
+        if solution.status == 1:
+            which = next(j for j, te in enumerate(solution.t_events) if len(te))
+            t_end = float(solution.t_events[which][0])
+            y_event = np.asarray(solution.y_events[which][0], dtype=float)
+        # SciPy sees an event only where its function's sign differs at the two ends of a step:
+        # an excursion past zero and back inside one step (a drive that grazes C_rr N R, a
+        # rotation that touches 0) is looked for inside the steps, on the interpolant
+        # (:func:`first_crossing`); the segment then ends at the earliest one, its rows after it
+        # dropped (they were integrated on a motion that no longer holds)
+        steps = np.asarray(dense.ts)
+        if events:
+            inside = first_crossing(
+                lambda tt: self._event_values(
+                    np.asarray(dense(tt)).T, labels, slipping, sign, spin
+                ),
+                steps,
+                direction,
+                before=t_end,
+            )
+            if inside is not None:
+                t_end, which = inside
+                y_event = np.asarray(dense(t_end), dtype=float)
+                kept = times <= t_end
+                times, values = times[kept], values[:, kept]
+                steps = np.append(steps[steps < t_end], t_end)
         if times.size:
             self._record_block(times, values.T, slipping, sign)
-        dense = solution.sol
-        t_end = float(
-            solution.t_events
-            and max((float(te[0]) for te in solution.t_events if len(te)), default=self.grid[-1])
-            if solution.status == 1
-            else self.grid[-1]
-        )
 
         def dense_state(tt: float | FloatArray, d: Any = dense) -> FloatArray:
             return np.asarray(d(tt)).T
@@ -145,27 +201,30 @@ class GeneralSegments(RunState):
                 slipping.copy(),
                 sign.copy(),
                 dense_state,
-                np.asarray(dense.ts),
+                steps,
                 spin=spin.copy() if a.resisted else None,
             )
         )
         self._report(t_end)
-        if solution.status != 1:
+        if which is None:
             return self.grid[-1], values[:, -1] if times.size else state, slipping, sign
-        which = next(j for j, te in enumerate(solution.t_events) if len(te))
         kind, body = labels[which]
-        y_event = np.asarray(solution.y_events[which][0], dtype=float)
+        at_start = t_end - t <= 16 * ROOT_TOLERANCE * (1.0 + abs(t))
+        if kind == "turn" and at_start and state[3 * n + body] == 0.0:
+            # a rotation set turning where the segment starts turned back against its
+            # resistance at once: its drive was at the bound, not beyond it; it is held
+            kind = "hold"
         acceleration = np.zeros(n)
         if a.resisted:
             # the rotations' scale over the run so far, and the accelerations at the event
             # with this segment's directions: which other resisted bodies stop here too
-            peaks = np.abs(dense(np.asarray(dense.ts)))[3 * n :].max(axis=1)
+            peaks = np.abs(dense(steps))[3 * n :].max(axis=1)
             self.omega_peak = np.maximum(self.omega_peak, peaks)
             acceleration = rhs(t_end, y_event)[3 * n :]
         was_slipping = slipping.copy()  # the bodies slipping before the event
         if kind == "stick":
             self._stick_or_reverse(body, t_end, y_event, slipping, sign)
-        elif kind not in ("turn", "release") and self._event(
+        elif kind not in ("turn", "hold", "release") and self._event(
             kind, body, t_end, y_event, slipping, sign
         ):
             self._record(t_end, y_event, slipping, sign)
@@ -179,7 +238,7 @@ class GeneralSegments(RunState):
             if was_slipping[i] and (kind, body) != ("stick", i) and sign[i] * slip_velocity < 0:
                 self._stick_or_reverse(i, t_end, y_event, slipping, sign)
         if a.resisted:  # every resisted body stopping here rests or turns; a driven one releases
-            trigger = (kind, body) if kind in ("turn", "release") else None
+            trigger = (kind, body) if kind in ("turn", "hold", "release") else None
             self._resistance_events(t_end, y_event, slipping, sign, acceleration, trigger)
         return t_end, y_event, slipping, sign
 
@@ -226,6 +285,64 @@ class GeneralSegments(RunState):
         drive, limit = self._resistance_drive(state, slipping, sign)
         return float(limit[i] - abs(drive[i]))
 
+    def _resistance_violated(
+        self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> bool:
+        r"""Whether a resisted body is past its bound in ``state`` at ``t``: held (:attr:`spin`
+        0) with :math:`|D| > C_{rr} N R` (M22) (unless held at ``t`` with its drive at the bound,
+        :attr:`~rollspring.simulate.run_state.RunState.held_at`), or turning against its
+        resistance (:math:`\mathrm{spin}\,\omega < 0`, (M21))."""
+        resisted = self.rolls & (self.arrays.rolling_resistance > 0)
+        if not resisted.any():
+            return False
+        drive, limit = self._resistance_drive(state, slipping, sign)
+        held = resisted & (self.spin == 0.0) & (self.held_at != t)
+        turning = resisted & (self.spin != 0.0)
+        omega = state[3 * self.n :]
+        return bool(
+            (held & (np.abs(drive) > limit)).any() or (turning & (self.spin * omega < 0.0)).any()
+        )
+
+    def _event_values(
+        self,
+        states: FloatArray,
+        labels: list[tuple[str, int]],
+        slipping: BoolArray,
+        sign: FloatArray,
+        spin: FloatArray,
+    ) -> FloatArray:
+        r"""The general segment's event functions at rows of ``states`` (rows, 4n), one column
+        per ``labels`` entry, the values its ``solve_ivp`` events take: ``slip``
+        :math:`\mu_s N - |f|`, ``stick`` :math:`u - R\omega`, ``liftoff`` :math:`N`, ``turn``
+        :math:`\mathrm{spin}\,\omega`, ``release`` :math:`C_{rr} N R - |D|` (M22)."""
+        n = self.n
+        states = np.ascontiguousarray(states)
+        rows = states.shape[0]
+        out = np.empty((rows, len(labels)))
+        kinds = {kind for kind, _ in labels}
+        friction = normal = drive = limit = np.empty((0, n))
+        if kinds & {"slip", "liftoff"}:
+            friction, normal, *_ = self.observe(
+                states, np.tile(slipping, (rows, 1)), np.tile(sign, (rows, 1)), spin[None]
+            )
+        if "release" in kinds:
+            drive, limit = np.empty((rows, n)), np.empty((rows, n))
+            for r in range(rows):
+                drive[r], limit[r] = self._resistance_drive(states[r], slipping, sign)
+        a = self.arrays
+        for column, (kind, i) in enumerate(labels):
+            if kind == "slip":
+                out[:, column] = a.mu_static[i] * normal[:, i] - np.abs(friction[:, i])
+            elif kind == "stick":
+                out[:, column] = states[:, 2 * n + i] - a.radius[i] * states[:, 3 * n + i]
+            elif kind == "liftoff":
+                out[:, column] = normal[:, i]
+            elif kind == "turn":
+                out[:, column] = spin[i] * states[:, 3 * n + i]
+            else:
+                out[:, column] = limit[:, i] - np.abs(drive[:, i])
+        return out
+
     def _resting_spin(
         self, state: FloatArray, slipping: BoolArray, sign: FloatArray, i: int
     ) -> float:
@@ -256,7 +373,11 @@ class GeneralSegments(RunState):
         (``release``). Bodies whose rotations stop at the same instant (two bodies released from
         rest in one normal mode reverse together) are all decided here, from their own drives:
         an event already past when another is handled could never be seen again. Events are
-        recorded in the bodies' order."""
+        recorded in the bodies' order. A ``hold`` trigger is a ``turn`` at the very start of a
+        segment: a rotation set turning there that turned back against its resistance at once,
+        its drive at the bound and not beyond it; it rests whatever its drive measures by
+        rounding, and no body held so is released again at that instant
+        (:attr:`~rollspring.simulate.run_state.RunState.held_at`)."""
         n, a = self.n, self.arrays
         spin = self.spin
         resisted = self.rolls & (a.rolling_resistance > 0)
@@ -271,7 +392,7 @@ class GeneralSegments(RunState):
         released = np.zeros(self.n, dtype=bool)
         if trigger is not None:
             kind, body = trigger
-            if kind == "turn":
+            if kind in ("turn", "hold"):
                 stopping[body] = True
             else:
                 released[body] = True
@@ -280,11 +401,14 @@ class GeneralSegments(RunState):
             if not slipping[i]:
                 state[2 * n + i] = 0.0
         drive, limit = self._resistance_drive(state, slipping, sign)
+        if trigger is not None and trigger[0] == "hold":
+            self.held_at[trigger[1]] = t
+        beyond = (np.abs(drive) > limit) & (self.held_at != t)
         for i in np.flatnonzero(resisted):
             if stopping[i]:
-                spin[i] = 0.0 if abs(drive[i]) <= limit[i] else float(np.sign(drive[i]))
+                spin[i] = float(np.sign(drive[i])) if beyond[i] else 0.0
                 if spin[i] == 0.0:
                     self.events.append({"kind": "rest", "time": t, "body": a.ids[i]})
-            elif spin[i] == 0.0 and (released[i] or abs(drive[i]) > limit[i]):
+            elif spin[i] == 0.0 and (released[i] or beyond[i]):
                 spin[i] = float(np.sign(drive[i])) or 1.0
                 self.events.append({"kind": "release", "time": t, "body": a.ids[i]})

@@ -165,6 +165,11 @@ class RunState:
         #: scale of the tolerance within which a rotation is taken to stop at another body's
         #: event (:meth:`~rollspring.simulate.general.GeneralSegments._resistance_events`)
         self.omega_peak = np.zeros(n)
+        #: per body the instant it was last held by its resistance because its rotation, set
+        #: turning there, turned back against it at once (its drive at the bound, not beyond
+        #: it): it is not released again at that instant on a drive past the bound by rounding
+        #: (:meth:`~rollspring.simulate.general.GeneralSegments._resistance_events`)
+        self.held_at = np.full(n, np.nan)
         self.times: list[FloatArray] = []
         self.segments: list[Segment] = []
         self.events: list[dict[str, Any]] = []

@@ -594,7 +594,7 @@ def _in_process(
     steps the next), at most ``2 threads`` groups in flight; ``ready`` is called once the first
     groups are stepping. The serial kernel is the parallel one's block code: the numbers do not
     depend on the threads."""
-    serial = copy_plan(plan, batch_threads=1)
+    serial = copy_plan(plan, batch_threads=1, linear_aside=threads < available_cores())
     groups = iter(_tasks(plan.grid, todo, threads))
     with ThreadPoolExecutor(threads, thread_name_prefix="rollspring-sweep") as pool:
         pending: dict[Future[list[dict[str, np.ndarray]]], list[int]] = {}

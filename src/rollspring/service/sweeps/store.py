@@ -358,11 +358,10 @@ class ChunkEncoder:
 
 
 def mark_done(path: Path, index: int) -> None:
-    """The done marker of chunk ``index`` (an empty file, created atomically)."""
-    folder = path / MARKERS
-    tmp = folder / f".{index}.{os.getpid()}.tmp"
-    tmp.touch()
-    os.replace(tmp, folder / str(index))
+    """The done marker of chunk ``index``: an empty file, which exists whole or not at all
+    (markers were once made as ``.<index>.<pid>.tmp`` files renamed: :func:`verified_done`
+    still removes those a kill left)."""
+    (path / MARKERS / str(index)).touch()
 
 
 def done_chunks(path: Path) -> set[int]:

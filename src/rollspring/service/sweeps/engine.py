@@ -305,32 +305,24 @@ def sweep(
     done: set[int] = set()
     stored = None
     replace = False  # an earlier store at path, removed just before the template is written
-    if path is not None:
-        try:
-            attrs = read_attrs(path)
-        except StoreMismatchError:
-            if not overwrite:
-                raise
-            attrs = None  # not a store (a template cut short, another folder): replaced
+    if path is not None and overwrite:
+        replace = path.exists() or path.is_symlink()  # whatever is there (nothing read)
+    elif path is not None:
+        attrs = read_attrs(path)
         if attrs is not None:
-            if attrs.get("grid_fingerprint") != print_ and not overwrite:
+            if attrs.get("grid_fingerprint") != print_:
                 raise StoreMismatchError(
                     f"--out {path}: holds another sweep (grid fingerprint "
                     f"{str(attrs.get('grid_fingerprint'))[:12]}…, this one {print_[:12]}…); "
                     "use --overwrite to replace it"
                 )
-            if overwrite:
-                replace = True
-            else:
-                stored = attrs
-                done = verified_done(path, grid, done_chunks(path))
+            stored = attrs
+            done = verified_done(path, grid, done_chunks(path))
         elif path.exists():
-            if not overwrite:
-                raise StoreMismatchError(
-                    f"--out {path}: exists and is not a rollspring sweep "
-                    "store; use --overwrite to replace it"
-                )
-            replace = True
+            raise StoreMismatchError(
+                f"--out {path}: exists and is not a rollspring sweep "
+                "store; use --overwrite to replace it"
+            )
 
     client, own_client = _client(scheduler)
     removals: list[threading.Thread] = []  # an overwritten store's removal

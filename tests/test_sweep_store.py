@@ -48,7 +48,7 @@ def test_chunk_files_are_the_bytes_zarr_writes(system, tmp_path, monkeypatch):
     same(ours, zarrs)
     mine, theirs = _files(tmp_path / "ours.zarr"), _files(tmp_path / "zarr.zarr")
     assert sorted(mine) == sorted(theirs)
-    assert sum("/c/" in name for name in mine) == 3 * len(ours.data_vars) + 4  # + coordinates
+    assert sum("/c." in name for name in mine) == 3 * len(ours.data_vars)  # one file a chunk
     for name in mine:
         assert mine[name] == theirs[name], name
 
@@ -76,7 +76,8 @@ def _kill_at(monkeypatch, kill_at: int) -> list[int]:
         return counted
 
     monkeypatch.setattr(store_module, "open", killed_before(builtins.open), raising=False)
-    monkeypatch.setattr(os, "replace", killed_before(os.replace))
+    for name in ("replace", "mkdir"):
+        monkeypatch.setattr(os, name, killed_before(getattr(os, name)))
     for name in ("mkdir", "write_bytes", "touch"):
         monkeypatch.setattr(pathlib.Path, name, killed_before(getattr(pathlib.Path, name)))
     return count
@@ -116,3 +117,22 @@ def test_a_writer_killed_at_any_file_operation_is_resumed_into_the_same_store(
         assert not list(out.rglob("*.partial")) and not list(out.rglob(".*.tmp")), kill_at
         kill_at += 1
     assert kill_at > 20 and outcomes == {"resumed", "refused"}
+
+
+def test_a_store_with_a_folder_a_chunk_is_resumed_in_its_own_layout(system, tmp_path, monkeypatch):
+    """Stores made before 29 Nov 2026 name their chunk files with Zarr's "/" separator (a folder
+    per chunk): a resume writes the chunks it reruns where that store's metadata says, and the
+    store equals one written in the layout of today."""
+    vary = {"springs.0.stiffness": np.linspace(50.0, 150.0, 6), "bodies.hoop.mass": [0.5, 1.0]}
+    old = tmp_path / "old.zarr"
+    with monkeypatch.context() as patch:
+        patch.setattr(store_module, "CHUNK_KEYS", {"name": "default", "separator": "/"})
+        sweep(system, vary, 1.0, chunk=4, out=old)
+    rerun = old / "period_measured" / "c" / "1" / "0"
+    assert rerun.is_file() and not list(old.glob("*/c.*"))
+    rerun.unlink()
+    (old / ".rollspring-done" / "1").unlink()
+    resumed = sweep(system, vary, 1.0, out=old).load()
+    assert rerun.is_file() and not list(old.glob("*/c.*"))
+    same(resumed, sweep(system, vary, 1.0, chunk=4, out=tmp_path / "new.zarr").load())
+    assert (tmp_path / "new.zarr" / "period_measured" / "c.1.0").is_file()

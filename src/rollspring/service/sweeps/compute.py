@@ -22,7 +22,8 @@ next to which other chunks it runs.
   its flat centre class, and by ``analyze`` run by run (once per distinct configuration) for
   the others (off-centre attachments, tilted springs, mode amplitudes, no equilibrium, ...).
   When no varied value moves a spring end (every run's start is then a valid system) they are
-  computed in a thread while the batch runs.
+  computed in a thread while the batch runs, if a core is to spare (``linear_aside``: not in an
+  in-process pool with a thread a core, where they are computed by the pool's thread itself).
 * **Several chunks in one call** (:func:`compute_chunks`, in-process): their runs are
   concatenated into one batch call and split again; every run's numbers are those it has alone,
   so each chunk's arrays equal :func:`compute_chunk`'s.
@@ -92,6 +93,10 @@ class SweepPlan:
     #: the batch calls' ``threads``: None every Numba thread (a Dask worker), 1 the calling
     #: thread with the GIL released (the in-process pool; the same numbers bit for bit)
     batch_threads: int | None = None
+    #: the linear metrics computed in a thread of their own while the batch runs (a core to
+    #: spare: a Dask worker's batch, an in-process pool with fewer threads than cores), else
+    #: in the calling thread (the pool's threads already keep every core busy)
+    linear_aside: bool = True
 
 
 @functools.lru_cache(maxsize=8)
@@ -475,8 +480,10 @@ def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.nda
     single = np.ones(runs.n, dtype=bool)  # runs whose start goes through analyze alone
     overlap = None
     if linear and not runs.structural:
-        if plan.on_slip == "stop" and not any(
-            p.split(".")[-1] in _PLACEMENT for p in plan.grid.paths
+        if (
+            plan.linear_aside
+            and plan.on_slip == "stop"
+            and not any(p.split(".")[-1] in _PLACEMENT for p in plan.grid.paths)
         ):
             # every run's start is a valid system (no varied value moves a spring end), so
             # the batch call need not wait for the linear metrics: they are computed in a

@@ -18,6 +18,7 @@ import logging
 import math
 import numbers
 import os
+import threading
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
@@ -52,10 +53,10 @@ from rollspring.service.sweeps.store import (
     VARIABLES,
     RegionWriter,
     StoreMismatchError,
+    discard,
     done_chunks,
     fingerprint,
     read_attrs,
-    remove,
     verified_done,
     write_template,
 )
@@ -304,29 +305,27 @@ def sweep(
     done: set[int] = set()
     stored = None
     replace = False  # an earlier store at path, removed just before the template is written
-    if path is not None:
+    if path is not None and overwrite:
+        replace = path.exists() or path.is_symlink()  # whatever is there (nothing read)
+    elif path is not None:
         attrs = read_attrs(path)
         if attrs is not None:
-            if attrs.get("grid_fingerprint") != print_ and not overwrite:
+            if attrs.get("grid_fingerprint") != print_:
                 raise StoreMismatchError(
                     f"--out {path}: holds another sweep (grid fingerprint "
                     f"{str(attrs.get('grid_fingerprint'))[:12]}…, this one {print_[:12]}…); "
                     "use --overwrite to replace it"
                 )
-            if overwrite:
-                replace = True
-            else:
-                stored = attrs
-                done = verified_done(path, grid, done_chunks(path))
+            stored = attrs
+            done = verified_done(path, grid, done_chunks(path))
         elif path.exists():
-            if not overwrite:
-                raise StoreMismatchError(
-                    f"--out {path}: exists and is not a rollspring sweep "
-                    "store; use --overwrite to replace it"
-                )
-            replace = True
+            raise StoreMismatchError(
+                f"--out {path}: exists and is not a rollspring sweep "
+                "store; use --overwrite to replace it"
+            )
 
     client, own_client = _client(scheduler)
+    removals: list[threading.Thread] = []  # an overwritten store's removal
     try:
         if stored is not None:
             plan = copy_plan(
@@ -361,17 +360,24 @@ def sweep(
         todo = [i for i in range(grid.n_chunks) if i not in done]
         memory = None if path is not None else _memory(grid, chosen, len(ids))
         writer: list[RegionWriter] = []
+        opened: list[Any] = []  # the dataset returned, opened once the template is there
 
         def ready() -> None:
-            """The store made ready for the first write: run once, while the first chunks
-            step."""
+            """The store made ready for the first write, and the dataset returned opened
+            (lazily: its metadata only, which the chunks do not change): run once, while the
+            first chunks step."""
             if path is None or writer:
                 return
             if stored is None:
                 if replace:
-                    remove(path)
+                    removal = discard(path)
+                    if removal is not None:
+                        removals.append(removal)
                 write_template(path, grid, ids, len(ids), chosen, attrs)
             writer.append(RegionWriter(path, grid))
+            import xarray as xr
+
+            opened.append(xr.open_zarr(str(path)))
 
         def store(items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
             if path is not None:  # each chunk's data written before its marker
@@ -398,10 +404,10 @@ def sweep(
     finally:
         if own_client and client is not None:
             client.close()
+        for removal in removals:
+            removal.join()
     if path is not None:
-        import xarray as xr
-
-        return xr.open_zarr(str(path))
+        return opened[0]
     assert memory is not None  # kept in memory when there is no store
     return _dataset(grid, chosen, ids, memory, attrs)
 
@@ -580,7 +586,7 @@ def _in_process(
     steps the next), at most ``2 threads`` groups in flight; ``ready`` is called once the first
     groups are stepping. The serial kernel is the parallel one's block code: the numbers do not
     depend on the threads."""
-    serial = copy_plan(plan, batch_threads=1)
+    serial = copy_plan(plan, batch_threads=1, linear_aside=threads < available_cores())
     groups = iter(_tasks(plan.grid, todo, threads))
     with ThreadPoolExecutor(threads, thread_name_prefix="rollspring-sweep") as pool:
         pending: dict[Future[list[dict[str, np.ndarray]]], list[int]] = {}

@@ -1,24 +1,28 @@
 """The sweep's Zarr v3 store: the template, chunk regions, done markers, the fingerprint.
 
-The template (every variable's metadata, the coordinates and the attrs) is written first by
-``xarray.Dataset.to_zarr(compute=False)`` from lazy Dask arrays (nothing of the grid's size is
-built in memory); each finished chunk is then written into its own region with Zarr directly
-(the regions are the Zarr chunks, so concurrent writers never share a chunk) and followed by its
-done marker ``<store>/.rollspring-done/<chunk index>``, an empty file created atomically. Every
-chunk is written to disk, even one equal to the fill value (Zarr's ``write_empty_chunks``), so a
-resume checks the chunks its markers vouch for (:func:`verified_done`): a marked chunk whose file
-is gone is run again, and what killed writers left (Zarr's ``.partial`` files, half-made
-markers) is removed first.
+The template (every variable's metadata, the coordinates and the attrs, consolidated) is made
+by Zarr in memory and written as files, the group's document last (:func:`write_template`);
+each finished chunk is then written as one Zarr chunk of every variable, encoded by the
+array's own codecs and stored as its file whole or not at all (:class:`RegionWriter`; the
+regions are the Zarr chunks, so concurrent writers never share a file), and followed by its
+done marker ``<store>/.rollspring-done/<chunk index>``, an empty file created atomically.
+Every chunk is written to disk, even one equal to the fill value (Zarr's
+``write_empty_chunks``), so a resume checks the chunks its markers vouch for
+(:func:`verified_done`): a marked chunk whose file is gone is run again, and what killed
+writers left (``.partial`` files, half-made markers) is removed first. Nothing is synced to
+the disk (nor does Zarr's own local store sync): the guarantees are against a killed process,
+not a machine losing power.
 """
 
 from __future__ import annotations
 
 import base64
+import contextlib
 import hashlib
 import json
-import math
 import os
 import shutil
+import threading
 import warnings
 from pathlib import Path
 from typing import Any
@@ -33,6 +37,7 @@ __all__ = [
     "VARIABLES",
     "RegionWriter",
     "StoreMismatchError",
+    "discard",
     "done_chunks",
     "fingerprint",
     "mark_done",
@@ -42,6 +47,12 @@ __all__ = [
 ]
 
 MARKERS = ".rollspring-done"
+#: The chunk files of a variable named ``c.<i>.<j>...`` in its folder (Zarr v3's default
+#: encoding with the "." separator): Zarr's "/" makes a folder per chunk and level (85 folders
+#: for 65 536 runs in four chunks), and a folder costs the file system more than a file (about
+#: 0.3-0.7 ms of CPU each here, the largest part of writing a sweep's store). Stores made with
+#: "/" (before 29 Nov 2026) are read and resumed by their own metadata's encoding.
+CHUNK_KEYS: dict[str, Any] = {"name": "default", "separator": "."}
 
 #: name -> (extra dimension or None, units, long_name)
 VARIABLES: dict[str, tuple[str | None, str, str]] = {
@@ -107,8 +118,33 @@ def read_attrs(path: Path) -> dict[str, Any] | None:
 def remove(path: Path) -> None:
     if path.is_dir() and not path.is_symlink():
         shutil.rmtree(path)
-    elif path.exists():
+    elif path.exists() or path.is_symlink():
         path.unlink()
+
+
+def discard(path: Path) -> threading.Thread | None:
+    """Free ``path`` at once and remove what was there in a thread (joined by the caller): a
+    folder is renamed to a hidden sibling first (removing a store's folders waits on the disk,
+    up to 0.3 s for 65 536 runs here, while the first chunks step). A kill before the removal
+    ends leaves that sibling, ``.<name>.<pid>.discarded``."""
+    if not path.is_dir() or path.is_symlink():
+        remove(path)
+        return None
+    aside = path.with_name(f".{path.name}.{os.getpid()}-{threading.get_ident()}.discarded")
+    try:
+        path.rename(aside)
+    except OSError:  # pragma: no cover - e.g. a folder this user may not rename
+        remove(path)
+        return None
+    thread = threading.Thread(
+        target=shutil.rmtree,
+        args=(aside,),
+        kwargs={"ignore_errors": True},
+        name="rollspring-sweep-discard",
+        daemon=True,
+    )
+    thread.start()
+    return thread
 
 
 def write_template(
@@ -122,14 +158,22 @@ def write_template(
     """Every variable's metadata, the coordinates and the attrs (no data), made with Zarr
     directly as xarray's ``Dataset.to_zarr(compute=False)`` makes them (the same arrays,
     ``dimension_names``, attributes with xarray's ``_FillValue`` of a float, consolidated
-    metadata), in a tenth of its time: it is written while the first chunks step."""
-    import zarr
+    metadata), in a tenth of its time: it is written while the first chunks step.
 
+    Zarr makes the documents in a memory store (its file store costs twice the CPU, a round
+    trip to its event loop and a thread per file); they are then written as files, the group's
+    own ``zarr.json`` last: a folder that a kill left without it is refused as not a store,
+    never resumed as a sweep missing variables. An earlier store at ``path`` is replaced."""
+    import zarr
+    from zarr.storage import MemoryStore
+
+    documents: dict[str, Any] = {}
     with warnings.catch_warnings():
         # the body ids' fixed-length UTF-32 and consolidated metadata (fast opening) are not
         # yet in the Zarr v3 specification (xarray writes them so)
         warnings.simplefilter("ignore")
-        group = zarr.open_group(str(path), mode="w", zarr_format=3, attributes=attrs)
+        memory = MemoryStore(documents)
+        group = zarr.open_group(memory, mode="w", zarr_format=3, attributes=attrs)
         coordinates: list[tuple[str, np.ndarray, dict[str, Any]]] = [
             (p, np.asarray(values, dtype=np.float64), {"units": unit_of(p), "long_name": p})
             for p, values in zip(grid.paths, grid.values, strict=True)
@@ -176,9 +220,17 @@ def write_template(
                 fill_value=fill,
                 attributes=_with_fill(var_attrs, dtype),
                 dimension_names=list(dims),
+                chunk_key_encoding=CHUNK_KEYS,
             )
-        zarr.consolidate_metadata(str(path))
-    (path / MARKERS).mkdir(exist_ok=True)
+        zarr.consolidate_metadata(memory)
+    if path.exists() or path.is_symlink():
+        remove(path)
+    (path / MARKERS).mkdir(parents=True)
+    root = "zarr.json"
+    for key in sorted(documents, key=lambda k: k == root):  # the group's document last
+        target = path / key
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(documents[key].to_bytes())
 
 
 def _fill(dtype: np.dtype[Any]) -> Any:
@@ -198,9 +250,14 @@ def _with_fill(attrs: dict[str, Any], dtype: np.dtype[Any]) -> dict[str, Any]:
 
 
 class RegionWriter:
-    """Finished chunks into the store at ``path``, each followed by its done marker: the
-    store's arrays opened once, and every variable of a write handed to Zarr together (one
-    round trip to its event loop, the variables' chunks encoded and stored concurrently)."""
+    """Finished chunks into the store at ``path``, each followed by its done marker.
+
+    Each chunk of the grid is one Zarr chunk of every variable, so a chunk's arrays are
+    encoded by the array's own codecs (their synchronous encoders: the bytes Zarr itself
+    stores, which a test holds equal) and written straight to the chunk's file, whole or not
+    at all (a ``.partial`` file renamed over it, as Zarr's local store writes): a tenth of the
+    CPU of Zarr's asynchronous write of a small chunk, most of which is its event loop. An
+    array whose codecs need that loop (sharding) is written through Zarr."""
 
     def __init__(self, path: Path, grid: Grid) -> None:
         import zarr
@@ -211,29 +268,48 @@ class RegionWriter:
         with zarr.config.set({"array.write_empty_chunks": True}):
             group = zarr.open_group(str(path), mode="r+")
             self.arrays = dict(group.arrays())
+        self.encoders = {name: ChunkEncoder.of(array) for name, array in self.arrays.items()}
+        self.folders = {path, *(path / name for name in self.arrays)}  # known to exist
 
     def write(self, items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
-        """The chunks ``items`` (index, arrays) into their regions, then their markers: one
-        write per variable when the regions tile a box (consecutive chunks), else one per
-        chunk and variable."""
-        regions = [self.grid.region(index) for index, _ in items]
-        box = tuple(
-            slice(min(r[d].start for r in regions), max(r[d].stop for r in regions))
-            for d in range(len(self.grid.shape))
-        )
-        if math.prod(s.stop - s.start for s in box) == sum(
-            math.prod(s.stop - s.start for s in r) for r in regions
-        ):
-            writes = [(box, name, _tiled(box, regions, items, name)) for name in items[0][1]]
-        else:
-            writes = [
-                (region, name, values)
-                for region, (_, arrays) in zip(regions, items, strict=True)
-                for name, values in arrays.items()
-            ]
-        self._send(writes)
+        """The chunks ``items`` (index, arrays) into their chunk files, then their markers."""
+        through_zarr: list[tuple[tuple[slice, ...], str, np.ndarray]] = []
+        for index, arrays in items:
+            region = self.grid.region(index)
+            coords = tuple(s.start // c for s, c in zip(region, self.grid.chunks, strict=True))
+            for name, values in arrays.items():
+                encoder = self.encoders[name]
+                if encoder is None:
+                    through_zarr.append((region, name, values))
+                    continue
+                whole = (0,) * (values.ndim - len(coords))  # mode / body: one chunk
+                self._put(self.path / name / encoder.key((*coords, *whole)), encoder(values))
+        if through_zarr:
+            self._send(through_zarr)
         for index, _ in items:
             mark_done(self.path, index)
+
+    def _put(self, target: Path, data: memoryview) -> None:
+        """``data`` as the file ``target``, whole or not at all: a ``.partial`` file (removed
+        by :func:`verified_done` when a kill leaves it) renamed over the target."""
+        self._folder(target.parent)
+        partial = target.parent / f"{target.name}.{os.getpid()}-{threading.get_ident()}.partial"
+        with open(partial, "wb") as handle:
+            handle.write(data)
+        os.replace(partial, target)
+
+    def _folder(self, folder: Path) -> None:
+        """Make ``folder`` and its missing parents, each once (a folder costs the file system
+        more than a file: here about 0.3 ms of CPU; ``mkdir(parents=True)`` also tries each
+        missing one before its parent)."""
+        missing = []
+        while folder not in self.folders:
+            missing.append(folder)
+            folder = folder.parent
+        for folder in reversed(missing):
+            with contextlib.suppress(FileExistsError):  # a resumed store's
+                os.mkdir(folder)
+            self.folders.add(folder)
 
     def _send(self, writes: list[tuple[tuple[slice, ...], str, np.ndarray]]) -> None:
         import asyncio
@@ -251,28 +327,59 @@ class RegionWriter:
         sync(every())
 
 
-def _tiled(
-    box: tuple[slice, ...],
-    regions: list[tuple[slice, ...]],
-    items: list[tuple[int, dict[str, np.ndarray]]],
-    name: str,
-) -> np.ndarray:
-    """Variable ``name`` of the chunks ``items`` (at ``regions``) as one array over the box
-    they tile."""
-    first = items[0][1][name]
-    whole = np.empty((*(s.stop - s.start for s in box), *first.shape[len(box) :]), first.dtype)
-    for region, (_, arrays) in zip(regions, items, strict=True):
-        place = zip(region, box, strict=True)
-        whole[tuple(slice(r.start - b.start, r.stop - b.start) for r, b in place)] = arrays[name]
-    return whole
+class ChunkEncoder:
+    """One whole chunk of a Zarr v3 array as the bytes of its file: the array's codecs applied
+    in order by their synchronous encoders; a chunk at the grid's edge is padded with the fill
+    value to the full chunk shape, as Zarr pads it. ``key``: the chunk's file, relative to the
+    array's folder, from its chunk coordinates."""
+
+    def __init__(self, array: Any) -> None:
+        from zarr.buffer import default_buffer_prototype
+
+        metadata = array.metadata
+        self.codecs = tuple(metadata.codecs)
+        self.spec = metadata.get_chunk_spec(
+            (0,) * array.ndim, array.async_array.config, default_buffer_prototype()
+        )
+        self.key = metadata.encode_chunk_key
+        self.shape = tuple(self.spec.shape)
+        self.dtype = self.spec.dtype.to_native_dtype()
+
+    @classmethod
+    def of(cls, array: Any) -> ChunkEncoder | None:
+        """The encoder of ``array``, or None when its codecs need Zarr's event loop (taken:
+        the plain bytes serialiser, then byte codecs with synchronous encoders)."""
+        from zarr.abc.codec import BytesBytesCodec, SupportsSyncCodec
+        from zarr.codecs import BytesCodec
+
+        codecs = getattr(array.metadata, "codecs", None)
+        if (
+            array.metadata.zarr_format != 3
+            or not codecs
+            or not isinstance(codecs[0], BytesCodec)
+            or not all(isinstance(c, BytesBytesCodec) for c in codecs[1:])
+            or not all(isinstance(c, SupportsSyncCodec) for c in codecs)
+        ):
+            return None
+        return cls(array)
+
+    def __call__(self, values: np.ndarray) -> memoryview:
+        values = np.asarray(values, dtype=self.dtype)
+        if values.shape != self.shape:  # a chunk at the grid's edge
+            whole = np.full(self.shape, self.spec.fill_value, dtype=self.dtype)
+            whole[tuple(slice(0, n) for n in values.shape)] = values
+            values = whole
+        data: Any = self.spec.prototype.nd_buffer.from_numpy_array(np.ascontiguousarray(values))
+        for codec in self.codecs:
+            data = codec._encode_sync(data, self.spec)
+        return memoryview(data.as_numpy_array())
 
 
 def mark_done(path: Path, index: int) -> None:
-    """The done marker of chunk ``index`` (an empty file, created atomically)."""
-    folder = path / MARKERS
-    tmp = folder / f".{index}.{os.getpid()}.tmp"
-    tmp.touch()
-    os.replace(tmp, folder / str(index))
+    """The done marker of chunk ``index``: an empty file, which exists whole or not at all
+    (markers were once made as ``.<index>.<pid>.tmp`` files renamed: :func:`verified_done`
+    still removes those a kill left)."""
+    (path / MARKERS / str(index)).touch()
 
 
 def done_chunks(path: Path) -> set[int]:

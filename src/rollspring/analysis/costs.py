@@ -29,6 +29,8 @@ __all__ = [
     "analysis_cost",
     "check_cost",
     "derivation_cost",
+    "describe_bytes",
+    "describe_duration",
 ]
 
 #: A run estimated to take longer than this (seconds) needs confirming.
@@ -73,7 +75,7 @@ class Cost:
     def describe(self) -> str:
         """One line: the time, then what it comes from (steps × bodies, runs) and the memory."""
         bodies = f"{self.bodies} bod{'y' if self.bodies == 1 else 'ies'}"
-        line = f"about {_duration(self.seconds)}: "
+        line = f"about {describe_duration(self.seconds)}: "
         if self.runs is not None:
             line += f"{_count(self.runs)} runs × "
         if self.steps is not None:
@@ -81,7 +83,7 @@ class Cost:
         else:
             line += bodies
         if self.memory:
-            line += f", {_bytes(self.memory)} of {self.holds}"
+            line += f", {describe_bytes(self.memory)} of {self.holds}"
         return line
 
     @property
@@ -98,8 +100,8 @@ def check_cost(cost: Cost, *, confirmed: bool, flag: str = "--yes") -> None:
     physical = _physical_memory()
     if physical is not None and cost.memory > physical:
         raise CostTooHigh(
-            f"{cost.what} cannot fit in memory: {_bytes(cost.memory)} of outputs, more than "
-            f"this machine's {_bytes(physical)} ({cost.describe()}); make it smaller "
+            f"{cost.what} cannot fit in memory: {describe_bytes(cost.memory)} of outputs, more "
+            f"than this machine's {describe_bytes(physical)} ({cost.describe()}); make it smaller "
             f"({cost.smaller})"
         )
     if confirmed:
@@ -107,7 +109,7 @@ def check_cost(cost: Cost, *, confirmed: bool, flag: str = "--yes") -> None:
     if cost.seconds > MAX_SECONDS or cost.memory > MAX_MEMORY:
         raise CostTooHigh(
             f"{cost.what} would take {cost.describe()}, above the bound of "
-            f"{_duration(MAX_SECONDS)} and {_bytes(MAX_MEMORY)}; make it smaller "
+            f"{describe_duration(MAX_SECONDS)} and {describe_bytes(MAX_MEMORY)}; make it smaller "
             f"({cost.smaller}) or confirm it with {flag}"
         )
 
@@ -156,7 +158,9 @@ def _count(value: float) -> str:
     return f"{value:.0f}" if value < 1e6 else f"{value:.2g}"
 
 
-def _duration(seconds: float) -> str:
+def describe_duration(seconds: float) -> str:
+    """A duration for a message: the largest unit that gives at least 2 (years, days, hours,
+    min), else seconds to two significant digits (at least 0.1 s)."""
     for size, unit in ((86400 * 365, "years"), (86400, "days"), (3600, "hours"), (60, "min")):
         if seconds >= 2 * size:
             value = seconds / size
@@ -164,7 +168,8 @@ def _duration(seconds: float) -> str:
     return f"{max(seconds, 0.1):.2g} s"
 
 
-def _bytes(value: float) -> str:
+def describe_bytes(value: float) -> str:
+    """A size for a message in binary units (TiB, GiB, MiB, KiB) to three digits, or bytes."""
     for size, unit in ((1024**4, "TiB"), (1024**3, "GiB"), (1024**2, "MiB"), (1024, "KiB")):
         if value >= size:
             return f"{value / size:.3g} {unit}"

@@ -56,10 +56,9 @@ import os
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
-from rollspring.analysis.costs import Cost, _bytes, _duration
-from rollspring.errors import FitError, SimulationError, TrackingError
+from rollspring.analysis.costs import Cost, describe_bytes, describe_duration
+from rollspring.errors import FitError, SimulationError
 from rollspring.lab.data import BodyData
 from rollspring.model import System
 
@@ -125,10 +124,10 @@ class LabCost(Cost):
 
     def describe(self) -> str:
         """One line: the time, what it comes from, the memory."""
-        line = f"{'at least' if self.lower_bound else 'about'} {_duration(self.seconds)}"
+        line = f"{'at least' if self.lower_bound else 'about'} {describe_duration(self.seconds)}"
         line += f": {self.work}" if self.work else ""
         if self.memory:
-            line += f", {_bytes(self.memory)} of {self.holds}"
+            line += f", {describe_bytes(self.memory)} of {self.holds}"
         return line
 
 
@@ -158,17 +157,10 @@ def video_header(
     file, as tracking gives."""
     import cv2
 
-    path = Path(video)
-    if not path.exists():
-        raise TrackingError(f"{video}: no such file")
-    if not path.is_file():
-        raise TrackingError(f"{video}: not a regular file")
-    if path.stat().st_size == 0:
-        raise TrackingError(f"{video}: empty file")
-    capture = cv2.VideoCapture(str(path))
+    from rollspring.lab.tracking import open_video
+
+    capture = open_video(video)
     try:
-        if not capture.isOpened():
-            raise TrackingError(f"{video}: cannot be read as a video")
         fps = _finite(capture.get(cv2.CAP_PROP_FPS))
         width = int(_finite(capture.get(cv2.CAP_PROP_FRAME_WIDTH)))
         height = int(_finite(capture.get(cv2.CAP_PROP_FRAME_HEIGHT)))

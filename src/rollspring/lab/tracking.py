@@ -81,7 +81,7 @@ __all__ = [
     "check_options",
     "draw_overlay",
     "locked_error",
-    "track",
+    "open_video",
     "track_video",
 ]
 
@@ -273,7 +273,7 @@ class TrackResult:
 # ------------------------------------------------------------------------------ reading
 
 
-def _open(video: str | os.PathLike[str]) -> Any:
+def open_video(video: str | os.PathLike[str]) -> Any:
     """The video opened with OpenCV, or a one-line :class:`TrackingError` naming the file."""
     import cv2
 
@@ -843,7 +843,7 @@ def track_video(
         if not body.rolls:
             raise TrackingError(f"bodies.{body.id}: a slider cannot be tracked (round bodies only)")
     began = clock.perf_counter()
-    capture = _open(video)
+    capture = open_video(video)
     try:
         fps = float(capture.get(cv2.CAP_PROP_FPS))
         if not (math.isfinite(fps) and fps > 0):
@@ -856,38 +856,6 @@ def track_video(
         capture.release()
     result.seconds = clock.perf_counter() - began
     return result
-
-
-def track(
-    video: str | os.PathLike[str],
-    system: System | dict[str, Any] | str | os.PathLike[str],
-    *,
-    scale: float | None = None,
-    start: float | None = None,
-    stop: float | None = None,
-    origin: float | None = None,
-    progress: Callable[[float], None] | None = None,
-) -> TrackResult:
-    """Track every body of ``system`` (a :class:`~rollspring.model.System`, its JSON form, a
-    file or a preset name) in ``video``: :func:`track_video`, whose result has the arrays
-    ``t``, ``x``, ``phi``, ``.to_csv()``, ``.summary()`` and a notebook view.
-
-    Example::
-
-        result = rollspring.track("hoop-cylinder.mp4", "hoop-cylinder")
-        result.x[:, 0], result.phi[:, 0], result.summary()["roll_deg"]
-    """
-    from rollspring.model import as_system
-
-    return track_video(
-        video,
-        as_system(system),
-        scale=scale,
-        start=start,
-        stop=stop,
-        origin=origin,
-        progress=progress,
-    )
 
 
 def _frame_time(capture: Any, index: int, fps: float, last: float | None) -> float:

@@ -136,3 +136,21 @@ def test_a_store_with_a_folder_a_chunk_is_resumed_in_its_own_layout(system, tmp_
     assert rerun.is_file() and not list(old.glob("*/c.*"))
     same(resumed, sweep(system, vary, 1.0, chunk=4, out=tmp_path / "new.zarr").load())
     assert (tmp_path / "new.zarr" / "period_measured" / "c.1.0").is_file()
+
+
+def test_a_replace_removes_what_a_killed_replace_left(system, tmp_path):
+    """A process killed while removing a replaced store leaves its hidden sibling
+    ``.<name>.<pid>-<thread>.discarded``; the next replace of the same store removes it (its
+    process is gone), and leaves a live process's alone."""
+    out = tmp_path / "s.zarr"
+    vary = {"springs.0.stiffness": [50.0, 101.0]}
+    sweep(system, vary, 0.5, out=out)
+    gone = tmp_path / f".s.zarr.{2**22 + 12345}-7.discarded"  # above Linux's largest pid
+    live = tmp_path / f".s.zarr.{os.getpid()}-1.discarded"
+    for left in (gone, live):
+        (left / "springs.0.stiffness").mkdir(parents=True)
+        (left / "springs.0.stiffness" / "c.0").write_bytes(b"\0" * 8)
+    again = sweep(system, vary, 0.5, out=out, overwrite=True)
+    assert again.sizes["springs.0.stiffness"] == 2
+    assert not gone.exists() and live.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["s.zarr", live.name])

@@ -126,7 +126,8 @@ def discard(path: Path) -> threading.Thread | None:
     """Free ``path`` at once and remove what was there in a thread (joined by the caller): a
     folder is renamed to a hidden sibling first (removing a store's folders waits on the disk,
     up to 0.3 s for 65 536 runs here, while the first chunks step). A kill before the removal
-    ends leaves that sibling, ``.<name>.<pid>.discarded``."""
+    ends leaves that sibling, ``.<name>.<pid>-<thread>.discarded``; the next discard of the
+    same path removes it (:func:`_stale_discarded`)."""
     if not path.is_dir() or path.is_symlink():
         remove(path)
         return None
@@ -137,14 +138,40 @@ def discard(path: Path) -> threading.Thread | None:
         remove(path)
         return None
     thread = threading.Thread(
-        target=shutil.rmtree,
-        args=(aside,),
-        kwargs={"ignore_errors": True},
+        target=_remove_discarded,
+        args=(aside, _stale_discarded(path)),
         name="rollspring-sweep-discard",
         daemon=True,
     )
     thread.start()
     return thread
+
+
+def _remove_discarded(aside: Path, stale: list[Path]) -> None:
+    for folder in (aside, *stale):
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _stale_discarded(path: Path) -> list[Path]:
+    """Earlier discards of ``path`` that a killed process left (``.<name>.<pid>-<thread>
+    .discarded`` siblings whose process is gone): removed with this one."""
+    stale = []
+    for sibling in path.parent.glob(f".{path.name}.*.discarded"):
+        pid = sibling.name[len(path.name) + 2 :].split("-", 1)[0]
+        if pid.isdigit() and not _alive(int(pid)):
+            stale.append(sibling)
+    return stale
+
+
+def _alive(pid: int) -> bool:
+    """Whether a process ``pid`` exists (signal 0: nothing is sent)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # it exists, owned by someone else
+        return True
+    return True
 
 
 def write_template(

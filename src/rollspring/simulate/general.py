@@ -83,41 +83,32 @@ class GeneralSegments(RunState):
             kernels.slipping_derivatives(model, y, slipping, sign, spin, damped, out)
             return out
 
-        # SciPy calls every event function with the same state array after a step: observed
-        # once for all of them (O(n) per step, not O(n) per body)
-        last: list[Any] = [None, None]
-
-        def contacts(y: FloatArray) -> tuple[FloatArray, FloatArray]:
-            if last[0] is not y:
-                friction, normal, *_ = self.observe(
-                    y[None, :], slipping[None], sign[None], spin[None]
-                )
-                last[:] = [y, (friction[0], normal[0])]
-            result: tuple[FloatArray, FloatArray] = last[1]
-            return result
-
-        def slip_margin(y: FloatArray, i: int) -> float:
-            friction, normal = contacts(y)
-            return float(mu_s[i] * normal[i] - abs(friction[i]))
-
-        events: list[Any] = []  # solve_ivp's events: functions with .terminal, .direction
-        labels = []
+        labels = []  # the events: (kind, body), their functions in :meth:`_event_values`
         for i in range(n):
             if self.rolls[i] and not slipping[i] and np.isfinite(mu_s[i]):
-                events.append(lambda _t, y, i=i: slip_margin(y, i))
                 labels.append(("slip", i))
             if self.rolls[i] and slipping[i]:
-                events.append(lambda _t, y, i=i: y[2 * n + i] - a.radius[i] * y[3 * n + i])
                 labels.append(("stick", i))
-            events.append(lambda _t, y, i=i: contacts(y)[1][i])
             labels.append(("liftoff", i))
             if self.rolls[i] and a.rolling_resistance[i] > 0:
-                if spin[i] != 0.0:  # turning: the rotation stops (M21)
-                    events.append(lambda _t, y, i=i: spin[i] * y[3 * n + i])
-                    labels.append(("turn", i))
-                else:  # held at rest: the drive exceeds what the resistance holds (M22)
-                    events.append(lambda _t, y, i=i: self._resistance_margin(y, slipping, sign, i))
-                    labels.append(("release", i))
+                # turning: the rotation stops (M21); held at rest: the drive exceeds what the
+                # resistance holds (M22)
+                labels.append(("turn" if spin[i] != 0.0 else "release", i))
+
+        # SciPy calls every event function with the same state array after a step: all of them
+        # evaluated once for it (O(n) per step, not O(n) per body), by the function the search
+        # inside the steps uses too
+        last: list[Any] = [None, None]
+
+        def event_values(y: FloatArray) -> FloatArray:
+            if last[0] is not y:
+                last[:] = [y, self._event_values(y[None, :], labels, slipping, sign, spin)[0]]
+            values: FloatArray = last[1]
+            return values
+
+        events: list[Any] = [
+            lambda _t, y, j=j: float(event_values(y)[j]) for j in range(len(labels))
+        ]
         direction = np.array([-sign[i] if kind == "stick" else -1.0 for kind, i in labels])
         # A function exactly at zero where the segment starts (a rotation set at rest and
         # turning from this instant, a slip velocity made 0 where a slip reverses) is taken as
@@ -277,13 +268,6 @@ class GeneralSegments(RunState):
             self.packed, state, slipping, sign, self.plan.damped, drive, limit
         )
         return drive, limit
-
-    def _resistance_margin(
-        self, state: FloatArray, slipping: BoolArray, sign: FloatArray, i: int
-    ) -> float:
-        """:math:`C_{rr} N R - |D|` of body ``i``: it stays at rest while this is >= 0 (M22)."""
-        drive, limit = self._resistance_drive(state, slipping, sign)
-        return float(limit[i] - abs(drive[i]))
 
     def _resistance_violated(
         self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray

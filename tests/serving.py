@@ -99,6 +99,10 @@ class Server:
             assert time.monotonic() < deadline, "the server did not answer within 180 s"
             time.sleep(0.2)
 
+    def post(self, path: str, **options: Any) -> requests.Response:
+        """``POST`` to ``path`` (``/api/...``) on this server over loopback (TestClient's call)."""
+        return requests.post(self.url.rstrip("/") + path, timeout=600, **options)
+
     def stop(self) -> str:
         """Stop it as Ctrl-C does; what it printed on stderr."""
         self.process.send_signal(signal.SIGINT)

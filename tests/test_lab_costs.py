@@ -15,7 +15,6 @@ from typing import Any
 
 import numpy as np
 import pytest
-from fastapi.testclient import TestClient
 from typer.testing import CliRunner
 
 import rollspring
@@ -387,10 +386,16 @@ def test_the_web_fit_job_refuses_beyond_the_budget() -> None:
 
 
 def test_the_web_answers_503_before_the_fit_starts() -> None:
-    with TestClient(rollspring.create_app(workers=1, budget=3.0)) as client:
-        answer = client.post("/api/fit", json=_resisted_request())
-        assert answer.status_code == 503, answer.text
-        detail = answer.json()["detail"]
-        assert detail.startswith("the fit would take about ")
-        assert "beyond the server's time budget of 3 s" in detail
-        assert "simulations of 9.98 s" in detail
+    """``rollspring serve`` started from its command line on loopback, a budget of 3 s."""
+    from tests.serving import Server
+
+    server = Server("--workers", "1", "--budget", "3")
+    try:
+        answer = server.post("/api/fit", json=_resisted_request())
+    finally:
+        server.stop()
+    assert answer.status_code == 503, answer.text
+    detail = answer.json()["detail"]
+    assert detail.startswith("the fit would take about ")
+    assert "beyond the server's time budget of 3 s" in detail
+    assert "simulations of 9.98 s" in detail

@@ -1,4 +1,6 @@
-"""The lab's endpoints (docs/web-api.md) through FastAPI's TestClient: ``POST /api/lab/data``
+"""The lab's endpoints (docs/web-api.md) on ``rollspring serve`` started from its command line on
+loopback (the budget test in-process, where the pool's one worker can be stopped):
+``POST /api/lab/data``
 reads a measured table sent as text as :mod:`rollspring.lab.data` does, ``POST /api/fit`` gives
 what :func:`rollspring.fit` gives on the same file and start, and every refusal — a bad file, a
 PATH that is no number of the system, fewer points than fitted parameters — is a 422 with the
@@ -24,6 +26,7 @@ from rollspring.lab.synthetic import exact_motion
 from rollspring.model import load_system, system_from_dict, system_to_json
 from rollspring.model.files import system_from_text
 from rollspring.web import create_app
+from tests.serving import Server
 
 #: The truth the data are made from: the paper's hoop and cylinder, its spring damped.
 STIFFNESS = 100.0
@@ -61,9 +64,13 @@ def csv_text(t: np.ndarray, x: np.ndarray) -> str:
 
 
 @pytest.fixture(scope="module")
-def client() -> Iterator[TestClient]:
-    with TestClient(create_app(workers=1, budget=600.0)) as test_client:
-        yield test_client
+def client() -> Iterator[Server]:
+    """``rollspring serve`` started from its command line on loopback, one worker."""
+    running = Server("--workers", "1", "--budget", "600")
+    try:
+        yield running
+    finally:
+        running.stop()
 
 
 def refusal(answer: Any) -> tuple[list[Any], str]:
@@ -73,7 +80,7 @@ def refusal(answer: Any) -> tuple[list[Any], str]:
     return body["detail"][0]["loc"], body["message"]
 
 
-def test_the_data_endpoint_reads_the_table_as_the_reader_does(client: TestClient) -> None:
+def test_the_data_endpoint_reads_the_table_as_the_reader_does(client: Server) -> None:
     t, x = recording()
     text = csv_text(t, x)
     answer = client.post(
@@ -90,9 +97,7 @@ def test_the_data_endpoint_reads_the_table_as_the_reader_does(client: TestClient
     assert body["free"] == ["springs.0.stiffness", "springs.0.damping"]
 
 
-def test_the_fit_endpoint_gives_what_rollspring_fit_gives(
-    client: TestClient, tmp_path: Path
-) -> None:
+def test_the_fit_endpoint_gives_what_rollspring_fit_gives(client: Server, tmp_path: Path) -> None:
     t, x = recording()
     text = csv_text(t, x)
     answer = client.post(
@@ -135,7 +140,7 @@ def test_the_fit_endpoint_gives_what_rollspring_fit_gives(
     assert body["data"]["bodies"]["hoop"]["x"] == x[:, 0].tolist()
 
 
-def test_a_bad_file_is_a_422_with_the_readers_one_line_message(client: TestClient) -> None:
+def test_a_bad_file_is_a_422_with_the_readers_one_line_message(client: Server) -> None:
     for text in ("x,y\n1,2\n", "t,x_hoop\n0,0\n0,1\n", "t,x_wheel\n0,0\n1,1\n", ""):
         with pytest.raises(DataError) as raised:
             match_bodies(parse_data(text, "bad.csv"), load_system("hoop-cylinder"))
@@ -151,7 +156,7 @@ def test_a_bad_file_is_a_422_with_the_readers_one_line_message(client: TestClien
             assert message.startswith("bad.csv: ")
 
 
-def test_an_unknown_path_is_a_422_naming_it(client: TestClient) -> None:
+def test_an_unknown_path_is_a_422_naming_it(client: Server) -> None:
     t, x = recording()
     answer = client.post(
         "/api/fit",
@@ -172,7 +177,7 @@ def test_an_unknown_path_is_a_422_naming_it(client: TestClient) -> None:
     assert message == str(raised.value).replace("--free ", "free ", 1)
 
 
-def test_too_few_points_is_a_422_naming_the_file(client: TestClient) -> None:
+def test_too_few_points_is_a_422_naming_the_file(client: Server) -> None:
     t, x = recording()
     text = csv_text(t[:3], x[:3])  # 6 positions, 6 fitted parameters (k, c, 2 x0, 2 v0)
     answer = client.post(
@@ -183,7 +188,7 @@ def test_too_few_points_is_a_422_naming_the_file(client: TestClient) -> None:
     assert message.startswith("short.csv: 6 measured positions, not more than the 6 fitted")
 
 
-def test_the_request_is_checked_before_any_work(client: TestClient) -> None:
+def test_the_request_is_checked_before_any_work(client: Server) -> None:
     t, x = recording()
     system = rough_start()
     system["bodies"][0]["mass"] = -1.0
@@ -199,7 +204,7 @@ def test_the_request_is_checked_before_any_work(client: TestClient) -> None:
     assert loc == ["body", "fix_initial"]
 
 
-def test_a_tracker_file_is_read_and_its_tracks_mapped_to_the_bodies(client: TestClient) -> None:
+def test_a_tracker_file_is_read_and_its_tracks_mapped_to_the_bodies(client: Server) -> None:
     t, x = recording()
     lines = ["#multi:", "\tmass A\t\tmass B\t", "t\tx\ty\tx\ty"]
     lines += [
@@ -238,7 +243,7 @@ def test_a_fit_past_the_time_budget_is_a_503() -> None:
         assert "time budget of 1 s" in stuck.json()["detail"]
 
 
-def test_a_track_mapped_to_null_or_unmatched_is_left_out(client: TestClient) -> None:
+def test_a_track_mapped_to_null_or_unmatched_is_left_out(client: Server) -> None:
     t, x = recording()
     lines = ["#multi:", "\tmass A\t\tmass B\t", "t\tx\ty\tx\ty"]
     lines += [

@@ -271,6 +271,37 @@ class Cluster:
             log.close()
 
 
+def file_system_cost(folder: Path, count: int = 200) -> dict[str, float]:
+    """The CPU (this process's, s) the file system takes to make a folder, and a 64 KiB file
+    as a store's chunk is written (a ``.partial`` file renamed over its name), in ``folder``:
+    the most of what a store costs beyond encoding. Median of ``count`` each."""
+    data = bytes(65536)
+    probe = folder / "file-system-probe"
+    probe.mkdir()
+    folders, files = [], []
+    try:
+        for i in range(count):
+            began = time.process_time()
+            (probe / f"d{i}").mkdir()
+            folders.append(time.process_time() - began)
+            began = time.process_time()
+            partial = probe / f"f{i}.partial"
+            with open(partial, "wb") as handle:
+                handle.write(data)
+            os.replace(partial, probe / f"f{i}")
+            files.append(time.process_time() - began)
+    finally:
+        shutil.rmtree(probe, ignore_errors=True)
+    return {"folder_s": float(np.median(folders)), "file_s": float(np.median(files))}
+
+
+def describe_file_system(cost: dict[str, float], folder: Path) -> str:
+    return (
+        f"stores written in {folder}: the file system takes {cost['file_s'] * 1e3:.3f} ms of CPU "
+        f"a file, {cost['folder_s'] * 1e3:.3f} ms a folder (median of 200)"
+    )
+
+
 # -- the parts ---------------------------------------------------------------------------------
 
 
@@ -563,13 +594,22 @@ def main() -> None:
     parser.add_argument("--memory-duration", type=float, default=1.0)
     parser.add_argument("--parts", default="abc", help="which parts to run (default abc)")
     parser.add_argument("--json", default=str(ROOT / "build" / "bench" / "sweep.json"))
+    parser.add_argument(
+        "--scratch",
+        default=str(ROOT / "build" / "bench"),
+        help="folder for the stores and the cluster's files (default build/bench: a store "
+        "written where a user works, not the system's temporary folder)",
+    )
     args = parser.parse_args()
 
     print(machine_note())
     system = rollspring.load_system(SYSTEM)
     report: dict[str, Any] = {"machine": machine_note(), "system": SYSTEM, "args": vars(args)}
-    with tempfile.TemporaryDirectory(prefix="bench-sweep-") as tmp:
+    Path(args.scratch).mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix="bench-sweep-", dir=args.scratch) as tmp:
         scratch = Path(tmp)
+        report["file_system"] = file_system_cost(scratch)
+        print(describe_file_system(report["file_system"], scratch))
         if "a" in args.parts:
             report["in_process"] = part_a(system, args.runs, args.duration, args.repeat, scratch)
             show_a(report["in_process"], args.repeat)

@@ -14,6 +14,7 @@ tasks on a Dask cluster, a bounded number in flight — writing each into its re
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 import numbers
@@ -106,6 +107,7 @@ class SweepProgress:
 ENGINE_REVISION = 2
 
 
+@functools.lru_cache(maxsize=1)
 def _version() -> str:
     try:
         from importlib.metadata import version
@@ -368,13 +370,14 @@ def sweep(
             first chunks step."""
             if path is None or writer:
                 return
+            arrays = None  # read back from the store resumed
             if stored is None:
                 if replace:
                     removal = discard(path)
                     if removal is not None:
                         removals.append(removal)
-                write_template(path, grid, ids, len(ids), chosen, attrs)
-            writer.append(RegionWriter(path, grid))
+                arrays = write_template(path, grid, ids, len(ids), chosen, attrs)
+            writer.append(RegionWriter(path, grid, arrays))
             import xarray as xr
 
             opened.append(xr.open_zarr(str(path)))

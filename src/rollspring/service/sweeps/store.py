@@ -1,7 +1,8 @@
 """The sweep's Zarr v3 store: the template, chunk regions, done markers, the fingerprint.
 
 The template (every variable's metadata, the coordinates and the attrs, consolidated) is made
-by Zarr in memory and written as files, the group's document last (:func:`write_template`);
+from Zarr's metadata classes, without its event loop, and written as files, the group's
+document last (:func:`write_template`);
 each finished chunk is then written as one Zarr chunk of every variable, encoded by the
 array's own codecs and stored as its file whole or not at all (:class:`RegionWriter`; the
 regions are the Zarr chunks, so concurrent writers never share a file), and followed by its
@@ -181,51 +182,52 @@ def write_template(
     n_modes: int,
     metrics: tuple[str, ...],
     attrs: dict[str, Any],
-) -> None:
-    """Every variable's metadata, the coordinates and the attrs (no data), made with Zarr
-    directly as xarray's ``Dataset.to_zarr(compute=False)`` makes them (the same arrays,
-    ``dimension_names``, attributes with xarray's ``_FillValue`` of a float, consolidated
-    metadata), in a tenth of its time: it is written while the first chunks step.
+) -> dict[str, Any]:
+    """Every variable's metadata, the coordinates and the attrs (no data), as xarray's
+    ``Dataset.to_zarr(compute=False)`` makes them (the same arrays, ``dimension_names``,
+    attributes with xarray's ``_FillValue`` of a float, consolidated metadata; a test holds the
+    documents equal), in a small part of its time: it is written while the first chunks step.
+    Returns each array's Zarr metadata (``zarr.core.metadata.ArrayV3Metadata``), from which
+    :class:`RegionWriter` encodes the chunks.
 
-    Zarr makes the documents in a memory store (its file store costs twice the CPU, a round
-    trip to its event loop and a thread per file); they are then written as files, the group's
-    own ``zarr.json`` last: a folder that a kill left without it is refused as not a store,
-    never resumed as a sweep missing variables. An earlier store at ``path`` is replaced."""
-    import zarr
-    from zarr.storage import MemoryStore
-
-    documents: dict[str, Any] = {}
+    Each array's document is Zarr's own: its data type, fill value and codecs are those Zarr
+    gives a new array of that data type and fill value (:func:`_defaults`, asked once a
+    process), validated and put in order by Zarr's metadata class, written as compact JSON;
+    nothing goes through Zarr's event loop (a store's asynchronous calls cost ten times the
+    CPU here). The coordinates'
+    chunks are encoded by their arrays' codecs. The files are written with the group's own
+    ``zarr.json`` last: a folder that a kill left without it is refused as not a store, never
+    resumed as a sweep missing variables. An earlier store at ``path`` is replaced."""
+    coordinates: list[tuple[str, np.ndarray, dict[str, Any]]] = [
+        (p, np.asarray(values, dtype=np.float64), {"units": unit_of(p), "long_name": p})
+        for p, values in zip(grid.paths, grid.values, strict=True)
+    ]
+    coordinates.append(
+        (
+            "mode",
+            np.arange(n_modes, dtype=np.int64),
+            {"units": "1", "long_name": "mode, sorted by omega"},
+        )
+    )
+    coordinates.append(("body", np.array(ids, dtype=str), {"units": "1", "long_name": "body id"}))
+    arrays: dict[str, Any] = {}
+    files: dict[str, bytes] = {}
     with warnings.catch_warnings():
-        # the body ids' fixed-length UTF-32 and consolidated metadata (fast opening) are not
-        # yet in the Zarr v3 specification (xarray writes them so)
+        # the body ids' fixed-length UTF-32 is not yet in the Zarr v3 specification (xarray
+        # writes it so)
         warnings.simplefilter("ignore")
-        memory = MemoryStore(documents)
-        group = zarr.open_group(memory, mode="w", zarr_format=3, attributes=attrs)
-        coordinates: list[tuple[str, np.ndarray, dict[str, Any]]] = [
-            (p, np.asarray(values, dtype=np.float64), {"units": unit_of(p), "long_name": p})
-            for p, values in zip(grid.paths, grid.values, strict=True)
-        ]
-        coordinates.append(
-            (
-                "mode",
-                np.arange(n_modes, dtype=np.int64),
-                {"units": "1", "long_name": "mode, sorted by omega"},
-            )
-        )
-        coordinates.append(
-            ("body", np.array(ids, dtype=str), {"units": "1", "long_name": "body id"})
-        )
         for name, values, coordinate_attrs in coordinates:
-            array = group.create_array(
-                name,
-                shape=values.shape,
-                dtype=values.dtype,
-                chunks=values.shape,
-                fill_value=_fill(values.dtype),
-                attributes=_with_fill(coordinate_attrs, values.dtype),
-                dimension_names=[name],
+            arrays[name] = _array_metadata(
+                values.dtype,
+                values.shape,
+                values.shape,
+                _fill(values.dtype),
+                _with_fill(coordinate_attrs, values.dtype),
+                [name],
+                None,
             )
-            array[...] = values
+            encoder = ChunkEncoder(arrays[name])
+            files[f"{name}/{encoder.key((0,) * values.ndim)}"] = bytes(encoder(values))
         for name in metrics:
             extra, units, long_name = VARIABLES[name]
             dims = (*grid.paths, *([extra] if extra else []))
@@ -239,25 +241,83 @@ def write_template(
                 var_attrs["flag_values"] = list(FLAG_VALUES)
                 var_attrs["flag_meanings"] = FLAG_MEANINGS
             fill = -1 if name == "first_slip_body" else (5 if name == "status" else _fill(dtype))
-            group.create_array(
-                name,
-                shape=shape,
-                dtype=dtype,
-                chunks=chunks,
-                fill_value=fill,
-                attributes=_with_fill(var_attrs, dtype),
-                dimension_names=list(dims),
-                chunk_key_encoding=CHUNK_KEYS,
+            arrays[name] = _array_metadata(
+                dtype, shape, chunks, fill, _with_fill(var_attrs, dtype), list(dims), CHUNK_KEYS
             )
-        zarr.consolidate_metadata(memory)
+        consolidated = {name: arrays[name].to_dict() for name in sorted(arrays)}
+    # compact JSON (Zarr indents its documents, which takes Python's slow encoder; readers
+    # parse either)
+    documents = {
+        f"{name}/zarr.json": json.dumps(document, allow_nan=True).encode()
+        for name, document in consolidated.items()
+    }
+    group = {
+        "attributes": attrs,
+        "zarr_format": 3,
+        "consolidated_metadata": {
+            "kind": "inline",
+            "must_understand": False,
+            "metadata": consolidated,
+        },
+        "node_type": "group",
+    }
     if path.exists() or path.is_symlink():
         remove(path)
     (path / MARKERS).mkdir(parents=True)
-    root = "zarr.json"
-    for key in sorted(documents, key=lambda k: k == root):  # the group's document last
+    for key, data in {**documents, **files}.items():
         target = path / key
         target.parent.mkdir(parents=True, exist_ok=True)
-        target.write_bytes(documents[key].to_bytes())
+        target.write_bytes(data)
+    (path / "zarr.json").write_bytes(json.dumps(group, allow_nan=True).encode())  # last
+    return arrays
+
+
+_DEFAULTS: dict[tuple[str, str], dict[str, Any]] = {}
+
+
+def _defaults(dtype: str, fill: Any) -> dict[str, Any]:
+    """``data_type``, ``fill_value`` and ``codecs`` of the document Zarr writes for a new
+    array of ``dtype`` (a NumPy type string) with ``fill`` (its default codecs: asked of Zarr
+    once a process, in a memory store)."""
+    key = (dtype, repr(fill))
+    if key not in _DEFAULTS:
+        import zarr
+        from zarr.storage import MemoryStore
+
+        array = zarr.create_array(
+            MemoryStore(), shape=(1,), dtype=np.dtype(dtype), fill_value=fill, zarr_format=3
+        )
+        document = array.metadata.to_dict()
+        _DEFAULTS[key] = {name: document[name] for name in ("data_type", "fill_value", "codecs")}
+    return _DEFAULTS[key]
+
+
+def _array_metadata(
+    dtype: np.dtype[Any],
+    shape: tuple[int, ...],
+    chunks: tuple[int, ...],
+    fill: Any,
+    attributes: dict[str, Any],
+    dims: list[str],
+    chunk_keys: dict[str, Any] | None,
+) -> Any:
+    """The Zarr v3 metadata of an array (``ArrayV3Metadata``, validated by Zarr)."""
+    from zarr.core.metadata import ArrayV3Metadata
+
+    separator = "/" if chunk_keys is None else chunk_keys["separator"]
+    return ArrayV3Metadata.from_dict(
+        {
+            "zarr_format": 3,
+            "node_type": "array",
+            "shape": list(shape),
+            "chunk_grid": {"name": "regular", "configuration": {"chunk_shape": list(chunks)}},
+            "chunk_key_encoding": {"name": "default", "configuration": {"separator": separator}},
+            **_defaults(dtype.str, fill),
+            "attributes": attributes,
+            "dimension_names": dims,
+            "storage_transformers": [],
+        }
+    )
 
 
 def _fill(dtype: np.dtype[Any]) -> Any:
@@ -286,17 +346,22 @@ class RegionWriter:
     CPU of Zarr's asynchronous write of a small chunk, most of which is its event loop. An
     array whose codecs need that loop (sharding) is written through Zarr."""
 
-    def __init__(self, path: Path, grid: Grid) -> None:
-        import zarr
-
+    def __init__(self, path: Path, grid: Grid, arrays: dict[str, Any] | None = None) -> None:
+        """``arrays``: every array's Zarr metadata (what :func:`write_template` returns), else
+        read from the store's documents."""
         self.path, self.grid = path, grid
-        # every chunk on disk, even one equal to the fill value (checkable on resume): an
-        # array takes the setting when it is opened
-        with zarr.config.set({"array.write_empty_chunks": True}):
-            group = zarr.open_group(str(path), mode="r+")
-            self.arrays = dict(group.arrays())
-        self.encoders = {name: ChunkEncoder.of(array) for name, array in self.arrays.items()}
-        self.folders = {path, *(path / name for name in self.arrays)}  # known to exist
+        metadata = arrays if arrays is not None else _read_metadata(path)
+        self.encoders = {name: ChunkEncoder.of(m) for name, m in metadata.items()}
+        self.arrays: dict[str, Any] = {}  # Zarr's arrays, opened for those it must write
+        if any(encoder is None for encoder in self.encoders.values()):
+            import zarr
+
+            # every chunk on disk, even one equal to the fill value (checkable on resume): an
+            # array takes the setting when it is opened
+            with zarr.config.set({"array.write_empty_chunks": True}):
+                group = zarr.open_group(str(path), mode="r+")
+                self.arrays = dict(group.arrays())
+        self.folders = {path, *(path / name for name in metadata)}  # known to exist
 
     def write(self, items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
         """The chunks ``items`` (index, arrays) into their chunk files, then their markers."""
@@ -360,35 +425,36 @@ class ChunkEncoder:
     value to the full chunk shape, as Zarr pads it. ``key``: the chunk's file, relative to the
     array's folder, from its chunk coordinates."""
 
-    def __init__(self, array: Any) -> None:
+    def __init__(self, metadata: Any) -> None:
         from zarr.buffer import default_buffer_prototype
+        from zarr.core.array_spec import parse_array_config
 
-        metadata = array.metadata
         self.codecs = tuple(metadata.codecs)
         self.spec = metadata.get_chunk_spec(
-            (0,) * array.ndim, array.async_array.config, default_buffer_prototype()
+            (0,) * metadata.ndim, parse_array_config(None), default_buffer_prototype()
         )
         self.key = metadata.encode_chunk_key
         self.shape = tuple(self.spec.shape)
         self.dtype = self.spec.dtype.to_native_dtype()
 
     @classmethod
-    def of(cls, array: Any) -> ChunkEncoder | None:
-        """The encoder of ``array``, or None when its codecs need Zarr's event loop (taken:
-        the plain bytes serialiser, then byte codecs with synchronous encoders)."""
+    def of(cls, metadata: Any) -> ChunkEncoder | None:
+        """The encoder of an array of Zarr ``metadata``, or None when its codecs need Zarr's
+        event loop (taken: the plain bytes serialiser, then byte codecs with synchronous
+        encoders)."""
         from zarr.abc.codec import BytesBytesCodec, SupportsSyncCodec
         from zarr.codecs import BytesCodec
 
-        codecs = getattr(array.metadata, "codecs", None)
+        codecs = getattr(metadata, "codecs", None)
         if (
-            array.metadata.zarr_format != 3
+            metadata.zarr_format != 3
             or not codecs
             or not isinstance(codecs[0], BytesCodec)
             or not all(isinstance(c, BytesBytesCodec) for c in codecs[1:])
             or not all(isinstance(c, SupportsSyncCodec) for c in codecs)
         ):
             return None
-        return cls(array)
+        return cls(metadata)
 
     def __call__(self, values: np.ndarray) -> memoryview:
         values = np.asarray(values, dtype=self.dtype)
@@ -400,6 +466,30 @@ class ChunkEncoder:
         for codec in self.codecs:
             data = codec._encode_sync(data, self.spec)
         return memoryview(data.as_numpy_array())
+
+
+def _read_metadata(path: Path) -> dict[str, Any]:
+    """The Zarr metadata of every array of the store at ``path``, read from its documents
+    (the group's consolidated metadata, else each array's ``zarr.json``) without Zarr's event
+    loop; a version 2 array's is Zarr's own (its writes then go through Zarr)."""
+    from zarr.core.metadata import ArrayV2Metadata, ArrayV3Metadata
+
+    group = json.loads((path / "zarr.json").read_text())
+    consolidated = (group.get("consolidated_metadata") or {}).get("metadata")
+    if consolidated is None:
+        names = [p.parent.name for p in path.glob("*/zarr.json")]
+        consolidated = {n: json.loads((path / n / "zarr.json").read_text()) for n in names}
+    out: dict[str, Any] = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the body ids' type (see write_template)
+        for name, document in consolidated.items():
+            if document.get("node_type") != "array":
+                continue
+            if document.get("zarr_format") == 3:
+                out[name] = ArrayV3Metadata.from_dict(dict(document))
+            else:  # pragma: no cover - a sweep store is Zarr v3
+                out[name] = ArrayV2Metadata.from_dict(dict(document))
+    return out
 
 
 def mark_done(path: Path, index: int) -> None:

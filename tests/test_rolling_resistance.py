@@ -931,3 +931,31 @@ def test_a_mirror_symmetric_pair_slips_and_sticks_both_bodies_at_the_same_instan
     assert not (rolling & beyond).any()
     assert tr.summary["energy_error"] < 1e-8
     assert np.max(np.diff(tr.energy)) <= 1e-8 * tr.summary["energy"]
+
+
+def test_a_run_whose_segments_stop_advancing_is_stopped_with_a_message(monkeypatch):
+    """The safety net for an event sequence that repeats at one instant: segments that keep
+    ending where they start (here forced: every segment after the first event hands back its
+    own start) stop the run with a status and a message naming the instant and the events,
+    in a bounded number of segments, never a hang."""
+    from rollspring.simulate.general import GeneralSegments
+
+    original = GeneralSegments._general_segment
+    calls: list[float] = []
+
+    def stuck(self, t, state, slipping, sign):
+        calls.append(t)
+        if self.events:  # after the first event: nothing advances any more
+            return t, state, slipping, sign
+        return original(self, t, state, slipping, sign)
+
+    monkeypatch.setattr(GeneralSegments, "_general_segment", stuck)
+    tr = simulate(lone_body("sphere", 1.5, 0.02), 20.0, rtol=1e-10)
+    [rest] = [e for e in tr.events if e["kind"] == "rest"]
+    assert tr.status == "nonfinite"
+    assert f"the events at t = {rest['time']:.17g} s repeat without the time advancing" in (
+        tr.message
+    )
+    assert "rest of wheel" in tr.message
+    assert len(calls) == 1 + (16 + 8 * 1) + 1  # one real segment, then one beyond 16 + 8 n
+    assert np.all(np.isfinite(tr.x[tr.t <= rest["time"]]))

@@ -200,6 +200,9 @@ class _Run(RollingSegments, GeneralSegments):
         self.release_forces = (observed.friction[0], observed.normal[0])
         self.e0 = observed.potential[0] + observed.kinetic[0]
         t = 0.0
+        # segments of no length in a row before a run is stopped: each settles one body's
+        # event (a rest, turn, release, stick, slip), so a few a body are all a run can need
+        max_stalled = 16 + 8 * self.n
         # a body already beyond its friction limit at release slips from the start
         verdict = self._contact_verdict(state, slipping, observed)
         if verdict is not None:
@@ -208,7 +211,9 @@ class _Run(RollingSegments, GeneralSegments):
             done = self._event(kind, body, 0.0, state, slipping, sign)
             if done:
                 return
+        stalled = 0  # segments in a row that ended where they started
         while t < self.grid[-1] and self.status == RunStatus.FINISHED:
+            began = t
             if not (
                 slipping.any() or self.plan.damped or a.resisted or self.plan.scheme == "dop853"
             ):
@@ -219,4 +224,17 @@ class _Run(RollingSegments, GeneralSegments):
             else:
                 self._flush_pending()
                 t, state, slipping, sign = self._general_segment(t, state, slipping, sign)
+            stalled = stalled + 1 if t <= began else 0
+            if stalled > max_stalled:
+                # each segment of no length settles a body's event for good, so a run that
+                # keeps making them repeats its events: it is stopped, never left to hang
+                recent = ", ".join(
+                    f"{e['kind']} of {e['body']}" for e in self.events[-4:] if "body" in e
+                )
+                self.status = RunStatus.NONFINITE
+                self.message = (
+                    f"the events at t = {t:.17g} s repeat without the time advancing "
+                    f"({stalled} segments of no length; the last: {recent or 'none'}): the "
+                    "run cannot go on past them; a smaller rtol may resolve them"
+                )
         self._flush_pending()

@@ -320,6 +320,69 @@ def test_the_posterior_agrees_with_the_standard_errors() -> None:
     assert 0.2 < posterior["acceptance"] < 0.9
 
 
+def _interval_widths(posterior: dict, result, names) -> list[float]:
+    """Each credible interval's width over the width the fit's standard error gives it."""
+    intervals = posterior["credible_intervals"]
+    return [
+        (intervals[name]["high"] - intervals[name]["low"])
+        / (2 * 1.96 * result.parameters[name].stderr)
+        for name in names
+    ]
+
+
+def test_the_posterior_of_correlated_errors_is_as_wide_as_the_standard_errors() -> None:
+    """Tracking errors that last several frames (AR(1), rho = 0.7, as a blurred or textured
+    outline makes them): the fit widens its standard errors for them, and the posterior's
+    likelihood is that AR(1) process's, so its 95 % intervals agree with them. With white
+    errors of the same size the intervals would be about sqrt((1 - rho)/(1 + rho)) = 0.42 of
+    that: too narrow."""
+    import dataclasses
+
+    t, x, _ = recording(DAMPED, duration=3.0, fps=30, noise=0.0)
+    rng = np.random.default_rng(5)
+    rho, sigma = 0.7, 1e-3
+    noise = np.zeros_like(x)
+    noise[0] = rng.normal(0.0, sigma, 2)
+    for j in range(1, t.size):  # stationary AR(1) of standard deviation sigma
+        noise[j] = rho * noise[j - 1] + rng.normal(0.0, sigma * math.sqrt(1 - rho**2), 2)
+    data = match_bodies(
+        parse_data(_csv_text(t, x + noise), "ar.csv"), load_system("hoop-cylinder")
+    )
+    result = rollspring.fit(data, DAMPED.system(), FREE, claims=False)
+    assert result.rho == pytest.approx(rho, abs=0.15)
+    posterior = sample_posterior(result, steps=200, seed=3).to_dict()
+    for ratio in _interval_widths(posterior, result, FREE):
+        assert ratio == pytest.approx(1.0, rel=0.35)
+    white = sample_posterior(dataclasses.replace(result, rho=0.0), steps=200, seed=3).to_dict()
+    for ratio in _interval_widths(white, result, FREE):
+        assert ratio < 0.65
+
+
+def test_the_posterior_carries_the_errors_locked_to_the_positions() -> None:
+    """A recording with a measure of the error locked to each body's position (``track``'s
+    ``xlocked`` columns, here 2, 1 and 1 mm of P1-P3 for both bodies): it does not
+    average down, the fit adds its share to the covariance, and the posterior adds it to the
+    chain, so that both give the same intervals; without it the posterior is narrower."""
+    import dataclasses
+
+    t, x, _ = recording(UNDAMPED, duration=3.0, fps=30, seed=11, noise=1e-4)
+    text = _csv_text(t, x)
+    data = match_bodies(parse_data(text, "locked.csv"), load_system("hoop-cylinder"))
+    data = dataclasses.replace(
+        data, locked_error=np.array([[2e-3, 1e-3, 1e-3], [2e-3, 1e-3, 1e-3]])
+    )
+    result = rollspring.fit(data, UNDAMPED.system(), ["springs.0.stiffness"], claims=False)
+    assert result.locked is not None and result.locked[0, 0] > 0
+    share = result.locked[0, 0] / result.covariance[0, 0]
+    assert share > 0.5  # the locked errors dominate the stiffness's error here
+    posterior = sample_posterior(result, steps=200, seed=4).to_dict()
+    [ratio] = _interval_widths(posterior, result, ["springs.0.stiffness"])
+    assert ratio == pytest.approx(1.0, rel=0.25)
+    plain = sample_posterior(dataclasses.replace(result, locked=None), steps=200, seed=4)
+    [narrow] = _interval_widths(plain.to_dict(), result, ["springs.0.stiffness"])
+    assert narrow == pytest.approx(math.sqrt(1 - share), rel=0.25)
+
+
 def test_paths_that_are_no_number_of_the_system() -> None:
     system = load_system("hoop-cylinder")
     t, x, _ = recording(DAMPED, duration=1.0, fps=30)

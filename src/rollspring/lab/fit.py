@@ -595,6 +595,12 @@ class FitResult:
     claims: dict[str, Any] = field(default_factory=dict)
     posterior: dict[str, Any] | None = None
     seconds: float = 0.0  # the fit's wall time (first guess, solver, standard errors)
+    #: the residuals' lag-1 autocorrelation the standard errors take as AR(1) errors in the
+    #: frames (:func:`correlated_covariance`); 0 when it is within noise (2/sqrt N)
+    rho: float = 0.0
+    #: the part of ``covariance`` from the errors locked to the bodies' positions
+    #: (:func:`locked_covariance`); None without a measure of them
+    locked: FloatArray | None = field(default=None, repr=False)
 
     @property
     def converged(self) -> bool:
@@ -840,7 +846,8 @@ def _result(
     rho = residual_correlation(model_x - problem.table.x, problem.mask)
     covariance, warnings = _covariance(jacobian, noise, [names[i] for i in fitted])
     independent = covariance
-    if rho > 2.0 / math.sqrt(points) and count:
+    correlated = rho > 2.0 / math.sqrt(points) and bool(count)
+    if correlated:
         covariance = correlated_covariance(jacobian, problem.mask, rho, independent, noise)
         with np.errstate(divide="ignore", invalid="ignore"):
             widened = float(np.nanmax(np.sqrt(np.diag(covariance) / np.diag(independent))))
@@ -855,10 +862,12 @@ def _result(
                 "errors last several frames (a textured or blurred outline); the standard "
                 f"errors are widened up to {widened:.3g}× for it"
             )
+    locked = None
     if problem.table.locked_error is not None and count:
-        covariance = covariance + locked_covariance(
+        locked = locked_covariance(
             jacobian, problem.mask, problem.table.x, problem.table.locked_error, independent, noise
         )
+        covariance = covariance + locked
     errors = np.sqrt(np.maximum(np.diag(covariance), 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         correlation = covariance / np.outer(errors, errors)
@@ -894,6 +903,8 @@ def _result(
         evaluations=evaluations,
         problem=problem,
         best=best,
+        rho=rho if correlated else 0.0,
+        locked=locked,
     )
 
 

@@ -1,9 +1,20 @@
 r"""A posterior of a fit by MCMC (emcee's affine-invariant ensemble sampler).
 
 The likelihood is Gaussian in the residuals with the fit's noise :math:`s` (the tracking noise
-estimated from the residuals), the prior flat within the model's ranges:
+estimated from the residuals), the prior flat within the model's ranges. The errors are those
+the fit's standard errors rest on: when the fit took them as an AR(1) process in the frames
+(lag-1 autocorrelation :math:`\rho`, :func:`rollspring.lab.fit.correlated_covariance`), the
+likelihood is that process's, each body's residuals in the order of its marked frames
+(:math:`g_k` frames after the one before; an unmarked frame counts in the lag):
 
-.. math:: \ln p(\theta\mid d) = -\frac{1}{2s^2}\sum_{jb} r_{jb}(\theta)^2 + \text{const}.
+.. math:: \ln p(\theta\mid d) = -\frac{1}{2s^2}\sum_b\Big[r_{b1}^2 + \sum_{k\ge2}
+          \frac{(r_{bk} - \rho^{g_k}r_{b,k-1})^2}{1-\rho^{2g_k}}\Big] + \text{const},
+
+which is :math:`-\sum r^2/2s^2` for :math:`\rho = 0`. The errors locked to the bodies'
+positions (a textured background, :func:`rollspring.lab.fit.locked_covariance`) repeat
+wherever a body passes and do not average down: their share of the fit's covariance,
+:math:`C_e`, is added to the chain as one independent draw from :math:`N(0, C_e)` per sample,
+as it is added to the fit's covariance.
 
 The walkers start in a small ball (a tenth of a standard error) around the least-squares
 minimum and are evaluated as one batch (``vectorize=True``): on the linear route every walker's
@@ -57,7 +68,47 @@ class Posterior:
         }
 
 
-def _log_probability(result: FitResult, points: FloatArray) -> FloatArray:
+@dataclass(frozen=True)
+class _Errors:
+    """The AR(1) likelihood's terms over the residual vector (the marked entries of the
+    (frames, bodies) table in row-major order): entry ``current`` less ``coefficient`` times
+    entry ``previous``, squared, times ``weight``."""
+
+    current: np.ndarray
+    previous: np.ndarray
+    coefficient: FloatArray
+    weight: FloatArray
+
+    @classmethod
+    def of(cls, marked: np.ndarray, rho: float) -> _Errors:
+        """The terms for the table ``marked`` (frames, bodies) and autocorrelation ``rho``."""
+        flat = np.cumsum(marked.ravel()).reshape(marked.shape) - 1  # each entry's place
+        current, previous, gaps = [], [], []
+        for b in range(marked.shape[1]):
+            frames = np.flatnonzero(marked[:, b])
+            if frames.size == 0:
+                continue
+            places = flat[frames, b]
+            current.append(places)
+            previous.append(np.concatenate([places[:1], places[:-1]]))
+            gaps.append(np.concatenate([[0], np.diff(frames)]))
+        gap = np.concatenate(gaps) if gaps else np.zeros(0, dtype=np.int64)
+        # the first of each body: no term before it (coefficient 0, weight 1)
+        coefficient = np.where(gap > 0, float(rho) ** gap, 0.0)
+        return cls(
+            np.concatenate(current) if current else np.zeros(0, dtype=np.int64),
+            np.concatenate(previous) if previous else np.zeros(0, dtype=np.int64),
+            coefficient,
+            1.0 / (1.0 - coefficient**2),
+        )
+
+    def sum_of_squares(self, residual: FloatArray) -> FloatArray:
+        r""":math:`\sum w (r_k - a r_{k-1})^2` over the last axis of ``residual``."""
+        innovation = residual[..., self.current] - self.coefficient * residual[..., self.previous]
+        return np.asarray(np.sum(self.weight * innovation**2, axis=-1))
+
+
+def _log_probability(result: FitResult, points: FloatArray, errors: _Errors) -> FloatArray:
     """The log-posterior of each row of ``points`` (walkers, fitted parameters)."""
     problem = result.problem
     layout = problem.layout
@@ -98,14 +149,14 @@ def _log_probability(result: FitResult, points: FloatArray) -> FloatArray:
             z0 = np.concatenate([chosen[:, p : p + 2 * n], np.ones((len(rows), 1))], axis=1)
             x = np.einsum("wnbm,wm->wnb", phi, z0) + offset[:, None, None]
             residual = x[:, problem.mask] - problem.observed
-            out[rows] = -scale * np.sum(residual**2, axis=1)
+            out[rows] = -scale * errors.sum_of_squares(residual)
             return out
     for walker in np.flatnonzero(inside).tolist():
         try:
             residual = problem.residual(full[walker])
         except (FitError, ArithmeticError):
             continue
-        out[walker] = -scale * float(residual @ residual)
+        out[walker] = -scale * float(errors.sum_of_squares(residual))
     return out
 
 
@@ -198,10 +249,11 @@ def sample_posterior(
     spread = np.where(np.isfinite(spread) & (spread > 0), spread, 1e-6 * np.maximum(1, abs(centre)))
     rng = np.random.default_rng(seed)
     start = centre + 0.1 * spread * rng.standard_normal((count, dimension))
+    errors = _Errors.of(result.problem.mask, result.rho)
     sampler = emcee.EnsembleSampler(
         count,
         dimension,
-        lambda points: _log_probability(result, np.atleast_2d(points)),
+        lambda points: _log_probability(result, np.atleast_2d(points), errors),
         vectorize=True,
     )
     sampler.random_state = np.random.RandomState(seed).get_state()
@@ -209,6 +261,12 @@ def sample_posterior(
         if progress is not None:
             progress(step / steps)
     chain = sampler.get_chain(discard=steps // 2)
+    if result.locked is not None and np.any(result.locked):
+        # the locked errors' share: one independent draw a sample (seeded)
+        draws = np.random.default_rng(seed + 1).multivariate_normal(
+            np.zeros(dimension), result.locked, size=chain.shape[:2], method="eigh"
+        )
+        chain = chain + draws
     flat = chain.reshape(-1, dimension)
     low, median, high = np.percentile(flat, [2.5, 50.0, 97.5], axis=0)
     acceptance = float(np.mean(sampler.acceptance_fraction))

@@ -223,6 +223,29 @@ def test_slip_starts_when_the_needed_friction_first_reaches_mu(fraction):
     assert trajectory.friction_ratio[-1, 0] == pytest.approx(1.0, abs=1e-9)
 
 
+@pytest.mark.parametrize("rtol", [1e-8, 1e-10])
+@pytest.mark.parametrize("graze", [1e-6, 1e-8, 1e-10])
+def test_a_friction_that_grazes_mu_s_n_between_two_step_ends_slips_at_the_exact_instant(
+    graze, rtol
+):
+    """mu_s a part ``graze`` below the peak of |f|/N: the excursion beyond mu_s N lasts
+    2 sqrt(2 graze)/Omega (28 us at 1e-10), far inside one step, and both step ends around it
+    are below the bound. The run slips at the first instant with |f| = mu_s N, sin(Omega t) =
+    1 - graze, to the accuracy the step's interpolant gives a margin this flat there: a phase
+    error delta moves the instant by delta / (Omega sqrt(2 graze)). Before 29 Nov 2026 such a
+    run rolled to the end with its max |f|/N reported above mu_s."""
+    needed = float(analyze(moving_pair(1.0)).required_mu[0])
+    omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)
+    trajectory = simulate(moving_pair((1 - graze) * needed), 1.0, rtol=rtol)
+    assert trajectory.status == "slip"
+    slip = trajectory.summary["first_slip"]
+    assert slip["body"] == "hoop"
+    exact = math.asin(1 - graze) / omega
+    slope = omega * math.sqrt(2 * graze)  # d|f|/(f_max dt) at the instant
+    assert abs(slip["time"] - exact) <= 1e-2 * rtol / slope
+    assert trajectory.friction_ratio[-1, 0] == pytest.approx(1.0, abs=1e-9)  # |f| / mu_s N
+
+
 def test_no_slip_just_above_the_needed_friction():
     needed = float(analyze(moving_pair(1.0)).required_mu[0])
     omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)

@@ -86,6 +86,16 @@ class RollingSegments(RunState):
             )
         ]
         extremes = np.array([ratio0, [t] * n, normal0, [t] * n])
+        # the contact margins at the last two step ends (the kernel looks for a dip inside a
+        # step from them): the segment's start, the one before unknown
+        mu = self.arrays.mu_static
+        can_slip = self.rolls & np.isfinite(mu)
+        near_margins = np.full((2, 2, n), np.nan)
+        near_margins[0, 1] = np.where(
+            can_slip, np.where(can_slip, mu, 0.0) * normal0 - np.abs(friction0), np.nan
+        )
+        near_margins[1, 1] = normal0
+        skip_near = 0
         ball_ptr, ball_idx = self.balls()
         extreme_states = np.empty((2, 2, ball_idx.size))
         extreme_states[:, 0, :] = q[ball_idx]
@@ -117,10 +127,24 @@ class RollingSegments(RunState):
             outputs = (out_times, out_q, out_v)
             began = time.perf_counter()
             status, taken, body, filled = kernels.run_fixed_step(
-                model, self.coeffs, q, qdot, t_chunk, h, steps, True, *outputs, *kept, before
+                model,
+                self.coeffs,
+                q,
+                qdot,
+                t_chunk,
+                h,
+                steps,
+                True,
+                *outputs,
+                *kept,
+                before,
+                near_margins,
+                skip_near,
             )
             self.integrate_time += time.perf_counter() - began
-            self._count_steps(self.plan.scheme, taken)
+            skip_near = 0
+            # a step the kernel stopped before, to look inside it, is counted when taken
+            self._count_steps(self.plan.scheme, taken - (status == kernels.STATUS_NEAR))
             row_times.append(out_times[:filled])
             row_q.append(out_q[:filled])
             row_v.append(out_v[:filled])
@@ -137,6 +161,30 @@ class RollingSegments(RunState):
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
                 self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
                 return float(self.times[-1][-1]), self.rows[-1][-1], slipping, sign
+            if status == kernels.STATUS_NEAR:
+                # a contact margin may dip below zero inside the next step, between its ends
+                t_before = t_chunk + (taken - 1) * h
+                root = self._dip_inside(model, before[0], before[1], h, body)
+                if root is not None:
+                    row_times.append(np.array([t_before]))
+                    row_q.append(before[0][None, :].copy())
+                    row_v.append(before[1][None, :].copy())
+                    self.segments.append(
+                        self._rolling_evaluator(model, row_times, row_q, row_v, h, x0)
+                    )
+                    self._offer_steps(
+                        model, x0, extremes, extreme_states, crossing, crossing_states, h
+                    )
+                    return self._event_at(
+                        model, t_before, before[0].copy(), before[1].copy(), root, body, x0
+                    )
+                # it stays clear: on from the step's start, that step taken again
+                q[:], qdot[:] = before[0], before[1]
+                first += filled
+                done += taken - 1
+                lead = 0
+                skip_near = 1
+                continue
             if status != Status.FINISHED:
                 t_before = t_chunk + (taken - 1) * h
                 row_times.append(np.array([t_before]))
@@ -398,6 +446,52 @@ class RollingSegments(RunState):
             self.message = f"the state became non-finite near t = {t_before:.6g} s"
             return t_before, self.general_state(q, v, x0), slipping, sign
         root, j = best
+        return self._event_at(model, t_before, q, v, root, int(j), x0)
+
+    def _dip_inside(
+        self, model: tuple[Any, ...], q: FloatArray, v: FloatArray, h: float, j: int
+    ) -> float | None:
+        r"""Where contact margin ``j`` (< n: body j's slip margin :math:`\mu_sN - |f|`, else
+        body j - n's normal force) first falls below zero inside the step of length ``h``
+        from (q, v), when it does between the step's ends (both positive): its minimum over
+        the step (bounded Brent on the step's interpolant, the scheme run with a shorter
+        step), then the root before it; None when the margin stays clear."""
+        n = self.n
+        body = j % n
+        mu = float(self.arrays.mu_static[body])
+
+        def margin(tau: float) -> float:
+            _, _, f, nn = kernels.advance(model, self.coeffs, q, v, tau, 1 if tau > 0 else 0)
+            return float(mu * nn[body] - abs(f[body])) if j < n else float(nn[body])
+
+        import scipy.optimize  # on demand: a graze to look at
+
+        lowest = scipy.optimize.minimize_scalar(
+            margin, bounds=(0.0, h), method="bounded", options={"xatol": 1e-12 * h}
+        )
+        if not lowest.fun < 0.0:
+            return None
+        return float(
+            scipy.optimize.brentq(
+                margin, 0.0, float(lowest.x), xtol=1e-15, rtol=4 * np.finfo(float).eps
+            )
+        )
+
+    def _event_at(
+        self,
+        model: tuple[Any, ...],
+        t_before: float,
+        q: FloatArray,
+        v: FloatArray,
+        root: float,
+        j: int,
+        x0: FloatArray,
+    ) -> Handover:
+        """The event of contact margin ``j`` (< n: a slip of body j, else a lift-off of body
+        j - n) ``root`` after ``t_before``, from the state (q, v) there: the segment to it
+        recorded, the event taken."""
+        slipping = np.zeros(self.n, dtype=bool)
+        sign = np.zeros(self.n)
         kind = "slip" if j < self.n else "liftoff"
         body = j % self.n
         q_e, v_e, _, _ = kernels.advance(model, self.coeffs, q, v, root, 1 if root > 0 else 0)

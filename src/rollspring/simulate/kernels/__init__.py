@@ -63,6 +63,7 @@ from rollspring.simulate.kernels.refine import (
 )
 from rollspring.simulate.kernels.stepping import (
     SCHEMES,
+    STATUS_NEAR,
     advance,
     advance_many,
     run_fixed_step,
@@ -74,6 +75,7 @@ __all__ = [
     "LEVEL",
     "MOST_BODIES",
     "SCHEMES",
+    "STATUS_NEAR",
     "advance",
     "advance_many",
     "body_links",

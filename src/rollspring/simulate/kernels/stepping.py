@@ -29,6 +29,7 @@ __all__ = [
     "SCHEMES",
     "STATUS_FINISHED",
     "STATUS_LIFTOFF",
+    "STATUS_NEAR",
     "STATUS_NONFINITE",
     "STATUS_SLIP",
     "advance",
@@ -40,6 +41,14 @@ STATUS_FINISHED = int(Status.FINISHED)
 STATUS_NONFINITE = int(Status.NONFINITE)
 STATUS_SLIP = int(Status.SLIP)
 STATUS_LIFTOFF = int(Status.LIFTOFF)
+#: :func:`run_fixed_step` stopped before a step whose contact margin may dip below zero inside
+#: it (a graze between two step ends): the caller looks inside that step (not a run status)
+STATUS_NEAR = -2
+#: A margin's dip inside a step is looked for when the parabola through its last three
+#: step-end values has its minimum in the step (or within this fraction of a step of it) and
+#: that minimum is below the parabola's curvature term A (A = m'' h^2 / 2: a step's dip below
+#: its ends is at most A / 4, and the parabola's error a fraction omega h of A)
+NEAR_REACH = 0.1
 
 #: name -> (order p, stage weights, C_p): the relative frequency error is C_p (omega h)^p
 #: (:data:`rollspring.simulate.integrators.INTEGRATORS`, as the kernels take them).
@@ -200,8 +209,10 @@ def run_fixed_step(
     crossing,
     crossing_states,
     before,
+    near_margins,
+    skip_near,
 ):
-    """Integrate ``n_steps`` steps of size ``h`` from (q, v) at time ``t0`` (updated in place),
+    r"""Integrate ``n_steps`` steps of size ``h`` from (q, v) at time ``t0`` (updated in place),
     checking rolling validity after every step. The state at each of the sorted ``out_times``
     (within (t0, t0 + n_steps h]) is interpolated from the step holding it (``_hermite``,
     septic: with the jerks of :func:`force_rates` at the step's ends) into
@@ -220,6 +231,18 @@ def run_fixed_step(
       count, the start times of the steps holding the first and the last, and the last value of
       s; ``crossing_states`` (2, 2, n) the states at the start of those two steps.
 
+    * ``near_margins`` (2, 2, n): each body's contact margins at the last two step ends,
+      the slip margin :math:`\mu_s N - |f|` (row 0; NaN where a body cannot slip) and the
+      normal force :math:`N` (row 1), the older first; NaN where not yet known.
+
+    A contact margin that stays positive at the step ends can still dip below zero inside a
+    step (a friction that grazes :math:`\mu_sN`). After each step, the parabola through a
+    margin's last three step-end values is looked at: when its minimum falls in this step
+    (:data:`NEAR_REACH`) and is below its curvature term, the run stops before the step
+    (status :data:`STATUS_NEAR`, the "body" ``j`` < n a slip margin of body j, else the
+    normal force of body j - n) so that the caller looks inside it; ``skip_near`` steps at
+    the start of the call are not looked at (a step just looked inside, run again).
+
     ``before`` (2, n) receives the state at the start of the last step taken. Returns
     (status, step, body, rows): for an event the step in which it happened and the body; the
     number of output rows written (those before the event).
@@ -234,6 +257,7 @@ def run_fixed_step(
     rate_valid = False  # rate holds the current state's
     coef = np.empty((n, 15))  # the interpolant of the current step
     rolling_forces(model, q, scratch, gen, fx, fy)
+    margin = np.empty((2, n))  # this step end's contact margins
     rows = 0
     n_out = out_times.shape[0]
     for step in range(1, n_steps + 1):
@@ -261,8 +285,17 @@ def run_fixed_step(
                 event = STATUS_SLIP
                 event_body = i
                 break
+            can_slip = bodies[i, col.ROLLS] > 0.0 and math.isfinite(bodies[i, col.MU_S])
+            margin[0, i] = bodies[i, col.MU_S] * normal - abs(friction) if can_slip else np.nan
+            margin[1, i] = normal
         if event >= 0:  # the state after this step is past the event: not an extreme
             return event, step, event_body, rows
+        if check_contacts and step > skip_near:
+            for kind in range(2):
+                for i in range(n):
+                    older, last = near_margins[kind, 0, i], near_margins[kind, 1, i]
+                    if _dips_here(older, last, margin[kind, i]):
+                        return STATUS_NEAR, step, i + kind * n, rows
         t_start = t0 + (step - 1) * h
         # outputs inside this step; the last step also takes any left by rounding
         t_end = t_start + h if step < n_steps else np.inf
@@ -321,7 +354,30 @@ def run_fixed_step(
                     crossing_states[1, 0, j] = before[0, j]
                     crossing_states[1, 1, j] = before[1, j]
         crossing[3] = signal
+        if check_contacts:
+            for kind in range(2):
+                for i in range(n):
+                    near_margins[kind, 0, i] = near_margins[kind, 1, i]
+                    near_margins[kind, 1, i] = margin[kind, i]
     return STATUS_FINISHED, n_steps, -1, rows
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _dips_here(older, last, now):
+    r"""Whether a margin sampled ``older``, ``last``, ``now`` at three step ends (all positive)
+    may dip below zero inside the last step: the parabola through them,
+    :math:`m(\tau) = A\tau^2 + B\tau + C` (:math:`\tau` in steps from the step's end), has
+    its minimum :math:`C - B^2/4A` below :math:`A` within :data:`NEAR_REACH` of the step."""
+    if not (math.isfinite(older) and math.isfinite(last) and math.isfinite(now)):
+        return False
+    curvature = 0.5 * (older - 2.0 * last + now)
+    if not curvature > 0.0:
+        return False
+    slope = 0.5 * (older - 4.0 * last + 3.0 * now)
+    vertex = -slope / (2.0 * curvature)
+    if vertex < -1.0 - NEAR_REACH or vertex > NEAR_REACH:
+        return False
+    return now - slope * slope / (4.0 * curvature) < curvature
 
 
 @njit(cache=True, inline="always", error_model="numpy")

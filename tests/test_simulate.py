@@ -246,6 +246,21 @@ def test_a_friction_that_grazes_mu_s_n_between_two_step_ends_slips_at_the_exact_
     assert trajectory.friction_ratio[-1, 0] == pytest.approx(1.0, abs=1e-9)  # |f| / mu_s N
 
 
+def test_a_friction_that_comes_within_1e_7_of_mu_s_n_rolls_on_with_the_same_motion_bit_for_bit():
+    """mu_s a part 1e-7 above the peak of |f|/N: the steps where |f| comes nearest mu_s N are
+    looked inside (the parabola's minimum is below its curvature term) and found clear; the
+    run goes on from each such step's start, so the motion is the one with a large mu_s, bit
+    for bit, and no slip is reported."""
+    needed = float(analyze(moving_pair(1.0)).required_mu[0])
+    close = simulate(moving_pair((1 + 1e-7) * needed), 2.0, rtol=1e-10)
+    far = simulate(moving_pair(1.0), 2.0, rtol=1e-10)
+    assert close.status == far.status == "finished"
+    assert close.summary["first_slip"] is None
+    np.testing.assert_array_equal(close.x, far.x)
+    np.testing.assert_array_equal(close.v, far.v)
+    assert close.summary["max_friction_ratio"]["hoop"] == pytest.approx(needed, rel=1e-9)
+
+
 def test_no_slip_just_above_the_needed_friction():
     needed = float(analyze(moving_pair(1.0)).required_mu[0])
     omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)

@@ -95,7 +95,7 @@ class RollingSegments(RunState):
             can_slip, np.where(can_slip, mu, 0.0) * normal0 - np.abs(friction0), np.nan
         )
         near_margins[1, 1] = normal0
-        skip_near = 0
+        offset = skip_near = 0  # steps of this chunk taken before a step looked inside
         ball_ptr, ball_idx = self.balls()
         extreme_states = np.empty((2, 2, ball_idx.size))
         extreme_states[:, 0, :] = q[ball_idx]
@@ -139,12 +139,12 @@ class RollingSegments(RunState):
                 *kept,
                 before,
                 near_margins,
+                offset,
                 skip_near,
             )
             self.integrate_time += time.perf_counter() - began
-            skip_near = 0
             # a step the kernel stopped before, to look inside it, is counted when taken
-            self._count_steps(self.plan.scheme, taken - (status == kernels.STATUS_NEAR))
+            self._count_steps(self.plan.scheme, taken - offset - (status == kernels.STATUS_NEAR))
             row_times.append(out_times[:filled])
             row_q.append(out_q[:filled])
             row_v.append(out_v[:filled])
@@ -178,12 +178,12 @@ class RollingSegments(RunState):
                     return self._event_at(
                         model, t_before, before[0].copy(), before[1].copy(), root, body, x0
                     )
-                # it stays clear: on from the step's start, that step taken again
+                # it stays clear: the chunk goes on from the step's start, that step taken
+                # again (the same numbers as had the kernel not stopped)
                 q[:], qdot[:] = before[0], before[1]
                 first += filled
-                done += taken - 1
+                offset, skip_near = taken - 1, taken
                 lead = 0
-                skip_near = 1
                 continue
             if status != Status.FINISHED:
                 t_before = t_chunk + (taken - 1) * h
@@ -203,6 +203,7 @@ class RollingSegments(RunState):
                 return self._locate(model, t_before, before[0].copy(), before[1].copy(), h, 1, x0)
             first += filled
             done += steps
+            offset = skip_near = 0
             lead = 0
             self._report(t + done * h)
         self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))

@@ -210,6 +210,7 @@ def run_fixed_step(
     crossing_states,
     before,
     near_margins,
+    first_step,
     skip_near,
 ):
     r"""Integrate ``n_steps`` steps of size ``h`` from (q, v) at time ``t0`` (updated in place),
@@ -240,8 +241,11 @@ def run_fixed_step(
     margin's last three step-end values is looked at: when its minimum falls in this step
     (:data:`NEAR_REACH`) and is below its curvature term, the run stops before the step
     (status :data:`STATUS_NEAR`, the "body" ``j`` < n a slip margin of body j, else the
-    normal force of body j - n) so that the caller looks inside it; ``skip_near`` steps at
-    the start of the call are not looked at (a step just looked inside, run again).
+    normal force of body j - n) so that the caller looks inside it. A call may start at step
+    ``first_step`` + 1 of the ``n_steps`` (from the state at the start of that step: the
+    times stay ``t0 + (step - 1) h``, bit for bit those of a call that took every step) and
+    look at no step up to ``skip_near`` (a step just looked inside and found clear, run
+    again).
 
     ``before`` (2, n) receives the state at the start of the last step taken. Returns
     (status, step, body, rows): for an event the step in which it happened and the body; the
@@ -260,7 +264,7 @@ def run_fixed_step(
     margin = np.empty((2, n))  # this step end's contact margins
     rows = 0
     n_out = out_times.shape[0]
-    for step in range(1, n_steps + 1):
+    for step in range(first_step + 1, n_steps + 1):
         for i in range(n):
             before[0, i] = q[i]
             before[1, i] = v[i]

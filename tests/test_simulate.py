@@ -261,6 +261,54 @@ def test_a_friction_that_comes_within_1e_7_of_mu_s_n_rolls_on_with_the_same_moti
     assert close.summary["max_friction_ratio"]["hoop"] == pytest.approx(needed, rel=1e-9)
 
 
+@pytest.mark.parametrize("rtol", [1e-8, 1e-10])
+@pytest.mark.parametrize("graze", [1e-4, 1e-6, 1e-8])
+def test_a_normal_force_that_grazes_zero_between_two_step_ends_lifts_off_at_the_exact_instant(
+    graze, rtol
+):
+    """A cylinder on a spring to a hook 0.3 m above its centre, pushed along the track: the
+    spring's upward pull k (l - L0) H / l is largest at the turning point x = A, and gravity is
+    set a part ``graze`` below it, so N dips below zero for a moment around each turning
+    point, between two step ends. The run lifts off where the pull first equals m g, at
+    x*: t* = int_0^x* dx / v(x) with (1 + gamma) m v^2 / 2 = V(A) - V(x), exact for the
+    rolling body (x = A - s^2 takes the turning point's 1/sqrt out of the integral). Before
+    29 Nov 2026 the run lifted off 0.63 s late at 1e-4, and never below."""
+    import scipy.integrate
+    import scipy.optimize
+
+    k, rest, above, m, radius, gamma, v0 = 100.0, 0.2, 0.3, 1.0, 0.1, 0.5, 0.6
+
+    def pull(x: float) -> float:  # the spring's upward pull on the body
+        length = math.hypot(x, above)
+        return k * (length - rest) * above / length
+
+    def potential(x: float) -> float:
+        return 0.5 * k * (math.hypot(x, above) - rest) ** 2
+
+    energy = 0.5 * (1 + gamma) * m * v0**2
+    amplitude = scipy.optimize.brentq(lambda x: potential(x) - potential(0.0) - energy, 0.0, 5.0)
+    gravity = pull(amplitude) * (1 - graze) / m
+    x_star = scipy.optimize.brentq(lambda x: pull(x) - m * gravity, 0.0, amplitude)
+
+    def dt_ds(s: float) -> float:  # dt/ds along x = A - s^2
+        x = amplitude - s * s
+        return 2 * s / math.sqrt(2 * (potential(amplitude) - potential(x)) / ((1 + gamma) * m))
+
+    exact = scipy.integrate.quad(
+        dt_ds, math.sqrt(amplitude - x_star), math.sqrt(amplitude), epsabs=0.0, epsrel=1e-12
+    )[0]
+    system = make_system(
+        [body("c", "cylinder", mass=m, radius=radius, x=0.0, v=v0, mu_static=math.inf)],
+        [spring("c", "hook", stiffness=k, rest_length=rest)],
+        anchors=[{"id": "hook", "x": 0.0, "y": radius + above}],
+        gravity=gravity,
+    )
+    trajectory = simulate(system, 1.0, rtol=rtol)
+    assert trajectory.status == "liftoff"
+    liftoff = trajectory.summary["first_liftoff"]
+    assert abs(liftoff["time"] - exact) <= 1e-2 * rtol / math.sqrt(graze)
+
+
 def test_no_slip_just_above_the_needed_friction():
     needed = float(analyze(moving_pair(1.0)).required_mu[0])
     omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)

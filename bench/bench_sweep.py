@@ -3,7 +3,11 @@ two Dask workers, and the peak memory of the client and the workers for a sweep 
 
 Run: ``.venv/bin/python bench/bench_sweep.py [--runs 65536] [--duration 10] [--repeat 3]
 [--cluster-runs 65536] [--memory-runs 10000000] [--memory-duration 1]
-[--json build/bench/sweep.json] [--parts abc]``; ``--parts ab`` leaves (c) out.
+[--json build/bench/sweep.json] [--parts abc] [--scratch build/bench]``; ``--parts ab``
+leaves (c) out. The stores and the cluster's files go in a temporary folder under
+``--scratch`` (default ``build/bench``, where a user's sweep would write, not the system's
+temporary folder); what a file and a folder cost the file system there is measured and
+printed first.
 
 The system is the ``hoop-cylinder`` preset. Parts:
 

@@ -345,9 +345,7 @@ def test_the_posterior_of_correlated_errors_is_as_wide_as_the_standard_errors() 
     noise[0] = rng.normal(0.0, sigma, 2)
     for j in range(1, t.size):  # stationary AR(1) of standard deviation sigma
         noise[j] = rho * noise[j - 1] + rng.normal(0.0, sigma * math.sqrt(1 - rho**2), 2)
-    data = match_bodies(
-        parse_data(_csv_text(t, x + noise), "ar.csv"), load_system("hoop-cylinder")
-    )
+    data = match_bodies(parse_data(_csv_text(t, x + noise), "ar.csv"), load_system("hoop-cylinder"))
     result = rollspring.fit(data, DAMPED.system(), FREE, claims=False)
     assert result.rho == pytest.approx(rho, abs=0.15)
     posterior = sample_posterior(result, steps=200, seed=3).to_dict()

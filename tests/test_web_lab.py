@@ -189,3 +189,31 @@ def test_a_bad_file_shows_its_one_line_error_next_to_the_file_control(sized: Ope
     refused = [e for e in sized.errors if "status of 422" in e]
     assert len(refused) == 2
     sized.errors[:] = [e for e in sized.errors if e not in refused]
+
+
+def test_the_posterior_asked_on_the_page_shows_each_credible_interval(sized: Opened) -> None:
+    """Tick "also sample the posterior" and Fit: a column of 95 % credible intervals beside the
+    values, each holding its value and about as wide as 2 x 1.96 standard errors (emcee's
+    sampling, as ``rollspring fit --posterior``); the table still fits the screen."""
+    page = sized.page
+    t, x = recording()
+    set_start(page)
+    open_lab(page)
+    load_file(page, "hoop-cylinder.csv", csv_text(t, x))
+    page.locator("#lab-posterior").check()
+    page.locator("#lab-fit").click()
+    settle(page)
+    expect(page.locator("#lab-parameters caption")).to_contain_text("95 % credible intervals")
+    for name in FREE:
+        row = page.locator(f'#lab-parameters tr[data-parameter="{name}"]')
+        expect(row).to_have_count(1)
+        value, stderr = (
+            float(row.get_attribute("data-value")),
+            float(row.get_attribute("data-stderr")),
+        )
+        low, high = float(row.get_attribute("data-low")), float(row.get_attribute("data-high"))
+        assert low < value < high
+        assert high - low == pytest.approx(2 * 1.96 * stderr, rel=0.35)
+        expect(row.locator("td.interval")).to_contain_text(" … ")
+    assert serious(axe_violations(page)) == []
+    no_horizontal_overflow(page)

@@ -274,3 +274,26 @@ def test_a_track_mapped_to_null_or_unmatched_is_left_out(client: Server) -> None
     with pytest.raises(DataError) as raised:
         match_bodies(parse_data(request["data"], "tr.txt"), load_system("hoop-cylinder"), twice)
     assert message == " ".join(str(raised.value).split())
+
+
+def test_the_fit_endpoint_samples_the_posterior_when_asked(client: Server) -> None:
+    """``"posterior": true`` (= rollspring fit --posterior): each fitted spring number's median
+    and 95 % credible interval, the interval about as wide as 2 x 1.96 standard errors and
+    holding the fitted value; without it there is none."""
+    t, x = recording()
+    request = {"system": rough_start(), "data": csv_text(t, x), "filename": "run.csv"}
+    plain = client.post("/api/fit", json=request)
+    assert plain.status_code == 200, plain.text
+    assert "posterior" not in plain.json()["fit"]
+    answer = client.post("/api/fit", json={**request, "posterior": True})
+    assert answer.status_code == 200, answer.text
+    fit = answer.json()["fit"]
+    intervals = fit["posterior"]["credible_intervals"]
+    for name in ("springs.0.stiffness", "springs.0.damping"):
+        parameter, interval = fit["parameters"][name], intervals[name]
+        assert interval["low"] < parameter["value"] < interval["high"]
+        width = interval["high"] - interval["low"]
+        assert width == pytest.approx(2 * 1.96 * parameter["stderr"], rel=0.35)
+    assert 0.2 < fit["posterior"]["acceptance"] < 0.9
+    refused = client.post("/api/fit", json={**request, "posterior": "yes"})
+    assert refused.status_code == 422

@@ -141,12 +141,15 @@ def fit_payload(
     mapping: Mapping[str, str | None] | None = None,
     *,
     fix_initial: bool = False,
+    posterior: bool = False,
     unmatched: str = "refuse",
     budget: float | None = None,
 ) -> dict[str, Any]:
     """The fit of ``system`` to the table ``text`` (named ``source``) freeing the PATHs ``free``
-    (default :func:`default_free`) and each body's initial state (``rollspring fit``), within
-    the time ``budget`` (s; None: the command line's bound, 5 minutes):
+    (default :func:`default_free`) and each body's initial state (``rollspring fit``), with
+    ``posterior`` its MCMC posterior too (``fit --posterior``: ``fit.posterior``), within the
+    time ``budget`` (s; None: the command line's bound, 5 minutes; the estimate made before
+    the start is the fit's, and the budget stops a posterior that would run beyond it):
 
     ``{"fit": <rollspring fit --json's object>, "system": <the fitted system, JSON form>,
     "toml": <the fitted system file>, "data": <the table in the fitted system's frame>}``.
@@ -174,7 +177,14 @@ def fit_payload(
                 "on the command line"
             )
     # within the budget, the budget is the bound (the command line's 5 minutes are not)
-    result = fit(table, system, paths, fix_initial=fix_initial, confirm=budget is not None)
+    result = fit(
+        table,
+        system,
+        paths,
+        fix_initial=fix_initial,
+        posterior=posterior,
+        confirm=budget is not None,
+    )
     offset = result.parameters.get("x_offset")
     return {
         "fit": result.to_dict(),

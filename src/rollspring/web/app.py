@@ -169,6 +169,12 @@ class FitRequest(LabDataRequest):
         description="Hold the system's initial state and fit the data's time t0 at which it "
         "holds (default: each body's initial x and v are fitted).",
     )
+    posterior: bool = Field(
+        default=False,
+        strict=True,
+        description="Also sample the posterior by MCMC (emcee, = rollspring fit --posterior): "
+        "each fitted parameter's median and 95 % credible interval, in fit.posterior.",
+    )
 
 
 class Problem(BaseModel):
@@ -516,6 +522,7 @@ def create_app(
             return job
         job["free"] = None if request.free is None else list(request.free)
         job["fix_initial"] = request.fix_initial
+        job["posterior"] = request.posterior
         job["budget"] = holder["pool"].budget  # a fit estimated beyond it is refused (503)
         return compute("fit", job)
 

@@ -112,6 +112,7 @@ def fit(request: dict[str, Any]) -> bytes:
         request.get("free"),
         request.get("mapping"),
         fix_initial=request.get("fix_initial", False),
+        posterior=request.get("posterior", False),
         unmatched=request.get("unmatched", "refuse"),
         budget=request.get("budget"),
     )

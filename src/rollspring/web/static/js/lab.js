@@ -261,7 +261,8 @@ export class LabPanel {
     this.status("Fitting…");
     try {
       const answer = await postJson("/api/fit", { system: this.page.system(), data: this.text, filename: this.name,
-        free: this.free(), fix_initial: this.$("#lab-fix-initial").checked, mapping: this.mapping || {} });
+        free: this.free(), fix_initial: this.$("#lab-fix-initial").checked,
+        posterior: this.$("#lab-posterior").checked, mapping: this.mapping || {} });
       this.result = answer;
       this.data = answer.data;
       this.render(answer);
@@ -284,9 +285,13 @@ export class LabPanel {
     table.className = "lab-table";
     table.id = "lab-parameters";
     const caption = document.createElement("caption");
-    caption.textContent = "Fitted values ± standard errors";
+    const intervals = (fit.posterior && fit.posterior.credible_intervals) || null;
+    caption.textContent = intervals
+      ? "Fitted values ± standard errors, and the posterior's 95 % credible intervals (MCMC)"
+      : "Fitted values ± standard errors";
     const head = document.createElement("thead");
-    head.innerHTML = '<tr><th scope="col">parameter</th><th scope="col">value</th><th scope="col">unit</th></tr>';
+    head.innerHTML = '<tr><th scope="col">parameter</th><th scope="col">value</th>'
+      + (intervals ? '<th scope="col">95 % credible interval</th>' : "") + '<th scope="col">unit</th></tr>';
     const body = document.createElement("tbody");
     for (const [name, p] of Object.entries(fit.parameters)) {
       const row = document.createElement("tr");
@@ -301,7 +306,22 @@ export class LabPanel {
       value.textContent = p.fixed ? `${sig(p.value, 6)} (held)` : withError(p.value, p.stderr);
       const unit = document.createElement("td");
       unit.textContent = p.unit || "";
-      row.append(th, value, unit);
+      row.append(th, value);
+      if (intervals) {
+        const cell = document.createElement("td");
+        cell.className = "interval";
+        const interval = intervals[name];
+        if (interval) {
+          row.dataset.low = String(interval.low);
+          row.dataset.high = String(interval.high);
+          const digits = p.stderr > 0 ? Math.max(2, Math.ceil(Math.log10(Math.abs(p.value) / p.stderr)) + 2) : 6;
+          cell.textContent = `${sig(interval.low, digits)} … ${sig(interval.high, digits)}`;
+        } else {
+          cell.textContent = "—";
+        }
+        row.append(cell);
+      }
+      row.append(unit);
       body.append(row);
     }
     table.append(caption, head, body);

@@ -309,6 +309,65 @@ def test_a_normal_force_that_grazes_zero_between_two_step_ends_lifts_off_at_the_
     assert abs(liftoff["time"] - exact) <= 1e-2 * rtol / math.sqrt(graze)
 
 
+def phased_pair(tag: str, mu_hoop: float, peak: float, x0: float = 0.0):
+    """:func:`moving_pair`'s bodies and spring, named with ``tag`` and placed at ``x0``, phased
+    so that the hoop's |f|/N peaks at t = ``peak``."""
+    w1, w2, speed = 2.0 / 3.5, 1.5 / 3.5, 0.05
+    omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)
+    phase = math.pi / 2 - omega * peak
+    d, rate = speed / omega * math.sin(phase), speed * math.cos(phase)
+    bodies = [
+        body(f"{tag}hoop", "hoop", x=x0 - w2 * d, v=-w2 * rate, mu_static=mu_hoop),
+        body(f"{tag}cyl", "cylinder", x=x0 + 0.5 + w1 * d, v=w1 * rate, mu_static=5.0),
+    ]
+    return bodies, [spring(f"{tag}hoop", f"{tag}cyl", rest_length=0.5)]
+
+
+def pairs_system(*pairs):
+    return make_system(
+        [b for bodies, _ in pairs for b in bodies], [s for _, springs in pairs for s in springs]
+    )
+
+
+def test_every_margin_near_its_bound_in_a_step_is_looked_at_and_the_earliest_dip_wins():
+    """Two far-apart copies of the pair in one system, their hoops' peaks in the same step
+    (found by the review of 29 Nov): A's hoop comes within 1e-7 of mu_s (clear), B's grazes
+    it by 1e-8 0.3 of a step earlier, or later. B's slip is found whatever the bodies' order,
+    at the instant B has alone; and of two grazes in one step, the earlier one wins."""
+    omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)
+    needed = float(analyze(moving_pair(1.0)).required_mu[0])
+    assert simulate(moving_pair(1.0), 1.0, rtol=1e-10).summary["step"] == pytest.approx(1 / 91)
+    peak = 0.1 + 0.5 / 91  # inside the step from 9/91 to 10/91 s
+    clear = phased_pair("A", (1 + 1e-7) * needed, peak)
+    graze = phased_pair("B", (1 - 1e-8) * needed, peak, 10.0)
+    alone = simulate(pairs_system(graze), 1.0, rtol=1e-10).summary["first_slip"]
+    exact = peak - math.acos(1 - 1e-8) / omega  # sin(Omega t) = 1 - 1e-8 before the peak
+    assert alone["time"] == pytest.approx(exact, abs=1e-7)
+    for order in ((clear, graze), (graze, clear)):
+        slip = simulate(pairs_system(*order), 1.0, rtol=1e-10).summary["first_slip"]
+        assert slip == alone
+    early = phased_pair("B", (1 - 1e-8) * needed, peak - 0.3 / 91, 10.0)
+    late = phased_pair("A", (1 - 1e-8) * needed, peak)
+    first = simulate(pairs_system(early), 1.0, rtol=1e-10).summary["first_slip"]
+    assert first["body"] == "Bhoop"
+    for order in ((late, early), (early, late)):
+        assert simulate(pairs_system(*order), 1.0, rtol=1e-10).summary["first_slip"] == first
+
+
+@pytest.mark.parametrize("fraction", [0.3, 0.5, 0.7, 1.5])
+def test_a_graze_in_the_first_step_of_a_segment_is_found(fraction):
+    """The kernel looks at a step from the two step ends before it; a segment's first step
+    is looked at from its start, middle and end: the hoop's peak put 0.3, 0.5, 0.7 and 1.5 of
+    a step after the release, mu_s 1e-8 below it, slips there (not a period later)."""
+    omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)
+    needed = float(analyze(moving_pair(1.0)).required_mu[0])
+    peak = fraction / 91  # the step of these runs at rtol 1e-10 is 1/91 s
+    trajectory = simulate(pairs_system(phased_pair("", (1 - 1e-8) * needed, peak)), 1.0, rtol=1e-10)
+    slip = trajectory.summary["first_slip"]
+    assert slip["body"] == "hoop"
+    assert slip["time"] == pytest.approx(peak - math.acos(1 - 1e-8) / omega, abs=1e-7)
+
+
 def test_no_slip_just_above_the_needed_friction():
     needed = float(analyze(moving_pair(1.0)).required_mu[0])
     omega = math.sqrt(100.0 / 2 + 2 * 100.0 / 3)

@@ -95,6 +95,7 @@ class RollingSegments(RunState):
             can_slip, np.where(can_slip, mu, 0.0) * normal0 - np.abs(friction0), np.nan
         )
         near_margins[1, 1] = normal0
+        near_flags = np.zeros(2 * n, dtype=np.int64)
         offset = skip_near = 0  # steps of this chunk taken before a step looked inside
         ball_ptr, ball_idx = self.balls()
         extreme_states = np.empty((2, 2, ball_idx.size))
@@ -108,6 +109,14 @@ class RollingSegments(RunState):
         signal = (self.plan.mode_weights, self.plan.q_ref)
         kept = (extremes, extreme_states, ball_ptr, ball_idx, *signal, crossing, crossing_states)
         q, qdot = q.copy(), qdot.copy()
+        # the kernel looks at a step from the two step ends before it: the segment's first step
+        # is looked at here (each margin at its start, middle and end)
+        root = self._first_step_dip(model, q, qdot, near_margins[:, 1].copy())
+        if root is not None:
+            self._flush_pending()
+            self.segments.append(self._rolling_evaluator(model, [t], [q], [qdot], h, x0))
+            self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
+            return self._event_at(model, t, q.copy(), qdot.copy(), *root, x0)
         done = 0
         while done < n_total:
             steps = min(chunk, n_total - done)
@@ -139,6 +148,7 @@ class RollingSegments(RunState):
                 *kept,
                 before,
                 near_margins,
+                near_flags,
                 offset,
                 skip_near,
             )
@@ -164,7 +174,9 @@ class RollingSegments(RunState):
             if status == kernels.STATUS_NEAR:
                 # a contact margin may dip below zero inside the next step, between its ends
                 t_before = t_chunk + (taken - 1) * h
-                root = self._dip_inside(model, before[0], before[1], h, body)
+                root = self._earliest_dip(
+                    model, before[0], before[1], h, np.flatnonzero(near_flags), near_margins
+                )
                 if root is not None:
                     row_times.append(np.array([t_before]))
                     row_q.append(before[0][None, :].copy())
@@ -176,7 +188,7 @@ class RollingSegments(RunState):
                         model, x0, extremes, extreme_states, crossing, crossing_states, h
                     )
                     return self._event_at(
-                        model, t_before, before[0].copy(), before[1].copy(), root, body, x0
+                        model, t_before, before[0].copy(), before[1].copy(), *root, x0
                     )
                 # it stays clear: the chunk goes on from the step's start, that step taken
                 # again (the same numbers as had the kernel not stopped)
@@ -449,33 +461,114 @@ class RollingSegments(RunState):
         root, j = best
         return self._event_at(model, t_before, q, v, root, int(j), x0)
 
-    def _dip_inside(
-        self, model: tuple[Any, ...], q: FloatArray, v: FloatArray, h: float, j: int
-    ) -> float | None:
-        r"""Where contact margin ``j`` (< n: body j's slip margin :math:`\mu_sN - |f|`, else
-        body j - n's normal force) first falls below zero inside the step of length ``h``
-        from (q, v), when it does between the step's ends (both positive): its minimum over
-        the step (bounded Brent on the step's interpolant, the scheme run with a shorter
-        step), then the root before it; None when the margin stays clear."""
+    def _margins(
+        self, model: tuple[Any, ...], q: FloatArray, v: FloatArray, tau: float
+    ) -> FloatArray:
+        r"""The contact margins ``tau`` into a step from (q, v), on the step's interpolant (the
+        scheme run with a step of ``tau``): the slip margins :math:`\mu_sN_i - |f_i|` (NaN
+        where a body cannot slip), then the normal forces :math:`N_i`."""
+        _, _, f, nn = kernels.advance(model, self.coeffs, q, v, tau, 1 if tau > 0 else 0)
+        mu = self.arrays.mu_static
+        can_slip = self.rolls & np.isfinite(mu)
+        slip = np.where(can_slip, np.where(can_slip, mu, 0.0) * nn - np.abs(f), np.nan)
+        return np.concatenate([slip, nn])
+
+    def _earliest_dip(
+        self,
+        model: tuple[Any, ...],
+        q: FloatArray,
+        v: FloatArray,
+        h: float,
+        flagged: np.ndarray,
+        near_margins: FloatArray,
+    ) -> tuple[float, int] | None:
+        """The earliest instant (from the step's start, and its margin) at which one of the
+        margins ``flagged`` (:meth:`_margins`' order) falls below zero inside the step of
+        length ``h`` from (q, v), whose two step ends before it are ``near_margins`` (older,
+        last): each looked at by :meth:`_dip_inside`; None when all stay clear."""
         n = self.n
-        body = j % n
-        mu = float(self.arrays.mu_static[body])
+        end = self._margins(model, q, v, h)
+        best: tuple[float, int] | None = None
+        for j in flagged.tolist():
+            kind, body = divmod(j, n)
+            samples = (near_margins[kind, 0, body], near_margins[kind, 1, body], end[j])
+            root = self._dip_inside(model, q, v, h, j, samples, 1.0)
+            if root is not None and (best is None or root < best[0]):
+                best = (root, j)
+        return best
+
+    def _first_step_dip(
+        self, model: tuple[Any, ...], q: FloatArray, v: FloatArray, start: FloatArray
+    ) -> tuple[float, int] | None:
+        """:meth:`_earliest_dip` for a segment's first step (no step end before it): each
+        margin sampled at the step's start (``start``, (2, n)), middle and end, the parabola
+        through the three looked at over the whole step."""
+        assert self.h is not None
+        h, n = self.h, self.n
+        middle, end = self._margins(model, q, v, 0.5 * h), self._margins(model, q, v, h)
+        first = np.concatenate([start[0], start[1]])
+        best: tuple[float, int] | None = None
+        for j in range(2 * n):
+            samples = (first[j], middle[j], end[j])
+            root = self._dip_inside(model, q, v, h, j, samples, 2.0)
+            if root is not None and (best is None or root < best[0]):
+                best = (root, j)
+        return best
+
+    def _dip_inside(
+        self,
+        model: tuple[Any, ...],
+        q: FloatArray,
+        v: FloatArray,
+        h: float,
+        j: int,
+        samples: tuple[float, float, float],
+        spans: float,
+    ) -> float | None:
+        r"""Where contact margin ``j`` (:meth:`_margins`' order) first falls below zero inside
+        the step of length ``h`` from (q, v), or None when it stays clear. ``samples``: the
+        margin at three equally spaced instants ending at the step's end, ``spans`` of their
+        spacings making up the step (1: two step ends before and this one's; 2: the step's
+        start, middle and end). The parabola through them, :math:`A\tau^2 + B\tau + C`, has its
+        minimum :math:`C - B^2/4A` at :math:`\tau^*`; when that is in the step and below
+        :math:`A`, the margin is evaluated at :math:`\tau^*` on the interpolant: above
+        :math:`A/20` the step is clear (the parabola's vertex is off by a small fraction of a
+        spacing, so the true minimum is within :math:`A/100` of it); else the minimum over the
+        step is found (bounded Brent) and, below zero, the root before it."""
+        older, last, now = samples
+        if not (np.isfinite(older) and np.isfinite(last) and np.isfinite(now)):
+            return None
+        curvature = 0.5 * (older - 2.0 * last + now)
+        if not curvature > 0.0:
+            return None
+        slope = 0.5 * (older - 4.0 * last + 3.0 * now)
+        vertex = -slope / (2.0 * curvature)  # in spacings from the step's end
+        reach = kernels.NEAR_REACH
+        if vertex < -spans - reach or vertex > reach:
+            return None
+        if now - slope * slope / (4.0 * curvature) >= curvature:
+            return None
 
         def margin(tau: float) -> float:
-            _, _, f, nn = kernels.advance(model, self.coeffs, q, v, tau, 1 if tau > 0 else 0)
-            return float(mu * nn[body] - abs(f[body])) if j < n else float(nn[body])
+            return float(self._margins(model, q, v, tau)[j])
 
+        at_vertex = min(max(h * (1.0 + vertex / spans), 0.0), h)
+        if margin(at_vertex) > 0.05 * curvature:
+            return None
         import scipy.optimize  # on demand: a graze to look at
 
         lowest = scipy.optimize.minimize_scalar(
             margin, bounds=(0.0, h), method="bounded", options={"xatol": 1e-12 * h}
         )
-        if not lowest.fun < 0.0:
+        low_tau, low = float(lowest.x), float(lowest.fun)
+        if margin(at_vertex) < low:
+            low_tau, low = at_vertex, margin(at_vertex)
+        if not low < 0.0:
             return None
+        if not margin(0.0) > 0.0:
+            return 0.0
         return float(
-            scipy.optimize.brentq(
-                margin, 0.0, float(lowest.x), xtol=1e-15, rtol=4 * np.finfo(float).eps
-            )
+            scipy.optimize.brentq(margin, 0.0, low_tau, xtol=1e-15, rtol=4 * np.finfo(float).eps)
         )
 
     def _event_at(

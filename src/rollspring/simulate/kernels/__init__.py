@@ -62,6 +62,7 @@ from rollspring.simulate.kernels.refine import (
     spring_balls,
 )
 from rollspring.simulate.kernels.stepping import (
+    NEAR_REACH,
     SCHEMES,
     STATUS_NEAR,
     advance,
@@ -74,6 +75,7 @@ __all__ = [
     "KIND_NAMES",
     "LEVEL",
     "MOST_BODIES",
+    "NEAR_REACH",
     "SCHEMES",
     "STATUS_NEAR",
     "advance",

@@ -26,6 +26,7 @@ from rollspring.simulate.kernels.forces import _contact, _workspace, force_rates
 from rollspring.simulate.status import Status
 
 __all__ = [
+    "NEAR_REACH",
     "SCHEMES",
     "STATUS_FINISHED",
     "STATUS_LIFTOFF",
@@ -210,6 +211,7 @@ def run_fixed_step(
     crossing_states,
     before,
     near_margins,
+    near_flags,
     first_step,
     skip_near,
 ):
@@ -240,8 +242,9 @@ def run_fixed_step(
     step (a friction that grazes :math:`\mu_sN`). After each step, the parabola through a
     margin's last three step-end values is looked at: when its minimum falls in this step
     (:data:`NEAR_REACH`) and is below its curvature term, the run stops before the step
-    (status :data:`STATUS_NEAR`, the "body" ``j`` < n a slip margin of body j, else the
-    normal force of body j - n) so that the caller looks inside it. A call may start at step
+    (status :data:`STATUS_NEAR`, the "body" the number of margins flagged, each marked 1 in
+    ``near_flags`` (2n): ``j`` < n the slip margin of body j, else the normal force of body
+    j - n) so that the caller looks inside it for every one of them. A call may start at step
     ``first_step`` + 1 of the ``n_steps`` (from the state at the start of that step: the
     times stay ``t0 + (step - 1) h``, bit for bit those of a call that took every step) and
     look at no step up to ``skip_near`` (a step just looked inside and found clear, run
@@ -295,11 +298,15 @@ def run_fixed_step(
         if event >= 0:  # the state after this step is past the event: not an extreme
             return event, step, event_body, rows
         if check_contacts and step > skip_near:
+            flagged = 0
             for kind in range(2):
                 for i in range(n):
                     older, last = near_margins[kind, 0, i], near_margins[kind, 1, i]
-                    if _dips_here(older, last, margin[kind, i]):
-                        return STATUS_NEAR, step, i + kind * n, rows
+                    dips = _dips_here(older, last, margin[kind, i])
+                    near_flags[i + kind * n] = 1 if dips else 0
+                    flagged += 1 if dips else 0
+            if flagged:
+                return STATUS_NEAR, step, flagged, rows
         t_start = t0 + (step - 1) * h
         # outputs inside this step; the last step also takes any left by rounding
         t_end = t_start + h if step < n_steps else np.inf

@@ -381,6 +381,27 @@ def test_the_posterior_carries_the_errors_locked_to_the_positions() -> None:
     assert narrow == pytest.approx(math.sqrt(1 - share), rel=0.25)
 
 
+def test_the_locked_errors_never_carry_a_sample_outside_the_prior() -> None:
+    """A damping near zero (an undamped recording), its error dominated by 5 mm of error
+    locked to each position: the draws that would carry a sample below zero are drawn again
+    (found by the review of 29 Nov: about half the samples were below zero), so every sample
+    and the interval stay within the prior's support, and the interval is wider than without
+    the locked errors."""
+    import dataclasses
+
+    t, x, _ = recording(UNDAMPED, duration=3.0, fps=30, seed=11, noise=1e-4)
+    data = match_bodies(parse_data(_csv_text(t, x), "locked.csv"), load_system("hoop-cylinder"))
+    data = dataclasses.replace(data, locked_error=np.full((2, 3), 5e-3))
+    result = rollspring.fit(data, UNDAMPED.system(), ["springs.0.damping"], claims=False)
+    assert result.parameters["springs.0.damping"].stderr > 5 * result.value("springs.0.damping")
+    posterior = sample_posterior(result, steps=200, seed=4)
+    damping = posterior.samples[..., result.fitted.index("springs.0.damping")]
+    assert np.all(damping >= 0.0)
+    plain = sample_posterior(dataclasses.replace(result, locked=None), steps=200, seed=4)
+    k = result.fitted.index("springs.0.damping")
+    assert posterior.high[k] - posterior.low[k] > 3 * (plain.high[k] - plain.low[k])
+
+
 def test_paths_that_are_no_number_of_the_system() -> None:
     system = load_system("hoop-cylinder")
     t, x, _ = recording(DAMPED, duration=1.0, fps=30)

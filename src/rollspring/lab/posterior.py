@@ -14,7 +14,8 @@ which is :math:`-\sum r^2/2s^2` for :math:`\rho = 0`. The errors locked to the b
 positions (a textured background, :func:`rollspring.lab.fit.locked_covariance`) repeat
 wherever a body passes and do not average down: their share of the fit's covariance,
 :math:`C_e`, is added to the chain as one independent draw from :math:`N(0, C_e)` per sample,
-as it is added to the fit's covariance.
+as it is added to the fit's covariance, a draw that leaves the prior's support drawn again
+(:func:`_with_locked_errors`).
 
 The walkers start in a small ball (a tenth of a standard error) around the least-squares
 minimum and are evaluated as one batch (``vectorize=True``): on the linear route every walker's
@@ -108,19 +109,34 @@ class _Errors:
         return np.asarray(np.sum(self.weight * innovation**2, axis=-1))
 
 
+def _full(result: FitResult, points: FloatArray) -> FloatArray:
+    """Every parameter of the model for each row of ``points`` (rows, fitted parameters): the
+    fit's best values with the fitted ones replaced."""
+    names = result.problem.layout.names
+    fitted = [names.index(name) for name in result.fitted]
+    full = np.repeat(result.best[None, :], points.shape[0], axis=0)
+    full[:, fitted] = points
+    return full
+
+
+def _inside_prior(result: FitResult, full: FloatArray) -> np.ndarray:
+    """Whether each row of ``full`` (:func:`_full`) is within the flat prior's support: every
+    PATH within the range a system file takes (the initial state and t0 are free)."""
+    layout = result.problem.layout
+    p = layout.n_paths
+    low = np.array([paths_module.bounds_of(path, 0.0)[0] for path in layout.paths])
+    high = np.array([paths_module.bounds_of(path, 0.0)[1] for path in layout.paths])
+    return np.asarray(np.all((full[:, :p] >= low) & (full[:, :p] <= high), axis=1))
+
+
 def _log_probability(result: FitResult, points: FloatArray, errors: _Errors) -> FloatArray:
     """The log-posterior of each row of ``points`` (walkers, fitted parameters)."""
     problem = result.problem
     layout = problem.layout
-    names = layout.names
-    fitted = [names.index(name) for name in result.fitted]
-    full = np.repeat(result.best[None, :], points.shape[0], axis=0)
-    full[:, fitted] = points
+    full = _full(result, points)
     out = np.full(points.shape[0], -np.inf)
     p, n = layout.n_paths, len(problem.ids)
-    low = np.array([paths_module.bounds_of(path, 0.0)[0] for path in layout.paths])
-    high = np.array([paths_module.bounds_of(path, 0.0)[1] for path in layout.paths])
-    inside = np.all((full[:, :p] >= low) & (full[:, :p] <= high), axis=1)
+    inside = _inside_prior(result, full)
     scale = 1.0 / (2.0 * result.noise**2)
     if problem.level:
         rows = [int(k) for k in np.flatnonzero(inside)]
@@ -202,6 +218,36 @@ def _affine_motion(result: FitResult) -> tuple[FloatArray, FloatArray] | None:
     return answer
 
 
+#: Draws of the locked errors tried for a sample before it is kept as it is (the prior's
+#: support left by every one of them).
+LOCKED_DRAWS = 100
+
+
+def _with_locked_errors(result: FitResult, chain: FloatArray, seed: int) -> FloatArray:
+    """``chain`` (steps, walkers, parameters) with the errors locked to the positions carried:
+    each sample moved by an independent draw of :math:`N(0, C_e)` (``result.locked``, seeded),
+    drawn again while the moved sample leaves the flat prior's support (a damping below zero),
+    up to :data:`LOCKED_DRAWS` times, then left unmoved: the convolution, truncated to the
+    support as the prior truncates the likelihood."""
+    assert result.locked is not None  # the caller's condition
+    covariance: FloatArray = result.locked
+    rng = np.random.default_rng(seed + 1)
+    flat = chain.reshape(-1, chain.shape[-1])
+    moved = flat.copy()
+    pending = np.arange(flat.shape[0])
+    for _ in range(LOCKED_DRAWS):
+        if pending.size == 0:
+            break
+        draws: FloatArray = rng.multivariate_normal(
+            np.zeros(flat.shape[1]), covariance, size=pending.size, method="eigh"
+        )
+        trial = flat[pending] + draws
+        inside = _inside_prior(result, _full(result, trial))
+        moved[pending[inside]] = trial[inside]
+        pending = pending[~inside]
+    return moved.reshape(chain.shape)
+
+
 def posterior_cost(result: FitResult, *, walkers: int | None = None, steps: int = 300) -> Cost:
     """The estimated cost of :func:`sample_posterior`: on the simulated motion one evaluation
     of the residuals per walker and step, each as long as the fit's took on average; on the
@@ -245,10 +291,20 @@ def sample_posterior(
         raise FitError("--posterior: no parameter is fitted")
     count = _walkers(result, walkers)
     centre = np.array([result.parameters[name].value for name in names])
-    spread = np.array([result.parameters[name].stderr for name in names])
+    # the spread the likelihood gives (the locked errors' share is added after sampling)
+    variance = np.diag(result.covariance) - (
+        np.diag(result.locked) if result.locked is not None else 0.0
+    )
+    spread = np.sqrt(np.maximum(variance, 0.0))
     spread = np.where(np.isfinite(spread) & (spread > 0), spread, 1e-6 * np.maximum(1, abs(centre)))
     rng = np.random.default_rng(seed)
     start = centre + 0.1 * spread * rng.standard_normal((count, dimension))
+    for _ in range(60):  # walkers started outside the prior's support drawn again, nearer
+        outside = ~_inside_prior(result, _full(result, start))
+        if not outside.any():
+            break
+        spread = 0.5 * spread
+        start[outside] = centre + 0.1 * spread * rng.standard_normal((outside.sum(), dimension))
     errors = _Errors.of(result.problem.mask, result.rho)
     sampler = emcee.EnsembleSampler(
         count,
@@ -262,11 +318,7 @@ def sample_posterior(
             progress(step / steps)
     chain = sampler.get_chain(discard=steps // 2)
     if result.locked is not None and np.any(result.locked):
-        # the locked errors' share: one independent draw a sample (seeded)
-        draws = np.random.default_rng(seed + 1).multivariate_normal(
-            np.zeros(dimension), result.locked, size=chain.shape[:2], method="eigh"
-        )
-        chain = chain + draws
+        chain = _with_locked_errors(result, chain, seed)
     flat = chain.reshape(-1, dimension)
     low, median, high = np.percentile(flat, [2.5, 50.0, 97.5], axis=0)
     acceptance = float(np.mean(sampler.acceptance_fraction))

@@ -302,10 +302,14 @@ def run_fixed_step(
             for kind in range(2):
                 for i in range(n):
                     older, last = near_margins[kind, 0, i], near_margins[kind, 1, i]
-                    dips = _dips_here(older, last, margin[kind, i])
-                    near_flags[i + kind * n] = 1 if dips else 0
-                    flagged += 1 if dips else 0
-            if flagged:
+                    if _dips_here(older, last, margin[kind, i]):
+                        flagged += 1
+            if flagged:  # rare: the flags written only then
+                for kind in range(2):
+                    for i in range(n):
+                        older, last = near_margins[kind, 0, i], near_margins[kind, 1, i]
+                        dips = _dips_here(older, last, margin[kind, i])
+                        near_flags[i + kind * n] = 1 if dips else 0
                 return STATUS_NEAR, step, flagged, rows
         t_start = t0 + (step - 1) * h
         # outputs inside this step; the last step also takes any left by rounding

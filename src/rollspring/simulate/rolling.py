@@ -536,17 +536,8 @@ class RollingSegments(RunState):
         spacing, so the true minimum is within :math:`A/100` of it); else the minimum over the
         step is found (bounded Brent) and, below zero, the root before it."""
         older, last, now = samples
-        if not (np.isfinite(older) and np.isfinite(last) and np.isfinite(now)):
-            return None
-        curvature = 0.5 * (older - 2.0 * last + now)
-        if not curvature > 0.0:
-            return None
-        slope = 0.5 * (older - 4.0 * last + 3.0 * now)
-        vertex = -slope / (2.0 * curvature)  # in spacings from the step's end
-        reach = kernels.NEAR_REACH
-        if vertex < -spans - reach or vertex > reach:
-            return None
-        if now - slope * slope / (4.0 * curvature) >= curvature:
+        vertex, curvature = kernels.dip_vertex(float(older), float(last), float(now), spans)
+        if math.isnan(vertex):  # in spacings from the step's end
             return None
 
         def margin(tau: float) -> float:

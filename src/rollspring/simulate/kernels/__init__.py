@@ -67,6 +67,7 @@ from rollspring.simulate.kernels.stepping import (
     STATUS_NEAR,
     advance,
     advance_many,
+    dip_vertex,
     run_fixed_step,
 )
 
@@ -82,6 +83,7 @@ __all__ = [
     "advance_many",
     "body_links",
     "body_loads",
+    "dip_vertex",
     "force_rates",
     "generalized_forces",
     "kernel_model",

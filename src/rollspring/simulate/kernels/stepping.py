@@ -35,6 +35,7 @@ __all__ = [
     "STATUS_SLIP",
     "advance",
     "advance_many",
+    "dip_vertex",
     "run_fixed_step",
 ]
 
@@ -377,22 +378,33 @@ def run_fixed_step(
     return STATUS_FINISHED, n_steps, -1, rows
 
 
-@njit(cache=True, inline="always", error_model="numpy")
-def _dips_here(older, last, now):
-    r"""Whether a margin sampled ``older``, ``last``, ``now`` at three step ends (all positive)
-    may dip below zero inside the last step: the parabola through them,
-    :math:`m(\tau) = A\tau^2 + B\tau + C` (:math:`\tau` in steps from the step's end), has
-    its minimum :math:`C - B^2/4A` below :math:`A` within :data:`NEAR_REACH` of the step."""
+@njit(cache=True, error_model="numpy")
+def dip_vertex(older, last, now, spans):
+    r"""(vertex, A) of a margin sampled ``older``, ``last``, ``now`` at three equally spaced
+    instants ending at a step's end (all positive), ``spans`` of their spacings making up the
+    step: the parabola through them, :math:`m(\tau) = A\tau^2 + B\tau + C` (:math:`\tau` in
+    spacings from the step's end), and its minimum's place :math:`\tau^* = -B/2A` when the
+    margin may dip below zero inside the step there, that minimum :math:`C - B^2/4A` below
+    :math:`A` within :data:`NEAR_REACH` spacings of the step; else vertex NaN."""
     if not (math.isfinite(older) and math.isfinite(last) and math.isfinite(now)):
-        return False
+        return np.nan, 0.0
     curvature = 0.5 * (older - 2.0 * last + now)
     if not curvature > 0.0:
-        return False
+        return np.nan, curvature
     slope = 0.5 * (older - 4.0 * last + 3.0 * now)
     vertex = -slope / (2.0 * curvature)
-    if vertex < -1.0 - NEAR_REACH or vertex > NEAR_REACH:
-        return False
-    return now - slope * slope / (4.0 * curvature) < curvature
+    if vertex < -spans - NEAR_REACH or vertex > NEAR_REACH:
+        return np.nan, curvature
+    if not now - slope * slope / (4.0 * curvature) < curvature:
+        return np.nan, curvature
+    return vertex, curvature
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _dips_here(older, last, now):
+    """Whether a margin sampled at three step ends may dip below zero inside the last step
+    (:func:`dip_vertex`)."""
+    return not math.isnan(dip_vertex(older, last, now, 1.0)[0])
 
 
 @njit(cache=True, inline="always", error_model="numpy")

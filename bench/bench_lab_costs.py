@@ -27,7 +27,6 @@ Run: ``python bench/bench_lab_costs.py`` (about a minute and a half, most of it 
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 import tempfile
 import time
@@ -39,7 +38,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
-from common import machine_note
+from common import machine_note, one_core_opencv
 
 
 def main() -> None:
@@ -47,11 +46,7 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=3.0, help="video length, s")
     parser.add_argument("--repeats", type=int, default=2)
     args = parser.parse_args()
-    if hasattr(os, "sched_setaffinity"):
-        os.sched_setaffinity(0, {sorted(os.sched_getaffinity(0))[0]})
-    import cv2
-
-    cv2.setNumThreads(1)
+    one_core_opencv()
     print(machine_note())
     with tempfile.TemporaryDirectory() as folder:
         rows = [_track_size(Path(folder), w, h, s, args) for w, h, s in _SIZES]

@@ -36,7 +36,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from common import machine_note
+from common import machine_note, one_core_opencv
 
 TARGET_FPS = 60.0
 
@@ -47,11 +47,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
 
-    if hasattr(os, "sched_setaffinity"):
-        os.sched_setaffinity(0, {sorted(os.sched_getaffinity(0))[0]})
-    import cv2
-
-    cv2.setNumThreads(1)
+    cv2 = one_core_opencv()
     import rollspring
     from rollspring.lab.synthetic import Camera, exact_motion, write_video
     from rollspring.lab.tracking import track_video

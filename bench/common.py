@@ -49,6 +49,17 @@ def best_of(run: Callable[[], Any], repeats: int, *, warmup: int = 1) -> tuple[f
     return min(repeat(run, repeats, warmup=warmup), key=lambda pair: pair[0])
 
 
+def one_core_opencv() -> Any:
+    """Pin this process to its first allowed core (``os.sched_setaffinity`` where there is one)
+    and turn OpenCV's own threads off: what one core tracks. Returns ``cv2``."""
+    if hasattr(os, "sched_setaffinity"):
+        os.sched_setaffinity(0, {sorted(os.sched_getaffinity(0))[0]})
+    import cv2
+
+    cv2.setNumThreads(1)
+    return cv2
+
+
 def machine_note() -> str:
     """One line on the machine and its load (other work on it makes timings noisy)."""
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")

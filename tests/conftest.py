@@ -191,3 +191,13 @@ def sized(request: pytest.FixtureRequest, browser: Any, server: str) -> Iterator
     from tests.serving import SIZES
 
     yield from _opened(browser, server, dict(SIZES)[request.param])
+
+
+def moving_hoop_cylinder() -> System:
+    """The paper's hoop and cylinder set rolling (hoop 0.3 m/s, cylinder -0.4 m/s): both bodies
+    move, as a video of them shows them."""
+    from rollspring.model import load_system, system_to_json
+
+    data = system_to_json(load_system("hoop-cylinder"))
+    data["bodies"][0]["v"], data["bodies"][1]["v"] = 0.3, -0.4
+    return system_from_dict(data)

@@ -24,7 +24,8 @@ from typer.testing import CliRunner
 import rollspring
 from rollspring.cli import app
 from rollspring.errors import RollspringError
-from rollspring.model import load_system, system_from_dict, system_to_json
+from rollspring.model import load_system
+from tests.conftest import moving_hoop_cylinder
 from tests.fit_data import Truth, recording, write_csv
 
 runner = CliRunner()
@@ -281,14 +282,7 @@ def filmed(tmp_path_factory: Any) -> Path:
     return write_video(tmp_path_factory.mktemp("film") / "film.mp4", MOVING, motion, camera)
 
 
-def _moving() -> Any:
-    """The paper's pair set rolling (both bodies move, as a video of them shows them)."""
-    data = system_to_json(load_system("hoop-cylinder"))
-    data["bodies"][0]["v"], data["bodies"][1]["v"] = 0.3, -0.4
-    return system_from_dict(data)
-
-
-MOVING = _moving()
+MOVING = moving_hoop_cylinder()
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -25,9 +25,10 @@ from rollspring.lab import costs
 from rollspring.lab.costs import VideoHeader, fit_cost, tracked_frames, tracking_cost
 from rollspring.lab.data import match_bodies, parse_data
 from rollspring.lab.synthetic import Camera, exact_motion, write_video
-from rollspring.model import load_system, system_from_dict, system_to_json
+from rollspring.model import load_system, system_to_json
 from rollspring.service import tracking as service_tracking
 from rollspring.simulate.costs import simulation_cost
+from tests.conftest import moving_hoop_cylinder
 from tests.fit_data import Truth, recording, write_csv
 
 runner = CliRunner()
@@ -44,18 +45,10 @@ def _cli(*args: str) -> tuple[int, str, str]:
 @pytest.fixture(scope="module")
 def video(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """Half a second of the paper's hoop and cylinder, both rolling, 640×360 at 30 fps."""
-    data = system_to_json(load_system("hoop-cylinder"))
-    data["bodies"][0]["v"], data["bodies"][1]["v"] = 0.3, -0.4
-    system = system_from_dict(data)
+    system = moving_hoop_cylinder()
     camera = Camera(fps=30, roll_deg=2.0, noise=4.0, blur=1.0, seed=1)
     motion = exact_motion(system, camera.frame_times(0.5))
     return write_video(tmp_path_factory.mktemp("video") / "short.mp4", system, motion, camera)
-
-
-def _moving_system() -> Any:
-    data = system_to_json(load_system("hoop-cylinder"))
-    data["bodies"][0]["v"], data["bodies"][1]["v"] = 0.3, -0.4
-    return system_from_dict(data)
 
 
 # ----------------------------------------------------------------------------- the estimates
@@ -275,13 +268,13 @@ def _system_file(folder: Path) -> Path:
     import json
 
     path = folder.parent / "moving.json"
-    path.write_text(json.dumps(system_to_json(_moving_system())), encoding="utf-8")
+    path.write_text(json.dumps(system_to_json(moving_hoop_cylinder())), encoding="utf-8")
     return path
 
 
 def test_confirm_in_python(video: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(costs, "_TRACK_PER_PIXEL", costs._TRACK_PER_PIXEL * 1e6)
-    system = _moving_system()
+    system = moving_hoop_cylinder()
     with pytest.raises(CostTooHigh, match=r"16 frames of 640×360 px.*confirm=True"):
         rollspring.track(video, system)
     result = rollspring.track(video, system, confirm=True)

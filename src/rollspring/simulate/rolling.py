@@ -88,13 +88,8 @@ class RollingSegments(RunState):
         extremes = np.array([ratio0, [t] * n, normal0, [t] * n])
         # the contact margins at the last two step ends (the kernel looks for a dip inside a
         # step from them): the segment's start, the one before unknown
-        mu = self.arrays.mu_static
-        can_slip = self.rolls & np.isfinite(mu)
         near_margins = np.full((2, 2, n), np.nan)
-        near_margins[0, 1] = np.where(
-            can_slip, np.where(can_slip, mu, 0.0) * normal0 - np.abs(friction0), np.nan
-        )
-        near_margins[1, 1] = normal0
+        near_margins[:, 1] = self._contact_margins(np.asarray(friction0), np.asarray(normal0))
         near_flags = np.zeros(2 * n, dtype=np.int64)
         offset = skip_near = 0  # steps of this chunk taken before a step looked inside
         ball_ptr, ball_idx = self.balls()
@@ -427,16 +422,11 @@ class RollingSegments(RunState):
             if self._violation(f1, n1) is not None or not np.all(np.isfinite(q1)):
                 break
             q, v, t_before = q1, v1, t_before + h
-        mu = self.arrays.mu_static
-        checked = self.rolls & np.isfinite(mu)  # mu_s = inf: never slips (no inf * N)
-        mu_finite = np.where(checked, mu, 0.0)
 
         def margins(tau: float) -> FloatArray:
-            _, _, f, nn = kernels.advance(model, self.coeffs, q, v, tau, 1 if tau > 0 else 0)
-            slip = np.where(checked, mu_finite * nn - np.abs(f), np.inf)
-            return np.concatenate([slip, nn])
+            return self._margins(model, q, v, tau)
 
-        end = margins(h)
+        end = margins(h)  # NaN where a body cannot slip: never below zero
         start = margins(0.0)
         best = None
         import scipy.optimize  # on demand: an event to locate (SciPy's optimizers take ~0.1 s)
@@ -468,10 +458,16 @@ class RollingSegments(RunState):
         scheme run with a step of ``tau``): the slip margins :math:`\mu_sN_i - |f_i|` (NaN
         where a body cannot slip), then the normal forces :math:`N_i`."""
         _, _, f, nn = kernels.advance(model, self.coeffs, q, v, tau, 1 if tau > 0 else 0)
+        return self._contact_margins(f, nn).ravel()
+
+    def _contact_margins(self, friction: FloatArray, normal: FloatArray) -> FloatArray:
+        r"""(2, n): the slip margins :math:`\mu_sN_i - |f_i|` (docs/physics.md §9; NaN where a
+        body cannot slip: it does not roll, or :math:`\mu_s = \infty`) and the normal forces
+        :math:`N_i`, for the needed frictions and normal forces (M8), (M9)."""
         mu = self.arrays.mu_static
         can_slip = self.rolls & np.isfinite(mu)
-        slip = np.where(can_slip, np.where(can_slip, mu, 0.0) * nn - np.abs(f), np.nan)
-        return np.concatenate([slip, nn])
+        slip = np.where(can_slip, np.where(can_slip, mu, 0.0) * normal - np.abs(friction), np.nan)
+        return np.stack([slip, normal])
 
     def _earliest_dip(
         self,

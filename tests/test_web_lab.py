@@ -203,7 +203,7 @@ def test_the_posterior_asked_on_the_page_shows_each_credible_interval(sized: Ope
     page.locator("#lab-posterior").check()
     page.locator("#lab-fit").click()
     settle(page)
-    expect(page.locator("#lab-parameters caption")).to_contain_text("95 % credible intervals")
+    expect(page.locator("#lab-parameters thead")).to_contain_text("95 % credible interval (MCMC)")
     for name in FREE:
         row = page.locator(f'#lab-parameters tr[data-parameter="{name}"]')
         expect(row).to_have_count(1)

@@ -286,12 +286,10 @@ export class LabPanel {
     table.id = "lab-parameters";
     const caption = document.createElement("caption");
     const intervals = (fit.posterior && fit.posterior.credible_intervals) || null;
-    caption.textContent = intervals
-      ? "Fitted values ± standard errors, and the posterior's 95 % credible intervals (MCMC)"
-      : "Fitted values ± standard errors";
+    caption.textContent = "Fitted values ± standard errors";
     const head = document.createElement("thead");
     head.innerHTML = '<tr><th scope="col">parameter</th><th scope="col">value</th>'
-      + (intervals ? '<th scope="col">95 % credible interval</th>' : "") + '<th scope="col">unit</th></tr>';
+      + (intervals ? '<th scope="col">95 % credible interval (MCMC)</th>' : "") + '<th scope="col">unit</th></tr>';
     const body = document.createElement("tbody");
     for (const [name, p] of Object.entries(fit.parameters)) {
       const row = document.createElement("tr");

@@ -156,6 +156,49 @@ def test_fingerprint_mismatch_is_refused(system, tmp_path):
     assert result.output.count("\n") == 1 and "holds another sweep" in result.output
 
 
+def test_grid_too_fast_to_resolve_is_refused(system, tmp_path):
+    """A grid whose fastest run needs more than MAX_STEPS steps is refused before any run,
+    with the frequency, the steps and the limit (it once ran the whole grid with one step
+    of the whole duration); --step forces it."""
+    from rollspring.simulate.batch.plan import MAX_STEPS, omega_limit, steps_needed
+
+    vary = {"springs.0.stiffness": [100.0, 1e8]}
+    omega = float(rollspring.analyze(_with_stiffness(system, 1e8)).modes[-1].omega)
+    need = float(steps_needed(np.array([omega]), 1000.0, 1e-8, "auto")[0])
+    assert need > MAX_STEPS
+    with pytest.raises(SweepError) as refused:
+        sweep(system, vary, 1000.0, confirm=True, out=tmp_path / "s.zarr")
+    message = str(refused.value)
+    assert f"{omega:.4g} rad/s" in message and f"{need:.3g} steps" in message
+    assert f"{omega_limit(1000.0, 1e-8, 'auto'):.4g} rad/s are resolved" in message
+    assert "\n" not in message and not (tmp_path / "s.zarr").exists()
+    result = CliRunner().invoke(
+        cli_app(),
+        [
+            "sweep",
+            SYSTEM,
+            "--vary",
+            "springs.0.stiffness=100,1e8",
+            "-T",
+            "1000",
+            "--yes",
+            "--out",
+            str(tmp_path / "c.zarr"),
+        ],
+    )
+    assert result.exit_code == 2
+    assert result.output.count("\n") == 1 and "pass --step to force it" in result.output
+    assert not (tmp_path / "c.zarr").exists()
+    forced = sweep(system, vary, 1e-3, step=1e-4)
+    assert forced.attrs["step"] == pytest.approx(1e-4)
+
+
+def _with_stiffness(system, stiffness):
+    data = system_to_json(system)
+    data["springs"][0]["stiffness"] = stiffness
+    return system_from_dict(data)
+
+
 def test_not_a_store_is_refused(system, tmp_path):
     (tmp_path / "x.zarr").write_text("hello")
     with pytest.raises(StoreMismatchError, match="not a rollspring sweep store"):

@@ -34,7 +34,6 @@ from rollspring.model import System, as_system, system_to_json, system_to_toml
 from rollspring.service.sweeps.compute import (
     STATUS_CODES,
     SweepPlan,
-    batch_omegas,
     compute_chunk,
     compute_chunks,
     copy_plan,
@@ -61,6 +60,7 @@ from rollspring.service.sweeps.store import (
     verified_done,
     write_template,
 )
+from rollspring.simulate.batch.plan import MAX_STEPS, batch_schedule, omega_limit, steps_needed
 from rollspring.simulate.costs import available_cores, batch_cost
 from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 
@@ -456,12 +456,12 @@ def _runs_in(grid: Grid, index: int) -> int:
 
 def _choose_step(plan: SweepPlan, step: float | None) -> SweepPlan:
     """One integrator, step and metric sampling for the whole grid, from its highest linear
-    frequency (read chunk by chunk): what the batch would choose for a call holding every
-    run."""
+    frequency (read chunk by chunk): what the batch chooses for a call holding every run
+    (:func:`~rollspring.simulate.batch.plan.batch_schedule` of that frequency). A grid whose
+    fastest run would need more than :data:`~rollspring.simulate.batch.plan.MAX_STEPS` steps
+    is refused (the batch would leave that run out and choose a step too long for it)."""
     if plan.on_slip == "continue":
         return copy_plan(plan, scheme="single runs", step=0.0, metric_every=0, omega_max=0.0)
-    from rollspring.simulate import simulate_batch
-
     best: tuple[float, Any] | None = grid_omega(plan)
     if best is None:
         best = (-1.0, None)
@@ -472,34 +472,30 @@ def _choose_step(plan: SweepPlan, step: float | None) -> SweepPlan:
     omega, sample = best
     if sample is None:
         raise SweepError("--vary: no run of the grid is a valid system")
-    system, params = sample
-    # every mass of the sample run given, so that scaling them all scales its frequency
-    # (omega ~ 1/sqrt(m)) whatever the grid varies
-    params = dict(params)
-    for body in system.bodies:
-        params.setdefault(f"bodies.{body.id}.mass", np.full(1, float(body.mass)))
-    scaled = dict(params)
-    if omega > 0:  # one run of the fastest group, its masses scaled to the highest frequency
-        own = max(float(np.max(batch_omegas(system, params))), 0.0)  # its omega_max
-        if own > 0:
-            scale = (own / omega) ** 2
-            scaled = {k: (v * scale if k.endswith(".mass") else v) for k, v in params.items()}
-    result = simulate_batch(
-        system,
-        scaled,
+    omega = max(omega, 0.0)
+    if step is None:
+        need = float(steps_needed(np.array([omega]), plan.duration, plan.rtol, plan.integrator)[0])
+        if need > MAX_STEPS:
+            limit = omega_limit(plan.duration, plan.rtol, plan.integrator)
+            raise SweepError(
+                f"--vary: the grid's fastest run (linear frequency {omega:.4g} rad/s) would "
+                f"need {need:.3g} steps over {plan.duration:g} s at rtol {plan.rtol:g} (at most "
+                f"{MAX_STEPS:.0e}; frequencies up to {limit:.4g} rad/s are resolved); pass "
+                "--step to force it"
+            )
+    _, scheme, n_steps, every = batch_schedule(
+        np.array([omega]) if omega > 0 else np.zeros(0),
         plan.duration,
-        rtol=plan.rtol,
-        integrator=plan.integrator,
-        step=step,
-        stop_on_slip=True,
-        confirm=True,  # the sweep's cost is checked once, for the whole grid
+        plan.rtol,
+        plan.integrator,
+        step,
     )
     return copy_plan(
         plan,
-        scheme=result.integrator,
-        step=float(result.step),
-        metric_every=int(result.metric_every),
-        omega_max=max(omega, 0.0),
+        scheme=scheme,
+        step=plan.duration / n_steps,
+        metric_every=every,
+        omega_max=omega,
     )
 
 

@@ -24,10 +24,9 @@ from rollspring.simulate.batch.parameters import count_runs, parse_parameters
 from rollspring.simulate.batch.plan import (
     MAX_STEPS,
     Plan,
+    batch_schedule,
     check_runs,
-    choose_step,
     make_plan,
-    metric_every_for,
     omega_limit,
     probe,
     run_omegas,
@@ -35,7 +34,6 @@ from rollspring.simulate.batch.plan import (
 )
 from rollspring.simulate.costs import batch_cost
 from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
-from rollspring.simulate.integrators import MAX_OMEGA_STEP
 from rollspring.simulate.status import Status
 
 __all__ = ["INTEGRATORS", "BatchResult", "kernel_fields", "simulate_batch"]
@@ -408,18 +406,16 @@ def simulate_batch(
                 )
             status[unresolved] = Status.UNRESOLVED
     included = np.flatnonzero(status == 0)
-    omega = float(np.max(omegas[included])) if included.size else 0.0
-    name, n_steps = choose_step(omega, duration, rtol, integrator, step)
-    if keep_trajectories:
-        n_steps = math.ceil(n_steps / (n_output - 1)) * (n_output - 1)
+    omega, name, n_steps, every = batch_schedule(
+        omegas[included],
+        duration,
+        rtol,
+        integrator,
+        step,
+        metric_every,
+        multiple=n_output - 1 if keep_trajectories else 1,
+    )
     h = duration / n_steps
-    if metric_every is None:
-        # the fastest run a step of h can sample (a run beyond omega h = 0.5 cannot be sampled
-        # meaningfully and must not make its neighbours sample every step)
-        sampled = omegas[included][omegas[included] * h <= MAX_OMEGA_STEP]
-        every = metric_every_for(float(np.max(sampled)) if sampled.size else omega, h, n_steps)
-    else:
-        every = metric_every
     weights = SCHEME_REGISTRY[name].weights
     drift = weights * h
     kick = np.append(0.5 * (weights[:-1] + weights[1:]) * h, 0.5 * weights[-1] * h)

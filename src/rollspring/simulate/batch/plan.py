@@ -23,6 +23,7 @@ __all__ = [
     "SAMPLE_COST",
     "Plan",
     "SpringPlan",
+    "batch_schedule",
     "check_runs",
     "choose_step",
     "make_plan",
@@ -401,6 +402,36 @@ def choose_step(
             best = (name, n_steps, cost)
     assert best is not None
     return best[0], best[1]
+
+
+def batch_schedule(
+    omegas: FloatArray,
+    duration: float,
+    rtol: float,
+    integrator: str,
+    step: float | None,
+    metric_every: int | None = None,
+    *,
+    multiple: int = 1,
+) -> tuple[float, str, int, int]:
+    r"""What a batch call whose integrated runs have the linear frequencies ``omegas`` runs
+    with: ``(omega, scheme, n_steps, metric_every)``. ``omega`` is the highest frequency (0
+    without runs); the scheme and step count are :func:`choose_step`'s, rounded up to a
+    multiple of ``multiple`` (the trajectories' samples); the step is ``duration / n_steps``.
+    Unless given, ``metric_every`` is :func:`metric_every_for` the fastest run the step can
+    sample (a run beyond :math:`\omega h` = ``MAX_OMEGA_STEP`` cannot be sampled meaningfully
+    and must not make its neighbours sample every step)."""
+    omegas = np.asarray(omegas, dtype=np.float64)
+    omega = float(np.max(omegas)) if omegas.size else 0.0
+    name, n_steps = choose_step(omega, duration, rtol, integrator, step)
+    n_steps = math.ceil(n_steps / multiple) * multiple
+    if metric_every is None:
+        h = duration / n_steps
+        sampled = omegas[omegas * h <= MAX_OMEGA_STEP]
+        metric_every = metric_every_for(
+            float(np.max(sampled)) if sampled.size else omega, h, n_steps
+        )
+    return omega, name, n_steps, metric_every
 
 
 def metric_every_for(omega: float, h: float, n_steps: int) -> int:

@@ -320,7 +320,7 @@ def _pulls(
         force_q[i] = s[u, i] * force_x[i]
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", nogil=True)
 def _respond(
     which: np.ndarray,
     clear: np.ndarray,

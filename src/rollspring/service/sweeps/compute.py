@@ -564,19 +564,28 @@ def _batch_linear_metrics(runs: _Runs, out: dict[str, np.ndarray]) -> np.ndarray
     if paths and len(paths) == len(runs.plan.grid.paths):
         # no friction axis: the runs are points of an outer product of distinct values, so
         # every run is a distinct linear configuration
-        first = inverse = np.arange(runs.n)
+        first = inverse = None
     elif paths:
         first, inverse = _distinct([runs.values[p] for p in paths])
     else:
         first, inverse = np.zeros(1, dtype=np.int64), np.zeros(runs.n, dtype=np.int64)
     try:
         result = batch_linear(
-            runs.system, {p: runs.values[p][first] for p in paths}, n_runs=first.size
+            runs.system,
+            {p: runs.values[p] if first is None else runs.values[p][first] for p in paths},
+            n_runs=runs.n if first is None else first.size,
         )
     except (ValueError, ArithmeticError, np.linalg.LinAlgError):
         return np.zeros(runs.n, dtype=bool)
-    handled = result.handled[inverse]
     n_modes = result.omega.shape[1]
+    if inverse is None:
+        inverse = np.arange(runs.n)
+        if np.all(result.handled):  # row r is run r's, all filled at once
+            out["omega"][:, :n_modes] = result.omega
+            out["stationary_weight"][:] = result.stationary_weight
+            out["required_mu_linear"][:] = result.required_mu
+            return result.handled
+    handled = result.handled[inverse]
     out["omega"][handled, :n_modes] = result.omega[inverse[handled]]
     out["stationary_weight"][handled] = result.stationary_weight[inverse[handled]]
     out["required_mu_linear"][handled] = result.required_mu[inverse[handled]]

@@ -34,7 +34,8 @@ def _files(root: Path) -> dict[str, bytes]:
 def test_chunk_files_are_the_bytes_zarr_writes(system, tmp_path, monkeypatch):
     """A grid of 7 x 5 runs in chunks of 3 x 5 (the last chunk at the grid's edge, padded by
     the fill value), some runs slipping: every file of the store, chunks of every variable and
-    metadata, equals the store written through Zarr's own ``setitem``."""
+    metadata, equals the store written through Zarr's own ``setitem``, but the chunks equal to
+    the fill value throughout: those have no file, and the chunk's done marker lists them."""
     vary = {
         "springs.0.stiffness": np.linspace(50.0, 150.0, 7),
         "bodies.hoop.mu_static": np.geomspace(0.02, 1.0, 5),
@@ -47,10 +48,30 @@ def test_chunk_files_are_the_bytes_zarr_writes(system, tmp_path, monkeypatch):
     zarrs = sweep(system, vary, 1.0, chunk=15, out=tmp_path / "zarr.zarr").load()
     same(ours, zarrs)
     mine, theirs = _files(tmp_path / "ours.zarr"), _files(tmp_path / "zarr.zarr")
-    assert sorted(mine) == sorted(theirs)
-    assert sum("/c." in name for name in mine) == 3 * len(ours.data_vars)  # one file a chunk
+    markers = ".rollspring-done/"
+    listed = {
+        (variable, int(name[len(markers) :]))
+        for name, text in mine.items()
+        if name.startswith(markers)
+        for variable in text.decode().split("\n")[:-1]
+    }
+    assert {name for name in theirs if name.startswith(markers)} == {
+        name for name in mine if name.startswith(markers)
+    }
+    assert not any(theirs[name] for name in theirs if name.startswith(markers))  # Zarr's: all
+    missing = {
+        (name.split("/")[0], int(name.split("/c.")[1].split(".")[0]))
+        for name in set(theirs) - set(mine)
+    }
+    assert set(mine) <= set(theirs) and missing == listed
+    assert ("first_liftoff_time", 0) in listed  # nothing lifts off: no file of that chunk
+    for variable, index in listed:
+        region = ours[variable].isel({"springs.0.stiffness": slice(3 * index, 3 * index + 3)})
+        assert region.isnull().all() or (region == region.attrs.get("_FillValue", -1)).all()
+    assert sum("/c." in name for name in mine) == 3 * len(ours.data_vars) - len(listed)
     for name in mine:
-        assert mine[name] == theirs[name], name
+        if not name.startswith(markers):
+            assert mine[name] == theirs[name], name
 
 
 class Killed(BaseException):
@@ -154,3 +175,22 @@ def test_a_replace_removes_what_a_killed_replace_left(system, tmp_path):
     assert again.sizes["springs.0.stiffness"] == 2
     assert not gone.exists() and live.exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["s.zarr", live.name])
+
+
+@pytest.mark.parametrize("cut", ["", "first_liftoff_t", "first_liftoff_time"])
+def test_a_marker_cut_short_reruns_its_chunk(system, tmp_path, cut):
+    """A done marker lists the variables whose chunk is the fill value throughout (no file):
+    one cut short by a kill (empty, or its last line not ended) vouches for fewer of them, so
+    the resume finds a file missing and runs the chunk again, into the same store."""
+    vary = {"springs.0.stiffness": [60.0, 90.0, 120.0, 150.0], "bodies.hoop.mass": [1.0, 2.0]}
+    out = tmp_path / "m.zarr"
+    first = sweep(system, vary, 0.5, chunk=4, out=out).load()
+    marker = out / ".rollspring-done" / "1"
+    assert "first_liftoff_time\n" in marker.read_text()
+    assert not list((out / "first_liftoff_time").glob("c.*"))  # nothing lifts off: no file
+    marker.write_text(cut)
+    seen = []
+    again = sweep(system, vary, 0.5, chunk=4, out=out, progress=seen.append).load()
+    assert seen[0].chunks_skipped == 1 and seen[0].chunks_to_run == 1
+    same(first, again)
+    assert "first_liftoff_time\n" in marker.read_text()

@@ -25,6 +25,7 @@ import os
 import shutil
 import threading
 import warnings
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -356,30 +357,37 @@ class RegionWriter:
         if any(encoder is None for encoder in self.encoders.values()):
             import zarr
 
-            # every chunk on disk, even one equal to the fill value (checkable on resume): an
-            # array takes the setting when it is opened
+            # every chunk on disk, even one equal to the fill value (their markers list none,
+            # so a resume checks every file): an array takes the setting when it is opened
             with zarr.config.set({"array.write_empty_chunks": True}):
                 group = zarr.open_group(str(path), mode="r+")
                 self.arrays = dict(group.arrays())
         self.folders = {path, *(path / name for name in metadata)}  # known to exist
 
     def write(self, items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
-        """The chunks ``items`` (index, arrays) into their chunk files, then their markers."""
+        """The chunks ``items`` (index, arrays) into their chunk files, then their markers. A
+        chunk equal to its array's fill value throughout gets no file (as Zarr leaves such
+        chunks out: they read as the fill value); its marker lists it."""
         through_zarr: list[tuple[tuple[slice, ...], str, np.ndarray]] = []
+        filled: dict[int, list[str]] = {}
         for index, arrays in items:
             region = self.grid.region(index)
             coords = tuple(s.start // c for s, c in zip(region, self.grid.chunks, strict=True))
+            filled[index] = []
             for name, values in arrays.items():
                 encoder = self.encoders[name]
                 if encoder is None:
                     through_zarr.append((region, name, values))
+                    continue
+                if encoder.only_fill(values):
+                    filled[index].append(name)
                     continue
                 whole = (0,) * (values.ndim - len(coords))  # mode / body: one chunk
                 self._put(self.path / name / encoder.key((*coords, *whole)), encoder(values))
         if through_zarr:
             self._send(through_zarr)
         for index, _ in items:
-            mark_done(self.path, index)
+            mark_done(self.path, index, filled[index])
 
     def _put(self, target: Path, data: memoryview) -> None:
         """``data`` as the file ``target``, whole or not at all: a ``.partial`` file (removed
@@ -456,6 +464,18 @@ class ChunkEncoder:
             return None
         return cls(metadata)
 
+    def only_fill(self, values: np.ndarray) -> bool:
+        """Whether every value of a chunk is the fill value (a NaN fill: any NaN; a float
+        fill: its sign too, so that the chunk reads back bit for bit)."""
+        values = np.asarray(values, dtype=self.dtype)
+        fill = np.asarray(self.spec.fill_value, dtype=self.dtype)
+        if values.dtype.kind == "f" and np.isnan(fill):
+            return bool(np.all(np.isnan(values)))
+        same = values == fill
+        if values.dtype.kind in "fc":
+            same &= np.signbit(values) == np.signbit(fill)
+        return bool(np.all(same))
+
     def __call__(self, values: np.ndarray) -> memoryview:
         values = np.asarray(values, dtype=self.dtype)
         if values.shape != self.shape:  # a chunk at the grid's edge
@@ -492,11 +512,26 @@ def _read_metadata(path: Path) -> dict[str, Any]:
     return out
 
 
-def mark_done(path: Path, index: int) -> None:
-    """The done marker of chunk ``index``: an empty file, which exists whole or not at all
+def mark_done(path: Path, index: int, filled: Sequence[str] = ()) -> None:
+    """The done marker of chunk ``index``: a file listing, a line each, the variables whose
+    chunk is the fill value throughout and has no file (empty when none). A marker a kill cut
+    short lists fewer of them (a name counts once its line is ended), so its chunk runs again
     (markers were once made as ``.<index>.<pid>.tmp`` files renamed: :func:`verified_done`
     still removes those a kill left)."""
-    (path / MARKERS / str(index)).touch()
+    marker = path / MARKERS / str(index)
+    if filled:
+        marker.write_bytes("".join(f"{name}\n" for name in filled).encode())
+    else:
+        marker.touch()
+
+
+def _filled(marker: Path) -> set[str]:
+    """The variables a done marker lists (those of its chunk with no file)."""
+    try:
+        text = marker.read_bytes().decode(errors="replace")
+    except OSError:
+        return set()
+    return set(text.split("\n")[:-1])
 
 
 def done_chunks(path: Path) -> set[int]:
@@ -508,7 +543,8 @@ def done_chunks(path: Path) -> set[int]:
 
 
 def verified_done(path: Path, grid: Grid, done: set[int]) -> set[int]:
-    """The chunks of ``done`` (their markers exist) whose chunk files are all in the store; the
+    """The chunks of ``done`` (their markers exist) whose chunk files are all in the store, but
+    those their marker lists as the fill value throughout (:func:`mark_done`); the
     marker of any other is removed, so the chunk runs again. Stale writes are removed first:
     Zarr's ``*.partial`` files (a writer killed inside a chunk's write) and half-made markers."""
     import zarr
@@ -525,8 +561,10 @@ def verified_done(path: Path, grid: Grid, done: set[int]) -> set[int]:
     kept: set[int] = set()
     for index in sorted(done):
         starts = [region.start for region in grid.region(index)]
+        filled = _filled(path / MARKERS / str(index))
         present = all(
-            (
+            name in filled
+            or (
                 path
                 / name
                 / array.metadata.encode_chunk_key(

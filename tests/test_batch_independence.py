@@ -353,3 +353,50 @@ def test_kahanli8_in_a_batch_is_the_single_runs_kahanli8():
     assert batch.n_steps == single.n_steps == 300
     np.testing.assert_allclose(batch.final_x[0], single.x[-1], rtol=0, atol=1e-12)
     np.testing.assert_allclose(batch.final_v[0], single.v[-1], rtol=0, atol=1e-11)
+
+
+def test_runs_sharing_their_linear_configuration_share_one_computation_of_it():
+    """``run_omegas`` computes each distinct set of the numbers it reads once (a grid of
+    initial speeds and friction coefficients over a few stiffnesses and masses): every run's
+    frequency is bit for bit the one computed for it alone, -0.0 is not 0.0, and every run of
+    the batch equals itself alone."""
+    from rollspring.simulate.batch.parameters import parse_parameters
+    from rollspring.simulate.batch.plan import (
+        _distinct_rows,
+        _omegas,
+        make_plan,
+        omega_inputs,
+        probe,
+        run_omegas,
+    )
+
+    first, inverse = _distinct_rows(
+        [np.array([0.0, -0.0, 0.0, np.nan, np.nan]), np.array([1.0, 1.0, 1.0, 2.0, 2.0])], 5
+    )
+    assert (
+        first.size == 3 and list(inverse) == [inverse[0], inverse[1], inverse[0]] + [inverse[3]] * 2
+    )
+    assert len({inverse[0], inverse[1], inverse[3]}) == 3
+    assert _distinct_rows([np.array([1.0, 2.0, 3.0])], 3) is None  # every row its own
+
+    system = rollspring.load_system("wall-hoop-cylinder")
+    rng = np.random.default_rng(11)
+    n = 60
+    parameters = {
+        "springs.0.stiffness": np.repeat([40.0, 80.0, 1e-6, 80.0], n // 4),
+        "bodies.hoop.mass": np.tile([0.5, 1.0, 2.0], n // 3),
+        "bodies.cylinder.x": np.where(np.arange(n) % 5 == 0, 0.6, 0.6 + 0.0),
+        "bodies.hoop.x": np.where(np.arange(n) % 7 == 0, -0.0, 0.0),
+        "bodies.cylinder.v": rng.normal(0.0, 0.2, n),
+        "bodies.hoop.mu_static": rng.uniform(0.05, 1.0, n),
+    }
+    runs = parse_parameters(system, parameters)
+    topology, _ = probe(system, runs.targets)
+    plan = make_plan(system, runs, topology)
+    shared = run_omegas(plan)
+    own = _omegas(plan, omega_inputs(plan), plan.scale, plan.inertia, 1 << 15)
+    assert np.array_equal(bits(shared), bits(own))
+    assert np.unique(shared).size < n // 4  # shared: a few configurations, many runs
+    batch = simulate_batch(system, parameters, 1.0)
+    for run in range(0, n, 7):
+        assert_same_run(batch, run, alone(system, parameters, run, 1.0, batch))

@@ -28,6 +28,7 @@ __all__ = [
     "choose_step",
     "make_plan",
     "metric_every_for",
+    "omega_inputs",
     "omega_limit",
     "probe",
     "run_cost",
@@ -318,15 +319,78 @@ def run_omegas(plan: Plan, chunk: int = 1 << 15) -> FloatArray:
     r"""Highest linear frequency of each run (rad/s): the largest :math:`|\lambda|` of
     :math:`K v = \lambda M v` at the initial placement, for the full stiffness (M12) and for its
     elastic part :math:`\sum k b b^T` alone (the stiffness at a tension-free equilibrium);
-    inf where the matrices are not finite (values beyond double precision)."""
-    f = plan.fields
-    n = plan.n
+    inf where the matrices are not finite (values beyond double precision).
+
+    Computed once per distinct set of the numbers it reads (:func:`omega_inputs`, compared bit
+    for bit): runs that differ only in what does not enter (velocities, friction
+    coefficients, masses' share of the normal force, ...) share it, as a grid of initial speeds
+    or friction coefficients does; the result is each run's own either way."""
+    inputs = omega_inputs(plan)
     n_runs = plan.scale.shape[0]
+    rows = _distinct_rows([*inputs.values(), *plan.scale.T, *plan.inertia.T], n_runs)
+    if rows is None:
+        return _omegas(plan, inputs, plan.scale, plan.inertia, chunk)
+    first, inverse = rows
+    shared = {key: values[first] for key, values in inputs.items()}
+    omegas = _omegas(plan, shared, plan.scale[first], plan.inertia[first], chunk)
+    return np.asarray(omegas[inverse], dtype=np.float64)
+
+
+def _distinct_rows(columns: list[FloatArray], n_rows: int) -> tuple[np.ndarray, np.ndarray] | None:
+    """(a row of each distinct row, the distinct row of each row) of the ``columns`` side by
+    side, comparing bits (-0.0 is not 0.0, NaNs by payload); None when every row is distinct.
+    Only the columns that vary are sorted, each once (mixed-radix codes of their values)."""
+    varying = [c for c in columns if n_rows > 1 and np.any(c.view(np.int64) != c.view(np.int64)[0])]
+    if not varying:
+        return np.zeros(min(n_rows, 1), dtype=np.intp), np.zeros(n_rows, dtype=np.intp)
+    key = varying[0].view(np.int64)
+    if len(varying) > 1:
+        key = np.zeros(n_rows, dtype=np.int64)
+        for column in varying:  # fewer than 2**63 codes: at most n_rows values a column
+            values, codes = np.unique(column.view(np.int64), return_inverse=True)
+            if values.size > (2**62) // max(int(key.max(initial=0)) + 1, 1):
+                return None  # too many combinations to code: computed run by run
+            key = key * values.size + codes.reshape(-1)
+    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    if first.size == n_rows:
+        return None
+    return first, inverse.reshape(-1)
+
+
+def omega_inputs(plan: Plan) -> dict[str, FloatArray]:
+    """The fields :func:`run_omegas` reads besides the scale and inertia of each body: the
+    anchors, attachments (radius and angle of those off the centre), centre positions and
+    heights of the springs' ends, the stiffnesses and rest lengths, and the constant forces
+    off a centre with their arms."""
+    f = plan.fields
+    keys: list[str] = []
+    for k, sp in enumerate(plan.springs):
+        for e, (i, kind) in enumerate(zip(sp.ends, sp.kinds, strict=True)):
+            if kind == "anchor":
+                keys += [f"ax_{k}_{e}", f"ay_{k}_{e}"]
+                continue
+            if kind == "off":
+                keys += [f"r_{k}_{e}", f"al_{k}_{e}"]
+            keys += [f"x0_{i}", f"cy_{i}"]
+        keys += [f"k_{k}", f"L_{k}"]
+    for j, (_, off) in enumerate(plan.forces):
+        if off:
+            keys += [f"Fx_{j}", f"frs_{j}", f"Fy_{j}", f"frc_{j}"]
+    return {key: f[key] for key in dict.fromkeys(keys)}
+
+
+def _omegas(
+    plan: Plan, f: dict[str, FloatArray], scale: FloatArray, inertia: FloatArray, chunk: int
+) -> FloatArray:
+    """:func:`run_omegas` of the runs whose fields are ``f`` (:func:`omega_inputs`), scales
+    and inertias."""
+    n = plan.n
+    n_runs = scale.shape[0]
     best = np.zeros(n_runs)
     for lo in range(0, n_runs, chunk):
         sl = slice(lo, min(lo + chunk, n_runs))
         c = sl.stop - sl.start
-        s = plan.scale[sl]
+        s = scale[sl]
         k_full = np.zeros((c, n, n))
         k_elastic = np.zeros((c, n, n))
         for k, sp in enumerate(plan.springs):
@@ -368,9 +432,9 @@ def run_omegas(plan: Plan, chunk: int = 1 << 15) -> FloatArray:
                 k_full[:, i, i] += (
                     f[f"Fx_{j}"][sl] * f[f"frs_{j}"][sl] + f[f"Fy_{j}"][sl] * f[f"frc_{j}"][sl]
                 )
-        scale = 1.0 / np.sqrt(plan.inertia[sl])
+        root = 1.0 / np.sqrt(inertia[sl])
         for matrix in (k_full, k_elastic):
-            scaled = matrix * scale[:, :, None] * scale[:, None, :]
+            scaled = matrix * root[:, :, None] * root[:, None, :]
             scaled = 0.5 * (scaled + np.swapaxes(scaled, 1, 2))
             finite = np.all(np.isfinite(scaled), axis=(1, 2))
             part = np.full(c, np.inf)

@@ -190,6 +190,36 @@ def test_ends_crossing_at_the_equilibrium_are_not_handled() -> None:
     assert result.handled.tolist() == [False, True]
 
 
+def test_ends_meeting_at_the_equilibrium_are_not_handled() -> None:
+    """Rest lengths 0 (or subnormal): at the equilibrium every spring's ends meet, where the
+    sign of its vector is rounding's, so those runs go to analyze (found by a review: the sign
+    test alone decided them one way or the other by the order of a sum); 1 mm is handled."""
+    system = rollspring.load_system("three-bodies")
+    values = {
+        "springs.0.rest_length": np.array([0.0, 1e-320, 0.3, 1e-3]),
+        "springs.1.rest_length": np.array([0.0, 0.0, 0.3, 1e-3]),
+    }
+    result = batch_linear(system, values)
+    assert result.handled.tolist() == [False, False, True, True]
+    assert np.all(np.isnan(result.omega[:2])) and np.all(np.isnan(result.required_mu[:2]))
+    rng = np.random.default_rng(5)
+    n = 400
+    placed = {
+        "springs.0.rest_length": np.zeros(n),
+        "springs.1.rest_length": np.zeros(n),
+        "bodies.hoop.x": rng.uniform(-0.2, 0.2, n),
+        "bodies.cylinder.x": rng.uniform(0.3, 0.7, n),
+        "bodies.sphere.x": rng.uniform(0.8, 1.2, n),
+        "bodies.hoop.mass": rng.uniform(0.5, 2.0, n),
+        "springs.0.stiffness": rng.uniform(10.0, 200.0, n),
+        "springs.1.stiffness": rng.uniform(10.0, 200.0, n),
+    }
+    assert not np.any(batch_linear(system, placed).handled)
+    for r in (2, 3):
+        _, omega, weights, need = _reference(system, values, r)
+        assert _close(omega, result.omega[r]) and _close(need, result.required_mu[r])
+
+
 def test_ill_conditioned_runs_are_not_handled() -> None:
     """Eigenvalues 1e-6 apart in scale: two correct computations of the small one can differ
     by more than 1e-12, so those runs go to analyze."""

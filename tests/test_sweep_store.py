@@ -194,3 +194,19 @@ def test_a_marker_cut_short_reruns_its_chunk(system, tmp_path, cut):
     assert seen[0].chunks_skipped == 1 and seen[0].chunks_to_run == 1
     same(first, again)
     assert "first_liftoff_time\n" in marker.read_text()
+
+
+def test_a_resumed_chunk_that_is_now_fill_removes_an_earlier_file(system, tmp_path):
+    """A chunk rerun on resume whose variable is its fill value throughout writes no file and
+    removes one an earlier attempt left (as Zarr deletes the key of a chunk it leaves out), so
+    the store reads as a fresh one (found by a review)."""
+    vary = {"springs.0.stiffness": [60.0, 90.0, 120.0, 150.0], "bodies.hoop.mass": [1.0, 2.0]}
+    out = tmp_path / "s.zarr"
+    fresh = sweep(system, vary, 0.5, chunk=4, out=out).load()
+    assert "first_liftoff_time\n" in (out / ".rollspring-done" / "1").read_text()
+    stale = out / "first_liftoff_time" / "c.1.0"
+    stale.write_bytes((out / "cm_amplitude" / "c.0.0").read_bytes())  # not the fill value
+    (out / ".rollspring-done" / "1").unlink()
+    again = sweep(system, vary, 0.5, chunk=4, out=out).load()
+    assert not stale.exists()
+    same(fresh, again)

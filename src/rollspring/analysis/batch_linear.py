@@ -31,7 +31,8 @@ not depend on ``q``. Then:
   forms them).
 
 A run is *not* handled (left to ``analyze``) when the system is outside the class, a spring is
-tilted in the run's placement or its ends would cross at the equilibrium, the affine Newton
+tilted in the run's placement or its ends would cross or meet at the equilibrium (length at
+most :math:`10^{-9}` of the initial one), the affine Newton
 step leaves a residual above :math:`10^{-11}` of the initial one (a net force along a zero
 mode: no equilibrium), or an eigenvalue is negative or between :math:`10^{-13}` and
 :math:`10^{-4}` of the largest (near the zero-mode threshold, or so ill-conditioned that two
@@ -64,6 +65,9 @@ _CONDITION = 1e-4
 #: The affine equilibrium's residual, relative to the initial one, above which a run goes to
 #: ``analyze`` (which finds no equilibrium when it is beyond 1e-9 of its force scale).
 _RESIDUAL = 1e-11
+#: A spring whose length at the equilibrium is at most this part of its initial length goes to
+#: ``analyze``: its ends meet there (a rest length of 0), where the sign of d is rounding's.
+_MEET = 1e-9
 _BODY = ("mass", "radius", "x", "v", "mu_static", "mu_kinetic")
 
 
@@ -429,7 +433,11 @@ def _respond(
             for i in range(n):
                 step += s[u, i] * q_eq[i] * sigma[spring, i]
             d_eq[spring] = d0[spring] + step
-            good = good and np.sign(d_eq[spring]) == np.sign(d0[spring])
+            good = (
+                good
+                and np.sign(d_eq[spring]) == np.sign(d0[spring])
+                and abs(d_eq[spring]) > _MEET * abs(d0[spring])
+            )
         _pulls(d_eq, rest, k, sigma, external, s, u, force_x, q_force)
         residual = 0.0
         for i in range(n):

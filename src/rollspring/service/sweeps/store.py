@@ -351,6 +351,8 @@ class RegionWriter:
         """``arrays``: every array's Zarr metadata (what :func:`write_template` returns), else
         read from the store's documents."""
         self.path, self.grid = path, grid
+        # a store resumed may hold files of an earlier attempt at a chunk that now writes none
+        self.resumed = arrays is None
         metadata = arrays if arrays is not None else _read_metadata(path)
         self.encoders = {name: ChunkEncoder.of(m) for name, m in metadata.items()}
         self.arrays: dict[str, Any] = {}  # Zarr's arrays, opened for those it must write
@@ -379,11 +381,14 @@ class RegionWriter:
                 if encoder is None:
                     through_zarr.append((region, name, values))
                     continue
+                whole = (0,) * (values.ndim - len(coords))  # mode / body: one chunk
+                target = self.path / name / encoder.key((*coords, *whole))
                 if encoder.only_fill(values):
                     filled[index].append(name)
+                    if self.resumed:  # as Zarr deletes the key of a chunk it leaves out
+                        target.unlink(missing_ok=True)
                     continue
-                whole = (0,) * (values.ndim - len(coords))  # mode / body: one chunk
-                self._put(self.path / name / encoder.key((*coords, *whole)), encoder(values))
+                self._put(target, encoder(values))
         if through_zarr:
             self._send(through_zarr)
         for index, _ in items:

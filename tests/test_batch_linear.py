@@ -218,6 +218,7 @@ def test_ends_meeting_at_the_equilibrium_are_not_handled() -> None:
     for r in (2, 3):
         _, omega, weights, need = _reference(system, values, r)
         assert _close(omega, result.omega[r]) and _close(need, result.required_mu[r])
+        assert _close(weights, result.stationary_weight[r])
 
 
 def test_ill_conditioned_runs_are_not_handled() -> None:

@@ -452,3 +452,64 @@ def test_the_progress_bar_is_not_drawn_off_a_terminal(capsys: pytest.CaptureFixt
         bar(0.5)
         bar(1.0)
     assert capsys.readouterr().err == ""
+
+
+#: Three bodies of one radius joined by springs of rest length 0 (a reviewer's random draw):
+#: at the equilibrium every spring's ends meet, where its direction is undefined but its force
+#: k d and stiffness k (dP/dq_i . dP/dq_j) are smooth.
+ZERO_LENGTH = {
+    "gravity": 9.81,
+    "bodies": [
+        {
+            "id": "hoop",
+            "shape": "hoop",
+            "mass": 0.9287020701322124,
+            "radius": 0.1,
+            "x": 0.1220011694981521,
+        },
+        {
+            "id": "cylinder",
+            "shape": "cylinder",
+            "mass": 1.0,
+            "radius": 0.1,
+            "x": 0.6231763158945975,
+        },
+        {"id": "sphere", "shape": "sphere", "mass": 1.0, "radius": 0.1, "x": 1.0061302244168568},
+    ],
+    "springs": [
+        {"ends": ["hoop", "cylinder"], "stiffness": 20.24683345251472, "rest_length": 0.0},
+        {"ends": ["cylinder", "sphere"], "stiffness": 82.84008734924846, "rest_length": 0.0},
+    ],
+}
+
+
+def test_springs_of_rest_length_zero_whose_ends_meet_at_the_equilibrium(tmp_path: Path) -> None:
+    """Before: ``analyze`` and ``simulate`` of this valid system printed RuntimeWarnings (0/0 in
+    the spring's direction and tension per length) and ended in an internal error. Now the
+    equilibrium has the ends meeting, the modes are those of K_ij = sum_s k_s s_i s_j sigma_si
+    sigma_sj (a zero-length spring's stiffness k dP/dq_i . dP/dq_j, whatever its direction),
+    and a run conserves its energy."""
+    system = rollspring.system_from_dict(ZERO_LENGTH)
+    analysis = rollspring.analyze(system)
+    positions = np.array([b["x"] for b in ZERO_LENGTH["bodies"]]) + 0.1 * analysis.equilibrium.q
+    assert np.allclose(positions, positions[0], rtol=0, atol=1e-12)  # the ends meet
+    k1, k2 = (s["stiffness"] for s in ZERO_LENGTH["springs"])
+    stiffness = 0.01 * np.array([[k1, -k1, 0.0], [-k1, k1 + k2, -k2], [0.0, -k2, k2]])
+    inertia = np.array(
+        [
+            (1 + g) * b["mass"] * 0.01
+            for g, b in zip((1.0, 0.5, 0.4), ZERO_LENGTH["bodies"], strict=True)
+        ]
+    )
+    root = 1.0 / np.sqrt(inertia)
+    expected = np.linalg.eigvalsh(root[:, None] * stiffness * root)  # omega^2, ascending
+    got = np.sort([m.omega for m in analysis.modes]) ** 2
+    assert np.allclose(got, expected, rtol=1e-9, atol=1e-9 * expected[-1])
+    run = rollspring.simulate(system, 2.0)
+    assert np.all(np.isfinite(run.energy))
+    assert abs(run.energy[-1] - run.energy[0]) <= 1e-8 * abs(run.energy[0])
+    path = tmp_path / "zero.json"
+    path.write_text(json.dumps(ZERO_LENGTH))
+    result = runner.invoke(app, ["analyze", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "Warning" not in result.output and "internal error" not in result.output

@@ -102,6 +102,8 @@ def percussion_attachments(analysis: LinearAnalysis) -> list[tuple[int, int, int
     found = []
     for s in range(arrays.n_springs):
         d = position[s, 1] - position[s, 0]
+        if not np.hypot(*d) > 0:  # ends that meet (rest length 0): no line of force
+            continue
         e = d / np.hypot(*d)
         for j in range(2):
             i = int(arrays.end_body[s, j])

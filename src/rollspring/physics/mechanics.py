@@ -182,6 +182,20 @@ class SpringState:
         return dense
 
 
+def tension_per_length(system: SystemArrays, length: FloatArray) -> FloatArray:
+    r"""The elastic tension per unit length of each spring, :math:`T/l = k(1 - L_0/l)`, the
+    factor of the geometric stiffness :math:`T H` (M13) and of the pull's change across the
+    spring: at :math:`l = 0` it is its limit :math:`k` for a rest length :math:`L_0 = 0` (a
+    zero-length spring's force :math:`k\,d` is smooth through the meeting of its ends), and
+    :math:`-\infty` otherwise (a force of magnitude :math:`kL_0` whose direction is undefined)."""
+    length = np.asarray(length, dtype=float)
+    tension = system.stiffness * (length - system.rest_length)
+    meeting = np.where(system.rest_length == 0, system.stiffness, -np.inf)
+    out: FloatArray = np.broadcast_to(meeting, np.broadcast(tension, length).shape).copy()
+    np.divide(tension, length, out=out, where=length > 0)
+    return out
+
+
 def spring_state(
     system: SystemArrays, q: FloatArray, qdot: FloatArray | None = None
 ) -> SpringState:
@@ -200,7 +214,11 @@ def spring_state(
     position, first, _ = end_kinematics(system, q)
     vector = position[..., 1, :] - position[..., 0, :]
     length = np.sqrt(np.sum(vector**2, axis=-1))
-    direction = vector / length[..., None]
+    # e = d / l; 0 where the ends meet (l = 0), where only a spring of rest length 0 can be,
+    # and its force k d and stiffness (tension_per_length) do not depend on e
+    direction = np.divide(
+        vector, length[..., None], out=np.zeros_like(vector), where=length[..., None] > 0
+    )
     delta = _SIGN[:, None] * first  # (..., S, 2, 2): d(d)/dq of each end's body
     end_lever = np.einsum("...sc,...sjc->...sj", direction, delta)
     tension = system.stiffness * (length - system.rest_length)
@@ -323,7 +341,7 @@ def stiffness_entries(system: SystemArrays, q: FloatArray) -> tuple[IntArray, In
     dot = np.einsum("sjc,slc->sjl", delta, delta)
     outer = b[:, :, None] * b[:, None, :]
     pair = system.stiffness[:, None, None] * outer
-    pair += (tension / length)[:, None, None] * (dot - outer)
+    pair += tension_per_length(system, length)[:, None, None] * (dot - outer)
     path = tension[:, None] * np.einsum("sc,sjc->sj", e, _SIGN[:, None] * second)
     on_body = system.end_body >= 0
     both = on_body[:, :, None] & on_body[:, None, :]
@@ -437,9 +455,10 @@ def body_forces_jacobian(system: SystemArrays, q: FloatArray, *, sparse: bool = 
     springs = spring_state(system, q)
     delta = _SIGN[:, None] * first  # (S, 2, 2): d(d)/dq of end l's body
     e, length, b = springs.direction, springs.length, springs.end_lever
-    tension = system.stiffness * (length - system.rest_length)
     along = (system.stiffness[:, None] * b)[:, :, None] * e[:, None, :]
-    across = (delta - b[:, :, None] * e[:, None, :]) * (tension / length)[:, None, None]
+    across = (delta - b[:, :, None] * e[:, None, :]) * tension_per_length(system, length)[
+        :, None, None
+    ]
     d_pull = along + across  # (S, l, c): d(force on end a)/dq of end l's body
     # force on end j (+ at a, - at b) by coordinate of end l: (S, j, l, c)
     d_end = -_SIGN[None, :, None, None] * d_pull[:, None, :, :]

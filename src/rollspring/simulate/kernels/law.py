@@ -145,8 +145,10 @@ def damping_tension(c, dx, dy, dvx, dvy, length):
 
 @njit(cache=True, inline="always", error_model="numpy")
 def pull(t, dx, dy, length):
-    r"""The force of tension ``t`` on end a: :math:`T e = (T/l)\,d` (end b takes :math:`-T e`)."""
-    per_length = t / length
+    r"""The force of tension ``t`` on end a: :math:`T e = (T/l)\,d` (end b takes :math:`-T e`);
+    where the ends meet (:math:`l = 0`) a spring without tension (rest length 0) pulls with
+    :math:`k\,d = 0`, and one with tension with no defined direction (NaN)."""
+    per_length = t / length if length > 0.0 or t != 0.0 else 0.0
     return per_length * dx, per_length * dy
 
 
@@ -165,6 +167,8 @@ def pull_rate(k, rest, dx, dy, ddx, ddy):
     :math:`l = |d|`, :math:`\dot d` = (ddx, ddy)): ``(fx, fy, rate_x, rate_y)``, the jerks of
     the stepping's outputs (:func:`~.forces.force_rates`)."""
     length = distance(dx, dy)
+    if rest == 0.0:  # a zero-length spring: F = k d, smooth where its ends meet
+        return k * dx, k * dy, k * ddx, k * ddy
     stretch = k * (1.0 - rest / length)
     along = k * rest * (dx * ddx + dy * ddy) / (length * length * length)
     return stretch * dx, stretch * dy, stretch * ddx + along * dx, stretch * ddy + along * dy

@@ -392,3 +392,41 @@ def test_the_web_answers_503_before_the_fit_starts() -> None:
     assert detail.startswith("the fit would take about ")
     assert "beyond the server's time budget of 3 s" in detail
     assert "simulations of 9.98 s" in detail
+
+
+def test_the_web_posterior_is_refused_beyond_what_the_budget_leaves(monkeypatch) -> None:
+    """``"posterior": true``: once the fit is done, the posterior's estimate (the fit's time an
+    evaluation × walkers × steps) is checked against the budget before any sampling; above
+    BUDGET_MARGIN times the budget the job is refused as over budget (the app's 503), naming the
+    posterior. (Before, only the fit was estimated and the budget stopped the sampling.)"""
+    from rollspring.analysis.costs import Cost
+    from rollspring.lab import posterior as posterior_module
+    from rollspring.model import System
+    from rollspring.web import jobs
+    from tests.test_web_lab_api import csv_text, recording, rough_start
+
+    t, x = recording()
+    system = System.model_validate(rough_start())
+    seen: list[float] = []
+
+    def estimate(result, **_: Any) -> Cost:
+        seen.append(result.seconds)
+        return Cost(what="the posterior", bodies=2, seconds=3600.0)
+
+    def never(*_: Any, **__: Any) -> None:
+        raise AssertionError("sampled although refused")
+
+    monkeypatch.setattr(posterior_module, "posterior_cost", estimate)
+    monkeypatch.setattr(posterior_module, "sample_posterior", never)
+    job = {
+        "system": system,
+        "data": csv_text(t, x),
+        "filename": "data.csv",
+        "budget": 60.0,
+        "posterior": True,
+    }
+    status, (kind, message, loc) = jobs.execute("fit", job)
+    assert (status, kind, loc) == ("error", "over_budget", []), message
+    assert len(seen) == 1 and seen[0] > 0  # estimated once, from the fit done
+    assert message.startswith("the posterior would take about 60 min: 2 bodies after the fit's ")
+    assert "beyond the server's time budget of 60 s" in message

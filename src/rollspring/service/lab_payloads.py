@@ -148,8 +148,9 @@ def fit_payload(
     """The fit of ``system`` to the table ``text`` (named ``source``) freeing the PATHs ``free``
     (default :func:`default_free`) and each body's initial state (``rollspring fit``), with
     ``posterior`` its MCMC posterior too (``fit --posterior``: ``fit.posterior``), within the
-    time ``budget`` (s; None: the command line's bound, 5 minutes; the estimate made before
-    the start is the fit's, and the budget stops a posterior that would run beyond it):
+    time ``budget`` (s; None: the command line's bound, 5 minutes; the fit is estimated
+    before it starts, the posterior once the fit is done, from the fit's time an evaluation:
+    either above :data:`BUDGET_MARGIN` times the budget is refused):
 
     ``{"fit": <rollspring fit --json's object>, "system": <the fitted system, JSON form>,
     "toml": <the fitted system file>, "data": <the table in the fitted system's frame>}``.
@@ -182,9 +183,24 @@ def fit_payload(
         system,
         paths,
         fix_initial=fix_initial,
-        posterior=posterior,
+        posterior=posterior and budget is None,
         confirm=budget is not None,
     )
+    if posterior and budget is not None:
+        # the posterior's estimate rests on the fit's own time an evaluation: checked against
+        # what the budget leaves once the fit is done, before any sampling
+        import dataclasses
+
+        from rollspring.lab.posterior import posterior_cost, sample_posterior
+
+        sampling = posterior_cost(result)
+        if result.seconds + sampling.seconds > BUDGET_MARGIN * budget:
+            raise CostTooHigh(
+                f"the posterior would take {sampling.describe()} after the fit's "
+                f"{result.seconds:.3g} s, beyond the server's time budget of {budget:g} s; "
+                "fit without it, or run rollspring fit --posterior on the command line"
+            )
+        result = dataclasses.replace(result, posterior=sample_posterior(result).to_dict())
     offset = result.parameters.get("x_offset")
     return {
         "fit": result.to_dict(),

@@ -44,11 +44,12 @@ The result of a run depends on that run's values only (never on the other runs o
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
-from numba import njit
 from numpy.typing import ArrayLike
 
 from rollspring.analysis.linear import _SAME_FREQUENCY, ZERO_MODE_TOLERANCE
@@ -259,7 +260,7 @@ def batch_linear(
         # ten times the arithmetic in temporaries and gathers)
         omega_run, weights_run, required = np.full((3, count, n), np.nan)
         ok = np.zeros(count, dtype=np.bool_)
-        _respond(
+        _compiled()(
             which.astype(np.int64),
             clear,
             m,
@@ -297,7 +298,6 @@ def batch_linear(
     return BatchLinear(omega_run, weights_run, required, ok)
 
 
-@njit(cache=True, error_model="numpy")
 def _pulls(
     d: FloatArray,
     rest: FloatArray,
@@ -324,7 +324,6 @@ def _pulls(
         force_q[i] = s[u, i] * force_x[i]
 
 
-@njit(cache=True, error_model="numpy", nogil=True)
 def _respond(
     which: np.ndarray,
     clear: np.ndarray,
@@ -491,3 +490,14 @@ def _respond(
                 required[r, i] = (abs(centre[i]) + amplitude) / normal
             else:
                 required[r, i] = np.inf
+
+
+@functools.cache
+def _compiled() -> Any:
+    """:func:`_respond` compiled (Numba, no GIL; on disk once), with :func:`_pulls`, which it
+    calls, compiled first: on first use, so that importing the package does not import Numba
+    (``rollspring analyze`` starts without it)."""
+    from numba import njit
+
+    globals()["_pulls"] = njit(cache=True, error_model="numpy")(_pulls)
+    return njit(cache=True, error_model="numpy", nogil=True)(_respond)

@@ -513,3 +513,17 @@ def test_springs_of_rest_length_zero_whose_ends_meet_at_the_equilibrium(tmp_path
     result = runner.invoke(app, ["analyze", str(path)])
     assert result.exit_code == 0, result.output
     assert "Warning" not in result.output and "internal error" not in result.output
+
+
+def test_a_stiffness_matrix_that_is_not_finite_is_a_one_line_analysis_error() -> None:
+    """The eigensolver's check of a non-finite K (a spring of non-zero rest length squeezed to
+    zero length: tension per length -inf) was a bare ``ValueError`` ("array must not contain
+    infs or NaNs"), an internal error on the command line; now a one-line AnalysisError (still a
+    ValueError, as SciPy's check raises)."""
+    from rollspring.errors import AnalysisError, NotFiniteError
+
+    stiffness = np.array([[1.0, -np.inf], [-np.inf, 2.0]])
+    with pytest.raises(NotFiniteError, match="not finite in this configuration") as raised:
+        rollspring.normal_modes(np.diag([1.0, 2.0]), stiffness)
+    assert isinstance(raised.value, AnalysisError) and isinstance(raised.value, ValueError)
+    assert "\n" not in str(raised.value)

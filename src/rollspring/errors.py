@@ -14,6 +14,7 @@ The tree, grouped by the layer that raises each class (bottom layer first)::
     ├── ModelError              an invalid system: a file, a value, a preset name
     │ analysis
     ├── AnalysisError           the analysis cannot be carried out (e.g. no equilibrium)
+    │   ├── NotFiniteError      a stiffness or mass matrix that is not finite (a ValueError too)
     │   └── DerivationError     invalid arguments to derive() (an unknown method)
     ├── BudgetExceeded          a symbolic step ran past its time budget (caught inside)
     ├── CostTooHigh             a run's estimated time or memory is above the bound (--yes)
@@ -70,6 +71,7 @@ __all__ = [
     "MathConversionError",
     "MissingExtraError",
     "ModelError",
+    "NotFiniteError",
     "OutputError",
     "OverBudget",
     "Overloaded",
@@ -105,6 +107,12 @@ class ModelError(RollspringError, ValueError):
 
 class AnalysisError(RollspringError):
     """An analysis cannot be carried out for this system."""
+
+
+class NotFiniteError(AnalysisError, ValueError):
+    """A stiffness or mass matrix that is not finite (a value beyond double precision, or a
+    spring of non-zero rest length squeezed to zero length, whose force has no direction); a
+    ``ValueError`` too, as SciPy's check of the same matrices raises."""
 
 
 class DerivationError(AnalysisError, ValueError):

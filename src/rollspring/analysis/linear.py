@@ -613,8 +613,14 @@ def generalized_eigh(mass: FloatArray, stiffness: FloatArray) -> tuple[FloatArra
     inverse = 1.0 / factor
     reduced = stiffness * inverse / factor[:, None]
     reduced.flat[:: inertia.size + 1] = np.diagonal(stiffness) / (factor * factor)
-    if not np.isfinite(reduced).all():  # a non-finite K or M (as SciPy's check says it)
-        raise ValueError("array must not contain infs or NaNs")
+    if not np.isfinite(reduced).all():  # a non-finite K or M (a ValueError, as SciPy's)
+        from rollspring.errors import NotFiniteError
+
+        raise NotFiniteError(
+            "the stiffness matrix is not finite in this configuration (a value beyond double "
+            "precision, or a spring of non-zero rest length squeezed to zero length, whose "
+            "force has no direction)"
+        )
     eigenvalues, standard = np.linalg.eigh(reduced)
     vectors: FloatArray = standard * inverse[:, None]
     return eigenvalues, vectors

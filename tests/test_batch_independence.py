@@ -362,22 +362,22 @@ def test_runs_sharing_their_linear_configuration_share_one_computation_of_it():
     the batch equals itself alone."""
     from rollspring.simulate.batch.parameters import parse_parameters
     from rollspring.simulate.batch.plan import (
-        _distinct_rows,
         _omegas,
+        distinct_rows,
         make_plan,
         omega_inputs,
         probe,
         run_omegas,
     )
 
-    first, inverse = _distinct_rows(
+    first, inverse = distinct_rows(
         [np.array([0.0, -0.0, 0.0, np.nan, np.nan]), np.array([1.0, 1.0, 1.0, 2.0, 2.0])], 5
     )
     assert (
         first.size == 3 and list(inverse) == [inverse[0], inverse[1], inverse[0]] + [inverse[3]] * 2
     )
     assert len({inverse[0], inverse[1], inverse[3]}) == 3
-    assert _distinct_rows([np.array([1.0, 2.0, 3.0])], 3) is None  # every row its own
+    assert distinct_rows([np.array([1.0, 2.0, 3.0])], 3) is None  # every row its own
 
     system = rollspring.load_system("wall-hoop-cylinder")
     rng = np.random.default_rng(11)

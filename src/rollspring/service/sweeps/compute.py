@@ -52,6 +52,7 @@ from rollspring.errors import RollspringError
 from rollspring.model import System, rolled, system_from_dict
 from rollspring.service.sweeps.grid import Grid, apply_values, path_kind
 from rollspring.simulate import simulate, simulate_batch
+from rollspring.simulate.batch.plan import distinct_rows
 from rollspring.simulate.status import Status
 
 __all__ = [
@@ -546,16 +547,6 @@ def _overlap_pool() -> Any:
     return _POOL[0]
 
 
-def _distinct(columns: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    """(a run of each distinct row of ``columns``, the distinct row of each run)."""
-    key = np.zeros(columns[0].size, dtype=np.int64)
-    for column in columns:  # mixed-radix codes (a chunk has far fewer than 2**63 rows)
-        values, codes = np.unique(column, return_inverse=True)
-        key = key * values.size + codes.reshape(-1)
-    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
-    return first, inverse.reshape(-1)
-
-
 def _batch_linear_metrics(runs: _Runs, out: dict[str, np.ndarray]) -> np.ndarray:
     """The linear metrics of the runs :func:`rollspring.analysis.batch_linear` handles (the
     flat centre class), computed once per distinct linear configuration (the friction
@@ -565,8 +556,9 @@ def _batch_linear_metrics(runs: _Runs, out: dict[str, np.ndarray]) -> np.ndarray
         # no friction axis: the runs are points of an outer product of distinct values, so
         # every run is a distinct linear configuration
         first = inverse = None
-    elif paths:
-        first, inverse = _distinct([runs.values[p] for p in paths])
+    elif paths:  # runs alike in all but their friction share one computation
+        rows = distinct_rows([np.asarray(runs.values[p], dtype=np.float64) for p in paths], runs.n)
+        first, inverse = (None, None) if rows is None else rows
     else:
         first, inverse = np.zeros(1, dtype=np.int64), np.zeros(runs.n, dtype=np.int64)
     try:

@@ -26,6 +26,7 @@ __all__ = [
     "batch_schedule",
     "check_runs",
     "choose_step",
+    "distinct_rows",
     "make_plan",
     "metric_every_for",
     "omega_inputs",
@@ -327,7 +328,7 @@ def run_omegas(plan: Plan, chunk: int = 1 << 15) -> FloatArray:
     or friction coefficients does; the result is each run's own either way."""
     inputs = omega_inputs(plan)
     n_runs = plan.scale.shape[0]
-    rows = _distinct_rows([*inputs.values(), *plan.scale.T, *plan.inertia.T], n_runs)
+    rows = distinct_rows([*inputs.values(), *plan.scale.T, *plan.inertia.T], n_runs)
     if rows is None:
         return _omegas(plan, inputs, plan.scale, plan.inertia, chunk)
     first, inverse = rows
@@ -336,7 +337,7 @@ def run_omegas(plan: Plan, chunk: int = 1 << 15) -> FloatArray:
     return np.asarray(omegas[inverse], dtype=np.float64)
 
 
-def _distinct_rows(columns: list[FloatArray], n_rows: int) -> tuple[np.ndarray, np.ndarray] | None:
+def distinct_rows(columns: list[FloatArray], n_rows: int) -> tuple[np.ndarray, np.ndarray] | None:
     """(a row of each distinct row, the distinct row of each row) of the ``columns`` side by
     side, comparing bits (-0.0 is not 0.0, NaNs by payload); None when every row is distinct.
     Only the columns that vary are sorted, each once (mixed-radix codes of their values)."""

@@ -420,6 +420,58 @@ def test_each_steps_shared_link_reopens_it(browser: Browser, server: str, viewpo
         fresh.page.close()
 
 
+#: Holds the page's reading of a deflated body (its own URL being encoded) once read, until the test
+#: lets it go: a write of the page's state still in flight when a link is pasted, made certain,
+#: and its end (microtasks alone) placed before the pasted link's queued hashchange.
+HOLD_ENCODES = """(() => {
+  const read = Response.prototype.arrayBuffer;
+  let gate = null, open = null;
+  window.rollspringTest = {
+    held: 0,
+    hold() { gate = new Promise(r => { open = r; }); },
+    release() { const o = open; gate = null; open = null; if (o) o(); },
+  };
+  Response.prototype.arrayBuffer = async function () {
+    const wait = gate;
+    const bytes = await read.call(this);
+    if (wait) { window.rollspringTest.held += 1; await wait; }
+    return bytes;
+  };
+})()"""
+
+
+def test_a_link_pasted_while_the_page_writes_its_own_state_opens_the_link(
+    browser: Browser, server: str
+) -> None:
+    """The flake this test replaces (CI of 30c8e1a): the page's own state, encoded before a link
+    was pasted into the tab, was written over the link before its hashchange ran, so the page
+    reopened its own old state. Here the page's write is held in flight, the link pasted, and the
+    write let go before the hashchange is handled: the link must win."""
+    page = browser.new_page(viewport=LAPTOP)
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.add_init_script(HOLD_ENCODES)
+    try:
+        page.goto(server + "/")
+        page.evaluate("() => window.rollspringPage.ready()")
+        settle(page)
+        link = page.evaluate(
+            "async () => '#' + await (await import('/static/js/urlstate.js'))"
+            ".encodeState({lesson: 3})"
+        )
+        page.evaluate("() => window.rollspringTest.hold()")
+        page.locator("#restart").click()  # the clock to 0: the page writes its state (held)
+        page.wait_for_function("() => window.rollspringTest.held > 0")
+        page.evaluate("link => { location.hash = link; window.rollspringTest.release(); }", link)
+        page.wait_for_function("() => window.rollspringPage.lesson()?.step === 3")
+        settle(page)
+        assert lesson(page) == {"step": 3, "key": lesson(page)["key"], "count": 6}
+        expect(page.locator("#lesson")).to_be_visible()
+        assert errors == []
+    finally:
+        page.close()
+
+
 # -------------------------------------------------------------------- the page's leftovers
 
 

@@ -870,11 +870,19 @@ function wireForceKey() {
 // ---------------------------------------------------------------- the URL (share)
 
 let urlTimer = null;
+/** The fragment the page itself last wrote or opened. A different one in the address bar is a
+ * link the user pasted, whose hashchange is still queued: a state encoded before it must not
+ * overwrite it (the page would then open its own old state instead of the link). */
+let ownHash = location.hash;
 function saveUrl() {
   clearTimeout(urlTimer);
   urlTimer = setTimeout(async () => {
+    const before = ownHash;
     const fragment = await encodeState(shareable());
+    // a link pasted meanwhile (opened or still queued) wins over the state encoded before it
+    if (location.hash !== before || ownHash !== before) return;
     history.replaceState(null, "", `#${fragment}`);
+    ownHash = location.hash;
   }, 150);
 }
 
@@ -1151,7 +1159,9 @@ function wireControls() {
   wide.addEventListener("change", placeLesson);
   // a link pasted into this tab changes only the fragment: open what it holds
   window.addEventListener("hashchange", async () => {
-    const saved = await decodeState(location.hash);
+    clearTimeout(urlTimer); // the old state's pending write would replace the link
+    ownHash = location.hash;
+    const saved = await decodeState(ownHash);
     if (saved) openSaved(saved);
   });
   $("#duration").addEventListener("change", () => {
@@ -1192,6 +1202,7 @@ function wireControls() {
   $("#share").addEventListener("click", async () => {
     const url = `${location.origin}${location.pathname}#${await encodeState(shareable())}`;
     history.replaceState(null, "", url);
+    ownHash = location.hash;
     $("#share-url").value = url;
     $("#share-url").hidden = false;
     $("#share-url").select();

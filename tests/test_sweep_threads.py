@@ -141,6 +141,114 @@ def test_a_confirmed_sweep_runs_every_chunk_whatever_one_batch_call_would_cost(m
     assert result["status"].values.tolist() == [0, 0, 0]
 
 
+def test_on_stepping_is_called_once_on_the_calling_thread_before_the_stepping():
+    """``simulate_batch(on_stepping=...)``: once, on the calling thread, after the runs are set
+    up (the kernel not yet called), also when no run is integrated; a non-function is refused
+    on one line before anything runs."""
+    import threading
+
+    import rollspring.simulate.batch.api as api
+
+    calls: list[tuple[int, int]] = []
+    stepped: list[int] = []
+    real = api.cache.load_kernel
+
+    def counted(*args, **kwargs):
+        kernel = real(*args, **kwargs)
+
+        class Counted:
+            signatures = kernel.signatures
+
+            def compile(self, *a):
+                return kernel.compile(*a)
+
+            def __call__(self, *a):
+                stepped.append(len(calls))  # how many on_stepping calls came before
+                return kernel(*a)
+
+        return Counted()
+
+    api.cache.load_kernel = counted
+    try:
+        result = simulate_batch(
+            SYSTEM,
+            {"springs.0.stiffness": [50.0, 80.0]},
+            0.5,
+            threads=1,
+            on_stepping=lambda: calls.append((threading.get_ident(), len(stepped))),
+        )
+    finally:
+        api.cache.load_kernel = real
+    assert calls == [(threading.get_ident(), 0)]  # once, here, before the kernel
+    assert stepped == [1]
+    assert list(result.status_names) == ["finished", "finished"]
+    # no run integrated (too fast to resolve in 1e8 steps): still called, once
+    calls.clear()
+    fast = {
+        "springs.0.stiffness": [1e9],
+        "bodies.hoop.mass": [1e-6],
+        "bodies.cylinder.mass": [1e-6],
+    }
+    nothing = simulate_batch(SYSTEM, fast, 1000.0, on_stepping=lambda: calls.append((0, 0)))
+    assert list(nothing.status_names) == ["unresolved"] and calls == [(0, 0)]
+    with pytest.raises(SimulationError) as raised:
+        simulate_batch(SYSTEM, {"springs.0.stiffness": [50.0]}, 0.5, on_stepping=3)
+    assert str(raised.value).splitlines()[0].startswith("on_stepping: must be a function")
+
+
+def test_the_store_is_made_once_every_thread_steps(tmp_path, monkeypatch):
+    """The store's template (Python work that holds the GIL) is written once each thread's
+    first batch call has started stepping (before, it held up their setup, and every core
+    started late); the returned dataset is opened on a thread the last groups leave free."""
+    import threading
+
+    import rollspring.service.sweeps.compute as compute
+    import rollspring.service.sweeps.engine as engine
+
+    order: list[str] = []
+    real_batch, real_template = compute.simulate_batch, engine.write_template
+
+    def batch(*args, on_stepping=None, **kwargs):
+        def stepping():
+            order.append("stepping")
+            if on_stepping is not None:
+                on_stepping()
+
+        return real_batch(*args, on_stepping=stepping, **kwargs)
+
+    def template(*args, **kwargs):
+        order.append("template")
+        return real_template(*args, **kwargs)
+
+    opened_on: list[str] = []
+    real_open = xr.open_zarr
+
+    def open_zarr(*args, **kwargs):
+        opened_on.append(threading.current_thread().name)
+        return real_open(*args, **kwargs)
+
+    real_chunks = engine.compute_chunks
+
+    def chunks(*args, **kwargs):
+        try:
+            return real_chunks(*args, **kwargs)
+        finally:
+            order.append("ended")
+
+    monkeypatch.setattr(compute, "simulate_batch", batch)
+    monkeypatch.setattr(engine, "write_template", template)
+    monkeypatch.setattr(engine, "compute_chunks", chunks)
+    monkeypatch.setattr(xr, "open_zarr", open_zarr)
+    vary = {"springs.0.stiffness": np.linspace(50.0, 150.0, 40).tolist()}
+    result = sweep(SYSTEM, vary, 1.0, chunk=5, threads=2, out=tmp_path / "s.zarr")
+    # after both threads' first batch calls stepped, or one of them ended (tiny groups)
+    before = order[: order.index("template")]
+    assert before.count("stepping") >= 2 or "ended" in before
+    assert order.count("stepping") == order.count("ended") == 8  # a batch call a chunk
+    assert len(opened_on) == 1 and opened_on[0].startswith("rollspring-sweep")
+    same(result.load(), sweep(SYSTEM, vary, 1.0, chunk=5, threads=1))
+
+
 @pytest.mark.parametrize(
     ("threads", "words"),
     [

@@ -41,7 +41,7 @@ import functools
 import json
 import math
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -265,9 +265,11 @@ def _batch(
     step: float,
     scheme: str,
     metric_every: int,
+    stepping: Callable[[], None] | None = None,
 ) -> Any:
     """One :func:`simulate_batch` call with the grid's integrator, step and metric sampling
-    (all fixed by the plan, so no run's numbers depend on the other runs of the call)."""
+    (all fixed by the plan, so no run's numbers depend on the other runs of the call);
+    ``stepping``: its ``on_stepping``."""
     return simulate_batch(
         system,
         params,
@@ -279,6 +281,7 @@ def _batch(
         stop_on_slip=True,
         threads=plan.batch_threads,
         confirm=True,  # the sweep's cost is checked once, for the whole grid
+        on_stepping=stepping,
     )
 
 
@@ -467,10 +470,13 @@ def compute_chunk(plan: SweepPlan, index: int) -> dict[str, np.ndarray]:
     return compute_chunks(plan, [index])[0]
 
 
-def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.ndarray]]:
+def compute_chunks(
+    plan: SweepPlan, indices: list[int], stepping: Callable[[], None] | None = None
+) -> list[dict[str, np.ndarray]]:
     """:func:`compute_chunk` of each of ``indices``, computed together (one batch call for
     all their runs; every run's numbers are those it has alone, so the result of a chunk does
-    not depend on the chunks computed with it)."""
+    not depend on the chunks computed with it). ``stepping``: called when a batch call starts
+    stepping (:func:`rollspring.simulate_batch`'s ``on_stepping``)."""
     prepare_worker(plan.numba_threads)
     runs = _Runs(plan, indices)
     ids = [b.id for b in runs.system.bodies]
@@ -506,7 +512,7 @@ def compute_chunks(plan: SweepPlan, indices: list[int]) -> list[dict[str, np.nda
             _single_run(plan, runs, out, int(r), on_slip="continue")
     else:
         for system, members, params in _groups(runs, alive):
-            _batch_group(plan, runs, out, system, members, params)
+            _batch_group(plan, runs, out, system, members, params, stepping)
         if plan.refine_slip:
             events = (out["status"] == STATUS_CODES["slip"]) | (
                 out["status"] == STATUS_CODES["liftoff"]
@@ -600,6 +606,7 @@ def _batch_group(
     system: System,
     members: np.ndarray,
     params: dict[str, np.ndarray],
+    stepping: Callable[[], None] | None = None,
 ) -> None:
     try:
         result = _batch(
@@ -610,6 +617,7 @@ def _batch_group(
             step=plan.step,
             scheme=plan.scheme,
             metric_every=plan.metric_every,
+            stepping=stepping,
         )
     except RollspringError:
         if members.size == 1:
@@ -623,6 +631,7 @@ def _batch_group(
                 system,
                 members[j : j + 1],
                 {k: v[j : j + 1] for k, v in params.items()},
+                stepping,
             )
         return
     if (

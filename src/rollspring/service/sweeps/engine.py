@@ -365,9 +365,8 @@ def sweep(
         opened: list[Any] = []  # the dataset returned, opened once the template is there
 
         def ready() -> None:
-            """The store made ready for the first write, and the dataset returned opened
-            (lazily: its metadata only, which the chunks do not change): run once, while the
-            first chunks step."""
+            """The store made ready for the first write: run once, while the first chunks
+            step."""
             if path is None or writer:
                 return
             arrays = None  # read back from the store resumed
@@ -378,9 +377,15 @@ def sweep(
                         removals.append(removal)
                 arrays = write_template(path, grid, ids, len(ids), chosen, attrs)
             writer.append(RegionWriter(path, grid, arrays))
-            import xarray as xr
 
-            opened.append(xr.open_zarr(str(path)))
+        def returned() -> None:
+            """The dataset returned, opened (lazily: its metadata only, which the chunks do
+            not change) once the store is ready: in-process on a thread the last groups
+            leave free, while the others end."""
+            if path is not None and writer and not opened:
+                import xarray as xr
+
+                opened.append(xr.open_zarr(str(path)))
 
         def store(items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
             if path is not None:  # each chunk's data written before its marker
@@ -396,7 +401,7 @@ def sweep(
         if progress is not None:
             progress(SweepProgress(counted, grid.n_runs, 0, len(todo), len(done)))
         k = 0
-        for items in _results(plan, todo, client, threads, ready):
+        for items in _results(plan, todo, client, threads, ready, returned):
             store(items)
             for index, _ in items:
                 counted += _runs_in(grid, index)
@@ -404,6 +409,7 @@ def sweep(
                 if progress is not None:
                     progress(SweepProgress(counted, grid.n_runs, k, len(todo), len(done)))
         ready()  # no chunk left to run
+        returned()
     finally:
         if own_client and client is not None:
             client.close()
@@ -577,27 +583,56 @@ def _tasks(grid: Grid, todo: list[int], threads: int) -> list[list[int]]:
 
 
 def _in_process(
-    plan: SweepPlan, todo: list[int], threads: int, ready: Callable[[], None]
+    plan: SweepPlan,
+    todo: list[int],
+    threads: int,
+    ready: Callable[[], None],
+    tail: Callable[[], None] | None = None,
 ) -> Iterator[list[tuple[int, dict[str, np.ndarray]]]]:
     """The chunks of ``todo`` computed by a pool of ``threads`` threads, each group
     (:func:`_tasks`) by one batch call on the serial kernel, which releases the GIL while it
     steps; finished groups are yielded as they come (the caller writes them while the pool
-    steps the next), at most ``2 threads`` groups in flight; ``ready`` is called once the first
-    groups are stepping. The serial kernel is the parallel one's block code: the numbers do not
-    depend on the threads."""
+    steps the next), at most ``2 threads`` groups in flight. ``ready`` is called once the first
+    groups are stepping (each thread's batch call has set its runs up, or a group has ended):
+    before, its Python work would hold the GIL against their setup, and delay the stepping of
+    every core. ``tail`` (work the caller needs before it returns) runs on the pool's thread
+    that the first group to end with none left to start leaves free, beside the last groups'
+    stepping and writes, and is waited for before the last group is yielded. The serial kernel
+    is the parallel one's block code: the numbers do not depend on the threads."""
     serial = copy_plan(plan, batch_threads=1, linear_aside=threads < available_cores())
     groups = iter(_tasks(plan.grid, todo, threads))
+    started = threading.Condition()
+    stepping = [0]  # batch calls that have started stepping
+
+    def steps() -> None:
+        with started:
+            stepping[0] += 1
+            started.notify_all()
+
+    def ended(_: Future[Any]) -> None:
+        with started:
+            started.notify_all()
+
     with ThreadPoolExecutor(threads, thread_name_prefix="rollspring-sweep") as pool:
         pending: dict[Future[list[dict[str, np.ndarray]]], list[int]] = {}
+        left = [True]  # groups left to start
+        tailing: list[Future[None]] = []
 
         def submit() -> None:
             group = next(groups, None)
-            if group is not None:
-                pending[pool.submit(compute_chunks, serial, group)] = group
+            if group is None:
+                left[0] = False
+                return
+            future = pool.submit(compute_chunks, serial, group, steps)
+            pending[future] = group
+            future.add_done_callback(ended)
 
         for _ in range(2 * threads):
             submit()
         try:
+            first = min(threads, len(pending))
+            with started:
+                started.wait_for(lambda: stepping[0] >= first or any(f.done() for f in pending))
             ready()  # the store's template written while the first groups step
             while pending:
                 finished, _ = wait(pending, return_when=FIRST_COMPLETED)
@@ -605,6 +640,10 @@ def _in_process(
                     group = pending.pop(future)
                     arrays = future.result()
                     submit()  # the pool kept full while this thread writes
+                    if tail is not None and not left[0] and not tailing:
+                        tailing.append(pool.submit(tail))  # on the thread just freed
+                    if not pending and tailing:
+                        tailing[0].result()
                     yield list(zip(group, arrays, strict=True))
         finally:  # an error here or in the caller: nothing more is started
             for future in pending:
@@ -617,12 +656,14 @@ def _results(
     client: Any,
     threads: int,
     ready: Callable[[], None],
+    tail: Callable[[], None] | None = None,
 ) -> Iterator[list[tuple[int, dict[str, np.ndarray]]]]:
     """Finished chunks, (index, arrays), a list at a time: in-process a group of chunks as
     each thread of the pool finishes it, on Dask one chunk as each task completes. ``ready``
-    (the store's template) is called before the first is yielded."""
+    (the store's template) is called before the first is yielded; in-process, ``tail`` is run
+    on a pool thread once no group is left to start (see :func:`_in_process`)."""
     if client is None:
-        yield from _in_process(plan, todo, threads, ready)
+        yield from _in_process(plan, todo, threads, ready, tail)
         return
     ready()
     from distributed import KilledWorker, as_completed

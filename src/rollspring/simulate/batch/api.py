@@ -6,7 +6,7 @@ import contextlib
 import math
 import threading
 import time
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -241,6 +241,7 @@ def simulate_batch(
     metric_every: int | None = None,
     confirm: bool = False,
     threads: int | None = None,
+    on_stepping: Callable[[], None] | None = None,
 ) -> BatchResult:
     r"""Run ``system`` once per set of parameter values, all runs in parallel, for ``duration`` s.
 
@@ -325,6 +326,12 @@ def simulate_batch(
         thread alone, with the GIL released, so that several Python threads can each run a
         batch at once (what :func:`rollspring.sweep` does); k > 1: on k of Numba's threads.
         The numbers are the same bit for bit whatever the threads.
+    on_stepping
+        None, or a function called once, on the calling thread, when the runs are set up and
+        the stepping starts (with ``threads=1`` the GIL is then released until the stepping
+        ends; also called when no run is integrated): a caller running batches on several
+        threads puts its own Python work there, where it does not hold up another batch's
+        setup (what :func:`rollspring.sweep` does with its store's template).
 
     Returns
     -------
@@ -349,6 +356,7 @@ def simulate_batch(
     arguments.check_flag("keep_trajectories", keep_trajectories)
     arguments.check_flag("stop_on_slip", stop_on_slip)
     threads = _check_threads(threads)
+    on_stepping = arguments.check_callback("on_stepping", on_stepping)
     damped = [k for k, s in enumerate(system.springs) if s.damping > 0]
     if damped:
         raise ModelError(
@@ -455,6 +463,8 @@ def simulate_batch(
             # numba.typeof has no annotations in numba's own typing
             kernel.compile(tuple(numba.typeof(a) for a in args))  # type: ignore[no-untyped-call]
         compiled = time.perf_counter()
+        if on_stepping is not None:
+            on_stepping()
         if threads == 1:
             kernel(*args)
         else:
@@ -462,6 +472,8 @@ def simulate_batch(
                 kernel(*args)
     else:
         compiled = time.perf_counter()
+        if on_stepping is not None:
+            on_stepping()
     finished = time.perf_counter()
 
     out = np.full((n_runs, OUT_BODY + 5 * n), np.nan)

@@ -18,7 +18,8 @@ The system is the ``hoop-cylinder`` preset. Parts:
     exactly the same runs (the flattened grid) with the sweep's integrator and step. Timed: the
     batch on one core and on every core; the sweep with ``threads=1`` and with one thread a core,
     in memory and written to a new Zarr store (the previous round's removed before the round,
-    untimed). The calls are interleaved (a round of all six, ``--repeat`` rounds after a warm-up
+    and the file system's pending work flushed before each call, untimed). The calls are
+    interleaved (a round of all six, ``--repeat`` rounds after a warm-up
     round; the best of each), so that load from other work hits them alike. Targets: the sweep
     written to a store >= 0.90x the one-core batch with one thread, and >= 0.85 x cores (1.7
     on two cores) with one thread a core. The two stores are also compared bit for bit. Each
@@ -316,6 +317,15 @@ def part_a(system, runs: int, duration: float, repeats: int, scratch: Path) -> d
     }
 
 
+def settle_disk() -> None:
+    """The file system's pending work flushed (untimed) before a timed call: the writeback of
+    the stores of earlier calls (and the removal of the previous round's) then never lands in
+    a later call's time. A call's own writeback still comes after it returns, as for any
+    program writing through the page cache."""
+    if hasattr(os, "sync"):
+        os.sync()
+
+
 def part_a_grid(
     system, vary: dict[str, np.ndarray], duration: float, repeats: int, scratch: Path
 ) -> dict[str, Any]:
@@ -366,6 +376,7 @@ def part_a_grid(
     for round_ in range(repeats + 1):
         fresh()
         for name, call in calls.items():
+            settle_disk()
             began, began_cpu = time.perf_counter(), time.process_time()
             results[name] = call()
             if round_:

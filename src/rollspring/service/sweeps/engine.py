@@ -595,10 +595,11 @@ def _in_process(
     steps the next), at most ``2 threads`` groups in flight. ``ready`` is called once the first
     groups are stepping (each thread's batch call has set its runs up, or a group has ended):
     before, its Python work would hold the GIL against their setup, and delay the stepping of
-    every core. ``tail`` (work the caller needs before it returns) runs on the pool's thread
-    that the first group to end with none left to start leaves free, beside the last groups'
-    stepping and writes, and is waited for before the last group is yielded. The serial kernel
-    is the parallel one's block code: the numbers do not depend on the threads."""
+    every core. ``tail`` (work the caller needs before it returns) runs on a pool thread left
+    idle for good (no group left to start) once the group that freed it is written, beside the
+    last groups' stepping (else here, at the end), and is waited for before the generator
+    ends. The serial kernel is the parallel one's block code: the numbers do not depend on the
+    threads."""
     serial = copy_plan(plan, batch_threads=1, linear_aside=threads < available_cores())
     groups = iter(_tasks(plan.grid, todo, threads))
     started = threading.Condition()
@@ -640,11 +641,21 @@ def _in_process(
                     group = pending.pop(future)
                     arrays = future.result()
                     submit()  # the pool kept full while this thread writes
-                    if tail is not None and not left[0] and not tailing:
-                        tailing.append(pool.submit(tail))  # on the thread just freed
-                    if not pending and tailing:
-                        tailing[0].result()
                     yield list(zip(group, arrays, strict=True))
+                    # written: once a pool thread is idle for good, the tail runs there
+                    # while the last groups step (not beside the write: three threads on
+                    # two cores)
+                    if (
+                        tail is not None
+                        and not tailing
+                        and not left[0]
+                        and 0 < len(pending) < threads
+                    ):
+                        tailing.append(pool.submit(tail))
+            if tail is not None and not tailing:
+                tail()
+            for future in tailing:
+                future.result()
         finally:  # an error here or in the caller: nothing more is started
             for future in pending:
                 future.cancel()

@@ -654,8 +654,8 @@ def _in_process(
                         tailing.append(pool.submit(tail))
             if tail is not None and not tailing:
                 tail()
-            for future in tailing:
-                future.result()
+            for tailed in tailing:
+                tailed.result()
         finally:  # an error here or in the caller: nothing more is started
             for future in pending:
                 future.cancel()

@@ -671,8 +671,8 @@ def _results(
 ) -> Iterator[list[tuple[int, dict[str, np.ndarray]]]]:
     """Finished chunks, (index, arrays), a list at a time: in-process a group of chunks as
     each thread of the pool finishes it, on Dask one chunk as each task completes. ``ready``
-    (the store's template) is called before the first is yielded; in-process, ``tail`` is run
-    on a pool thread once no group is left to start (see :func:`_in_process`)."""
+    (the store's template) is called before the first is yielded; in-process, ``tail`` runs on
+    a pool thread left idle for good, or at the end (see :func:`_in_process`)."""
     if client is None:
         yield from _in_process(plan, todo, threads, ready, tail)
         return

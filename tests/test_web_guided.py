@@ -472,6 +472,63 @@ def test_a_link_pasted_while_the_page_writes_its_own_state_opens_the_link(
         page.close()
 
 
+URL_STATE = (
+    "async () => (await (await import('/static/js/urlstate.js')).decodeState(location.hash))"
+)
+#: A condition for ``wait_for_function`` (which takes a promise for a truthy value): the clock
+#: time the address bar's state holds is ``t``, decoded afresh at each poll.
+URL_T_IS = """t => {
+  import('/static/js/urlstate.js').then(m => m.decodeState(location.hash))
+    .then(s => { window.rollspringUrlT = s ? s.t : null; });
+  return window.rollspringUrlT === t;
+}"""
+
+
+def test_of_two_writes_of_the_pages_state_in_flight_the_newer_lands(
+    browser: Browser, server: str
+) -> None:
+    """Two writes of the page's state to the URL in flight at once (an encode slower than the
+    150 ms between two changes): the newer state is the one left in the address bar, whichever
+    encode ends first (the older write used to land and the newer one to stand down)."""
+    page = browser.new_page(viewport=LAPTOP)
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.add_init_script(HOLD_ENCODES)
+    try:
+        page.goto(server + "/")
+        page.evaluate("() => window.rollspringPage.ready()")
+        settle(page)
+        page.evaluate("() => window.rollspringTest.hold()")
+        seek(page, 0.3)
+        page.wait_for_function("() => window.rollspringTest.held === 1")
+        seek(page, 0.7)
+        page.wait_for_function("() => window.rollspringTest.held === 2")
+        page.evaluate("() => window.rollspringTest.release()")
+        page.wait_for_function(URL_T_IS, arg=clock(page))
+        assert clock(page) == pytest.approx(0.7, abs=0.05)
+        assert page.evaluate(URL_STATE)["t"] == clock(page)
+        assert errors == []
+    finally:
+        page.close()
+
+
+def test_a_damaged_link_pasted_leaves_the_pages_own_state_in_the_address_bar(
+    browser: Browser, server: str
+) -> None:
+    """A pasted fragment that holds no state opens nothing, and the page writes its own state
+    back (the write pending before the paste was cancelled by it)."""
+    opened = open_page(browser, server, "/")
+    page = opened.page
+    try:
+        seek(page, 0.4)
+        page.evaluate("() => { location.hash = '#v1.not-a-state'; }")
+        page.wait_for_function(URL_T_IS, arg=clock(page))
+        assert page.evaluate(URL_STATE)["t"] == clock(page) == pytest.approx(0.4, abs=0.05)
+        opened.check_clean()
+    finally:
+        page.close()
+
+
 # -------------------------------------------------------------------- the page's leftovers
 
 

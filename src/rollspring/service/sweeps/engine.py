@@ -603,11 +603,11 @@ def _in_process(
     serial = copy_plan(plan, batch_threads=1, linear_aside=threads < available_cores())
     groups = iter(_tasks(plan.grid, todo, threads))
     started = threading.Condition()
-    stepping = [0]  # batch calls that have started stepping
+    stepping: set[int] = set()  # the pool threads whose batch call has started stepping
 
     def steps() -> None:
         with started:
-            stepping[0] += 1
+            stepping.add(threading.get_ident())
             started.notify_all()
 
     def ended(_: Future[Any]) -> None:
@@ -633,7 +633,7 @@ def _in_process(
         try:
             first = min(threads, len(pending))
             with started:
-                started.wait_for(lambda: stepping[0] >= first or any(f.done() for f in pending))
+                started.wait_for(lambda: len(stepping) >= first or any(f.done() for f in pending))
             ready()  # the store's template written while the first groups step
             while pending:
                 finished, _ = wait(pending, return_when=FIRST_COMPLETED)

@@ -874,13 +874,22 @@ let urlTimer = null;
  * link the user pasted, whose hashchange is still queued: a state encoded before it must not
  * overwrite it (the page would then open its own old state instead of the link). */
 let ownHash = location.hash;
+let urlWrites = 0; // writes of the page's state begun: only the newest one lands
+let pastes = 0; // links opened from the address bar (hashchange)
+
+/** Whether a write of the page's state begun as ``write`` (``urlWrites`` then) after ``seen``
+ * pastes may land: no newer write begun, no link pasted since, none waiting for its hashchange. */
+function mayWrite(write, seen) {
+  return write === urlWrites && seen === pastes && location.hash === ownHash;
+}
+
 function saveUrl() {
   clearTimeout(urlTimer);
   urlTimer = setTimeout(async () => {
-    const before = ownHash;
+    const write = ++urlWrites;
+    const seen = pastes;
     const fragment = await encodeState(shareable());
-    // a link pasted meanwhile (opened or still queued) wins over the state encoded before it
-    if (location.hash !== before || ownHash !== before) return;
+    if (!mayWrite(write, seen)) return; // a newer state, or a pasted link, wins
     history.replaceState(null, "", `#${fragment}`);
     ownHash = location.hash;
   }, 150);
@@ -1160,9 +1169,11 @@ function wireControls() {
   // a link pasted into this tab changes only the fragment: open what it holds
   window.addEventListener("hashchange", async () => {
     clearTimeout(urlTimer); // the old state's pending write would replace the link
+    pastes += 1;
     ownHash = location.hash;
     const saved = await decodeState(ownHash);
     if (saved) openSaved(saved);
+    else saveUrl(); // a damaged link: the page's own state back in the address bar
   });
   $("#duration").addEventListener("change", () => {
     const parsed = parseDuration($("#duration").value);
@@ -1200,9 +1211,14 @@ function wireControls() {
     recomputeNow();
   });
   $("#share").addEventListener("click", async () => {
+    clearTimeout(urlTimer);
+    const write = ++urlWrites;
+    const seen = pastes;
     const url = `${location.origin}${location.pathname}#${await encodeState(shareable())}`;
-    history.replaceState(null, "", url);
-    ownHash = location.hash;
+    if (mayWrite(write, seen)) {
+      history.replaceState(null, "", url);
+      ownHash = location.hash;
+    }
     $("#share-url").value = url;
     $("#share-url").hidden = false;
     $("#share-url").select();
@@ -1261,7 +1277,8 @@ window.rollspringPage = {
 async function main() {
   presets = await getJson("/api/presets");
   wireControls();
-  const saved = await decodeState(location.hash);
+  ownHash = location.hash; // a link pasted while the page was loading is the one opened
+  const saved = await decodeState(ownHash);
   if (saved) {
     openSaved(saved);
     return;

@@ -440,13 +440,9 @@ HOLD_ENCODES = """(() => {
 })()"""
 
 
-def test_a_link_pasted_while_the_page_writes_its_own_state_opens_the_link(
-    browser: Browser, server: str
-) -> None:
-    """The flake this test replaces (CI of 30c8e1a): the page's own state, encoded before a link
-    was pasted into the tab, was written over the link before its hashchange ran, so the page
-    reopened its own old state. Here the page's write is held in flight, the link pasted, and the
-    write let go before the hashchange is handled: the link must win."""
+def open_holding(browser: Browser, server: str) -> tuple[Page, list[str]]:
+    """The page at a laptop's size with :data:`HOLD_ENCODES` installed, ready and settled,
+    and the list its page errors go to."""
     page = browser.new_page(viewport=LAPTOP)
     errors: list[str] = []
     page.on("pageerror", lambda e: errors.append(str(e)))
@@ -455,6 +451,21 @@ def test_a_link_pasted_while_the_page_writes_its_own_state_opens_the_link(
         page.goto(server + "/")
         page.evaluate("() => window.rollspringPage.ready()")
         settle(page)
+    except BaseException:
+        page.close()
+        raise
+    return page, errors
+
+
+def test_a_link_pasted_while_the_page_writes_its_own_state_opens_the_link(
+    browser: Browser, server: str
+) -> None:
+    """The flake this test replaces (CI of 30c8e1a): the page's own state, encoded before a link
+    was pasted into the tab, was written over the link before its hashchange ran, so the page
+    reopened its own old state. Here the page's write is held in flight, the link pasted, and the
+    write let go before the hashchange is handled: the link must win."""
+    page, errors = open_holding(browser, server)
+    try:
         link = page.evaluate(
             "async () => '#' + await (await import('/static/js/urlstate.js'))"
             ".encodeState({lesson: 3})"
@@ -490,14 +501,8 @@ def test_of_two_writes_of_the_pages_state_in_flight_the_newer_lands(
     """Two writes of the page's state to the URL in flight at once (an encode slower than the
     150 ms between two changes): the newer state is the one left in the address bar, whichever
     encode ends first (the older write used to land and the newer one to stand down)."""
-    page = browser.new_page(viewport=LAPTOP)
-    errors: list[str] = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.add_init_script(HOLD_ENCODES)
+    page, errors = open_holding(browser, server)
     try:
-        page.goto(server + "/")
-        page.evaluate("() => window.rollspringPage.ready()")
-        settle(page)
         page.evaluate("() => window.rollspringTest.hold()")
         seek(page, 0.3)
         page.wait_for_function("() => window.rollspringTest.held === 1")

@@ -23,11 +23,14 @@ from rollspring.simulate.batch.plan import Plan
 from rollspring.simulate.kernels import law
 from rollspring.simulate.kernels.stepping import STATUS_LIFTOFF, STATUS_NONFINITE, STATUS_SLIP
 
-__all__ = ["BLOCK", "OUT_BODY", "OUT_COLUMNS", "OUT_EVENT_TIME", "SINCOS", "Source"]
+__all__ = ["BLOCK", "LINE", "OUT_BODY", "OUT_COLUMNS", "OUT_EVENT_TIME", "SINCOS", "Source"]
 
 #: Runs per block (lanes of the vectorised inner loops).
 BLOCK = 256
+#: Bytes of a cache line: a block's buffers start on one (``Source.buffers``).
+LINE = 64
 _RS = BLOCK + 8  # row stride of the block-local arrays; padding avoids 4 KiB store/load aliasing
+assert (_RS * 8) % LINE == 0  # every row starts on a cache line
 
 # columns of OUT: event time, E0, max |E - E0|, CM and X-hat extremes, crossings, then per body
 # (best |f|, its N, min N, final x, final v)
@@ -660,16 +663,29 @@ class Source:
         loop = ["for j in range(B):", *_indent(self.loads("j") + body)]
         return self.function("sample", "lo, row, S, Pl, C, traj", loop)
 
+    def buffers(self) -> list[str]:
+        """``buffers()``: a block's state ``S`` and its lanes' varying fields ``Pl``, one
+        allocation, each starting on a cache line (:data:`LINE` bytes; every row too, the row
+        stride being a whole number of lines). NumPy and Numba align an array to 32 bytes
+        only; the lane loops' 64-byte vectors then straddle two lines at every access on
+        half of the allocations, which made a batch 1.5x slower at random (bench/README.md)."""
+        lanes = LINE // 8
+        n_state, n_fields = self.n_rows * _RS, max(len(self.varying), 1) * _RS
+        body = [
+            f"W = np.empty({n_state + n_fields + lanes})",
+            f"a = ({lanes} - (W.ctypes.data % {LINE}) // 8) % {lanes}",
+            f"return W[a:a + {n_state}], W[a + {n_state}:a + {n_state + n_fields}]",
+        ]
+        return ["", "", "@njit(cache=True)", "def buffers():", *_indent(body)]
+
     # -- the module ----------------------------------------------------------------------
     def module(self) -> str:
-        nv = max(len(self.varying), 1)
         block = [
             "lo = blk * B",
-            f"Pl = np.empty({nv * _RS})",
+            "S, Pl = buffers()",
             f"for r in range({len(self.varying)}):",
             "    for j in range(B):",
             f"        Pl[r * {_RS} + j] = P[r, lo + j]",
-            f"S = np.empty({self.n_rows * _RS})",
             "nst = dr.shape[0]",
             "k0 = 0.5 * dr[0]",
             "kl = 0.5 * dr[nst - 1]",
@@ -715,6 +731,7 @@ class Source:
             *self.events(),
             *self.epilogue(),
             *self.sample(),
+            *self.buffers(),
             "",
             "",
             '@njit(nogil=True, cache=True, error_model="numpy")',

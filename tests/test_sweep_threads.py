@@ -239,6 +239,7 @@ def test_the_store_is_made_once_every_thread_steps(tmp_path, monkeypatch):
     monkeypatch.setattr(engine, "write_template", template)
     monkeypatch.setattr(engine, "compute_chunks", chunks)
     monkeypatch.setattr(xr, "open_zarr", open_zarr)
+    monkeypatch.setattr(engine, "available_cores", lambda: 2)  # a thread a core: none spare
     vary = {"springs.0.stiffness": np.linspace(50.0, 150.0, 40).tolist()}
     result = sweep(SYSTEM, vary, 1.0, chunk=5, threads=2, out=tmp_path / "s.zarr")
     # after both threads' first batch calls stepped, or one of them ended (tiny groups)
@@ -247,6 +248,89 @@ def test_the_store_is_made_once_every_thread_steps(tmp_path, monkeypatch):
     assert order.count("stepping") == order.count("ended") == 8  # a batch call a chunk
     assert len(opened_on) == 1 and opened_on[0].startswith("rollspring-sweep")
     same(result.load(), sweep(SYSTEM, vary, 1.0, chunk=5, threads=1))
+
+
+def _sweep_events(monkeypatch, tmp_path, threads: int, cores: int) -> list[tuple[str, object]]:
+    """The events of a store sweep of 8 one-chunk groups on ``threads`` threads, as if the
+    machine had ``cores`` cores: ("stepping", chunk index) when a group's batch call steps,
+    ("write", chunk index) when the main thread writes a group, ("template", None) and
+    ("open", thread name)."""
+    import threading
+
+    import rollspring.service.sweeps.engine as engine
+
+    events: list[tuple[str, object]] = []
+    lock = threading.Lock()
+
+    def log(kind: str, what: object) -> None:
+        with lock:
+            events.append((kind, what))
+
+    real_chunks, real_template = engine.compute_chunks, engine.write_template
+    real_write, real_open = engine.RegionWriter.write, xr.open_zarr
+
+    def chunks(plan, group, stepping=None):
+        def steps():
+            log("stepping", group[0])
+            if stepping is not None:
+                stepping()
+
+        return real_chunks(plan, group, steps)
+
+    def template(*args, **kwargs):
+        log("template", None)
+        return real_template(*args, **kwargs)
+
+    def write(self, items):
+        log("write", items[0][0])
+        return real_write(self, items)
+
+    def open_zarr(*args, **kwargs):
+        log("open", threading.current_thread().name)
+        return real_open(*args, **kwargs)
+
+    monkeypatch.setattr(engine, "compute_chunks", chunks)
+    monkeypatch.setattr(engine, "write_template", template)
+    monkeypatch.setattr(engine.RegionWriter, "write", write)
+    monkeypatch.setattr(xr, "open_zarr", open_zarr)
+    monkeypatch.setattr(engine, "available_cores", lambda: cores)
+    vary = {"springs.0.stiffness": np.linspace(50.0, 150.0, 40).tolist()}
+    result = sweep(SYSTEM, vary, 1.0, chunk=5, threads=threads, out=tmp_path / "s.zarr")
+    monkeypatch.undo()
+    same(result.load(), sweep(SYSTEM, vary, 1.0, chunk=5, threads=1))
+    return events
+
+
+@pytest.mark.parametrize(("threads", "cores"), [(1, 2), (2, 2), (2, 3)])
+def test_a_group_is_written_once_the_freed_thread_steps_its_next(
+    tmp_path, monkeypatch, threads, cores
+):
+    """A finished group is written (Python work that holds the GIL) once the thread it freed
+    steps its next group, not while that group's batch call sets its runs up: the write and
+    the setup took turns on the GIL and the kernel started late."""
+    events = _sweep_events(monkeypatch, tmp_path, threads, cores)
+    written = [what for kind, what in events if kind == "write"]
+    assert sorted(written) == list(range(8))  # every group (a chunk each) written once
+    for k, first in enumerate(written):
+        at = events.index(("write", first))
+        stepped = {what for kind, what in events[:at] if kind == "stepping"}
+        # the groups ended by then (k + 1) and those the threads took next all step
+        assert len(stepped) >= min(k + 1 + threads, 8)
+
+
+def test_with_a_core_to_spare_the_result_is_opened_as_soon_as_the_store_is_made(
+    tmp_path, monkeypatch
+):
+    """With fewer threads than cores the returned dataset is opened on the main thread right
+    after the template, beside the first group's stepping (not after the last group: the
+    end of the sweep waited for it); with a thread a core, on a pool thread left idle."""
+    spare = _sweep_events(monkeypatch, tmp_path / "spare", threads=1, cores=2)
+    kinds = [kind for kind, _ in spare]
+    assert kinds.index("template") < kinds.index("open") < kinds.index("write")
+    assert [what for kind, what in spare if kind == "open"] == ["MainThread"]
+    full = _sweep_events(monkeypatch, tmp_path / "full", threads=2, cores=2)
+    opened = [what for kind, what in full if kind == "open"]
+    assert len(opened) == 1 and str(opened[0]).startswith("rollspring-sweep")
 
 
 @pytest.mark.parametrize(

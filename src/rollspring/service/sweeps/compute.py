@@ -476,7 +476,8 @@ def compute_chunks(
     """:func:`compute_chunk` of each of ``indices``, computed together (one batch call for
     all their runs; every run's numbers are those it has alone, so the result of a chunk does
     not depend on the chunks computed with it). ``stepping``: called when a batch call starts
-    stepping (:func:`rollspring.simulate_batch`'s ``on_stepping``)."""
+    stepping (:func:`rollspring.simulate_batch`'s ``on_stepping``), or before the first run
+    when there is no batch call (``on_slip="continue"``: each run alone)."""
     prepare_worker(plan.numba_threads)
     runs = _Runs(plan, indices)
     ids = [b.id for b in runs.system.bodies]
@@ -508,6 +509,8 @@ def compute_chunks(
             if analysis is not None:
                 _linear_metrics(out, int(r), analysis)
     if plan.on_slip == "continue":
+        if stepping is not None:
+            stepping()
         for r in np.flatnonzero(alive):
             _single_run(plan, runs, out, int(r), on_slip="continue")
     else:

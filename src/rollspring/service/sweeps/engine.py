@@ -595,24 +595,42 @@ def _in_process(
     steps the next), at most ``2 threads`` groups in flight. ``ready`` is called once the first
     groups are stepping (each thread's batch call has set its runs up, or a group has ended):
     before, its Python work would hold the GIL against their setup, and delay the stepping of
-    every core. ``tail`` (work the caller needs before it returns) runs on a pool thread left
-    idle for good (no group left to start) once the group that freed it is written, beside the
-    last groups' stepping (else here, at the end), and is waited for before the generator
+    every core. For the same reason a finished group is yielded (written) once the groups that
+    took the freed threads step. ``tail`` (work the caller needs before it returns) runs right
+    after ``ready`` when a core is left free (fewer threads than cores), else on a pool thread
+    left idle for good (no group left to start) once the group that freed it is written, beside
+    the last groups' stepping (else here, at the end); it is waited for before the generator
     ends. The serial kernel is the parallel one's block code: the numbers do not depend on the
     threads."""
-    serial = copy_plan(plan, batch_threads=1, linear_aside=threads < available_cores())
+    spare_core = threads < available_cores()
+    serial = copy_plan(plan, batch_threads=1, linear_aside=spare_core)
     groups = iter(_tasks(plan.grid, todo, threads))
     started = threading.Condition()
     stepping: set[int] = set()  # the pool threads whose batch call has started stepping
+    begun: set[int] = set()  # the groups (their first chunk) a pool thread has taken
+    stepped: set[int] = set()  # the groups whose batch call has started stepping
 
-    def steps() -> None:
+    def steps(first: int) -> None:
         with started:
             stepping.add(threading.get_ident())
+            stepped.add(first)
             started.notify_all()
+
+    def task(group: list[int]) -> list[dict[str, np.ndarray]]:
+        with started:
+            begun.add(group[0])
+        return compute_chunks(serial, group, functools.partial(steps, group[0]))
 
     def ended(_: Future[Any]) -> None:
         with started:
             started.notify_all()
+
+    def settled() -> bool:
+        """Every pool thread with a group to run has taken one, and each taken group steps
+        (or has ended)."""
+        running = [pending[f][0] for f in pending if not f.done()]
+        taken = [first for first in running if first in begun]
+        return len(taken) >= min(threads, len(running)) and all(first in stepped for first in taken)
 
     with ThreadPoolExecutor(threads, thread_name_prefix="rollspring-sweep") as pool:
         pending: dict[Future[list[dict[str, np.ndarray]]], list[int]] = {}
@@ -624,7 +642,7 @@ def _in_process(
             if group is None:
                 left[0] = False
                 return
-            future = pool.submit(compute_chunks, serial, group, steps)
+            future = pool.submit(task, group)
             pending[future] = group
             future.add_done_callback(ended)
 
@@ -635,12 +653,17 @@ def _in_process(
             with started:
                 started.wait_for(lambda: len(stepping) >= first or any(f.done() for f in pending))
             ready()  # the store's template written while the first groups step
+            if tail is not None and spare_core:  # here, on the core the pool leaves free
+                tail()
+                tail = None
             while pending:
                 finished, _ = wait(pending, return_when=FIRST_COMPLETED)
                 for future in sorted(finished, key=lambda f: pending[f][0]):
                     group = pending.pop(future)
                     arrays = future.result()
                     submit()  # the pool kept full while this thread writes
+                    with started:  # written once the freed threads' next groups step
+                        started.wait_for(settled)
                     yield list(zip(group, arrays, strict=True))
                     # written: once a pool thread is idle for good, the tail runs there
                     # while the last groups step (not beside the write: three threads on

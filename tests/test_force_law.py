@@ -4,7 +4,8 @@ The force terms are written once, in :mod:`rollspring.simulate.kernels.law`; the
 kernels, the compiled level setup and the generated batch kernels call them. The forms that must
 stay separate -- the NumPy physics (vectorised over states, the reference of the other layers,
 below ``simulate`` so it cannot import Numba), the SymPy derivation (exact, symbolic), the
-generated batch source (strings that call the law) -- are the rows of :data:`ROWS`, each checked
+generated batch source (strings that call the law), the level pulls of ``analysis.batch_linear``
+(Numba below ``simulate``) -- are the rows of :data:`ROWS`, each checked
 on random states (Hypothesis). A new force term adds its function to ``law.py`` and its row here.
 """
 
@@ -236,6 +237,47 @@ def check_batch_source() -> None:
         assert written_out not in source, written_out
 
 
+@settings(max_examples=60)
+@given(
+    st.integers(1, 3),
+    st.integers(1, 3),
+    st.randoms(use_true_random=False),
+)
+def check_batch_linear(n_springs: int, n_bodies: int, rng) -> None:
+    """analysis.batch_linear (Numba in ``analysis``, below ``simulate``; its equilibrium check
+    over many runs): ``_pulls``'s level pull and generalised force of centre attachments are the
+    law's ``level_pull`` and ``generalized_force`` (the same bits; a level spring's ends never
+    meet there, d != 0, which the model refuses at the start and the check at equilibrium)."""
+    import importlib
+
+    batch_linear = importlib.import_module("rollspring.analysis.batch_linear")  # the module
+    pulls = getattr(batch_linear._pulls, "py_func", batch_linear._pulls)
+
+    def value(low: float, high: float, shape: tuple[int, ...]) -> np.ndarray:
+        return np.array([rng.uniform(low, high) for _ in range(math.prod(shape))]).reshape(shape)
+
+    d = value(0.05, 1.0, (n_springs,)) * np.array(
+        [rng.choice((-1.0, 1.0)) for _ in range(n_springs)]
+    )
+    rest = value(0.0, 1.0, (n_springs,))
+    k = value(1.0, 500.0, (2, n_springs))
+    sigma = np.array(
+        [[rng.choice((-1.0, 0.0, 1.0)) for _ in range(n_bodies)] for _ in range(n_springs)]
+    )
+    external = value(-2.0, 2.0, (1, n_bodies))
+    s = value(0.05, 0.3, (2, n_bodies))
+    force_x, force_q = np.empty(n_bodies), np.empty(n_bodies)
+    pulls(d, rest, k, sigma, external, s, 1, force_x, force_q)
+    expected_x = np.zeros(n_bodies)
+    for spring in range(n_springs):
+        pull = law.level_pull.py_func(k[1, spring], rest[spring], d[spring])
+        expected_x -= pull * sigma[spring]
+    expected_x += external[0]
+    expected_q = law.generalized_force.py_func(s[1], expected_x, 0.0)
+    assert force_x.tobytes() == expected_x.tobytes()
+    assert force_q.tobytes() == expected_q.tobytes()
+
+
 @dataclass(frozen=True)
 class Copy:
     """A form of the force law that must remain, where it lives and its check."""
@@ -254,6 +296,11 @@ ROWS = (
     Copy("rollspring.physics.mechanics", "NumPy, vectorised; below simulate", check_numpy_physics),
     Copy("rollspring.analysis.derivation", "SymPy, exact", check_sympy),
     Copy("rollspring.simulate.batch.codegen", "generated source calls the law", check_batch_source),
+    Copy(
+        "rollspring.analysis.batch_linear",
+        "Numba below simulate; the equilibrium check's level pulls",
+        check_batch_linear,
+    ),
 )
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
@@ -200,3 +201,33 @@ def test_a_blocks_buffers_start_on_cache_lines_whatever_the_heap(layout, sizes):
             assert array.ctypes.data % LINE == 0
         assert fields_.ctypes.data >= state.ctypes.data + state.nbytes  # no overlap
     assert (_RS * 8) % LINE == 0  # so every row starts on a line
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(layout=layouts())
+def test_each_runs_linear_frequency_is_the_physics_one(layout):
+    """``simulate_batch``'s ``omega`` (the step is chosen from it; ``plan._omegas`` writes the
+    stiffness (M12)-(M13) vectorised over runs) is, run by run, the highest frequency of
+    physics' stiffness at the initial placement, :math:`\\max|\\lambda|` of
+    :math:`K v = \\lambda M v`, for the full stiffness and for its elastic part
+    :math:`\\sum_s k_s b_s b_s^T` alone (off-centre ends, anchors, sliders, raised tracks and
+    constant forces included)."""
+    from scipy.linalg import eigh
+
+    from rollspring.physics import mass_matrix, spring_state, stiffness_matrix
+
+    system, parameters = layout
+    batch = simulate_batch(system, parameters, 0.01, integrator="verlet", step=1e-3)
+    assert batch.omega is not None
+    for run in range(batch.n_runs):
+        arrays = system_arrays(_run_system(system, parameters, run))
+        q = np.zeros(arrays.n_bodies)
+        mass = mass_matrix(arrays)
+        lever = spring_state(arrays, q).lever
+        elastic = np.einsum("s,si,sj->ij", arrays.stiffness, lever, lever)
+        full = stiffness_matrix(arrays, q)
+        highest = max(
+            float(np.max(np.abs(eigh(0.5 * (k + k.T), mass, eigvals_only=True))))
+            for k in (full, elastic)
+        )
+        assert batch.omega[run] == pytest.approx(math.sqrt(highest), rel=1e-9, abs=1e-9)

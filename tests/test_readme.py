@@ -100,12 +100,42 @@ def _walkthrough():
     return module
 
 
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def _same_output(shown: str, printed: str) -> bool:
+    """``printed`` is the line ``shown`` up to the last bits of its numbers: the same text
+    around them and each number within 1e-5 relative (or 1e-9 absolute: an uncertainty at the
+    level of rounding). OpenCV and the BLAS take other SIMD paths on other CPUs (AVX-512 or
+    AVX2), which changes the last bits of a track, a fitted value's eighth digit, its
+    uncertainty's sixth (0.0040479735 and 0.0040479789 N/m), and noise-level uncertainties
+    more (a ratio fitted to 1.5 "± 7e-13" on one machine, "± 4e-10" on another)."""
+    if _NUMBER.sub("#", shown) != _NUMBER.sub("#", printed):
+        return False
+    pairs = zip(_NUMBER.findall(shown), _NUMBER.findall(printed), strict=True)
+    return all(math.isclose(float(a), float(b), rel_tol=1e-5, abs_tol=1e-9) for a, b in pairs)
+
+
+def test_the_walkthrough_comparison_takes_last_bits_not_other_numbers() -> None:
+    assert _same_output(
+        '"circle_rms": 0.00015502396635246835,', '"circle_rms": 0.00015502396635246832,'
+    )
+    assert _same_output(
+        "friction_ratio: 1.50000000000000 ± 0.00000000000072",
+        "friction_ratio: 1.50000000000 ± 0.00000000036",
+    )
+    assert not _same_output('"value": 129.99335506624166,', '"value": 129.9894,')
+    assert not _same_output('"circle_rms": 0.000155,', '"height_rms": 0.000155,')
+    assert not _same_output("0,0,-0.0017,0.48", "0,0,-0.0017,0.48,1")
+
+
 @pytest.mark.slow
 def test_lab_walkthrough_is_real_output(tmp_path: Path) -> None:
     """The "Lab" section shows what its commands print (tools/lab_walkthrough.py runs them):
     every output line of its walk-through, the hand-marked fits and the comparisons with the
-    truth, on the textured wall and on the plain one. The tracking's speed
-    (``frames_per_second``) is the one line that differs."""
+    truth, on the textured wall and on the plain one, its numbers to their last bits on another
+    CPU (:func:`_same_output`). The tracking's speed (``frames_per_second``) is the one line
+    that differs."""
     pytest.importorskip("cv2")
     section = README.split("## The lab:", 1)[1].split("\n## ", 1)[0]
     walkthrough = section.split("### The files", 1)[0]
@@ -119,7 +149,7 @@ def test_lab_walkthrough_is_real_output(tmp_path: Path) -> None:
             shown = line.strip()
             if shown.startswith(("$", "--", "…", '"frames_per_second"', "wrote ")) or not shown:
                 continue
-            assert shown in printed, line
+            assert shown in printed or any(_same_output(shown, p) for p in printed), line
             checked += 1
     assert checked >= 60
     section = " ".join(section.split())  # the prose, its lines joined

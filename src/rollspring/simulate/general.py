@@ -95,6 +95,17 @@ class GeneralSegments(RunState):
                 # resistance holds (M22)
                 labels.append(("turn" if spin[i] != 0.0 else "release", i))
 
+        # A body held at this instant with its drive at the bound (a "hold", M22) may start
+        # the segment with its release function past zero by rounding: read as it is, the
+        # function would be "due already" and its crossing where the drive leaves the bound
+        # for real never seen (SciPy and first_crossing both take a function past zero where
+        # they start as having no crossing there), and the body would stay held for good. Its
+        # function is measured from its value here instead, zero where the segment starts.
+        offsets = self._held_offsets(t, state, labels, slipping, sign, spin)
+
+        def values_at(states: FloatArray) -> FloatArray:
+            return self._event_values(states, labels, slipping, sign, spin) - offsets
+
         # SciPy calls every event function with the same state array after a step: all of them
         # evaluated once for it (O(n) per step, not O(n) per body), by the function the search
         # inside the steps uses too
@@ -102,7 +113,7 @@ class GeneralSegments(RunState):
 
         def event_values(y: FloatArray) -> FloatArray:
             if last[0] is not y:
-                last[:] = [y, self._event_values(y[None, :], labels, slipping, sign, spin)[0]]
+                last[:] = [y, values_at(y[None, :])[0]]
             values: FloatArray = last[1]
             return values
 
@@ -166,9 +177,7 @@ class GeneralSegments(RunState):
         steps = np.asarray(dense.ts)
         if events:
             inside = first_crossing(
-                lambda tt: self._event_values(
-                    np.asarray(dense(tt)).T, labels, slipping, sign, spin
-                ),
+                lambda tt: values_at(np.asarray(dense(tt)).T),
                 steps,
                 direction,
                 before=t_end,
@@ -286,6 +295,34 @@ class GeneralSegments(RunState):
         return bool(
             (held & (np.abs(drive) > limit)).any() or (turning & (self.spin * omega < 0.0)).any()
         )
+
+    def _held_offsets(
+        self,
+        t: float,
+        state: FloatArray,
+        labels: list[tuple[str, int]],
+        slipping: BoolArray,
+        sign: FloatArray,
+        spin: FloatArray,
+    ) -> FloatArray:
+        r"""Per event of ``labels``, the value its function is measured from in a segment that
+        starts at ``t`` in ``state``: the release function :math:`C_{rr} N R - |D|` (M22) of a
+        body held at ``t`` (:attr:`~rollspring.simulate.run_state.RunState.held_at`) where it
+        is below zero by rounding (by at most :math:`10^{-9}\,C_{rr} N R`: its drive at the
+        bound), 0 for every other event. The crossing is then where :math:`|D|` exceeds the
+        bound by that rounding, a shift of the release time by rounding too."""
+        offsets = np.zeros(len(labels))
+        held = [
+            j for j, (kind, i) in enumerate(labels) if kind == "release" and self.held_at[i] == t
+        ]
+        if not held:
+            return offsets
+        start = self._event_values(state[None, :], labels, slipping, sign, spin)[0]
+        _, limit = self._resistance_drive(state, slipping, sign)
+        for j in held:
+            if -1e-9 * limit[labels[j][1]] <= start[j] < 0.0:
+                offsets[j] = start[j]
+        return offsets
 
     def _event_values(
         self,

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -432,7 +433,13 @@ class RollingSegments(RunState):
         import scipy.optimize  # on demand: an event to locate (SciPy's optimizers take ~0.1 s)
 
         for j in np.flatnonzero((end < 0) | ((end == 0) & (start > 0))):
-            if not np.isfinite(start[j]) or start[j] <= 0:
+            if start[j] == 0.0:  # at zero where the piece starts: its side is where it goes
+
+                def margin(tau: float, j: int = int(j)) -> float:
+                    return float(margins(tau)[j])
+
+                root = _first_fall(margin, h)
+            elif not np.isfinite(start[j]) or start[j] < 0:
                 root = 0.0
             else:
                 root = scipy.optimize.brentq(
@@ -552,6 +559,8 @@ class RollingSegments(RunState):
             low_tau, low = at_vertex, margin(at_vertex)
         if not low < 0.0:
             return None
+        if margin(0.0) == 0.0:
+            return _first_fall(margin, low_tau)
         if not margin(0.0) > 0.0:
             return 0.0
         return float(
@@ -587,3 +596,28 @@ class RollingSegments(RunState):
             self._record(t_event, state, slipping, sign)
             return t_event, state, slipping, sign
         return t_event, state, slipping, sign
+
+
+def _first_fall(margin: Callable[[float], float], until: float) -> float:
+    r"""Where a contact margin that is exactly zero at :math:`\tau = 0` and below zero at
+    ``until`` first falls through zero: after the highest point between (bounded Brent), by
+    Brent's method, when the margin rises above zero first (a normal force or a friction
+    margin that starts at zero, as a spring's pull that exactly balances the weight, and
+    grows before it falls); at 0 when it falls at once. Taking every such margin as crossing
+    at 0 lost the whole motion of a body whose normal force starts at zero when the first
+    step was longer than the time it stays positive."""
+    import scipy.optimize  # on demand, as the other event searches
+
+    highest = scipy.optimize.minimize_scalar(
+        lambda tau: -margin(tau),
+        bounds=(0.0, until),
+        method="bounded",
+        options={"xatol": 1e-12 * until},
+    )
+    if not -float(highest.fun) > 0.0:
+        return 0.0
+    return float(
+        scipy.optimize.brentq(
+            margin, float(highest.x), until, xtol=1e-15, rtol=4 * np.finfo(float).eps
+        )
+    )

@@ -331,6 +331,7 @@ class RunState:
             if (
                 self.rolls[i]
                 and not slipping[i]
+                and math.isfinite(mu[i])  # (inf * a normal force of 0 would be NaN)
                 and abs(friction[0, i]) > mu[i] * normal[0, i]
                 and friction[0, i] != 0.0
             ):

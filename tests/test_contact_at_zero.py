@@ -74,3 +74,20 @@ def test_a_body_that_cannot_slip_with_no_normal_force_is_checked_without_inf_tim
     tr = simulate(hooked(0.0), 0.5)
     assert tr.status == "finished" and tr.normal[0, 0] == 0.0
     assert np.all(tr.normal[1:, 0] > 0.0) and tr.x[-1, 0] > 0.0
+
+
+@pytest.mark.parametrize(
+    ("margin", "until", "first"),
+    [
+        (lambda t: math.sin(math.pi * t / 0.5), 0.7, 0.5),  # rises, falls through at 0.5
+        (lambda t: -t, 0.3, 0.0),  # falls at once
+        (lambda t: -math.sin(3 * math.pi * t), 0.9, 0.0),  # falls at once, then a bump
+        (lambda t: math.sin(5 * math.pi * t) * (1 + 2 * t), 0.7, 0.2),  # two bumps, 2nd higher
+    ],
+)
+def test_the_first_fall_of_a_margin_that_starts_at_zero(margin, until, first):
+    """rolling._first_fall: of a margin exactly 0 at the start and below 0 at the end, the
+    first instant it falls through zero, not a later one after a higher bump."""
+    from rollspring.simulate.rolling import _first_fall
+
+    assert _first_fall(margin, until) == pytest.approx(first, abs=1e-9)

@@ -160,3 +160,44 @@ def test_a_pull_at_the_bound_to_the_last_bit_is_held_and_not_released_again_at_t
     assert hold["beyond"] > 0.0  # still past the bound, by rounding, where it is held
     assert hold["spin"][0] == 0.0
     check_held_then_released(tr, rtol)
+
+
+def test_a_body_held_under_loads_far_above_its_bound_is_released_when_the_drive_passes_it(
+    monkeypatch,
+):
+    """The rounding a hold leaves in the release function is that of the drive's terms, not of
+    the bound: a cylinder with C_rr = 1e-4 (a bound of 9.8e-4 N) pushed back by a constant 1e4 N
+    and pulled by a stiff spring (1e5 N/m) balancing it to the bound, the hoop running back at
+    1 m/s. Held at the start (its drive past the bound by 1.07e-9 of it, rounding of 1e4 N), it
+    is released where the spring's pull has fallen by twice the bound, at 2 C_rr m g / (k v)
+    = 1.96e-8 s; an offset limited to 1e-9 of the bound left it held for good (it slipped at
+    7.2e-5 s, pushed with a growing force while still at rest)."""
+    holds = record_holds(monkeypatch)
+    c_rr, k, push = 1e-4, 1e5, 1e4
+    bound = c_rr * 1.0 * G
+
+    def loaded(x_hoop: float):
+        return make_system(
+            bodies=[
+                body("cyl", "cylinder", mass=1.0, radius=0.1, x=0.0, rolling_resistance=c_rr),
+                body("hoop", "hoop", mass=0.5, radius=0.1, x=x_hoop, v=V_HOOP, mu_static=math.inf),
+            ],
+            springs=[spring("cyl", "hoop", stiffness=k, rest_length=0.5)],
+            forces=[{"body": "cyl", "fx": -push}],
+        )
+
+    x_hoop = 0.5 + (push + bound) / k
+    for _ in range(10_000):  # the first hoop position whose drive measures past the bound
+        if drive_beyond_bound(loaded(x_hoop)) > 0.0:
+            break
+        x_hoop = float(np.nextafter(x_hoop, np.inf))
+    assert drive_beyond_bound(loaded(x_hoop)) > 0.0
+    for rtol in (1e-8, 1e-12):
+        holds.clear()
+        tr = simulate(loaded(x_hoop), 1e-4, rtol=rtol, n_output=201)
+        [hold] = holds
+        # past the bound (a torque, C_rr N R) by more than 1e-9 of it
+        assert hold["time"] == 0.0 and hold["beyond"] > 1e-9 * bound * 0.1
+        rest, release = tr.events[:2]
+        assert (rest["kind"], rest["time"], release["kind"]) == ("rest", 0.0, "release")
+        assert release["time"] == pytest.approx(2 * bound / (k * abs(V_HOOP)), rel=1e-3)

@@ -308,9 +308,11 @@ class GeneralSegments(RunState):
         r"""Per event of ``labels``, the value its function is measured from in a segment that
         starts at ``t`` in ``state``: the release function :math:`C_{rr} N R - |D|` (M22) of a
         body held at ``t`` (:attr:`~rollspring.simulate.run_state.RunState.held_at`) where it
-        is below zero by rounding (by at most :math:`10^{-9}\,C_{rr} N R`: its drive at the
-        bound), 0 for every other event. The crossing is then where :math:`|D|` exceeds the
-        bound by that rounding, a shift of the release time by rounding too."""
+        is below zero, 0 for every other event. A body is held only at the bound (its rotation,
+        set turning, turned back at once), so a value below zero there is rounding: of the
+        terms of :math:`D`, which can be far larger than the bound (a constant force 10^6 times
+        :math:`C_{rr} N`), so it is not bounded by a fraction of :math:`C_{rr} N R`. The
+        crossing is then where :math:`|D|` exceeds the bound by that rounding."""
         offsets = np.zeros(len(labels))
         held = [
             j for j, (kind, i) in enumerate(labels) if kind == "release" and self.held_at[i] == t
@@ -318,9 +320,8 @@ class GeneralSegments(RunState):
         if not held:
             return offsets
         start = self._event_values(state[None, :], labels, slipping, sign, spin)[0]
-        _, limit = self._resistance_drive(state, slipping, sign)
         for j in held:
-            if -1e-9 * limit[labels[j][1]] <= start[j] < 0.0:
+            if start[j] < 0.0:
                 offsets[j] = start[j]
         return offsets
 

@@ -598,26 +598,32 @@ class RollingSegments(RunState):
         return t_event, state, slipping, sign
 
 
-def _first_fall(margin: Callable[[float], float], until: float) -> float:
+def _first_fall(margin: Callable[[float], float], until: float, parts: int = 16) -> float:
     r"""Where a contact margin that is exactly zero at :math:`\tau = 0` and below zero at
-    ``until`` first falls through zero: after the highest point between (bounded Brent), by
-    Brent's method, when the margin rises above zero first (a normal force or a friction
-    margin that starts at zero, as a spring's pull that exactly balances the weight, and
-    grows before it falls); at 0 when it falls at once. Taking every such margin as crossing
-    at 0 lost the whole motion of a body whose normal force starts at zero when the first
-    step was longer than the time it stays positive."""
+    ``until`` first falls through zero: at 0 when it falls at once; else the margin is sampled
+    at ``parts`` equal parts of the interval, and the crossing is looked for before the first
+    sample below zero, after the highest point there (bounded Brent), by Brent's method (a
+    normal force or a friction margin that starts at zero, as a spring's pull that exactly
+    balances the weight, and grows before it falls). Taking every such margin as crossing at 0
+    lost the whole motion of a body whose normal force starts at zero when the first step was
+    longer than the time it stays positive."""
     import scipy.optimize  # on demand, as the other event searches
 
+    if margin(1e-9 * until) < 0.0:
+        return 0.0
+    below = next(
+        (until * k / parts for k in range(1, parts) if margin(until * k / parts) < 0.0), until
+    )
     highest = scipy.optimize.minimize_scalar(
         lambda tau: -margin(tau),
-        bounds=(0.0, until),
+        bounds=(0.0, below),
         method="bounded",
-        options={"xatol": 1e-12 * until},
+        options={"xatol": 1e-12 * below},
     )
     if not -float(highest.fun) > 0.0:
         return 0.0
     return float(
         scipy.optimize.brentq(
-            margin, float(highest.x), until, xtol=1e-15, rtol=4 * np.finfo(float).eps
+            margin, float(highest.x), below, xtol=1e-15, rtol=4 * np.finfo(float).eps
         )
     )

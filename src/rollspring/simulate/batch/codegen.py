@@ -357,7 +357,10 @@ class Source:
                     lines += [
                         f"fb = {S(f'FB{i}')}",
                         f"nb = {S(f'NB{i}')}",
-                        f"better = (N{i} >= 0.0) & (af * nb > fb * N{i})",
+                        # (0, 0) stored, |f|/N undefined (f and N both 0 at the start):
+                        # any later pair is better
+                        f"better = (N{i} >= 0.0) & ((af * nb > fb * N{i})"
+                        " | ((fb == 0.0) & (nb == 0.0)))",
                         f"{S(f'FB{i}')} = af if better else fb + 0.0",
                         f"{S(f'NB{i}')} = N{i} if better else nb + 0.0",
                     ]
@@ -570,7 +573,7 @@ class Source:
                 f"        now = {now}",
                 f"        before = {before}",
                 "        tc = t",
-                "        if before < 0.0 and now > before:",
+                "        if before <= 0.0 and now > before:",
                 "            tc = t - h * (now / (now - before))",
                 "    if tc < tev:",
                 "        tev = tc",

@@ -86,8 +86,9 @@ def test_a_body_that_cannot_slip_with_no_normal_force_is_checked_without_inf_tim
     ],
 )
 def test_the_first_fall_of_a_margin_that_starts_at_zero(margin, until, first):
-    """rolling._first_fall: of a margin exactly 0 at the start and below 0 at the end, the
-    first instant it falls through zero, not a later one after a higher bump."""
+    """rolling._first_fall (first_crossing on one step): of a margin exactly 0 at the start and
+    below 0 at the end, the first instant it falls through zero, not a later one after a higher
+    bump."""
     from rollspring.simulate.rolling import _first_fall
 
     assert _first_fall(margin, until) == pytest.approx(first, abs=1e-9)

@@ -23,6 +23,7 @@ import numpy as np
 from rollspring.errors import SimulationError
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import kernels
+from rollspring.simulate.crossings import first_crossing
 from rollspring.simulate.run_state import NO_SAMPLES, Handover, Observed, RunState, Segment, Start
 from rollspring.simulate.status import RunStatus, Status
 
@@ -598,32 +599,17 @@ class RollingSegments(RunState):
         return t_event, state, slipping, sign
 
 
-def _first_fall(margin: Callable[[float], float], until: float, parts: int = 16) -> float:
+def _first_fall(margin: Callable[[float], float], until: float) -> float:
     r"""Where a contact margin that is exactly zero at :math:`\tau = 0` and below zero at
-    ``until`` first falls through zero: at 0 when it falls at once; else the margin is sampled
-    at ``parts`` equal parts of the interval, and the crossing is looked for before the first
-    sample below zero, after the highest point there (bounded Brent), by Brent's method (a
-    normal force or a friction margin that starts at zero, as a spring's pull that exactly
-    balances the weight, and grows before it falls). Taking every such margin as crossing at 0
-    lost the whole motion of a body whose normal force starts at zero when the first step was
-    longer than the time it stays positive."""
-    import scipy.optimize  # on demand, as the other event searches
+    ``until`` first falls through zero, by :func:`~rollspring.simulate.crossings.first_crossing`
+    (which takes a function at zero where it starts as on its side before the crossing): 0 when
+    it falls at once, else after it has risen (a normal force or a friction margin that starts
+    at zero, as a spring's pull that exactly balances the weight). Taking every such margin as
+    crossing at 0 lost the whole motion of a body whose normal force starts at zero when the
+    first step was longer than the time it stays positive."""
 
-    if margin(1e-9 * until) < 0.0:
-        return 0.0
-    below = next(
-        (until * k / parts for k in range(1, parts) if margin(until * k / parts) < 0.0), until
-    )
-    highest = scipy.optimize.minimize_scalar(
-        lambda tau: -margin(tau),
-        bounds=(0.0, below),
-        method="bounded",
-        options={"xatol": 1e-12 * below},
-    )
-    if not -float(highest.fun) > 0.0:
-        return 0.0
-    return float(
-        scipy.optimize.brentq(
-            margin, float(highest.x), below, xtol=1e-15, rtol=4 * np.finfo(float).eps
-        )
-    )
+    def values(times: FloatArray) -> FloatArray:
+        return np.array([[margin(float(tau))] for tau in times])
+
+    found = first_crossing(values, np.array([0.0, until]), np.array([-1.0]))
+    return 0.0 if found is None else found[0]

@@ -606,13 +606,11 @@ def _in_process(
     serial = copy_plan(plan, batch_threads=1, linear_aside=spare_core)
     groups = iter(_tasks(plan.grid, todo, threads))
     started = threading.Condition()
-    stepping: set[int] = set()  # the pool threads whose batch call has started stepping
     begun: set[int] = set()  # the groups (their first chunk) a pool thread has taken
     stepped: set[int] = set()  # the groups whose batch call has started stepping
 
     def steps(first: int) -> None:
         with started:
-            stepping.add(threading.get_ident())
             stepped.add(first)
             started.notify_all()
 
@@ -649,9 +647,8 @@ def _in_process(
         for _ in range(2 * threads):
             submit()
         try:
-            first = min(threads, len(pending))
-            with started:
-                started.wait_for(lambda: len(stepping) >= first or any(f.done() for f in pending))
+            with started:  # each thread's first group steps (or has ended)
+                started.wait_for(settled)
             ready()  # the store's template written while the first groups step
             if tail is not None and spare_core:  # here, on the core the pool leaves free
                 tail()

@@ -8,6 +8,8 @@ import math
 import numpy as np
 import pytest
 import xarray as xr
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 import rollspring
@@ -324,6 +326,56 @@ def test_missing_options(args, words, tmp_path):
         cli_app(), ["sweep", SYSTEM, *args, *extra, "--out", str(tmp_path / "s.zarr")]
     )
     assert result.exit_code == 2 and words in result.output
+
+
+# the values of a quantity only its body or spring checks: their ends decide (an interval)
+_ENDS = [-1e7, -1e4, -1.0, -1e-300, 0.0, 1e-7, 1e-6, 0.3, 0.5, 0.7, 1.0, 1e4, 1e6, 1e9, 2e9]
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    path=st.sampled_from(
+        [
+            "bodies.hoop.mass",
+            "bodies.hoop.v",
+            "bodies.hoop.mu_static",
+            "bodies.hoop.mu_kinetic",
+            "springs.0.stiffness",
+        ]
+    ),
+    values=st.lists(
+        st.one_of(st.sampled_from(_ENDS), st.floats(-2e9, 2e9), st.just(math.inf)),
+        min_size=1,
+        max_size=6,
+        unique=True,
+    ),
+    mu_kinetic=st.sampled_from([None, 0.0, 0.5]),
+)
+def test_a_grid_axis_is_checked_by_its_ends_as_value_by_value(path, values, mu_kinetic):
+    """check_grid validates an axis of a body's or a spring's own quantity by its smallest and
+    largest finite values (and inf): the same verdict, and the same message, as value by value."""
+    from rollspring.service.sweeps import grid
+
+    data = system_to_json(rollspring.load_system(SYSTEM))
+    data["bodies"][0]["mu_static"] = 0.6
+    if mu_kinetic is not None:
+        data["bodies"][0]["mu_kinetic"] = mu_kinetic
+    system = system_from_dict(data)
+    part = grid._part_of(system_to_json(system), system, path)
+    array = np.asarray(values)
+    each = all(grid._part_valid(part, path, float(v)) for v in array)
+    assert grid._ends_valid(part, path, array) == each
+    if not np.all(np.isfinite(array)) and not path.endswith("mu_static"):
+        return  # refused as not finite before any value is checked
+    try:
+        grid.check_grid(system, {path: values})
+    except SweepError as exc:
+        assert not each
+        with pytest.raises(SweepError) as one_by_one:
+            grid._check_each(system_to_json(system), system, path, part, array)
+        assert str(exc) == str(one_by_one.value)
+    else:
+        assert each
 
 
 def test_parse_vary_spec():

@@ -392,16 +392,36 @@ def check_grid(
                 raise SweepError(f"--vary {path}: an amplitude must be >= 0")
         else:
             part = _part_of(base, system, path)
-            for value in array:
-                if part is not None and _part_valid(part, path, float(value)):
-                    continue
-                try:
-                    apply_values(base, system, {path: float(value)}, source=f"--vary {path}")
-                except SweepError:
-                    raise
-                except RollspringError as exc:
-                    message = str(exc)
-                    raise SweepError(f"{message} (value {float(value)!r})") from None
+            if part is None or not _ends_valid(part, path, array):
+                _check_each(base, system, path, part, array)
         paths.append(path)
         values.append(tuple(float(v) for v in array))
     return tuple(paths), tuple(values)
+
+
+def _ends_valid(part: dict[str, Any], path: str, values: np.ndarray) -> bool:
+    """Whether the body or spring ``part`` validates with each of ``values``, from its smallest
+    and largest finite values and its infinite ones: with the rest of its body or spring fixed,
+    the finite values a quantity of :data:`_OWN_CHECK` may take are an interval (its range, and
+    ``mu_kinetic <= mu_static``), so its ends decide (a few validations, not one a value)."""
+    finite = values[np.isfinite(values)]
+    probes = {float(v) for v in values[~np.isfinite(values)]}
+    if finite.size:
+        probes |= {float(finite.min()), float(finite.max())}
+    return all(_part_valid(part, path, value) for value in probes)
+
+
+def _check_each(
+    base: dict[str, Any], system: System, path: str, part: dict[str, Any] | None, values: np.ndarray
+) -> None:
+    """Each of ``values`` applied alone to ``system`` (its body or spring first, when that
+    decides): :class:`SweepError` wording the first refused."""
+    for value in values:
+        if part is not None and _part_valid(part, path, float(value)):
+            continue
+        try:
+            apply_values(base, system, {path: float(value)}, source=f"--vary {path}")
+        except SweepError:
+            raise
+        except RollspringError as exc:
+            raise SweepError(f"{exc} (value {float(value)!r})") from None

@@ -587,6 +587,7 @@ class RollingSegments(RunState):
         body = j % self.n
         q_e, v_e, _, _ = kernels.advance(model, self.coeffs, q, v, root, 1 if root > 0 else 0)
         t_event = t_before + root
+        self._record_to_event(model, t_before, q, v, t_event, x0)
         state = self.general_state(q_e, v_e, x0)
         self.segments.append(
             self._rolling_evaluator(
@@ -597,6 +598,36 @@ class RollingSegments(RunState):
             self._record(t_event, state, slipping, sign)
             return t_event, state, slipping, sign
         return t_event, state, slipping, sign
+
+    def _record_to_event(
+        self,
+        model: tuple[Any, ...],
+        t_before: float,
+        q: FloatArray,
+        v: FloatArray,
+        t_event: float,
+        x0: FloatArray,
+    ) -> None:
+        """Record the output times from the step that holds the event, which starts at
+        ``t_before`` in the state (q, v), to the event at ``t_event``: each one step of the
+        scheme from (q, v), as the event's own state (the steps before recorded theirs; the
+        segment after the event takes the output times more than ``1e-12`` of the run after
+        it, as every segment does from its start)."""
+        grid = self.grid
+        last = float(self.times[-1][-1]) if self.times else -math.inf
+        taus = grid[(grid > last) & (grid >= t_before) & (grid <= t_event + 1e-12 * grid[-1])]
+        if not taus.size:
+            return
+        spans = taus - t_before
+        q_rows, v_rows = kernels.advance_many(
+            model,
+            self.coeffs,
+            np.tile(q, (taus.size, 1)),
+            np.tile(v, (taus.size, 1)),
+            spans,
+            (spans > 0).astype(np.int64),
+        )
+        self._record_rolling(taus.copy(), q_rows, v_rows, x0)
 
 
 def _first_fall(margin: Callable[[float], float], until: float) -> float:

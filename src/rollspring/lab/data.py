@@ -28,14 +28,14 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Protocol, cast
 
 import numpy as np
 
 from rollspring.errors import DataError
-from rollspring.model import System
+from rollspring.model import RANGES, System
 from rollspring.model.files import not_regular
 from rollspring.physics.arrays import FloatArray
 
@@ -52,6 +52,8 @@ __all__ = [
 
 #: The largest data file read (bytes): a minute at 1000 frames/s of twenty bodies is 3 MB.
 MAX_BYTES = 200_000_000
+#: The largest time a table may hold (s; a clock's epoch reading, about 1.8e9 s, passes).
+MAX_TIME = 1e10
 
 
 @dataclass(frozen=True)
@@ -150,6 +152,8 @@ def read_data(path: str | os.PathLike[str]) -> Recording:
             raw = handle.read(MAX_BYTES + 1)
     except OSError as exc:
         raise DataError(f"{shown}: cannot read ({exc.strerror or exc})") from None
+    except DataError:
+        raise
     except ValueError as exc:  # a path with a NUL byte
         raise DataError(f"{shown!r}: not a valid path ({exc})") from None
     try:
@@ -164,7 +168,8 @@ def read_data(path: str | os.PathLike[str]) -> Recording:
 
 def parse_data(text: str, source: str = "<data>") -> Recording:
     """A measured table from its text (``source`` names it in messages): see :func:`read_data`."""
-    lines = [line.rstrip("\r") for line in text.replace("\r\n", "\n").split("\n")]
+    # lines end in LF, CR LF or CR alone (a spreadsheet's "CSV (Macintosh)")
+    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
     while lines and not lines[-1].strip():
         lines.pop()
     if not lines or not any(line.strip() for line in lines):
@@ -220,15 +225,32 @@ def _number(cell: str) -> float:
 
 
 def _rows(
-    source: str, lines: list[str], separator: str, columns: int, first_row: int
+    source: str,
+    lines: list[str],
+    separator: str,
+    columns: int,
+    first_row: int,
+    positions: Sequence[int] = (),
+    times: Sequence[int] = (),
 ) -> FloatArray:
-    """The numbers of the data lines (N, columns), NaN for empty cells; a line that is blank is
-    skipped; a cell that is no number a :class:`DataError` naming its row and column."""
+    """The numbers of the data lines (N, columns), NaN for empty cells (a short line's missing
+    cells are empty: an unmarked frame); a line that is blank is skipped; a cell that is no
+    number, a number in a ``positions`` column outside the model's positions
+    (``RANGES["position"]``, m), one in a ``times`` column beyond :data:`MAX_TIME` or a line
+    with more cells than the header (a column without a name) is a :class:`DataError` naming
+    its row and column."""
+    low, high, _ = RANGES["position"]
     rows = []
     for offset, line in enumerate(lines):
         if not line.strip():
             continue
+        row = first_row + offset
         cells = _cells(line, separator)
+        if any(cells[columns:]):
+            raise DataError(
+                f"{source}: row {row} has {len(cells)} cells, the header names {columns} "
+                "columns (a column without a name, or a separator inside a number)"
+            )
         cells = (cells + [""] * columns)[:columns]
         values = []
         for column, cell in enumerate(cells):
@@ -236,9 +258,20 @@ def _rows(
                 values.append(_number(cell))
             except ValueError:
                 raise DataError(
-                    f"{source}: row {first_row + offset}, column {column + 1}: {cell!r} is not "
-                    "a finite number"
+                    f"{source}: row {row}, column {column + 1}: {cell!r} is not a finite number"
                 ) from None
+            if math.isnan(values[-1]):  # an empty cell
+                continue
+            if column in positions and not low <= values[-1] <= high:
+                raise DataError(
+                    f"{source}: row {row}, column {column + 1}: {cell} m is outside the "
+                    f"positions the model takes ({low:g} to {high:g} m)"
+                )
+            if column in times and not abs(values[-1]) <= MAX_TIME:
+                raise DataError(
+                    f"{source}: row {row}, column {column + 1}: the time {cell} s is beyond "
+                    f"{MAX_TIME:g} s"
+                )
         rows.append(values)
     if not rows:
         raise DataError(f"{source}: no data rows after the header")
@@ -308,7 +341,15 @@ def _table(source: str, header: list[str], lines: list[str], separator: str) -> 
             )
     if not tracks:
         raise DataError(f"{source}: no position column: the header needs x_<body id> columns")
-    table = _rows(source, lines, separator, len(header), 2)
+    table = _rows(
+        source,
+        lines,
+        separator,
+        len(header),
+        2,
+        positions=list(x_column.values()),
+        times=[lowered.index("t")],
+    )
     t, table = _times(source, table, lowered.index("t"), 2)
     x = np.stack([table[:, x_column[name]] for name in tracks], axis=1)
     phi = np.stack(
@@ -371,10 +412,46 @@ def _tracker(
         tracks.append(name)
     if not tracks:
         raise DataError(f"{source}: no 'x' column of any track (columns: {', '.join(header)})")
-    table = _rows(source, lines, separator, len(header), first_row)
+    clocks = [column for column, cell in enumerate(lowered) if cell == "t"]
+    table = _rows(
+        source,
+        lines,
+        separator,
+        len(header),
+        first_row,
+        positions=list(x_column.values()),
+        times=clocks,
+    )
+    _same_clock(source, table, clocks, owner, first_row)
     t, table = _times(source, table, 0, first_row)
     x = np.stack([table[:, x_column[name]] for name in tracks], axis=1)
     return Recording(source, t, tuple(tracks), x, np.full_like(x, np.nan), kind)
+
+
+def _same_clock(
+    source: str, table: FloatArray, clocks: list[int], owner: list[str | None], first_row: int
+) -> None:
+    """A Tracker ``#multi:`` file whose tracks each have a ``t`` column: each must read the
+    first column's time in every row where both are given (to a thousandth of a frame, the
+    rounding of printed times), else the tracks are on different clocks: a
+    :class:`DataError` naming the row and the track."""
+    if len(clocks) < 2:
+        return
+    first = table[:, clocks[0]]
+    steps = np.diff(first[np.isfinite(first)])
+    tolerance = 1e-3 * float(np.median(steps)) if steps.size else 0.0
+    for column in clocks[1:]:
+        other = table[:, column]
+        both = np.isfinite(first) & np.isfinite(other)
+        off = both & ~(np.abs(other - first) <= tolerance + 1e-12 * np.abs(first))
+        if off.any():
+            row = int(np.flatnonzero(off)[0])
+            track = owner[column] or f"column {column + 1}"
+            raise DataError(
+                f"{source}: row {first_row + row}: track '{track}' has t = {other[row]:g} s "
+                f"where the first column has {first[row]:g} s (tracks on different clocks; "
+                "export them with one time column, or align their times)"
+            )
 
 
 def match_bodies(

@@ -76,7 +76,7 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.errors import FitError
+from rollspring.errors import FitError, RollspringError
 from rollspring.lab import parameters as paths_module
 from rollspring.lab.data import BodyData
 from rollspring.lab.motion import motion_matrix, simulated_states, transition_matrices
@@ -189,6 +189,8 @@ class _Problem:
         self.affine: dict[tuple[float, ...], tuple[FloatArray, FloatArray] | None] = {}
         #: told of each evaluation of the residuals (a simulation on the simulated route)
         self.on_evaluation: Callable[[], None] | None = None
+        #: the last values the simulated route could not follow, and why
+        self.failure = ""
 
     # -- the model at given parameters --------------------------------------------------------
 
@@ -220,8 +222,14 @@ class _Problem:
             z0 = np.concatenate([x0, v0, [1.0]])
             z = phi[:, : 2 * n, :] @ z0
         else:
-            system = self._with_state(theta, x0, v0)
-            x, v = simulated_states(system, tau)
+            try:
+                system = self._with_state(theta, x0, v0)
+                x, v = simulated_states(system, tau)
+            except (ArithmeticError, RollspringError) as exc:
+                # a trial the model cannot follow (a body that leaves its track or slides
+                # off at these values): no motion, so no residual the solver could take
+                self.failure = f"{_values_text(self.layout, full)}: {exc}"
+                return np.full((times.size, 2 * n), np.nan)
             z = np.concatenate([x, v], axis=1)
         z[:, :n] += offset
         return z
@@ -271,8 +279,22 @@ class _Problem:
             step = _step(full[index], self.level, index >= p)
             moved = full.copy()
             moved[index] += step
-            columns.append((self.residual(moved) - base) / step)
+            column = (self.residual(moved) - base) / step
+            if not np.all(np.isfinite(column)):  # the model fails just above: below then
+                moved[index] = full[index] - step
+                column = (base - self.residual(moved)) / step
+            if not np.all(np.isfinite(column)):
+                raise FitError(
+                    f"the model cannot be followed on either side of {layout.names[index]} = "
+                    f"{full[index]:.6g} ({self.failure or 'not finite'})"
+                )
+            columns.append(column)
         return np.stack(columns, axis=1) if columns else np.zeros((self.observed.size, 0))
+
+
+def _values_text(layout: _Layout, full: FloatArray) -> str:
+    """The fitted PATHs' values of ``full``, for a message (``springs.0.stiffness = 130``)."""
+    return ", ".join(f"{layout.names[i]} = {full[i]:.6g}" for i in range(layout.n_paths))
 
 
 def _step(value: float, exact: bool, state: bool) -> float:
@@ -751,11 +773,16 @@ def fit_model(
     for i, path in enumerate(paths):
         low[i], high[i] = paths_module.bounds_of(path, full[i])
     index = np.asarray(fitted)
-    x_start = np.clip(start[index], low[index], high[index])
+    # the solver sees t0 from the data's first time: its relative step tolerance is then one
+    # of the time fitted, not of the clock's reading (an epoch time of 1.7e9 s stopped it
+    # at steps of 0.17 s)
+    shift = np.zeros(full.size)
+    shift[p + 2 * n] = float(data.t[0])
+    x_start = np.clip(start[index], low[index], high[index]) - shift[index]
 
     def expand(values: FloatArray) -> FloatArray:
         out = start.copy()
-        out[index] = values
+        out[index] = values + shift[index]
         return out
 
     evaluations = 0
@@ -783,11 +810,17 @@ def fit_model(
         return problem.jacobian(expand(values))
 
     tolerance = 1e-10 if problem.level else 1e-8
+    if not np.all(np.isfinite(residual(x_start))):  # a trial later is a step refused
+        why = problem.failure or "not finite"
+        raise FitError(
+            f"the model cannot be followed from the start values ({why}); give values the "
+            "system runs with"
+        )
     solution = least_squares(
         residual,
         x_start,
         jac=jacobian,
-        bounds=(low[index], high[index]),
+        bounds=(low[index] - shift[index], high[index] - shift[index]),
         x_scale="jac",
         method="trf",
         ftol=tolerance,

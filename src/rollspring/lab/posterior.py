@@ -172,7 +172,9 @@ def _log_probability(result: FitResult, points: FloatArray, errors: _Errors) -> 
             residual = problem.residual(full[walker])
         except (FitError, ArithmeticError):
             continue
-        out[walker] = -scale * float(errors.sum_of_squares(residual))
+        value = float(errors.sum_of_squares(residual))
+        if math.isfinite(value):  # else the model cannot follow the walker: -inf, refused
+            out[walker] = -scale * value
     return out
 
 

@@ -947,15 +947,18 @@ def _track(
     bodies: list[_Body] = []
     floor: FloorLine | None = None
     index, last = -1, None
+    reached = False  # the loop ended at ``stop``, not where the decoding ended
     while capture.grab():
         index += 1
         moment = last = _frame_time(capture, index, fps, last)
         if start is not None and moment < start - 1e-9:
             continue
         if stop is not None and moment > stop + 1e-9:
+            reached = True
             break
         ok, frame = capture.retrieve()
         if not ok or frame is None:
+            index -= 1  # this frame was not read
             break
         if frame.ndim == 2:
             frame = cv2.cvtColor(frame, cv2.COLOR_GRAY2BGR)
@@ -990,6 +993,16 @@ def _track(
             progress(min(index / count, 1.0))
     if index < 0:
         raise TrackingError(f"{video}: holds no frames")
+    if stop is not None and last is not None and fps > 0 and last + 1.0 / fps > stop + 1e-9:
+        reached = True  # the frames asked for were all read (the next one may be damaged)
+    if not reached and count > 0 and index + 1 < count - max(2, count // 100):
+        # the header's frame count is exact for most containers, off by a frame or two for
+        # some: many frames fewer means a file damaged or cut after the last one read
+        raise TrackingError(
+            f"{video}: decoding stopped after {index + 1} of the {count} frames its header "
+            f"gives (t = {last:.6g} s): the file is damaged or cut there; --to {last:.6g} "
+            "tracks the part before"
+        )
     if floor is None:
         first = 0 if start is None else start
         until = math.inf if stop is None else stop

@@ -31,6 +31,7 @@ __all__ = [
     "atomic_write_bytes",
     "atomic_write_text",
     "remove_leftovers",
+    "same_file",
     "writable_directory",
     "writable_file",
     "write_file_set",
@@ -325,6 +326,18 @@ def writable_directory(
     os.close(descriptor)
     os.unlink(temporary)
     return directory
+
+
+def same_file(a: str | os.PathLike[str], b: str | os.PathLike[str]) -> bool:
+    """Whether two paths name one file (the same inode when both exist, else the same absolute
+    path): two outputs of a command, or an output and the file it reads."""
+    first, second = Path(a), Path(b)
+    try:
+        if first.exists() and second.exists():
+            return os.path.samefile(first, second)
+    except OSError:
+        pass
+    return first.absolute() == second.absolute()
 
 
 def writable_file(path: str | os.PathLike[str], option: str = "--out") -> Path:

@@ -24,8 +24,12 @@ def format_value(value: float | None, stderr: float | None) -> str:
     if stderr == 0:
         return f"{value:.6g} (held)"
     digits = max(0, 1 - int(math.floor(math.log10(stderr))))
-    if abs(value) >= 1e5 or (value != 0 and abs(value) < 1e-3 and digits > 8):
-        return f"{value:.4e} ± {stderr:.2e}"
+    magnitude = int(math.floor(math.log10(abs(value)))) if value != 0 else 0
+    # fixed point while its digits fit a double's 16 (an epoch time of 1.7e9 s known to 4e-5 s
+    # is 1700000000.000000 ± 0.000040), else the mantissa's digits the error sets
+    if magnitude + 1 + digits > 16 or (value != 0 and abs(value) < 1e-3 and digits > 8):
+        mantissa = min(max(magnitude + digits, 4), 14)
+        return f"{value:.{mantissa}e} ± {stderr:.2e}"
     return f"{value:.{digits}f} ± {stderr:.{digits}f}"
 
 
@@ -35,7 +39,7 @@ def fitted_toml(result: FitResult) -> str:
 
     head = (
         f"# fitted by rollspring fit to {result.data.source} ({result.status}); initial state "
-        f"at t0 = {result.parameters['t0'].value:.6g} s of the data\n"
+        f"at t0 = {float(result.parameters['t0'].value)!r} s of the data\n"
     )
     return head + system_to_toml(result.system)
 

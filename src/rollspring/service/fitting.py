@@ -29,6 +29,7 @@ from rollspring.model import System
 
 __all__ = [
     "FitRequest",
+    "check_fit_places",
     "fit_estimate",
     "fit_table",
     "lab_request",
@@ -137,6 +138,37 @@ def run_fit(
         confirm=request.confirm,
         progress=progress,
     )
+
+
+def check_fit_places(
+    out: str | os.PathLike[str] | None,
+    figure: str | os.PathLike[str] | None,
+    data: str | os.PathLike[str] | None = None,
+) -> None:
+    """``--out`` and ``--figure`` checked before the fit: each a regular file or a new one in a
+    writable folder, the fitted system a ``.toml``, the figure a ``.png`` or ``.svg`` (what is
+    written), neither the other nor the ``data`` read; a one-line
+    :class:`~rollspring.errors.OutputError` naming the option."""
+    from rollspring.errors import OutputError
+    from rollspring.outputs.atomic import same_file, writable_file
+
+    places = {}
+    for place, option, suffixes in (
+        (out, "--out", (".toml",)),
+        (figure, "--figure", (".png", ".svg")),
+    ):
+        if place is None:
+            continue
+        path = writable_file(place, option)  # an unwritable place fails now, not after the fit
+        if path.suffix.lower() not in suffixes:
+            raise OutputError(
+                f"{option} {place}: must end in {' or '.join(suffixes)} (what is written there)"
+            )
+        if data is not None and same_file(path, data):
+            raise OutputError(f"{option} {place}: the same file as the data read")
+        places[option] = path
+    if len(places) == 2 and same_file(places["--out"], places["--figure"]):
+        raise OutputError(f"--figure {figure}: the same file as --out")
 
 
 def write_fit_outputs(

@@ -25,7 +25,7 @@ from rollspring.errors import OutputError, TrackingError
 from rollspring.lab.costs import LabCost, tracking_cost, video_header
 from rollspring.lab.tracking import FrameTrack, TrackResult, draw_overlay, track_video
 from rollspring.model import System
-from rollspring.outputs.atomic import atomic_path, writable_file
+from rollspring.outputs.atomic import atomic_path, same_file, writable_file
 
 __all__ = ["check_places", "track_to_files", "tracking_estimate"]
 
@@ -41,10 +41,10 @@ def check_places(
     drawn = None if overlay is None else writable_file(overlay, "--overlay")
     if drawn is not None and drawn.suffix.lower() != ".mp4":
         raise OutputError(f"--overlay {overlay}: must be an .mp4 file")
-    if csv is not None and drawn is not None and _same(csv, drawn):
+    if csv is not None and drawn is not None and same_file(csv, drawn):
         raise OutputError(f"--overlay {overlay}: the same file as --out")
     for option, place in (("--out", csv), ("--overlay", drawn)):
-        if place is not None and video is not None and _same(place, Path(video)):
+        if place is not None and video is not None and same_file(place, Path(video)):
             raise OutputError(f"{option} {place}: the same file as the video read")
     return csv, drawn
 
@@ -64,16 +64,6 @@ def tracking_estimate(
     read."""
     header = video_header(video)
     return tracking_cost(header, len(system.bodies), start=start, stop=stop, overlay=overlay)
-
-
-def _same(a: Path, b: Path) -> bool:
-    """Whether two paths name one file (the same inode when both exist)."""
-    try:
-        if a.exists() and b.exists():
-            return os.path.samefile(a, b)
-    except OSError:
-        pass
-    return a.absolute() == b.absolute()
 
 
 def track_to_files(

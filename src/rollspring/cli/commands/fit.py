@@ -100,9 +100,9 @@ def fit(
     ] = False,
 ) -> None:
     """Fit a system to a measured table: values ± standard errors, residuals, the paper's claims."""
-    from rollspring.outputs.atomic import writable_file
     from rollspring.service.fitting import (
         FitRequest,
+        check_fit_places,
         fit_estimate,
         fit_table,
         parse_mapping,
@@ -110,9 +110,7 @@ def fit(
         write_fit_outputs,
     )
 
-    for place, option in ((out, "--out"), (figure, "--figure")):
-        if place is not None:  # an unwritable place fails now, not after the fit
-            writable_file(place, option)
+    check_fit_places(out, figure, data)
     if figure is not None:
         from rollspring.errors import require_extra
 

@@ -266,6 +266,7 @@ def _batch(
     scheme: str,
     metric_every: int,
     stepping: Callable[[], None] | None = None,
+    stationary_weights: np.ndarray | None = None,
 ) -> Any:
     """One :func:`simulate_batch` call with the grid's integrator, step and metric sampling
     (all fixed by the plan, so no run's numbers depend on the other runs of the call);
@@ -282,6 +283,7 @@ def _batch(
         threads=plan.batch_threads,
         confirm=True,  # the sweep's cost is checked once, for the whole grid
         on_stepping=stepping,
+        stationary_weights=stationary_weights,
     )
 
 
@@ -483,7 +485,16 @@ def compute_chunks(
     ids = [b.id for b in runs.system.bodies]
     nb = len(ids)
     out = _empty(plan, runs.n, nb)
-    linear = bool({"omega", "stationary_weight", "required_mu_linear"} & set(plan.metrics))
+    # X-hat's weights are (1 + gamma) m (M11) only with centre springs and no anchors or forces;
+    # else the batch measures X-hat on the weights of (M14), from the linear metrics first
+    weighted = (
+        "stationary_amplitude" in plan.metrics
+        and plan.on_slip == "stop"
+        and (runs.structural or not _pseudo_momentum_exact(runs.system))
+    )
+    linear = weighted or bool(
+        {"omega", "stationary_weight", "required_mu_linear"} & set(plan.metrics)
+    )
     alive = np.ones(runs.n, dtype=bool)
     single = np.ones(runs.n, dtype=bool)  # runs whose start goes through analyze alone
     overlap = None
@@ -491,6 +502,7 @@ def compute_chunks(
         if (
             plan.linear_aside
             and plan.on_slip == "stop"
+            and not weighted
             and not any(p.split(".")[-1] in _PLACEMENT for p in plan.grid.paths)
         ):
             # every run's start is a valid system (no varied value moves a spring end), so
@@ -602,6 +614,17 @@ def _linear_metrics(out: dict[str, np.ndarray], r: int, analysis: Any) -> None:
         out["required_mu_linear"][r] = analysis.required_mu
 
 
+def _pseudo_momentum_exact(system: System) -> bool:
+    """Whether (M11) holds exactly: every spring joins two body centres and no anchor or
+    constant force acts, so X-hat's weights are (1 + gamma) m (the batch's own)."""
+    bodies = system.body_map
+    return not system.forces and all(
+        end in bodies and at.is_centre_form
+        for spring in system.springs
+        for end, at in zip(spring.ends, spring.attachments, strict=True)
+    )
+
+
 def _batch_group(
     plan: SweepPlan,
     runs: _Runs,
@@ -611,6 +634,9 @@ def _batch_group(
     params: dict[str, np.ndarray],
     stepping: Callable[[], None] | None = None,
 ) -> None:
+    weights = None
+    if "stationary_amplitude" in plan.metrics and not _pseudo_momentum_exact(system):
+        weights = out["stationary_weight"][members]  # X-hat of (M14), not (M11)'s
     try:
         result = _batch(
             plan,
@@ -621,6 +647,7 @@ def _batch_group(
             scheme=plan.scheme,
             metric_every=plan.metric_every,
             stepping=stepping,
+            stationary_weights=weights,
         )
     except RollspringError:
         if members.size == 1:

@@ -71,7 +71,8 @@ class BatchResult:
       :math:`\hat X = \sum w_i x_i/\sum w_i`, :math:`w_i = (1+\gamma_i) m_i` (a slider: m), with
       its uniform motion :math:`\hat V = \sum w_i v_{i0}/\sum w_i` removed. Exactly stationary
       when every spring joins two centres and there are no anchors or forces (M11); for other
-      systems it is this weighted mean, not the zero mode of (M14).
+      systems it is this weighted mean, not the zero mode of (M14), unless
+      ``stationary_weights`` gives the weights (what :func:`rollspring.sweep` does).
     * ``max_friction_ratio``: max over the samples of :math:`|f_i|/N_i` ((M8), (M9); 0 for a
       slider, inf if :math:`N_i` reached 0 with :math:`f_i \ne 0`); ``min_normal_force``: min
       :math:`N_i`.
@@ -242,6 +243,7 @@ def simulate_batch(
     confirm: bool = False,
     threads: int | None = None,
     on_stepping: Callable[[], None] | None = None,
+    stationary_weights: ArrayLike | None = None,
 ) -> BatchResult:
     r"""Run ``system`` once per set of parameter values, all runs in parallel, for ``duration`` s.
 
@@ -326,6 +328,13 @@ def simulate_batch(
         thread alone, with the GIL released, so that several Python threads can each run a
         batch at once (what :func:`rollspring.sweep` does); k > 1: on k of Numba's threads.
         The numbers are the same bit for bit whatever the threads.
+    stationary_weights
+        None, or the weights :math:`w_i` of :math:`\hat X` per run ((n_runs, n_bodies), or
+        (n_bodies,) for all): ``stationary_amplitude`` is then measured on
+        :math:`\sum w_i x_i/\sum w_i` with its uniform motion removed, NaN for a run whose
+        weights are not finite (no zero mode: walls). :func:`rollspring.sweep` passes those of
+        (M14) (``analyze``'s ``stationary_weights``) for a system where they are not the
+        (1 + gamma) m of (M11): springs off a centre, anchors, forces.
     on_stepping
         None, or a function called once, on the calling thread, when the runs are set up and
         the stepping starts (with ``threads=1`` the GIL is then released until the stepping
@@ -384,6 +393,9 @@ def simulate_batch(
         runs = parse_parameters(system, parameters)
         topology, given = probe(system, runs.targets)
         plan = make_plan(system, runs, topology)
+        no_stationary = _stationary_weights(plan, runs, stationary_weights)
+        if stationary_weights is not None and given is not None:
+            given = given | {f"xq_{i}" for i in range(plan.n)} | {"vhat"}
         omegas = run_omegas(plan)
         invalid, reasons = check_runs(plan, omegas)
     n_runs = runs.n_runs
@@ -497,6 +509,7 @@ def simulate_batch(
         ratio[np.ix_(included, ~np.array(plan.rolls))] = 0.0
         cm_amplitude = 0.5 * (out[:, 4] - out[:, 3])
         stationary_amplitude = 0.5 * (out[:, 6] - out[:, 5])
+        stationary_amplitude[no_stationary] = np.nan
     if keep_trajectories:
         traj = np.full((n_runs, n_output, n), np.nan)
         traj[included] = traj_live[:n_live]
@@ -532,6 +545,30 @@ def simulate_batch(
         omega=omegas,
         messages=messages,
     )
+
+
+def _stationary_weights(plan: Plan, runs: Any, weights: ArrayLike | None) -> np.ndarray:
+    r"""The plan's :math:`\hat X` weights (``xq_i``) and its uniform velocity (``vhat``) from
+    the ``weights`` given per run (normalised to a sum of 1); returns the mask of the runs
+    whose weights are not finite (their X-hat fields 0, their amplitude NaN). Without
+    ``weights``, the plan's (1 + gamma) m (M11) stay and no run is masked."""
+    n_runs, n = runs.n_runs, plan.n
+    if weights is None:
+        return np.zeros(n_runs, dtype=bool)
+    try:
+        w = np.broadcast_to(np.asarray(weights, dtype=np.float64), (n_runs, n))
+    except (TypeError, ValueError):
+        raise ModelError(
+            f"stationary_weights: expected numbers of shape ({n_runs}, {n}) or ({n},), got "
+            f"{np.shape(weights)}"
+        ) from None
+    total = w.sum(axis=1)
+    bad: np.ndarray = ~(np.all(np.isfinite(w), axis=1) & np.isfinite(total) & (total != 0))
+    normal = np.where(bad[:, None], 0.0, w / np.where(bad, 1.0, total)[:, None])
+    for i in range(n):
+        plan.fields[f"xq_{i}"] = np.ascontiguousarray(normal[:, i])
+    plan.fields["vhat"] = np.sum(normal * runs.v, axis=1)
+    return bad
 
 
 #: One launch of a parallel kernel at a time in this process: Numba's default threading layer

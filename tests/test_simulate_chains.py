@@ -77,7 +77,8 @@ def test_a_windowed_refinement_is_the_whole_models_to_the_bit(offcentre, scheme:
     kinds = np.repeat(np.array([0, 1], dtype=np.int64), n)
     bodies = np.tile(np.arange(n, dtype=np.int64), 2)
     best = np.full(2 * n, -np.inf)
-    whole = kernels.refine_extremes(model, coeffs, 0.01, q0, v0, kinds, bodies, best)
+    spans = np.full(2 * n, 0.02)
+    whole = kernels.refine_extremes(model, coeffs, 0.01, q0, v0, kinds, bodies, best, spans)
     links = kernels.body_links(n, model[2], model[4])
     radius = refinement_radius(coeffs.size)
     ptr, idx = kernels.spring_balls(n, model[2], links[0], links[1], radius)
@@ -98,6 +99,7 @@ def test_a_windowed_refinement_is_the_whole_models_to_the_bit(offcentre, scheme:
         bodies,
         best,
         links,
+        spans,
     )
     np.testing.assert_array_equal(windowed, whole)
 

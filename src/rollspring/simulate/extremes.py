@@ -121,11 +121,12 @@ def _refine_together(
     sign = [1.0 if kind == "ratio" else -1.0 for kind, _ in keys]
     best = np.array([entries[k][0] * sign[j] for j, k in enumerate(keys)])
     starts = [entries[k][3].start for k in keys]
+    spans = np.array([min(2.0 * start.h, start.span) for start in starts])
     if first.ball is None:
         q0 = np.array([start.q for start in starts])
         v0 = np.array([start.v for start in starts])
         refined = kernels.refine_extremes(
-            first.model, first.coeffs, first.h, q0, v0, kinds, bodies, best
+            first.model, first.coeffs, first.h, q0, v0, kinds, bodies, best, spans
         ).tolist()
     else:
         offsets = np.zeros(len(starts) + 1, dtype=np.int64)
@@ -142,6 +143,7 @@ def _refine_together(
             bodies,
             best,
             run.links(),
+            spans,
         ).tolist()
     return {key: refined[j] * sign[j] for j, key in enumerate(keys)}
 

@@ -112,7 +112,9 @@ class RollingSegments(RunState):
         if root is not None:
             self._flush_pending()
             self.segments.append(self._rolling_evaluator(model, [t], [q], [qdot], h, x0))
-            self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
+            self._offer_steps(
+                model, x0, extremes, extreme_states, crossing, crossing_states, h, t + root[0]
+            )
             return self._event_at(model, t, q.copy(), qdot.copy(), *root, x0)
         done = 0
         while done < n_total:
@@ -166,8 +168,11 @@ class RollingSegments(RunState):
                 )
             ):
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
-                self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
-                return float(self.times[-1][-1]), self.rows[-1][-1], slipping, sign
+                ended = float(self.times[-1][-1])
+                self._offer_steps(
+                    model, x0, extremes, extreme_states, crossing, crossing_states, h, ended
+                )
+                return ended, self.rows[-1][-1], slipping, sign
             if status == kernels.STATUS_NEAR:
                 # a contact margin may dip below zero inside the next step, between its ends
                 t_before = t_chunk + (taken - 1) * h
@@ -182,7 +187,14 @@ class RollingSegments(RunState):
                         self._rolling_evaluator(model, row_times, row_q, row_v, h, x0)
                     )
                     self._offer_steps(
-                        model, x0, extremes, extreme_states, crossing, crossing_states, h
+                        model,
+                        x0,
+                        extremes,
+                        extreme_states,
+                        crossing,
+                        crossing_states,
+                        h,
+                        t_before + root[0],
                     )
                     return self._event_at(
                         model, t_before, before[0].copy(), before[1].copy(), *root, x0
@@ -200,7 +212,10 @@ class RollingSegments(RunState):
                 row_q.append(before[0][None, :].copy())
                 row_v.append(before[1][None, :].copy())
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
-                self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
+                # the event lies inside the step after t_before
+                self._offer_steps(
+                    model, x0, extremes, extreme_states, crossing, crossing_states, h, t_before + h
+                )
                 if status == Status.NONFINITE:
                     self.status = RunStatus.NONFINITE
                     self.message = (
@@ -216,8 +231,8 @@ class RollingSegments(RunState):
             lead = 0
             self._report(t + done * h)
         self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
-        self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h)
         end = float(grid[-1])
+        self._offer_steps(model, x0, extremes, extreme_states, crossing, crossing_states, h, end)
         if self.grid_rows and self.times and float(self.times[-1][-1]) == end:
             # the run is over (nothing steps on from the handover): the last row, the state
             # at the end to rounding, instead of building it again
@@ -277,12 +292,15 @@ class RollingSegments(RunState):
         v: FloatArray,
         h: float,
         ball: np.ndarray | None = None,
+        until: float = math.inf,
     ) -> Segment:
-        """A segment of two steps from the state (q, v) at ``t_start``. Its interpolant is
-        built on first use: most are refined from their ``start`` in one compiled call. With
-        ``ball``, (q, v) are the states of those bodies alone (an extreme of a large system):
-        such a segment is refined from its start only (:func:`_refine_together`)."""
-        start = Start(t_start, q.copy(), v.copy(), model, self.coeffs, h, x0, ball)
+        """A segment of two steps from the state (q, v) at ``t_start``, cut at ``until`` (where
+        the rolling motion ends: the run's end or an event). Its interpolant is built on first
+        use: most are refined from their ``start`` in one compiled call. With ``ball``, (q, v)
+        are the states of those bodies alone (an extreme of a large system): such a segment is
+        refined from its start only (:func:`_refine_together`)."""
+        t_end = min(t_start + 2 * h, until)
+        start = Start(t_start, q.copy(), v.copy(), model, self.coeffs, h, x0, ball, t_end - t_start)
         built: list[Segment] = []
         slipping, sign = self.all_rolling
 
@@ -295,12 +313,12 @@ class RollingSegments(RunState):
             if not built:
                 built.append(
                     self._rolling_evaluator(
-                        model, [t_start], [start.q], [start.v], h, x0, t_end=t_start + 2 * h
+                        model, [t_start], [start.q], [start.v], h, x0, t_end=t_end
                     )
                 )
             return built[0].evaluate(t)
 
-        return Segment(t_start, t_start + 2 * h, slipping, sign, evaluate, NO_SAMPLES, start)
+        return Segment(t_start, t_end, slipping, sign, evaluate, NO_SAMPLES, start)
 
     def _offer_steps(
         self,
@@ -311,8 +329,10 @@ class RollingSegments(RunState):
         crossing: FloatArray,
         crossing_states: FloatArray,
         h: float,
+        until: float,
     ) -> None:
-        """Hand the kernel's extremes and crossings over, each with the state it starts from."""
+        """Hand the kernel's extremes and crossings over, each with the state it starts from
+        and its window cut at ``until``, where the segment's rolling motion ends."""
         found = extremes.tolist()
         ball_ptr, ball_idx = self.balls()
         for i in range(self.n):
@@ -337,6 +357,7 @@ class RollingSegments(RunState):
                             extreme_states[k, 1, lo:hi],
                             h,
                             ball_idx[lo:hi] if self.plan.windowed else None,
+                            until,
                         )
                     )
                     self.step_extremes[(kind, i)] = (value, t_start + h, h, local)
@@ -351,6 +372,7 @@ class RollingSegments(RunState):
                         crossing_states[j, 0],
                         crossing_states[j, 1],
                         h,
+                        until=until,
                     )
                     for j in range(2)
                 ],

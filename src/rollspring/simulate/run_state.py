@@ -85,6 +85,9 @@ class Start(NamedTuple):
     #: the bodies (ascending) whose states ``q``, ``v`` hold, when not every body's: the ball
     #: of an extreme's body in a large system (:func:`kernels.spring_balls`)
     ball: np.ndarray | None = None
+    #: how far from ``t`` the rolling motion holds (at most the two steps a refinement looks
+    #: at: less where the segment ends, at the run's end or an event)
+    span: float = math.inf
 
 
 @dataclass

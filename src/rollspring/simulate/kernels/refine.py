@@ -16,7 +16,7 @@ __all__ = ["body_links", "refine_extremes", "refine_windowed", "signal_zero", "s
 
 
 @njit(cache=True, error_model="numpy")
-def refine_extremes(model, coeffs, h, q0, v0, kinds, bodies, best):
+def refine_extremes(model, coeffs, h, q0, v0, kinds, bodies, best, spans):
     r"""The extremes the kernel found at step ends, refined on the integrator itself: for
     extreme j (``kinds[j]`` 0: max :math:`|f|/N`, 1: min :math:`N`, of body ``bodies[j]``) over
     the two steps from the state (q0[j], v0[j]), three grids of 9 points, each spanning the best
@@ -26,12 +26,15 @@ def refine_extremes(model, coeffs, h, q0, v0, kinds, bodies, best):
     :math:`\tau \le h` is one step of :math:`\tau` from the start, beyond it one step of
     :math:`\tau - h` from the kernel's step end. ``best`` holds the values found so far as
     maximised quantities (:math:`|f|/N` or :math:`-N`); returns the refined ones in the same
-    form."""
+    form. ``spans[j]`` (at most 2h) cuts extreme j's window where its rolling motion ends (a
+    step end that is the run's end, or an event's step: nothing after it is looked at)."""
     m, n = q0.shape
     out = best.copy()
     work = _refine_work(model, n)
     for j in range(m):
-        out[j] = _refine_one(model, coeffs, h, q0[j], v0[j], kinds[j], bodies[j], out[j], work)
+        out[j] = _refine_one(
+            model, coeffs, h, q0[j], v0[j], kinds[j], bodies[j], out[j], work, spans[j]
+        )
     return out
 
 
@@ -44,14 +47,15 @@ def _refine_work(model, n):
 
 
 @njit(cache=True, error_model="numpy")
-def _refine_one(model, coeffs, h, q0, v0, kind, b, best, work):
+def _refine_one(model, coeffs, h, q0, v0, kind, b, best, work, span):
     """:func:`refine_extremes` of one extreme (kind 0: max |f|/N, 1: min N as -N) of body
-    ``b`` over the two steps from (q0, v0); returns the refined value (at least ``best``)."""
+    ``b`` over the two steps from (q0, v0), cut at ``span``; returns the refined value (at
+    least ``best``)."""
     scratch, gen, fx, fy, states, values, times = work
     q, v, q_mid, v_mid = states[0], states[1], states[2], states[3]
     out = best
     _advance_into(model, coeffs, h, q0, v0, h, q_mid, v_mid, scratch, gen, fx, fy)
-    lo, hi = 0.0, 2.0 * h
+    lo, hi = 0.0, min(2.0 * h, span)
     k = -1
     for _level in range(3):
         if k >= 0:  # the last grid's best point and neighbours: this grid's 0, 4 and 8
@@ -217,7 +221,7 @@ def _window_model(model, ball, local, spring_ptr, spring_ids, force_ptr, force_i
 
 
 @njit(cache=True, error_model="numpy")
-def refine_windowed(model, coeffs, h, q0, v0, offsets, balls, kinds, bodies, best, links):
+def refine_windowed(model, coeffs, h, q0, v0, offsets, balls, kinds, bodies, best, links, spans):
     r""":func:`refine_extremes` of a large system, each extreme on the model of its body's ball
     (:func:`spring_balls` of radius
     :func:`~rollspring.simulate.integrators.refinement_radius`, :func:`_window_model`): entry j's
@@ -248,6 +252,7 @@ def refine_windowed(model, coeffs, h, q0, v0, offsets, balls, kinds, bodies, bes
             local[bodies[j]],
             out[j],
             work,
+            spans[j],
         )
         for a in range(ball.shape[0]):
             local[ball[a]] = -1

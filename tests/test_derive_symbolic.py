@@ -354,3 +354,18 @@ def test_a_ten_body_chain_is_derived_and_says_why_it_gives_numbers() -> None:
         assert any("at the parameters' values" in w for w in words) == symbols
     text = derivation.render("text")
     assert "10 coupled equations" in text
+
+
+def test_a_chain_with_springs_tilted_between_radii_is_derived_not_crashed() -> None:
+    """Centres at different heights tilt the springs: K's entries are rational in the
+    parameters, which the chain's polynomial recurrence cannot take (a PolynomialError, an
+    internal error of derive and report, HTTP 500 on the web); such a chain takes the general
+    path (here past its budget: the frequencies as numbers)."""
+    from rollspring.model.chains import chain
+
+    system = chain(("hoop", "cylinder"), 3, radius=(0.1, 0.2))
+    sym = symbolic_system(system, symbols=True)
+    frequencies = normal_frequencies(sym, budget=0.5)
+    expected = [m.eigenvalue for m in analyze(system).modes if m.kind != "zero"]
+    np.testing.assert_allclose(frequencies.numeric, expected, rtol=1e-10)
+    assert frequencies.n_zero == 1

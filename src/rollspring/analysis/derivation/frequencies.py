@@ -145,6 +145,15 @@ def _at_values(sym: SymbolicSystem, A: sp.Matrix) -> sp.Expr:
     return characteristic_polynomial(A.xreplace(exact_values(sym)))
 
 
+def _polynomial_entries(sym: SymbolicSystem) -> bool:
+    """Whether every entry of K and every J is a polynomial in the parameters (the
+    recurrence of :func:`_tridiagonal_determinant` works in polynomials; a spring tilted
+    between centres of different heights puts its length in a denominator)."""
+    symbols = sorted(sym.stiffness_matrix.free_symbols | sym.mass_matrix.free_symbols, key=str)
+    entries = [*sym.stiffness_matrix, *(body.J for body in sym.bodies)]
+    return all(sp.sympify(entry).is_polynomial(*symbols) for entry in entries)
+
+
 def _tridiagonal_determinant(sym: SymbolicSystem) -> sp.Poly:
     r""":math:`\det(K - \Omega^2 M)` of a tridiagonal K (a chain) by the three-term recurrence,
     as a polynomial in :math:`\Omega^2` and the parameters."""
@@ -245,7 +254,7 @@ def normal_frequencies(
         return numbers_only()
     try:
         with time_budget(left()):
-            if matrix is None and is_tridiagonal(sym.stiffness_matrix):
+            if matrix is None and is_tridiagonal(sym.stiffness_matrix) and _polynomial_entries(sym):
                 # det(K - Omega^2 M) = (-1)^n prod(J) det(Omega^2 - M^-1 K): polynomial
                 # arithmetic, no rational functions
                 determinant = _tridiagonal_determinant(sym)

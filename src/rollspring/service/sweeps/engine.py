@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.analysis.costs import CONFIRM, Cost, check_cost
+from rollspring.analysis.costs import CONFIRM, RTOL_RANGE, Cost, check_cost
 from rollspring.model import System, as_system, system_to_json, system_to_toml
 from rollspring.service.sweeps.compute import (
     STATUS_CODES,
@@ -53,6 +53,7 @@ from rollspring.service.sweeps.store import (
     VARIABLES,
     RegionWriter,
     StoreMismatchError,
+    check_place,
     discard,
     done_chunks,
     fingerprint,
@@ -127,6 +128,12 @@ def _check_arguments(duration: Any, rtol: Any, on_slip: Any, chunk: Any, step: A
         raise SweepError(f"--duration: must be a positive number of seconds, got {duration!r}")
     if isinstance(rtol, bool) or not isinstance(rtol, int | float) or not 0 < rtol < 1:
         raise SweepError(f"--rtol: must be a number in (0, 1), got {rtol!r}")
+    low, high = RTOL_RANGE
+    if not low <= rtol <= high:  # what simulate and every run of the batch take
+        raise SweepError(
+            f"--rtol: must be between {low:g} and {high:g} (finer is below what double "
+            f"precision delivers), got {rtol!r}"
+        )
     if on_slip not in ("stop", "continue"):
         raise SweepError(f"--on-slip: must be stop or continue, got {on_slip!r}")
     if chunk is not None and (isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1):
@@ -139,6 +146,11 @@ def _check_arguments(duration: Any, rtol: Any, on_slip: Any, chunk: Any, step: A
     ):
         raise SweepError(
             f"--step: must be a positive number of seconds up to the duration, got {step!r}"
+        )
+    if step is not None and not duration / step <= MAX_STEPS:
+        raise SweepError(
+            f"--step: {step:g} s takes about {duration / step:.3g} steps over {duration:g} s; "
+            f"a run takes at most {MAX_STEPS:.0e} (a longer step, or a shorter duration)"
         )
 
 
@@ -276,6 +288,8 @@ def sweep(
             "batch integrators are symplectic"
         )
     chosen = _metrics(metrics, on_slip)
+    if out is not None:
+        out = check_place(out, bool(overwrite))
     cost = sweep_cost(system, vary, duration, rtol=rtol, integrator=integrator, out=out)
     check_cost(cost, confirmed=bool(confirm), flag=CONFIRM)  # before the grid's values
     paths, values = check_grid(system, vary)

@@ -16,8 +16,9 @@ never from arrays over the whole grid.
 from __future__ import annotations
 
 import math
+import numbers
 import re
-from collections.abc import Mapping, Sequence, Sized
+from collections.abc import Iterable, Mapping, Sequence, Sized
 from dataclasses import dataclass
 from typing import Any
 
@@ -370,10 +371,7 @@ def check_grid(
     for path, raw in vary.items():
         kind, _target = path_kind(system, path)
         kinds[path] = kind
-        try:
-            array = np.asarray(raw, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise SweepError(f"--vary {path}: the values must be numbers") from None
+        array = _numbers(path, raw)
         if array.ndim == 0:
             array = array[None]
         if array.ndim != 1 or array.size == 0:
@@ -397,6 +395,43 @@ def check_grid(
         paths.append(path)
         values.append(tuple(float(v) for v in array))
     return tuple(paths), tuple(values)
+
+
+def _numbers(path: str, raw: Any) -> np.ndarray:
+    """The values of ``--vary PATH`` as floats: numbers only (a bool, a string or anything
+    else is not one; NumPy's numbers are), none too large for a float."""
+    if isinstance(raw, np.ndarray):
+        if raw.dtype.kind not in "iuf":
+            raise SweepError(
+                f"--vary {path}: the values must be numbers, got an array of {raw.dtype}"
+            )
+        with np.errstate(over="ignore"):
+            return np.asarray(raw, dtype=np.float64)
+    listed = isinstance(raw, Iterable) and isinstance(raw, Sized) and not isinstance(raw, str)
+    items: Iterable[Any] = raw if listed else [raw]
+    values = []
+    for item in items:
+        if isinstance(item, bool | np.bool_) or not isinstance(item, numbers.Real):
+            raise SweepError(
+                f"--vary {path}: the values must be numbers, got {type(item).__name__} "
+                f"{_shortened(item)}"
+            )
+        try:
+            values.append(float(item))
+        except OverflowError:
+            raise SweepError(
+                f"--vary {path}: {_shortened(item)} is too large for a float"
+            ) from None
+    array = np.array(values, dtype=np.float64)
+    return array if listed else array[0]
+
+
+def _shortened(item: Any) -> str:
+    """``repr(item)``, its middle cut when long (a 5000-digit integer)."""
+    if isinstance(item, int) and not isinstance(item, bool) and abs(item) >= 10**20:
+        return "an integer of more than 20 digits"
+    text = repr(item)
+    return text if len(text) <= 40 else text[:18] + "…" + text[-18:]
 
 
 def _ends_valid(part: dict[str, Any], path: str, values: np.ndarray) -> bool:

@@ -23,6 +23,7 @@ import hashlib
 import json
 import os
 import shutil
+import stat
 import threading
 import warnings
 from collections.abc import Sequence
@@ -31,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.errors import StoreMismatchError
+from rollspring.errors import StoreMismatchError, SweepError
 from rollspring.service.sweeps.grid import Grid, unit_of
 
 __all__ = [
@@ -39,6 +40,7 @@ __all__ = [
     "VARIABLES",
     "RegionWriter",
     "StoreMismatchError",
+    "check_place",
     "discard",
     "done_chunks",
     "fingerprint",
@@ -115,6 +117,53 @@ def read_attrs(path: Path) -> dict[str, Any] | None:
             f"({type(exc).__name__}); use --overwrite to replace it"
         ) from None
     return dict(group.attrs)
+
+
+def check_place(out: Any, overwrite: bool) -> Path:
+    """``--out`` checked before any work: a folder name (not empty, ``.`` or ``..``) in a
+    folder this process can write into; what is there already never a device, FIFO or socket;
+    with ``overwrite``, only a sweep's store, an empty folder or a regular file is replaced,
+    never another folder. One-line :class:`SweepError`."""
+    from rollspring.errors import OutputError
+    from rollspring.model.files import not_regular
+    from rollspring.outputs.atomic import writable_directory
+
+    if not isinstance(out, str | os.PathLike) or isinstance(out, bytes):
+        raise SweepError(f"--out: expected a folder's path, got {type(out).__name__}")
+    path = Path(out)
+    if not os.fspath(out).strip() or path.name in ("", ".", ".."):
+        raise SweepError(f"--out {os.fspath(out)!r}: give the store's own folder name (x.zarr)")
+    try:
+        writable_directory(path.parent, "--out", named=path)
+        info = path.stat() if path.exists() else None
+    except OutputError as exc:
+        raise SweepError(str(exc)) from None
+    except (OSError, ValueError) as exc:
+        raise SweepError(f"--out {path}: cannot be used ({exc})") from None
+    if info is None:
+        return path
+    if not stat.S_ISDIR(info.st_mode):
+        kind = not_regular(info.st_mode)
+        if kind is not None:  # a device, FIFO or socket: never replaced
+            raise SweepError(
+                f"--out {path}: is {kind}, not a folder (a sweep's store is a folder); choose "
+                "another --out"
+            )
+        if not overwrite:
+            raise StoreMismatchError(
+                f"--out {path}: exists and is not a rollspring sweep store (a file); use "
+                "--overwrite to replace it"
+            )
+        return path
+    if overwrite:
+        entries = {entry.name for entry in path.iterdir()}
+        if entries and not entries & {"zarr.json", ".zgroup", MARKERS}:
+            shown = ", ".join(sorted(entries)[:3]) + (", ..." if len(entries) > 3 else "")
+            raise SweepError(
+                f"--out {path}: a folder that is not a sweep's store (it holds {shown}); "
+                "--overwrite replaces only a store"
+            )
+    return path
 
 
 def remove(path: Path) -> None:

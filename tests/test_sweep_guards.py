@@ -132,3 +132,20 @@ def test_the_api_takes_numpy_numbers_and_refuses_a_place_that_is_no_path() -> No
     with pytest.raises(SweepError, match="--out: expected a folder's path, got int"):
         sweep("hoop-cylinder", {"bodies.cylinder.v": [0.0]}, 0.5, out=123)
     assert issubclass(StoreMismatchError, SweepError)
+
+
+def test_one_sweep_at_a_time_writes_a_store(tmp_path: Path) -> None:
+    """Two sweeps on one store (the second with --overwrite) left chunks of the first under
+    the attributes of the second, both exit 0: the second is now refused while the first
+    holds the store, in this process or another, and the lock's file goes with the sweep."""
+    from rollspring.service.sweeps.store import store_lock
+
+    store = tmp_path / "s.zarr"
+    with store_lock(store):
+        with pytest.raises(SweepError, match="another sweep is writing this store"):
+            sweep("hoop-cylinder", {"bodies.cylinder.v": [0.0]}, 0.5, out=store, overwrite=True)
+        code, output = _sweep("-o", str(store), "--overwrite")
+        assert code == 2 and "another sweep is writing this store" in output
+        assert not store.exists()
+    sweep("hoop-cylinder", {"bodies.cylinder.v": [0.0]}, 0.5, out=store)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.zarr"]

@@ -14,6 +14,7 @@ tasks on a Dask cluster, a bounded number in flight — writing each into its re
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import logging
 import math
@@ -58,6 +59,7 @@ from rollspring.service.sweeps.store import (
     done_chunks,
     fingerprint,
     read_attrs,
+    store_lock,
     verified_done,
     write_template,
 )
@@ -318,121 +320,124 @@ def sweep(
     )
 
     path = None if out is None else Path(out)
-    done: set[int] = set()
-    stored = None
-    replace = False  # an earlier store at path, removed just before the template is written
-    if path is not None and overwrite:
-        replace = path.exists() or path.is_symlink()  # whatever is there (nothing read)
-    elif path is not None:
-        attrs = read_attrs(path)
-        if attrs is not None:
-            if attrs.get("grid_fingerprint") != print_:
+    with contextlib.ExitStack() as held:
+        if path is not None:  # one sweep at a time writes a store
+            held.enter_context(store_lock(path))
+        done: set[int] = set()
+        stored = None
+        replace = False  # an earlier store at path, removed just before the template is written
+        if path is not None and overwrite:
+            replace = path.exists() or path.is_symlink()  # whatever is there (nothing read)
+        elif path is not None:
+            attrs = read_attrs(path)
+            if attrs is not None:
+                if attrs.get("grid_fingerprint") != print_:
+                    raise StoreMismatchError(
+                        f"--out {path}: holds another sweep (grid fingerprint "
+                        f"{str(attrs.get('grid_fingerprint'))[:12]}…, this one {print_[:12]}…); "
+                        "use --overwrite to replace it"
+                    )
+                stored = attrs
+                done = verified_done(path, grid, done_chunks(path))
+            elif path.exists():
                 raise StoreMismatchError(
-                    f"--out {path}: holds another sweep (grid fingerprint "
-                    f"{str(attrs.get('grid_fingerprint'))[:12]}…, this one {print_[:12]}…); "
-                    "use --overwrite to replace it"
+                    f"--out {path}: exists and is not a rollspring sweep "
+                    "store; use --overwrite to replace it"
                 )
-            stored = attrs
-            done = verified_done(path, grid, done_chunks(path))
-        elif path.exists():
-            raise StoreMismatchError(
-                f"--out {path}: exists and is not a rollspring sweep "
-                "store; use --overwrite to replace it"
-            )
 
-    client, own_client = _client(scheduler)
-    removals: list[threading.Thread] = []  # an overwritten store's removal
-    try:
-        if stored is not None:
-            plan = copy_plan(
-                plan,
-                scheme=stored["integrator"],
-                step=float(stored["step"]),
-                metric_every=int(stored["metric_every"]),
-                omega_max=float(stored["omega_max"]),
-            )
-        else:
-            plan = _choose_step(plan, step)
-        if client is not None:
-            plan = copy_plan(plan, numba_threads=_threads_per_worker(client))
-        ids = [b["id"] for b in plan.system["bodies"]]
-        attrs = {
-            "system": toml,
-            "rollspring_version": _version(),
-            "grid_fingerprint": print_,
-            "duration": float(duration),
-            "rtol": float(rtol),
-            "on_slip": on_slip,
-            "integrator": plan.scheme,
-            "step": plan.step,
-            "metric_every": plan.metric_every,
-            "omega_max": plan.omega_max,
-            "metrics": list(chosen),
-            "chunk": int(math.prod(grid.chunks)),
-            "chunk_shape": list(grid.chunks),
-            "n_chunks": grid.n_chunks,
-            "refine_slip": bool(refine_slip),
-        }
-        todo = [i for i in range(grid.n_chunks) if i not in done]
-        memory = None if path is not None else _memory(grid, chosen, len(ids))
-        writer: list[RegionWriter] = []
-        opened: list[Any] = []  # the dataset returned, opened once the template is there
-
-        def ready() -> None:
-            """The store made ready for the first write: run once, while the first chunks
-            step."""
-            if path is None or writer:
-                return
-            arrays = None  # read back from the store resumed
-            if stored is None:
-                if replace:
-                    removal = discard(path)
-                    if removal is not None:
-                        removals.append(removal)
-                arrays = write_template(path, grid, ids, len(ids), chosen, attrs)
-            writer.append(RegionWriter(path, grid, arrays))
-
-        def returned() -> None:
-            """The dataset returned, opened (lazily: its metadata only, which the chunks do
-            not change) once the store is ready: in-process on a thread the last groups
-            leave free, while the others end."""
-            if path is not None and writer and not opened:
-                import xarray as xr
-
-                opened.append(xr.open_zarr(str(path)))
-
-        def store(items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
-            if path is not None:  # each chunk's data written before its marker
-                writer[0].write(items)
+        client, own_client = _client(scheduler)
+        removals: list[threading.Thread] = []  # an overwritten store's removal
+        try:
+            if stored is not None:
+                plan = copy_plan(
+                    plan,
+                    scheme=stored["integrator"],
+                    step=float(stored["step"]),
+                    metric_every=int(stored["metric_every"]),
+                    omega_max=float(stored["omega_max"]),
+                )
             else:
-                assert memory is not None  # kept in memory when there is no store
-                for index, arrays in items:
-                    region = grid.region(index)
-                    for name, values in arrays.items():
-                        memory[name][region] = values
+                plan = _choose_step(plan, step)
+            if client is not None:
+                plan = copy_plan(plan, numba_threads=_threads_per_worker(client))
+            ids = [b["id"] for b in plan.system["bodies"]]
+            attrs = {
+                "system": toml,
+                "rollspring_version": _version(),
+                "grid_fingerprint": print_,
+                "duration": float(duration),
+                "rtol": float(rtol),
+                "on_slip": on_slip,
+                "integrator": plan.scheme,
+                "step": plan.step,
+                "metric_every": plan.metric_every,
+                "omega_max": plan.omega_max,
+                "metrics": list(chosen),
+                "chunk": int(math.prod(grid.chunks)),
+                "chunk_shape": list(grid.chunks),
+                "n_chunks": grid.n_chunks,
+                "refine_slip": bool(refine_slip),
+            }
+            todo = [i for i in range(grid.n_chunks) if i not in done]
+            memory = None if path is not None else _memory(grid, chosen, len(ids))
+            writer: list[RegionWriter] = []
+            opened: list[Any] = []  # the dataset returned, opened once the template is there
 
-        counted = sum(_runs_in(grid, i) for i in done)
-        if progress is not None:
-            progress(SweepProgress(counted, grid.n_runs, 0, len(todo), len(done)))
-        k = 0
-        for items in _results(plan, todo, client, threads, ready, returned):
-            store(items)
-            for index, _ in items:
-                counted += _runs_in(grid, index)
-                k += 1
-                if progress is not None:
-                    progress(SweepProgress(counted, grid.n_runs, k, len(todo), len(done)))
-        ready()  # no chunk left to run
-        returned()
-    finally:
-        if own_client and client is not None:
-            client.close()
-        for removal in removals:
-            removal.join()
-    if path is not None:
-        return opened[0]
-    assert memory is not None  # kept in memory when there is no store
-    return _dataset(grid, chosen, ids, memory, attrs)
+            def ready() -> None:
+                """The store made ready for the first write: run once, while the first chunks
+                step."""
+                if path is None or writer:
+                    return
+                arrays = None  # read back from the store resumed
+                if stored is None:
+                    if replace:
+                        removal = discard(path)
+                        if removal is not None:
+                            removals.append(removal)
+                    arrays = write_template(path, grid, ids, len(ids), chosen, attrs)
+                writer.append(RegionWriter(path, grid, arrays))
+
+            def returned() -> None:
+                """The dataset returned, opened (lazily: its metadata only, which the chunks do
+                not change) once the store is ready: in-process on a thread the last groups
+                leave free, while the others end."""
+                if path is not None and writer and not opened:
+                    import xarray as xr
+
+                    opened.append(xr.open_zarr(str(path)))
+
+            def store(items: list[tuple[int, dict[str, np.ndarray]]]) -> None:
+                if path is not None:  # each chunk's data written before its marker
+                    writer[0].write(items)
+                else:
+                    assert memory is not None  # kept in memory when there is no store
+                    for index, arrays in items:
+                        region = grid.region(index)
+                        for name, values in arrays.items():
+                            memory[name][region] = values
+
+            counted = sum(_runs_in(grid, i) for i in done)
+            if progress is not None:
+                progress(SweepProgress(counted, grid.n_runs, 0, len(todo), len(done)))
+            k = 0
+            for items in _results(plan, todo, client, threads, ready, returned):
+                store(items)
+                for index, _ in items:
+                    counted += _runs_in(grid, index)
+                    k += 1
+                    if progress is not None:
+                        progress(SweepProgress(counted, grid.n_runs, k, len(todo), len(done)))
+            ready()  # no chunk left to run
+            returned()
+        finally:
+            if own_client and client is not None:
+                client.close()
+            for removal in removals:
+                removal.join()
+        if path is not None:
+            return opened[0]
+        assert memory is not None  # kept in memory when there is no store
+        return _dataset(grid, chosen, ids, memory, attrs)
 
 
 def _resumed_chunks(path: Path, grid: Grid) -> Grid:

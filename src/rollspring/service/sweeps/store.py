@@ -26,7 +26,7 @@ import shutil
 import stat
 import threading
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -46,6 +46,7 @@ __all__ = [
     "fingerprint",
     "mark_done",
     "read_attrs",
+    "store_lock",
     "verified_done",
     "write_template",
 ]
@@ -164,6 +165,47 @@ def check_place(out: Any, overwrite: bool) -> Path:
                 "--overwrite replaces only a store"
             )
     return path
+
+
+@contextlib.contextmanager
+def store_lock(path: Path) -> Iterator[None]:
+    """Hold the store at ``path`` for one sweep: an exclusive lock (``flock``) on a hidden file
+    beside it, ``.<name>.lock``, removed when the sweep ends (a lock is taken only on the file
+    the name still names, so a file removed meanwhile is never locked by two). A second sweep
+    on the same store, in this process or another, is a one-line :class:`SweepError` at once:
+    two writers left a store whose chunks were one sweep's and whose attributes the other's."""
+    import fcntl
+
+    lock = path.parent / f".{path.name}.lock"
+    while True:
+        try:
+            lock.parent.mkdir(parents=True, exist_ok=True)
+            handle = open(lock, "a")  # noqa: SIM115 - closed below, after the sweep
+        except OSError as exc:
+            raise SweepError(
+                f"--out {path}: cannot lock the store ({exc.strerror or exc})"
+            ) from None
+        try:
+            fcntl.flock(handle.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            handle.close()
+            raise SweepError(
+                f"--out {path}: another sweep is writing this store; wait for it to end, or "
+                "choose another --out"
+            ) from None
+        try:
+            current = os.stat(lock).st_ino
+        except FileNotFoundError:
+            current = None
+        if current == os.fstat(handle.fileno()).st_ino:
+            break
+        handle.close()  # removed by the sweep that held it, after this opened it: again
+    try:
+        yield
+    finally:
+        with contextlib.suppress(OSError):
+            lock.unlink()
+        handle.close()  # the lock goes with it
 
 
 def remove(path: Path) -> None:

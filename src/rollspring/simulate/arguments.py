@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from rollspring.model import System
 
 __all__ = [
+    "MIN_DURATION",
     "ON_SLIP",
     "SystemLike",
     "check_choice",
@@ -57,11 +58,18 @@ def _real(value: Any) -> float | None:
         return math.inf if number > 0 else -math.inf
 
 
+#: The shortest duration a run takes (s): far below any motion of these systems, and above
+#: the subnormal numbers, whose steps come out non-finite.
+MIN_DURATION = 1e-9
+
+
 def check_duration(duration: Any) -> float:
-    """A positive, finite number of seconds."""
+    """A finite number of seconds, at least :data:`MIN_DURATION`."""
     value = _real(duration)
     if value is None or not math.isfinite(value) or value <= 0:
         raise _bad("duration", f"must be a positive number of seconds, got {duration!r}")
+    if value < MIN_DURATION:
+        raise _bad("duration", f"must be at least {MIN_DURATION:g} s, got {duration!r}")
     return value
 
 

@@ -28,6 +28,7 @@ from rollspring.errors import RollspringError
 from rollspring.model import System, system_to_json, validation_errors
 from rollspring.model.files import system_json_schema
 from rollspring.service.systems import preset_catalogue, resolve_system, system_forms
+from rollspring.simulate.arguments import MIN_DURATION
 from rollspring.web.workers import ComputePool, JobFailed, OverBudget, Overloaded, check_pool
 
 __all__ = ["MAX_BODIES", "MAX_DURATION", "MAX_OUTPUTS", "MAX_REQUEST_BYTES", "create_app"]
@@ -86,7 +87,11 @@ class SimulateRequest(SystemRequest):
     """What to simulate and how."""
 
     duration: float = Field(
-        gt=0, le=MAX_DURATION, allow_inf_nan=False, strict=True, description="Simulated time (s)."
+        ge=MIN_DURATION,
+        le=MAX_DURATION,
+        allow_inf_nan=False,
+        strict=True,
+        description="Simulated time (s).",
     )
     rtol: float = Field(
         default=1e-8,
@@ -123,7 +128,7 @@ class ReportRequest(SystemRequest):
     """The report's simulated time (default: four periods of the slowest mode)."""
 
     duration: float | None = Field(
-        default=None, gt=0, le=MAX_DURATION, allow_inf_nan=False, strict=True
+        default=None, ge=MIN_DURATION, le=MAX_DURATION, allow_inf_nan=False, strict=True
     )
 
 

@@ -63,7 +63,9 @@ def derive(request: dict[str, Any]) -> bytes:
     """``POST /api/derive``: the derivation by the requested methods, with MathML."""
     from rollspring.service import documents  # SymPy: loaded on first use
 
-    return _json(documents.derivation_payload(request["system"], request["method"]))
+    method = request["method"]  # "all", one method, or several separated by commas
+    methods = [part.strip() for part in method.split(",")] if "," in method else method
+    return _json(documents.derivation_payload(request["system"], methods))
 
 
 def report(request: dict[str, Any]) -> bytes:

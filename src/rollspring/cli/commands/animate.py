@@ -105,10 +105,10 @@ def _check(
         raise AnimationError(f"--dpi: must be between 10 and 600, got {dpi}")
     if on_slip not in ("stop", "continue"):
         raise AnimationError(f"--on-slip: must be 'stop' or 'continue', got '{on_slip}'")
-    frames = math.floor(duration / speed * fps) + 1
-    if frames > MAX_FRAMES:
+    count = duration / speed * fps  # inf for a speed far below the duration
+    if not count < MAX_FRAMES:
         raise AnimationError(
-            f"--duration: {duration:g} s at --speed {speed:g} and --fps {fps} is {frames} "
+            f"--duration: {duration:g} s at --speed {speed:g} and --fps {fps} is {count:.3g} "
             f"frames (at most {MAX_FRAMES}); shorten it, raise --speed or lower --fps"
         )
     from rollspring.outputs.atomic import writable_file

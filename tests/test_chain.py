@@ -211,3 +211,18 @@ def test_cli_errors_are_one_line_with_exit_code_2(args: list[str], message: str)
     assert done.stderr.strip().startswith(message), done.stderr
     assert len(done.stderr.strip().splitlines()) == 1
     assert done.stdout == ""
+
+
+def test_the_largest_chain_written_is_a_file_every_command_reads(tmp_path) -> None:
+    """chain --n 20000 --pluck 1 -o x.json wrote 7.8 MB, and every other command refused any
+    system file above 4 MiB: the file limit now holds the model's largest chain."""
+    from rollspring.model import MAX_FILE_BYTES, load_system
+    from rollspring.model.chains import chain
+    from rollspring.service.chains import system_text
+
+    system = chain(("hoop", "cylinder"), 20000, pluck=1)
+    for suffix in ("json", "toml"):
+        path = tmp_path / f"big.{suffix}"
+        path.write_text(system_text(system, suffix))
+        assert path.stat().st_size <= MAX_FILE_BYTES
+        assert len(load_system(path).bodies) == 20000

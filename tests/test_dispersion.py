@@ -293,7 +293,7 @@ def test_cli_prints_a_table_json_and_a_figure(tmp_path) -> None:
     ("args", "message"),
     [
         (["hoop-cylinder"], "error: dispersion: not a periodic chain"),
-        (["two-hoops", "--points", "2"], "error: points: must be a whole number from 3"),
+        (["two-hoops", "--points", "2"], "error: --points: must be a whole number from 3"),
         (
             ["two-hoops", "--figure", "x.pdf"],
             "error: --figure: x.pdf: give a file ending in .png or .svg",

@@ -72,3 +72,30 @@ def test_the_web_refuses_a_subnormal_duration(client: TestClient) -> None:
     system = system_to_json(load_system("hoop-cylinder"))
     answer = client.post("/api/simulate", json={"system": system, "duration": 1e-320})
     assert answer.status_code == 422 and "duration" in answer.text
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["report", "hoop-cylinder", "-f", "pdf", "-o", "{tmp}/r.html"], "the pdf report's name"),
+        (["report", "hoop-cylinder", "-o", "{tmp}/r.txt"], "the html report's name must end in"),
+        (["report", "hoop-cylinder", "--free", "springs.0.stiffness"], "--free: only with --data"),
+        (["export", "hoop-cylinder", "-o", "{tmp}/m.json"], "an MJCF model's name must end in"),
+        (["paper-check", "--json", "-f", "markdown"], "--format markdown: not with --json"),
+        (["worksheet", "--level", "1", "--seed", "1", "-o", "{tmp}/w/"], "ends in '/', a folder"),
+        (["dispersion", "chain-diatomic", "--points", "1"], "--points: must be a whole number"),
+    ],
+)
+def test_options_that_would_mislead_are_refused(tmp_path, args: list[str], words: str) -> None:
+    """A PDF written under .html, MJCF under .json, a folder name taken as a file's, options
+    silently ignored: each now one line, exit 2, nothing written."""
+    code, output = _cli(*(arg.format(tmp=tmp_path) for arg in args))
+    assert code == 2 and words in output and output.count("\n") == 1, output
+    assert not any(tmp_path.iterdir())
+
+
+def test_the_api_s_pages_load_nothing_from_elsewhere(client: TestClient) -> None:
+    """FastAPI's /docs and /redoc load Swagger UI, ReDoc and fonts from CDNs: not served."""
+    assert client.get("/docs").status_code == 404
+    assert client.get("/redoc").status_code == 404
+    assert client.get("/openapi.json").json()["info"]["title"] == "rollspring"

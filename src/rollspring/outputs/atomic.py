@@ -346,6 +346,8 @@ def writable_file(path: str | os.PathLike[str], option: str = "--out") -> Path:
     socket, which a rename would replace)."""
     shown = _shown(path)
     _check_text(path, option, shown, "give a file name")
+    if os.fspath(path).endswith(("/", os.sep)):  # Path() drops the slash: a file "wdir" then
+        raise OutputError(f"{option} {shown}: ends in '/', a folder's name (give a file name)")
     try:
         target = Path(path)
         info = os.stat(target) if os.path.lexists(target) else None

@@ -344,6 +344,10 @@ def create_app(
         lifespan=lifespan,
         description="Coupled rolling oscillators: the interactive page's API. "
         "SI units throughout; see docs/web-api.md.",
+        # FastAPI's /docs and /redoc pages load Swagger UI, ReDoc and fonts from CDNs: no
+        # request leaves this server's pages (the schema stays at /openapi.json)
+        docs_url=None,
+        redoc_url=None,
     )
     app.add_middleware(_BodyLimit, limit=MAX_REQUEST_BYTES)
 

@@ -57,6 +57,13 @@ def dispersion(
         if Path(figure).suffix.lower() not in (".png", ".svg"):
             raise OutputError(f"--figure: {Path(figure).name}: give a file ending in .png or .svg")
         writable_file(figure, "--figure")
+    from rollspring.analysis.dispersion import MAX_POINTS
+    from rollspring.errors import AnalysisError
+
+    if not 3 <= points <= MAX_POINTS:  # in the command line's words, before the system is read
+        raise AnalysisError(
+            f"--points: must be a whole number from 3 to {MAX_POINTS} (got {points})"
+        )
     model = load(system)
     result, payload, warnings = chain_dispersion(model, points)
     for warning in warnings:

@@ -51,6 +51,8 @@ def export(
         from rollspring.outputs.atomic import writable_file
 
         writable_file(out)  # an unwritable --out fails now, before the system is read
+        if not out.lower().endswith(".xml"):  # MJCF is XML: a .json name would mislead
+            raise ExportError(f"--out {out}: an MJCF model's name must end in .xml")
     model = load(system)
     if out == "-":
         print_text(system_to_mjcf(model, timestep=timestep))

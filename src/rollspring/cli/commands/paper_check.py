@@ -58,6 +58,8 @@ def paper_check(
     verified, ☑ holds under an assumption the paper states, ⚠ holds only under a condition the
     paper does not state (named), ✘ wrong (with the correction); each with the paper's words."""
     FORMATS.check(format, PaperCheckError)
+    if as_json and format != "text":
+        raise PaperCheckError(f"--format {format}: not with --json (one JSON list is printed)")
     from rollspring.service.documents import claims_json, paper_checks, paper_runs
 
     checks = paper_checks()

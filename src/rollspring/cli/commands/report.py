@@ -103,9 +103,14 @@ def report(
             f"--duration: must be a positive number of seconds, got {duration:g}"
         ) from None
     target = Path(out if out is not None else f"report.{format}")
+    if data is None and (free or mapping):
+        option = "--free" if free else "--map"
+        raise ReportError(f"{option}: only with --data (the measured table to fit)")
     from rollspring.outputs.atomic import writable_file
 
     writable_file(target)  # an unwritable --out fails now, not after the work
+    if target.suffix.lower() != f".{format}":  # the bytes written are the format's
+        raise ReportError(f"--out {target}: the {format} report's name must end in .{format}")
     if format == "pdf":
         find_chromium(chromium)  # fail before the work when Chromium is missing
     model = load(system)

@@ -104,7 +104,7 @@ def worksheet_command(
     from rollspring.service.documents import worksheet
 
     if out is not None:  # both places, before anything is made or written
-        for path in (Path(out), solutions_path(out)):
+        for path in (out, solutions_path(out)):
             writable_file(path, "--out")
     sheet = worksheet(number, value)
     text = render_sheet(sheet, format)

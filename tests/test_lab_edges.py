@@ -250,3 +250,37 @@ def test_a_video_damaged_in_the_middle_is_refused_not_cut_short(tmp_path: Path) 
         until = float(str(exc).split("--to ")[1].split()[0])
     part = rollspring.track(broken, system, stop=until)
     assert 0 < part.t.size < 61 and part.t[-1] == pytest.approx(until, abs=1e-6)
+
+
+# ---------------------------------------------------------------------------- the posterior
+
+
+@pytest.mark.parametrize("free", [["bodies.hoop.mu_static"], ["springs.0.stiffness"]])
+def test_the_posterior_s_estimate_times_its_own_evaluation(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, free: list[str]
+) -> None:
+    """The estimate took the fit's wall time over its evaluations (its first guess included,
+    and its trials far from the best: 100 times the posterior's 10 s, refused); now the
+    log-posterior is timed at the best values, one walker on the simulated motion, all at
+    once on the exact linear one (a fake clock here: tests are never timed)."""
+    import dataclasses
+    from types import SimpleNamespace
+
+    from rollspring.lab import posterior
+
+    result = rollspring.fit(_data(tmp_path), "hoop-cylinder", free=free, confirm=True)
+    result = dataclasses.replace(result, seconds=1e6)  # no longer a measure
+    clock = [0.0]
+    rows_seen: list[int] = []
+
+    def log_probability(res, points, errors):  # 10 ms a walker
+        rows_seen.append(points.shape[0])
+        clock[0] += 0.01 * points.shape[0]
+        assert np.allclose(points[0], [res.parameters[n].value for n in res.fitted])
+        return np.zeros(points.shape[0])
+
+    monkeypatch.setattr(posterior, "_log_probability", log_probability)
+    monkeypatch.setattr(posterior, "time", SimpleNamespace(perf_counter=lambda: clock[0]))
+    cost = posterior.posterior_cost(result, walkers=20, steps=300)
+    assert rows_seen == [20 if result.level else 1]
+    assert cost.seconds == pytest.approx(20 * 300 * 0.01)

@@ -284,3 +284,25 @@ def test_the_posterior_s_estimate_times_its_own_evaluation(
     cost = posterior.posterior_cost(result, walkers=20, steps=300)
     assert rows_seen == [20 if result.level else 1]
     assert cost.seconds == pytest.approx(20 * 300 * 0.01)
+
+
+def test_the_fit_s_memory_estimate_is_its_peak(tmp_path: Path) -> None:
+    """The linear route's estimate held 24 bytes per frame and matrix entry where the fit's
+    peak holds 150-190 (a fit of 2.2 GiB passed the 2 GiB bound): now the estimate is the
+    peak NumPy allocates (tracemalloc), within a factor 1.5."""
+    import tracemalloc
+
+    from rollspring.lab.costs import fit_cost
+    from rollspring.lab.data import match_bodies
+
+    t, x, _ = recording(DAMPED, duration=20.0, fps=1000.0, noise=2e-5, seed=7)
+    data = read_data(write_csv(tmp_path / "long.csv", t, x))
+    system = system_from_dict(DAMPED.system())
+    estimate = fit_cost(match_bodies(data, system), system, ["springs.0.stiffness"]).memory
+    tracemalloc.start()
+    try:
+        rollspring.fit(data, system, free=["springs.0.stiffness"], confirm=True)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak / 1.5 < estimate < 1.5 * peak, (estimate, peak)

@@ -107,8 +107,10 @@ _LINEAR_PER_ENTRY = 1.0e-7
 #: starts × each first guess, a linear profile over the frames each (measured: 0.2 ms with 41
 #: starts, 1.0–1.6 ms with the release scanned too)
 _T0_SCAN_PER_FRAME = 1.0e-3
-#: bytes per frame and matrix entry held on the linear route (the transition matrices, copies)
-_LINEAR_BYTES_PER_ENTRY = 24.0
+#: bytes per frame and matrix entry held on the linear route at its peak (the transition
+#: matrices, their products and copies): 150-190 measured (tracemalloc) for 20 000 and 60 000
+#: frames of two bodies (24 before, five times too few: a fit of 2.2 GiB passed the bound)
+_LINEAR_BYTES_PER_ENTRY = 170.0
 #: free quantities that make the simulations dissipative (DOP853) once the solver moves them
 _DISSIPATIVE = ("damping", "rolling_resistance")
 

@@ -306,3 +306,24 @@ def test_the_fit_s_memory_estimate_is_its_peak(tmp_path: Path) -> None:
     finally:
         tracemalloc.stop()
     assert peak / 1.5 < estimate < 1.5 * peak, (estimate, peak)
+
+
+def test_a_posterior_says_when_its_intervals_are_not_to_be_trusted(tmp_path: Path) -> None:
+    """A parameter the fit finds not identifiable got a narrow 95 % interval that depended on
+    the seed ([0.68, 1.15] and [0.98, 1.01] for mu_s), and a chain too short for its
+    autocorrelation time said nothing: both are warned of now, with each parameter's time."""
+    from rollspring.lab.posterior import CONVERGED_TAUS, sample_posterior
+
+    data = _data(tmp_path)
+    good = rollspring.fit(
+        data, DAMPED.system(), free=["springs.0.stiffness"], posterior=True, confirm=True
+    )
+    assert good.posterior is not None and good.posterior["warnings"] == []
+    for entry in good.posterior["credible_intervals"].values():
+        assert 150 >= CONVERGED_TAUS * entry["tau"]
+    short = sample_posterior(good, steps=20)
+    assert len(short.warnings) == 1 and "too short to measure" in short.warnings[0]
+    loose = rollspring.fit(data, DAMPED.system(), free=["bodies.hoop.mu_static"], confirm=True)
+    assert math.isinf(loose.stderr("bodies.hoop.mu_static"))
+    said = sample_posterior(loose, steps=8, walkers=12).warnings
+    assert said[0].startswith("posterior: bodies.hoop.mu_static is not identifiable"), said

@@ -124,7 +124,8 @@ def fit(
         sampled = sample_posterior(result, seed=seed, progress=part(share, 1.0)).to_dict()
     if progress is not None:
         progress(1.0)
-    return dataclasses.replace(result, claims=measured, posterior=sampled)
+    warnings = [*result.warnings, *(sampled["warnings"] if sampled else [])]
+    return dataclasses.replace(result, claims=measured, posterior=sampled, warnings=warnings)
 
 
 def track(

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -55,18 +55,31 @@ class Posterior:
     low: FloatArray
     high: FloatArray
     acceptance: float
+    #: each parameter's integrated autocorrelation time (steps), and why an interval is not to
+    #: be trusted (a chain shorter than :data:`CONVERGED_TAUS` of them, a parameter the fit
+    #: found not identifiable)
+    tau: FloatArray | None = None
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """``{name: {"median", "low", "high"}}`` (the 95 % credible interval), the acceptance."""
+        """``{name: {"median", "low", "high", "tau"}}`` (the 95 % credible interval, the
+        autocorrelation time in steps), the acceptance, the samples and the warnings."""
+        tau = self.tau if self.tau is not None else np.full(len(self.names), np.nan)
         return {
             "credible_intervals": {
-                name: {"median": float(m), "low": float(lo), "high": float(hi)}
-                for name, m, lo, hi in zip(
-                    self.names, self.median, self.low, self.high, strict=True
+                name: {
+                    "median": float(m),
+                    "low": float(lo),
+                    "high": float(hi),
+                    "tau": float(t) if np.isfinite(t) else None,
+                }
+                for name, m, lo, hi, t in zip(
+                    self.names, self.median, self.low, self.high, tau, strict=True
                 )
             },
             "acceptance": float(self.acceptance),
             "samples": int(self.samples.shape[0] * self.samples.shape[1]),
+            "warnings": list(self.warnings),
         }
 
 
@@ -326,11 +339,62 @@ def sample_posterior(
         if progress is not None:
             progress(step / steps)
     chain = sampler.get_chain(discard=steps // 2)
+    # tol=0: the estimate whatever the chain's length (emcee would log a warning otherwise);
+    # the length is judged here, against CONVERGED_TAUS
+    tau = np.asarray(emcee.autocorr.integrated_time(chain, tol=0), dtype=np.float64)
+    warnings = _warnings(result, names, tau, chain.shape[0])
     if result.locked is not None and np.any(result.locked):
         chain = _with_locked_errors(result, chain, seed)
     flat = chain.reshape(-1, dimension)
     low, median, high = np.percentile(flat, [2.5, 50.0, 97.5], axis=0)
     acceptance = float(np.mean(sampler.acceptance_fraction))
     return Posterior(
-        tuple(names), chain, median, low, high, acceptance if math.isfinite(acceptance) else 0.0
+        tuple(names),
+        chain,
+        median,
+        low,
+        high,
+        acceptance if math.isfinite(acceptance) else 0.0,
+        tau,
+        warnings,
     )
+
+
+#: A chain kept (after burn-in) of at least this many autocorrelation times, over all the
+#: walkers a few hundred independent samples, gives a 95 % interval to trust (emcee's
+#: documentation asks 50 for the time itself to be known well).
+CONVERGED_TAUS = 10.0
+#: The shortest chain kept whose autocorrelation time can be told at all (steps).
+MIN_KEPT = 50
+
+
+def _warnings(
+    result: FitResult, names: Sequence[str], tau: FloatArray, kept: int
+) -> tuple[str, ...]:
+    """Why an interval is not to be trusted: a parameter the fit found not identifiable (its
+    standard error infinite: the walkers spread from a guess, not from the likelihood), or a
+    chain kept shorter than :data:`CONVERGED_TAUS` autocorrelation times (the interval may be
+    far too narrow, and depend on the seed)."""
+    out = [
+        f"posterior: {name} is not identifiable (the fit's standard error is infinite): its "
+        "interval says where the walkers were, not what the data allow"
+        for name in names
+        if not math.isfinite(result.stderr(name))
+    ]
+    if kept < MIN_KEPT:
+        out.append(
+            f"posterior: the chain kept is {kept} steps, too short to measure its "
+            f"autocorrelation (at least {MIN_KEPT}): the intervals may be too narrow"
+        )
+        return tuple(out)
+    short = [
+        f"{name} (tau {t:.3g} steps)"
+        for name, t in zip(names, tau, strict=True)
+        if math.isfinite(result.stderr(name)) and not kept >= CONVERGED_TAUS * t
+    ]
+    if short:
+        out.append(
+            f"posterior: the chain kept is {kept} steps, fewer than {CONVERGED_TAUS:g} "
+            f"autocorrelation times of {', '.join(short)}: their intervals may be too narrow"
+        )
+    return tuple(out)

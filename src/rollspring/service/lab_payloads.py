@@ -200,7 +200,10 @@ def fit_payload(
                 f"{result.seconds:.3g} s, beyond the server's time budget of {budget:g} s; "
                 "fit without it, or run rollspring fit --posterior on the command line"
             )
-        result = dataclasses.replace(result, posterior=sample_posterior(result).to_dict())
+        sampled = sample_posterior(result).to_dict()
+        result = dataclasses.replace(
+            result, posterior=sampled, warnings=[*result.warnings, *sampled["warnings"]]
+        )
     offset = result.parameters.get("x_offset")
     return {
         "fit": result.to_dict(),

@@ -149,3 +149,30 @@ def test_one_sweep_at_a_time_writes_a_store(tmp_path: Path) -> None:
         assert not store.exists()
     sweep("hoop-cylinder", {"bodies.cylinder.v": [0.0]}, 0.5, out=store)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.zarr"]
+
+
+def test_a_grid_whose_friction_pairs_are_all_invalid_is_refused(tmp_path: Path) -> None:
+    """mu_static 0.1, 0.2 against mu_kinetic 0.5, 0.6: each value valid alone, no run valid
+    (mu_kinetic <= mu_static); it was a store of runs all invalid, exit 0."""
+    code, output = _sweep(
+        "--vary",
+        "bodies.hoop.mu_static=0.1,0.2",
+        "--vary",
+        "bodies.hoop.mu_kinetic=0.5,0.6",
+        "-o",
+        str(tmp_path / "s.zarr"),
+    )
+    assert code == 2 and "no run of the grid is a valid system" in output, output
+    assert not (tmp_path / "s.zarr").exists()
+    with pytest.raises(SweepError, match="no run of the grid is a valid system: every"):
+        sweep(
+            "hoop-cylinder",
+            {"bodies.hoop.mu_static": [0.1, 0.2], "bodies.hoop.mu_kinetic": [0.5, 0.6]},
+            0.5,
+        )
+    mixed = sweep(
+        "hoop-cylinder",
+        {"bodies.hoop.mu_static": [0.1, 0.6], "bodies.hoop.mu_kinetic": [0.5]},
+        0.5,
+    )
+    assert mixed["status"].values.ravel().tolist()[1] != mixed["status"].values.ravel()[0]

@@ -394,7 +394,26 @@ def check_grid(
                 _check_each(base, system, path, part, array)
         paths.append(path)
         values.append(tuple(float(v) for v in array))
+    _check_friction_pairs(dict(zip(paths, values, strict=True)))
     return tuple(paths), tuple(values)
+
+
+def _check_friction_pairs(grid: dict[str, tuple[float, ...]]) -> None:
+    """A body whose mu_static and mu_kinetic are both varied: each value is valid alone, but
+    no run is when every mu_kinetic exceeds every mu_static (mu_kinetic <= mu_static):
+    :class:`SweepError`, as for any grid without a valid run (it was a store of runs all
+    invalid, exit 0)."""
+    for path, statics in grid.items():
+        parts = path.split(".")
+        if len(parts) != 3 or parts[0] != "bodies" or parts[2] != "mu_static":
+            continue
+        kinetics = grid.get(f"bodies.{parts[1]}.mu_kinetic")
+        if kinetics is not None and min(kinetics) > max(statics):
+            raise SweepError(
+                f"--vary: no run of the grid is a valid system: every bodies.{parts[1]}."
+                f"mu_kinetic ({min(kinetics):g} and up) exceeds every mu_static (up to "
+                f"{max(statics):g}); mu_kinetic must not exceed mu_static"
+            )
 
 
 def _numbers(path: str, raw: Any) -> np.ndarray:

@@ -99,3 +99,13 @@ def test_the_api_s_pages_load_nothing_from_elsewhere(client: TestClient) -> None
     assert client.get("/docs").status_code == 404
     assert client.get("/redoc").status_code == 404
     assert client.get("/openapi.json").json()["info"]["title"] == "rollspring"
+
+
+def test_the_report_writer_refuses_a_name_of_another_format(tmp_path) -> None:
+    """The Python API wrote a PDF under .html too; .htm is an HTML name."""
+    from rollspring.outputs.report import ReportError, check_report_name
+
+    with pytest.raises(ReportError, match=r"the pdf report's name must end in \.pdf"):
+        check_report_name(tmp_path / "r.html", "pdf")
+    check_report_name(tmp_path / "r.htm", "html")
+    check_report_name(tmp_path / "r.PDF", "pdf")

@@ -153,19 +153,29 @@ def test_tracker_tracks_on_different_clocks_are_refused(tmp_path: Path) -> None:
 # ------------------------------------------------------------------------- a clock's epoch
 
 
-def test_a_release_time_on_an_epoch_clock_is_fitted_as_well_as_near_zero(tmp_path: Path) -> None:
+@pytest.mark.parametrize("route", ["linear", "simulated"])
+def test_a_release_time_on_an_epoch_clock_is_fitted_as_well_as_near_zero(
+    tmp_path: Path, route: str
+) -> None:
     """t0 on a clock reading 1.7e9 s, from a rough start: the solver's relative step tolerance
     was one of the clock's reading (it stopped at steps of 0.17 s, the damping 12 standard
-    errors off); now the fit is that of the same data near zero."""
+    errors off), and on the simulated route (a rolling resistance) t0's finite-difference step
+    was 1e-4 of it, 1.7e5 s (the damping 6 standard errors off, t0 +- 7017 s); now the fit is
+    that of the same data near zero."""
     truth = Truth(k=130.0, c=0.2, x2=0.49)
     t, x, _ = recording(truth, duration=4.0, fps=30.0, noise=2e-5, seed=5)
     free = ["springs.0.stiffness", "springs.0.damping"]
+    start = truth.system(k=100.0, c=0.0)
+    if route == "simulated":
+        for body in start["bodies"]:
+            body["rolling_resistance"] = 1e-6
     fits = [
         rollspring.fit(
             write_csv(tmp_path / f"{shift:g}.csv", t + shift, x),
-            truth.system(k=100.0, c=0.0),
+            start,
             free=free,
             fix_initial=True,
+            confirm=True,
         )
         for shift in (1.0, 1.7e9)
     ]
@@ -177,6 +187,7 @@ def test_a_release_time_on_an_epoch_clock_is_fitted_as_well_as_near_zero(tmp_pat
     assert epoch.parameters["t0"].value - 1.7e9 == pytest.approx(
         near.parameters["t0"].value - 1.0, abs=1e-6
     )
+    assert epoch.parameters["t0"].stderr == pytest.approx(near.parameters["t0"].stderr, rel=0.05)
 
 
 def test_a_value_known_far_finer_than_its_size_is_printed_in_full() -> None:
@@ -184,6 +195,7 @@ def test_a_value_known_far_finer_than_its_size_is_printed_in_full() -> None:
     assert format_value(99.96, 0.093) == "99.960 ± 0.093"
     assert format_value(1.0e6, 1.0e3) == "1000000 ± 1000"
     assert format_value(1.7e12, 1e-5) == "1.70000000000000e+12 ± 1.00e-05"
+    assert format_value(1.23456e20, 1e18) == "1.235e+20 ± 1.00e+18"
 
 
 # ------------------------------------------------------------------------- the output places

@@ -176,3 +176,26 @@ def test_a_grid_whose_friction_pairs_are_all_invalid_is_refused(tmp_path: Path) 
         0.5,
     )
     assert mixed["status"].values.ravel().tolist()[1] != mixed["status"].values.ravel()[0]
+
+
+def test_overwrite_leaves_another_zarr_dataset_and_a_link_shares_the_lock(tmp_path: Path) -> None:
+    """A Zarr dataset that is not a sweep's (no grid fingerprint, no done markers) was replaced
+    by --overwrite; a store reached through a link took a second lock beside the first."""
+    import xarray as xr
+
+    from rollspring.service.sweeps.store import store_lock
+
+    precious = tmp_path / "data.zarr"
+    xr.Dataset({"precious": ("x", np.arange(3.0))}).to_zarr(precious, consolidated=False)
+    with pytest.raises(SweepError, match="a folder that is not a sweep's store"):
+        sweep("hoop-cylinder", {"bodies.cylinder.v": [0.0]}, 0.5, out=precious, overwrite=True)
+    assert xr.open_zarr(precious, consolidated=False)["precious"].values.tolist() == [0.0, 1.0, 2.0]
+    real = tmp_path / "real.zarr"
+    real.mkdir()
+    (tmp_path / "link.zarr").symlink_to(real)
+    with (
+        store_lock(real),
+        pytest.raises(SweepError, match="another sweep is writing"),
+        store_lock(tmp_path / "link.zarr"),
+    ):
+        pass

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from rollspring.lab.fit import FitResult, _step
+from rollspring.lab.fit import FitResult
 from rollspring.physics import SystemArrays
 from rollspring.physics.arrays import FloatArray
 
@@ -77,7 +77,7 @@ def _propagated(
     fitted = [names.index(name) for name in result.fitted]
     gradient = []
     for index in fitted:
-        step = _step(full[index], result.level, index >= result.problem.layout.n_paths)
+        step = result.problem.step(full, index)
         moved = full.copy()
         moved[index] += step
         gradient.append((np.asarray(function(moved)) - values) / step)

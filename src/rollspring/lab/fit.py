@@ -276,7 +276,7 @@ class _Problem:
                 continue
             if base is None:
                 base = self.residual(full)
-            step = _step(full[index], self.level, index >= p)
+            step = self.step(full, index)
             moved = full.copy()
             moved[index] += step
             column = (self.residual(moved) - base) / step
@@ -290,6 +290,16 @@ class _Problem:
                 )
             columns.append(column)
         return np.stack(columns, axis=1) if columns else np.zeros((self.observed.size, 0))
+
+    def step(self, full: FloatArray, index: int) -> float:
+        """The forward-difference step of ``full[index]`` (:func:`_step`); for t0, of the time
+        after the data's first (the clock's reading, 1.7e9 s on an epoch, would make it
+        1.7e5 s), and at least 64 of its float spacings (so that t0 + step differs from t0)."""
+        p, n = self.layout.n_paths, len(self.ids)
+        if index != p + 2 * n:
+            return _step(full[index], self.level, index >= p)
+        step = _step(full[index] - float(self.t[0]), self.level, True)
+        return max(step, 64.0 * float(np.spacing(abs(full[index]))))
 
 
 def _values_text(layout: _Layout, full: FloatArray) -> str:

@@ -28,7 +28,7 @@ def format_value(value: float | None, stderr: float | None) -> str:
     # fixed point while its digits fit a double's 16 (an epoch time of 1.7e9 s known to 4e-5 s
     # is 1700000000.000000 ± 0.000040), else the mantissa's digits the error sets
     if magnitude + 1 + digits > 16 or (value != 0 and abs(value) < 1e-3 and digits > 8):
-        mantissa = min(max(magnitude + digits, 4), 14)
+        mantissa = min(max(magnitude - int(math.floor(math.log10(stderr))) + 1, 1), 14)
         return f"{value:.{mantissa}e} ± {stderr:.2e}"
     return f"{value:.{digits}f} ± {stderr:.{digits}f}"
 

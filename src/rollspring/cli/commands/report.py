@@ -89,7 +89,12 @@ def report(
 ) -> None:
     """Write a self-contained report (HTML, or PDF through headless Chromium): diagram,
     parameters, modes, X̂, friction needed vs μs, derivations, paper checks, plots, animation."""
-    from rollspring.outputs.report import ReportError, find_chromium, write_report
+    from rollspring.outputs.report import (
+        ReportError,
+        check_report_name,
+        find_chromium,
+        write_report,
+    )
     from rollspring.service.costs import report_cost
     from rollspring.service.documents import report_request, run_report
 
@@ -109,8 +114,7 @@ def report(
     from rollspring.outputs.atomic import writable_file
 
     writable_file(target)  # an unwritable --out fails now, not after the work
-    if target.suffix.lower() != f".{format}":  # the bytes written are the format's
-        raise ReportError(f"--out {target}: the {format} report's name must end in .{format}")
+    check_report_name(target, format)  # the bytes written are the format's
     if format == "pdf":
         find_chromium(chromium)  # fail before the work when Chromium is missing
     model = load(system)

@@ -169,6 +169,20 @@ def render_report(
     )
 
 
+#: The names a report of each format may take (its bytes are that format's).
+REPORT_SUFFIXES = {"html": (".html", ".htm"), "pdf": (".pdf",)}
+
+
+def check_report_name(path: str | Path, format: str) -> None:  # noqa: A002
+    """A report's file name ends in its format's suffix (a PDF written under .html misleads
+    every program that opens it): a one-line :class:`ReportError` otherwise."""
+    suffixes = REPORT_SUFFIXES.get(format, ())
+    if Path(path).suffix.lower() not in suffixes:
+        raise ReportError(
+            f"--out {path}: the {format} report's name must end in {' or '.join(suffixes)}"
+        )
+
+
 def write_report(
     report: Report,
     path: str | Path,
@@ -181,6 +195,7 @@ def write_report(
     if format not in FORMATS:
         raise ReportError(f"--format: unknown format '{format}' (formats: {', '.join(FORMATS)})")
     target = Path(path)
+    check_report_name(target, format)
     if format == "pdf":
         return html_to_pdf(report.html, target, chromium=chromium)
     try:

@@ -158,13 +158,26 @@ def check_place(out: Any, overwrite: bool) -> Path:
         return path
     if overwrite:
         entries = {entry.name for entry in path.iterdir()}
-        if entries and not entries & {"zarr.json", ".zgroup", MARKERS}:
+        if entries and not _a_sweeps_store(path, entries):
             shown = ", ".join(sorted(entries)[:3]) + (", ..." if len(entries) > 3 else "")
             raise SweepError(
                 f"--out {path}: a folder that is not a sweep's store (it holds {shown}); "
-                "--overwrite replaces only a store"
+                "--overwrite replaces only a sweep's store"
             )
     return path
+
+
+def _a_sweeps_store(path: Path, entries: set[str]) -> bool:
+    """Whether the folder ``path`` (holding ``entries``) is a rollspring sweep's store: its
+    done markers, or a Zarr group whose attributes hold a grid fingerprint (another Zarr
+    dataset is not one)."""
+    if MARKERS in entries:
+        return True
+    try:
+        attrs = read_attrs(path)
+    except StoreMismatchError:
+        return False
+    return attrs is not None and "grid_fingerprint" in attrs
 
 
 @contextlib.contextmanager
@@ -176,7 +189,8 @@ def store_lock(path: Path) -> Iterator[None]:
     two writers left a store whose chunks were one sweep's and whose attributes the other's."""
     import fcntl
 
-    lock = path.parent / f".{path.name}.lock"
+    real = path.resolve()  # a link and its target are one store: one lock
+    lock = real.parent / f".{real.name}.lock"
     while True:
         try:
             lock.parent.mkdir(parents=True, exist_ok=True)

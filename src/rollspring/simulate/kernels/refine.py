@@ -19,8 +19,9 @@ __all__ = ["body_links", "refine_extremes", "refine_windowed", "signal_zero", "s
 def refine_extremes(model, coeffs, h, q0, v0, kinds, bodies, best, spans):
     r"""The extremes the kernel found at step ends, refined on the integrator itself: for
     extreme j (``kinds[j]`` 0: max :math:`|f|/N`, 1: min :math:`N`, of body ``bodies[j]``) over
-    the two steps from the state (q0[j], v0[j]), three grids of 9 points, each spanning the best
-    point's neighbours on the last (spacing 2h/256 at the end; the three points a grid shares
+    the two steps from the state (q0[j], v0[j]) (cut at ``spans[j]``), three grids of 9 points,
+    each spanning the best point's neighbours on the last (spacing span/256 at the end, the span
+    2h or less; the three points a grid shares
     with the last are not evaluated again), then the vertex of the parabola through the best
     point and its neighbours: the value to about 1e-10 relative. The state at
     :math:`\tau \le h` is one step of :math:`\tau` from the start, beyond it one step of

@@ -40,6 +40,7 @@ __all__ = [
     "kinetic_energy",
     "mass_matrix",
     "potential_energy",
+    "pseudo_momentum_conserved",
     "resisted_accelerations",
     "resisted_contact_forces",
     "rolling_resistance_torque",
@@ -394,6 +395,19 @@ def _assemble(n: int, rows: IntArray, cols: IntArray, values: FloatArray, sparse
     summed = np.bincount(flat, weights=np.asarray(values, dtype=float), minlength=n * n)
     dense: FloatArray = summed.astype(np.float64, copy=False).reshape(n, n)  # int when empty
     return dense
+
+
+def pseudo_momentum_conserved(system: SystemArrays) -> bool:
+    r"""True when (M11) holds exactly: every spring joins two body centres (:math:`r = 0` at
+    both ends, no anchor) and no constant force acts (docs/physics.md section 6). :math:`U`
+    then depends on differences of centre positions only, :math:`\hat P = \sum_i (1+\gamma_i)
+    m_i\dot x_i` is conserved, and :math:`\hat X`'s weights are :math:`(1+\gamma_i) m_i`;
+    otherwise they are the zero mode's of (M14), if there is one."""
+    return (
+        system.force.shape[0] == 0
+        and bool(np.all(system.end_body >= 0))
+        and not bool(np.any(system.end_r))
+    )
 
 
 def springs_stay_level(system: SystemArrays) -> bool:

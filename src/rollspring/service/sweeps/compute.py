@@ -50,6 +50,7 @@ import numpy as np
 from rollspring.analysis import LinearAnalysis, analyze, batch_linear
 from rollspring.errors import RollspringError
 from rollspring.model import System, rolled, system_from_dict
+from rollspring.physics import pseudo_momentum_conserved, system_arrays
 from rollspring.service.sweeps.grid import Grid, apply_values, path_kind
 from rollspring.simulate import simulate, simulate_batch
 from rollspring.simulate.batch.plan import distinct_rows
@@ -490,7 +491,7 @@ def compute_chunks(
     weighted = (
         "stationary_amplitude" in plan.metrics
         and plan.on_slip == "stop"
-        and (runs.structural or not _pseudo_momentum_exact(runs.system))
+        and (runs.structural or not pseudo_momentum_conserved(system_arrays(runs.system)))
     )
     linear = weighted or bool(
         {"omega", "stationary_weight", "required_mu_linear"} & set(plan.metrics)
@@ -614,17 +615,6 @@ def _linear_metrics(out: dict[str, np.ndarray], r: int, analysis: Any) -> None:
         out["required_mu_linear"][r] = analysis.required_mu
 
 
-def _pseudo_momentum_exact(system: System) -> bool:
-    """Whether (M11) holds exactly: every spring joins two body centres and no anchor or
-    constant force acts, so X-hat's weights are (1 + gamma) m (the batch's own)."""
-    bodies = system.body_map
-    return not system.forces and all(
-        end in bodies and at.is_centre_form
-        for spring in system.springs
-        for end, at in zip(spring.ends, spring.attachments, strict=True)
-    )
-
-
 def _batch_group(
     plan: SweepPlan,
     runs: _Runs,
@@ -635,7 +625,9 @@ def _batch_group(
     stepping: Callable[[], None] | None = None,
 ) -> None:
     weights = None
-    if "stationary_amplitude" in plan.metrics and not _pseudo_momentum_exact(system):
+    if "stationary_amplitude" in plan.metrics and not pseudo_momentum_conserved(
+        system_arrays(system)
+    ):
         weights = out["stationary_weight"][members]  # X-hat of (M14), not (M11)'s
     try:
         result = _batch(

@@ -22,14 +22,27 @@ def pushed(mu: float = 1.0) -> rollspring.System:
     return system_from_dict(data)
 
 
+def closed_form_ratios(t: float) -> tuple[float, float]:
+    """|f|/N of the hoop and the cylinder at t, from the closed form (docs/physics.md 7.1,
+    (M10)): the spring's stretch u = -(v0/Omega) sin(Omega t), Omega^2 = k (1/(2 m1) +
+    2/(3 m2)); its tension k u pulls each body, whose friction is gamma/(1 + gamma) of it
+    (1/2 for the hoop, 1/3 for the cylinder), against N = m g."""
+    k, m, g, v0 = 100.0, 1.0, 9.81, 0.2
+    omega = np.sqrt(k * (1 / (2 * m) + 2 / (3 * m)))
+    tension = k * abs(v0 / omega * np.sin(omega * t))
+    return tension / 2 / (m * g), tension / 3 / (m * g)
+
+
 @pytest.mark.parametrize("duration", [0.05, 0.1, 0.13])
 @pytest.mark.parametrize("rtol", [1e-6, 1e-8, 1e-10])
 def test_a_largest_ratio_at_the_end_is_the_ratio_there(duration, rtol):
     run = rollspring.simulate(pushed(), duration, rtol=rtol, n_output=11)
     ratio = np.abs(run.friction) / run.normal
     assert np.all(np.diff(ratio, axis=0) > 0)  # still rising at the end
+    exact = closed_form_ratios(duration)  # the largest over [0, T]: at T, a quarter period on
     for i, name in enumerate(run.ids):
         assert run.summary["max_friction_ratio"][name] == pytest.approx(ratio[-1, i], rel=1e-12)
+        assert run.summary["max_friction_ratio"][name] == pytest.approx(exact[i], rel=100 * rtol)
 
 
 def test_a_run_that_never_slips_needs_no_more_than_its_mu():

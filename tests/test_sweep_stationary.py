@@ -76,3 +76,13 @@ def test_simulate_batch_measures_x_hat_on_the_weights_given():
     )
     assert np.all(plain.stationary_amplitude > 100 * result.stationary_amplitude[0])
     assert np.array_equal(plain.cm_amplitude, result.cm_amplitude)  # only X-hat changed
+
+
+@pytest.mark.parametrize("weights", [[True, False], ["a", "b"], [[0.5, 0.5, 0.5]], [0.5]])
+def test_simulate_batch_refuses_weights_that_are_not_one_per_body(weights):
+    from rollspring.errors import ModelError
+
+    with pytest.raises(ModelError, match="stationary_weights: expected numbers of shape"):
+        simulate_batch(
+            "frictionless", {"springs.0.stiffness": [90.0, 100.0]}, 0.1, stationary_weights=weights
+        )

@@ -556,7 +556,10 @@ def _stationary_weights(plan: Plan, runs: Any, weights: ArrayLike | None) -> np.
     if weights is None:
         return np.zeros(n_runs, dtype=bool)
     try:
-        w = np.broadcast_to(np.asarray(weights, dtype=np.float64), (n_runs, n))
+        given = np.asarray(weights)
+        if given.dtype.kind not in "iuf" or given.shape not in ((n,), (n_runs, n)):
+            raise TypeError  # a bool, a string or an object is not a weight; one per body
+        w = np.broadcast_to(given.astype(np.float64), (n_runs, n))
     except (TypeError, ValueError):
         raise ModelError(
             f"stationary_weights: expected numbers of shape ({n_runs}, {n}) or ({n},), got "

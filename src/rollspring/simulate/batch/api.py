@@ -19,7 +19,7 @@ from rollspring.model import System
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import arguments
 from rollspring.simulate.batch import cache
-from rollspring.simulate.batch.codegen import BLOCK, OUT_BODY, OUT_EVENT_TIME, Source
+from rollspring.simulate.batch.codegen import BLOCK, OUT_BODY, OUT_EVENT_TIME, kernel_source
 from rollspring.simulate.batch.parameters import count_runs, parse_parameters
 from rollspring.simulate.batch.plan import (
     MAX_STEPS,
@@ -211,20 +211,20 @@ def kernel_fields(
     their values: ``P`` (n_varying, n_pad) for the runs ``included`` (padded with the last)
     and ``C`` (n_constant,)."""
     n_live = included.size
+    every = n_live == plan.scale.shape[0]  # every run included: ``included`` is 0, 1, ...
+    live = {key: v if every else v[included] for key, v in plan.fields.items()}
     varying: list[str] = []
     constant: list[str] = []
-    for key in sorted(plan.fields):
-        values = plan.fields[key][included]
+    for key in sorted(live):
+        values = live[key]
         per_run = given is None or key in given or bool(values.size and np.any(values != values[0]))
         (varying if per_run else constant).append(key)
     P = np.empty((len(varying), n_pad))
     for r, key in enumerate(varying):
         if n_live:
-            P[r, :n_live] = plan.fields[key][included]
-            P[r, n_live:] = plan.fields[key][included[-1]]
-    C = np.array(
-        [plan.fields[key][included[0]] if n_live else 0.0 for key in constant], dtype=np.float64
-    )
+            P[r, :n_live] = live[key]
+            P[r, n_live:] = live[key][-1]
+    C = np.array([live[key][0] if n_live else 0.0 for key in constant], dtype=np.float64)
     return varying, constant, P, C
 
 
@@ -445,7 +445,7 @@ def simulate_batch(
     n_blocks = -(-n_live // BLOCK)
     n_pad = n_blocks * BLOCK
     varying, constant, P, C = kernel_fields(plan, given, included, n_pad)
-    source = Source(plan, varying, constant, bool(stop_on_slip)).module() if n_live else ""
+    source = kernel_source(plan, varying, constant, bool(stop_on_slip)) if n_live else ""
     prepared = time.perf_counter()
 
     out_live = np.full((n_pad, OUT_BODY + 5 * n), np.nan)

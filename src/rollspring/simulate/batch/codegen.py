@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import hashlib
 import re
+import threading
 from functools import cache
 from pathlib import Path
 
@@ -23,7 +24,16 @@ from rollspring.simulate.batch.plan import Plan
 from rollspring.simulate.kernels import law
 from rollspring.simulate.kernels.stepping import STATUS_LIFTOFF, STATUS_NONFINITE, STATUS_SLIP
 
-__all__ = ["BLOCK", "LINE", "OUT_BODY", "OUT_COLUMNS", "OUT_EVENT_TIME", "SINCOS", "Source"]
+__all__ = [
+    "BLOCK",
+    "LINE",
+    "OUT_BODY",
+    "OUT_COLUMNS",
+    "OUT_EVENT_TIME",
+    "SINCOS",
+    "Source",
+    "kernel_source",
+]
 
 #: Runs per block (lanes of the vectorised inner loops).
 BLOCK = 256
@@ -759,6 +769,39 @@ class Source:
             "",
         ]
         return "\n".join(parts)
+
+
+#: Generated modules kept by :func:`kernel_source` (at most this many, the oldest dropped).
+_KEPT_MODULES = 64
+_MODULES: dict[tuple[object, ...], str] = {}
+_MODULES_LOCK = threading.Lock()  # a sweep's threads ask at once
+
+
+def kernel_source(plan: Plan, varying: list[str], constant: list[str], stop: bool) -> str:
+    """:meth:`Source.module` of ``plan``, generated once per key and kept: the key is what
+    :class:`Source` reads of a plan (its bodies, springs, forces, checks and slip thresholds,
+    never the runs' values), the varying and constant fields and the stop mode (a sweep's
+    batch calls share one module)."""
+    key = (
+        plan.n,
+        plan.rolls,
+        plan.springs,
+        plan.forces,
+        plan.normal_const,
+        plan.slip_check,
+        tuple((k, tuple(members)) for k, members in sorted(plan.simple.items())),
+        tuple(varying),
+        tuple(constant),
+        stop,
+    )
+    with _MODULES_LOCK:
+        source = _MODULES.get(key)
+        if source is None:
+            source = Source(plan, varying, constant, stop).module()
+            while len(_MODULES) >= _KEPT_MODULES:
+                del _MODULES[next(iter(_MODULES))]
+            _MODULES[key] = source
+    return source
 
 
 #: sin and cos in straight-line code LLVM can vectorise (``math.sin`` is a libm call, which

@@ -179,10 +179,10 @@ def make_plan(system: System, runs: Runs, topology: Plan | None = None) -> Plan:
                 if off:
                     f[f"r_{k}_{e}"] = r
                     f[f"al_{k}_{e}"] = alpha
+                sin: FloatArray | float = alpha  # sin(+-0) = +-0 and cos(+-0) = 1 exactly
+                cos: FloatArray | float = 1.0
                 if np.any(alpha):
                     sin, cos = np.sin(alpha), np.cos(alpha)
-                else:  # sin(+-0) = +-0 and cos(+-0) = 1 exactly: the same numbers
-                    sin, cos = alpha, 1.0
                 px.append(runs.x[:, i] + r * sin)
                 py.append(cy[:, i] + r * cos)
             else:

@@ -569,7 +569,7 @@ class ChunkEncoder:
             or not codecs
             or not isinstance(codecs[0], BytesCodec)
             or not all(isinstance(c, BytesBytesCodec) for c in codecs[1:])
-            or not all(isinstance(c, SupportsSyncCodec) for c in codecs)
+            or not all(_synchronous(type(c), SupportsSyncCodec) for c in codecs)
         ):
             return None
         return cls(metadata)
@@ -596,6 +596,17 @@ class ChunkEncoder:
         for codec in self.codecs:
             data = codec._encode_sync(data, self.spec)
         return memoryview(data.as_numpy_array())
+
+
+_SYNCHRONOUS: dict[type, bool] = {}
+
+
+def _synchronous(codec: type, protocol: Any) -> bool:
+    """Whether a codec class has synchronous encoders (Zarr's ``SupportsSyncCodec``), asked
+    once a class: a protocol's ``isinstance`` inspects every member, each time."""
+    if codec not in _SYNCHRONOUS:
+        _SYNCHRONOUS[codec] = issubclass(codec, protocol)
+    return _SYNCHRONOUS[codec]
 
 
 def _read_metadata(path: Path) -> dict[str, Any]:

@@ -92,3 +92,19 @@ def test_the_first_fall_of_a_margin_that_starts_at_zero(margin, until, first):
     from rollspring.simulate.rolling import _first_fall
 
     assert _first_fall(margin, until) == pytest.approx(first, abs=1e-9)
+
+
+@pytest.mark.parametrize("integrator", ["auto", "dop853"])
+@pytest.mark.parametrize("v0", [-1e-2, -1e-4, -1e-6])
+def test_a_normal_force_at_zero_that_falls_first_lifts_off_at_once(v0, integrator):
+    """The cylinder at N = 0 moving away from the hook, where N falls (it rises toward the
+    hook): it lifts off at once, even when the spring's pull (6 N, 4 m/s^2 on the rolling
+    cylinder) turns it back within 2|v0|/a (5 ms down to 0.5 us), inside the first step, so
+    that the margin is back above zero at the step's end (the zero-start branch of
+    rolling's dip search, which takes the first fall, not the root after a rise)."""
+    tr = simulate(hooked(v0), 0.5, integrator=integrator)
+    assert tr.normal[0, 0] == 0.0
+    assert tr.status == "liftoff"
+    [event] = tr.events
+    assert event["kind"] == "liftoff" and event["body"] == "c"
+    assert 0.0 <= event["time"] <= 1e-12

@@ -87,7 +87,14 @@ class RollingSegments(RunState):
                 friction0.tolist(), normal0.tolist(), self.rolls.tolist(), strict=True
             )
         ]
-        extremes = np.array([ratio0, [t] * n, normal0, [t] * n])
+        negative_normal0 = [-nn for nn in normal0.tolist()]
+        extremes = np.array([ratio0, [t] * n, normal0, [t] * n, ratio0, negative_normal0])
+        # the peaks' last two samples (|f|/N, -N; run_fixed_step's docstring): the segment's
+        # start, the one before unknown; the state before the last step's start
+        samples = np.full((2, 2, n), np.nan)
+        samples[0, 1] = np.where(self.rolls, ratio0, np.nan)
+        samples[1, 1] = negative_normal0
+        earlier = np.zeros((2, n))
         # the contact margins at the last two step ends (the kernel looks for a dip inside a
         # step from them): the segment's start, the one before unknown
         near_margins = np.full((2, 2, n), np.nan)
@@ -146,6 +153,8 @@ class RollingSegments(RunState):
                 *outputs,
                 *kept,
                 before,
+                earlier,
+                samples,
                 near_margins,
                 near_flags,
                 offset,
@@ -212,11 +221,16 @@ class RollingSegments(RunState):
                 row_q.append(before[0][None, :].copy())
                 row_v.append(before[1][None, :].copy())
                 self.segments.append(self._rolling_evaluator(model, row_times, row_q, row_v, h, x0))
-                # the event lies inside the step after t_before
-                self._offer_steps(
-                    model, x0, extremes, extreme_states, crossing, crossing_states, h, t_before + h
-                )
+
+                def reached(until: float) -> None:
+                    """The steps' extremes handed over, their windows cut where the motion
+                    ends (at the event inside the step after t_before, once located)."""
+                    self._offer_steps(
+                        model, x0, extremes, extreme_states, crossing, crossing_states, h, until
+                    )
+
                 if status == Status.NONFINITE:
+                    reached(t_before)
                     self.status = RunStatus.NONFINITE
                     self.message = (
                         f"the state became non-finite at t = {t_before + h:.6g} s "
@@ -224,7 +238,9 @@ class RollingSegments(RunState):
                         f"motion"
                     )
                     return t_before, self.general_state(before[0], before[1], x0), slipping, sign
-                return self._locate(model, t_before, before[0].copy(), before[1].copy(), h, 1, x0)
+                return self._locate(
+                    model, t_before, before[0].copy(), before[1].copy(), h, 1, x0, reached
+                )
             first += filled
             done += steps
             offset = skip_near = 0
@@ -338,11 +354,16 @@ class RollingSegments(RunState):
         for i in range(self.n):
             for kind, row in (("ratio", 0), ("normal", 2)):
                 value = found[row][i]
-                if not math.isfinite(value) or (kind == "ratio" and not self.rolls[i]):
+                k = 0 if kind == "ratio" else 1
+                key = found[4 + k][i]  # the peak to refine (maximised: |f|/N, -N)
+                if not (math.isfinite(value) and math.isfinite(key)) or (
+                    kind == "ratio" and not self.rolls[i]
+                ):
                     continue
                 old = self.step_extremes.get((kind, i))
-                if old is None or (value > old[0] if kind == "ratio" else value < old[0]):
-                    k = 0 if kind == "ratio" else 1
+                if old is not None:  # a value reached in an earlier segment stays the floor
+                    value = max(value, old[0]) if kind == "ratio" else min(value, old[0])
+                if old is None or key > old[4]:
                     t_start = found[row + 1][i]
                     # a normal force that cannot change is never refined: no segment for it
                     lo, hi = ball_ptr[i], ball_ptr[i + 1]
@@ -360,7 +381,9 @@ class RollingSegments(RunState):
                             until,
                         )
                     )
-                    self.step_extremes[(kind, i)] = (value, t_start + h, h, local)
+                    self.step_extremes[(kind, i)] = (value, t_start + h, h, local, key)
+                else:
+                    self.step_extremes[(kind, i)] = (value, *old[1:])
         self.crossings.append(
             (
                 int(crossing[0]),
@@ -435,8 +458,11 @@ class RollingSegments(RunState):
         span: float,
         pieces: int,
         x0: FloatArray,
+        reached: Callable[[float], None] | None = None,
     ) -> Handover:
-        """An event happened within ``span`` after ``t_before``: find its instant."""
+        """An event happened within ``span`` after ``t_before``: find its instant; ``reached``
+        is called with the instant where the motion ends (the event's, or where the state
+        stops being finite) before the event is taken."""
         slipping = np.zeros(self.n, dtype=bool)
         sign = np.zeros(self.n)
         h = span / pieces
@@ -475,10 +501,14 @@ class RollingSegments(RunState):
             if best is None or root < best[0]:
                 best = (root, j)
         if best is None:  # non-finite state
+            if reached is not None:
+                reached(t_before)
             self.status = RunStatus.NONFINITE
             self.message = f"the state became non-finite near t = {t_before:.6g} s"
             return t_before, self.general_state(q, v, x0), slipping, sign
         root, j = best
+        if reached is not None:
+            reached(t_before + root)
         return self._event_at(model, t_before, q, v, root, int(j), x0)
 
     def _margins(

@@ -211,6 +211,8 @@ def run_fixed_step(
     crossing,
     crossing_states,
     before,
+    earlier,
+    samples,
     near_margins,
     near_flags,
     first_step,
@@ -224,9 +226,19 @@ def run_fixed_step(
 
     Kept across calls (the caller seeds them):
 
-    * ``extremes`` (4, n): per body max |f|/N over the step ends and the start time of that
-      step, min N and the start time of its step; ``extreme_states`` (2, 2, B) the state
-      (q, v) at the start of those steps, from which the extreme can be refined: for body i
+    * ``extremes`` (6, n): per body the largest |f|/N over the step ends (row 0) and the
+      smallest N (row 2): values the motion reaches; and the peak to refine, of each kind: its
+      key (rows 4 and 5, as maximised quantities |f|/N and -N) and the start of its window of
+      two steps (rows 1 and 3). A step end's own value is a key (its window the step before
+      and after it); where the step end before is a peak of the samples (at least both
+      neighbours), the vertex of the parabola through the three,
+      :math:`y_1 + (y_2 - y_0)^2 / (8 (2 y_1 - y_0 - y_2))`, is its key, its window the two
+      steps around it: between near-equal peaks the key picks the higher to :math:`O(h^4)`,
+      where the samples alone are off by up to :math:`(\omega h)^2/8` relative. ``samples``
+      (2, 2, n) the maximised quantities at the last two step ends (the older first; NaN where
+      not known), ``earlier`` (2, n) the state at the start of the step before the last.
+      ``extreme_states`` (2, 2, B) the state (q, v) at the start of those windows, from which
+      the peak is refined: for body i
       (kind k) only the bodies of its ball ``ball_idx[ball_ptr[i]:ball_ptr[i + 1]]``
       (:func:`spring_balls`: all that can reach it within the refinement's force evaluations;
       every body for a small system), into ``extreme_states[k, :, ball_ptr[i]:ball_ptr[i + 1]]``
@@ -339,21 +351,41 @@ def run_fixed_step(
             friction, normal = _contact(model, i, gen[i], fx[i], fy[i])
             if normal < extremes[2, i]:
                 extremes[2, i] = normal
-                extremes[3, i] = t_start
-                for p in range(ball_ptr[i], ball_ptr[i + 1]):
-                    extreme_states[1, 0, p] = before[0, ball_idx[p]]
-                    extreme_states[1, 1, p] = before[1, ball_idx[p]]
-            # |f|/N > best  <=>  |f| > best N (N > 0): no division in the common case
-            if (
-                bodies[i, col.ROLLS] > 0.0
-                and normal > 0.0
-                and abs(friction) > extremes[0, i] * normal
-            ):
-                extremes[0, i] = abs(friction) / normal
-                extremes[1, i] = t_start
-                for p in range(ball_ptr[i], ball_ptr[i + 1]):
-                    extreme_states[0, 0, p] = before[0, ball_idx[p]]
-                    extreme_states[0, 1, p] = before[1, ball_idx[p]]
+            _peak(
+                1,
+                i,
+                -normal,
+                t_start,
+                h,
+                extremes,
+                samples,
+                extreme_states,
+                before,
+                earlier,
+                ball_ptr,
+                ball_idx,
+            )
+            if bodies[i, col.ROLLS] > 0.0:
+                ratio = abs(friction) / normal if normal > 0.0 else np.nan  # N = 0: no ratio
+                if ratio > extremes[0, i]:
+                    extremes[0, i] = ratio
+                _peak(
+                    0,
+                    i,
+                    ratio,
+                    t_start,
+                    h,
+                    extremes,
+                    samples,
+                    extreme_states,
+                    before,
+                    earlier,
+                    ball_ptr,
+                    ball_idx,
+                )
+        for j in range(2):  # the step taken: its start is the state before the next one's
+            for i in range(n):
+                earlier[j, i] = before[j, i]
         signal = 0.0
         for i in range(n):
             signal += weights[i] * (q[i] - q_ref[i])
@@ -376,6 +408,34 @@ def run_fixed_step(
                     near_margins[kind, 0, i] = near_margins[kind, 1, i]
                     near_margins[kind, 1, i] = margin[kind, i]
     return STATUS_FINISHED, n_steps, -1, rows
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _peak(kind, i, now, t_start, h, extremes, samples, extreme_states, before, earlier, ptr, idx):
+    """:func:`run_fixed_step`'s peak of ``kind`` (0: |f|/N, 1: -N) of body ``i`` offered
+    the value ``now`` at the end of the step from ``t_start``: as its own key (window from
+    the step's start, ``before``), or, where the step end before is a peak of the last three
+    samples, the parabola's vertex through them (window from the start of the step before,
+    ``earlier``); then the samples shift."""
+    y0, y1 = samples[kind, 0, i], samples[kind, 1, i]
+    key = 4 + kind
+    if now > extremes[key, i]:
+        extremes[key, i] = now
+        extremes[1 + 2 * kind, i] = t_start
+        for p in range(ptr[i], ptr[i + 1]):
+            extreme_states[kind, 0, p] = before[0, idx[p]]
+            extreme_states[kind, 1, p] = before[1, idx[p]]
+    elif y1 >= y0 and y1 >= now and math.isfinite(y0) and math.isfinite(y1):
+        curvature = y0 - 2.0 * y1 + now  # <= 0; |now - y0| <= -curvature
+        vertex = y1 - (now - y0) ** 2 / (8.0 * curvature) if curvature < 0.0 else y1
+        if vertex > extremes[key, i]:
+            extremes[key, i] = vertex
+            extremes[1 + 2 * kind, i] = t_start - h
+            for p in range(ptr[i], ptr[i + 1]):
+                extreme_states[kind, 0, p] = earlier[0, idx[p]]
+                extreme_states[kind, 1, p] = earlier[1, idx[p]]
+    samples[kind, 0, i] = y1
+    samples[kind, 1, i] = now
 
 
 @njit(cache=True, error_model="numpy")

@@ -20,6 +20,7 @@ derivation shows.
 from __future__ import annotations
 
 import contextlib
+import gc
 import math
 import signal
 import threading
@@ -27,7 +28,6 @@ import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from types import FrameType
-from typing import NoReturn
 
 import sympy as sp
 
@@ -54,10 +54,29 @@ MAX_POLYNOMIAL = 12
 MAX_FACTORED = 4
 
 
+#: When the budget's alarm comes inside a garbage collector's callback or a finaliser, it is
+#: raised this much later (s): an exception leaving either is printed and dropped, never seen
+#: by the block (Hypothesis times the collector with such a callback).
+RETRY_SECONDS = 0.001
+
+
+def _swallowed(frame: FrameType | None) -> bool:
+    """Whether ``frame`` runs inside a garbage collector's callback or a ``__del__``, whose
+    exceptions Python prints as "ignored" instead of raising them in the interrupted code."""
+    callbacks = {getattr(callback, "__code__", None) for callback in gc.callbacks}
+    while frame is not None:
+        if frame.f_code in callbacks or frame.f_code.co_name == "__del__":
+            return True
+        frame = frame.f_back
+    return False
+
+
 @contextlib.contextmanager
 def time_budget(seconds: float | None) -> Iterator[None]:
     """Raise :class:`BudgetExceeded` inside the block after ``seconds`` (main thread on POSIX;
-    elsewhere the block runs without a limit)."""
+    elsewhere the block runs without a limit). An alarm that comes inside a garbage collector's
+    callback or a finaliser, where the exception would be dropped, is raised
+    :data:`RETRY_SECONDS` later."""
     usable = (
         seconds is not None
         and seconds > 0
@@ -68,7 +87,10 @@ def time_budget(seconds: float | None) -> Iterator[None]:
         yield
         return
 
-    def expire(signum: int, frame: FrameType | None) -> NoReturn:  # a signal handler
+    def expire(signum: int, frame: FrameType | None) -> None:  # a signal handler
+        if _swallowed(frame):  # raised here it would be lost: raised a moment later instead
+            signal.setitimer(signal.ITIMER_REAL, RETRY_SECONDS)
+            return
         raise BudgetExceeded
 
     previous = signal.signal(signal.SIGALRM, expire)

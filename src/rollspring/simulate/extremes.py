@@ -27,6 +27,8 @@ __all__ = ["continuous_extremes", "measured_period"]
 #: At most this many peaks of the output rows or the adaptive steps are refined per body and
 #: kind: those whose parabolas could be the highest.
 PEAKS_REFINED = 8
+#: An adaptive step is looked at in this many parts (its interpolant evaluated there).
+SUBSTEPS = 4
 
 
 def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list[float]]:
@@ -53,24 +55,36 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
     else:
         found = kernels.row_extremes(trajectory.friction, trajectory.normal, trajectory.slipping)
         ratio, ratio_row, normal, normal_row = (values.tolist() for values in found)
-    # candidates other than the kernel's: (kind, body) -> {(t, width): (value, key, margin)},
-    # maximised (|f|/N, -N); a peak's key is its parabola's vertex, margin the key's lift over
-    # the sample (what the parabola adds: the key's own error is a small part of it)
-    others: dict[tuple[str, int], dict[tuple[float, float], tuple[float, float, float]]] = {}
+    # candidates other than the kernel's: (kind, body) -> {(t, width, segment): (value, key,
+    # margin)}, maximised (|f|/N, -N); segment: the index in run.segments of the segment whose
+    # steps they are, -1 for an output row (refined in every segment holding it: a row at an
+    # event belongs to both sides); a peak's key is its parabola's vertex, margin the key's
+    # lift over the sample (what the parabola adds: the key's own error is a small part of it)
+    others: dict[tuple[str, int], dict[tuple[float, float, int], tuple[float, float, float]]]
+    others = {}
 
     def offer(
-        kind: str, i: int, value: float, t: float, width: float, key: float, margin: float
+        kind: str,
+        i: int,
+        value: float,
+        t: float,
+        width: float,
+        key: float,
+        margin: float,
+        segment: int = -1,
     ) -> None:
         place = others.setdefault((kind, i), {})
-        old = place.get((t, width))
+        old = place.get((t, width, segment))
         if old is None or key > old[1]:
-            place[(t, width)] = (value, key, margin)
+            place[(t, width, segment)] = (value, key, margin)
 
-    def offer_peaks(kind: str, i: int, at: FloatArray, values: FloatArray, width: float) -> None:
+    def offer_peaks(
+        kind: str, i: int, at: FloatArray, values: FloatArray, width: float, segment: int = -1
+    ) -> None:
         """The highest sample of ``values`` (maximised) at times ``at``, and the peaks whose
         parabolas could be the highest (at most :data:`PEAKS_REFINED`)."""
         k = int(np.argmax(values))
-        offer(kind, i, float(values[k]), float(at[k]), width, float(values[k]), 0.0)
+        offer(kind, i, float(values[k]), float(at[k]), width, float(values[k]), 0.0, segment)
         if values.size < 3:
             return
         keys = _peak_keys(at, values)
@@ -80,7 +94,7 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
         reach = keys[top] - margins[top]
         near = np.flatnonzero(keys + margins >= reach)
         for k in near[np.argsort(-keys[near], kind="stable")][:PEAKS_REFINED].tolist():
-            offer(kind, i, float(values[k]), float(at[k]), width, float(keys[k]), margins[k])
+            offer(kind, i, float(values[k]), float(at[k]), width, keys[k], margins[k], segment)
 
     times = trajectory.t
     for i in range(n):
@@ -103,81 +117,108 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
             if run.rolls[i]:
                 offer_peaks("ratio", i, times, row_ratio[:, i], spacing)
             offer_peaks("normal", i, times, -trajectory.normal[:, i], spacing)
-    for segment in run.segments:
-        if segment.samples.size < 2 or segment.slipping.all():
+    for index, segment in enumerate(run.segments):
+        if segment.samples.size < 2:
             continue
-        states = segment.evaluate(segment.samples)
+        # each adaptive step looked at in SUBSTEPS parts on its interpolant: a peak inside a
+        # long step shows there (its steps' ends alone can all lie far down its flanks)
+        at = _subdivided(segment.samples, SUBSTEPS)
+        states = segment.evaluate(at)
         slip = np.broadcast_to(segment.slipping, states[:, :n].shape)
         signs = np.broadcast_to(segment.sign, states[:, :n].shape)
         friction, normal_s, *_ = run.observe(states, slip, signs, segment.spin)
-        width = float(np.max(np.diff(segment.samples)))
+        width = float(np.max(np.diff(at)))
         for i in range(n):
             if run.rolls[i] and not segment.slipping[i]:
                 with np.errstate(divide="ignore", invalid="ignore"):
                     r = np.where(
                         normal_s[:, i] > 0, np.abs(friction[:, i]) / normal_s[:, i], np.inf
                     )
-                offer_peaks("ratio", i, segment.samples, r, width)
-            offer_peaks("normal", i, segment.samples, -normal_s[:, i], width)
+                offer_peaks("ratio", i, at, r, width, index)
+            offer_peaks("normal", i, at, -normal_s[:, i], width, index)
 
     result = {"ratio": [0.0] * n, "normal": [math.inf] * n}
-    maximised: dict[tuple[str, int], float] = {}  # the best refined so far (|f|/N, -N)
+    maximised: dict[tuple[str, int], float] = {}  # the best so far (|f|/N, -N)
+    kernel: dict[tuple[str, int], float] = {}  # the best of the kernel's peaks, refined
+
+    def reached(kind: str, i: int, value: float, into: dict[tuple[str, int], float]) -> None:
+        best = into.get((kind, i))
+        if best is None or value > best or math.isnan(value):
+            into[(kind, i)] = value
+
+    # the values reached at step ends and rows
+    for (kind, i), entries in run.step_extremes.items():
+        for entry in entries:
+            reached(kind, i, entry[0] if kind == "ratio" else -entry[0], maximised)
+    for (kind, i), place in others.items():
+        for value, _, _ in place.values():
+            reached(kind, i, value, maximised)
     # level centre springs (physics.springs_stay_level): N is the same at every instant,
     # exactly, so its smallest value is every row's and there is nothing to refine
-    for i in range(n):
-        if run.constant_normal:
-            floors = [v for v, _, _ in others.get(("normal", i), {}).values()]
-            kept = run.step_extremes.get(("normal", i))
-            if kept is not None:
-                floors.append(-kept[0])
-            if floors:
-                maximised[("normal", i)] = max(floors)
-    # the kernel's peaks, each refined from the state it kept (in one compiled call per model)
-    batched: dict[tuple[str, int], Any] = {}
-    for key, (value, t, width, local, _) in run.step_extremes.items():
-        if key in maximised or not math.isfinite(value):
+    constant = {("normal", i) for i in range(n)} if run.constant_normal else set()
+    # the kernel's peaks, one per rolling segment, each refined from the state it kept (in one
+    # compiled call per segment's model)
+    groups: dict[int, list[tuple[tuple[str, int], Any]]] = {}
+    for (kind, i), entries in run.step_extremes.items():
+        if (kind, i) in constant:
             continue
-        if local is not None and getattr(local, "start", None) is not None:
-            batched[key] = (value, t, width, local)
-        else:
-            sign = 1.0 if key[0] == "ratio" else -1.0
-            maximised[key] = sign * _refine(run, key[0], key[1], value, t, width, local)
-    groups: dict[int, dict[tuple[str, int], Any]] = {}  # one per rolling segment (its model)
-    for key, entry in batched.items():
-        groups.setdefault(id(entry[3].start.model), {})[key] = entry
+        for value, t, width, local, _ in entries:
+            if not math.isfinite(value):
+                continue
+            start = None if local is None else local.start
+            if start is not None:
+                groups.setdefault(id(start.model), []).append(((kind, i), (value, t, width, local)))
+            else:
+                sign = 1.0 if kind == "ratio" else -1.0
+                reached(kind, i, sign * _refine(run, kind, i, value, t, width, local), kernel)
     for group in groups.values():
-        for (kind, i), value in _refine_together(group, run).items():
-            maximised[(kind, i)] = value if kind == "ratio" else -value
-    kernel_refined = dict(maximised)
-    # the other candidates where they could be higher
+        for ((kind, i), _), value in zip(group, _refine_together(group, run), strict=True):
+            reached(kind, i, value if kind == "ratio" else -value, kernel)
+    for (kind, i), value in kernel.items():
+        reached(kind, i, value, maximised)
+    # the other candidates where they could be higher than the kernel's peak: always without
+    # one, else where the sample (a row) or the parabola with its margin (a step) beats it
     for (kind, i), place in others.items():
-        if run.constant_normal and kind == "normal":
+        if (kind, i) in constant:
             continue
         sign = 1.0 if kind == "ratio" else -1.0
-        top = kernel_refined.get((kind, i))
+        top = kernel.get((kind, i))
         # the highest sample, and the peaks whose parabolas reach the highest's less its margin
         ranked = sorted(place, key=lambda c: place[c][1], reverse=True)
         reach = place[ranked[0]][1] - place[ranked[0]][2]
         chosen = [c for c in ranked if place[c][1] + place[c][2] >= reach][:PEAKS_REFINED]
         highest = max(place, key=lambda c: place[c][0])
-        for t, width in [*chosen, *([highest] if highest not in chosen else [])]:
-            value = place[(t, width)][0]
-            if top is not None and not value > top:
+        for t, width, index in [*chosen, *([highest] if highest not in chosen else [])]:
+            value, key, margin = place[(t, width, index)]
+            if not math.isfinite(value):
+                continue
+            if top is not None and not (value if index < 0 else key + margin) > top:
                 continue  # below the kernel peak's refined value
-            refined = value
-            if math.isfinite(value):
-                refined = sign * _refine(run, kind, i, sign * value, t, width)
-            best = maximised.get((kind, i))
-            if best is None or refined > best or math.isnan(refined):
-                maximised[(kind, i)] = refined
+            holding: list[Segment | None] = (
+                [run.segments[index]]
+                if index >= 0
+                else [s for s in run.segments if s.t0 <= t <= s.t1] or [None]
+            )
+            for holder in holding:
+                refined = sign * _refine(run, kind, i, sign * value, t, width, holder)
+                reached(kind, i, refined, maximised)
     for (kind, i), value in maximised.items():
         result[kind][i] = float(value if kind == "ratio" else -value)
     return result
 
 
+def _subdivided(times: FloatArray, parts: int) -> FloatArray:
+    """``times`` (ascending) with each interval cut into ``parts`` equal ones."""
+    fractions = np.arange(parts) / parts
+    inner = times[:-1, None] + np.diff(times)[:, None] * fractions[None, :]
+    return np.append(inner.ravel(), times[-1])
+
+
 def _peak_keys(times: FloatArray, values: FloatArray) -> FloatArray:
     r"""Each sample's key for the highest peak: its value, and where it is a peak of its two
-    neighbours (at least both), the vertex of the parabola through the three (times
+    neighbours (at least both; at an end, where the peak of the parabola through the first or
+    last three lies between it and its neighbour), the vertex of the parabola through the three
+    (times
     :math:`t_0 < t_1 < t_2`): :math:`p(t) = y_0 + d_{01}(t - t_0) + a(t - t_0)(t - t_1)`,
     at :math:`p'(t^*) = 0`. Near-equal peaks are then told apart to :math:`O(h^4)`, not
     :math:`O(h^2)`."""
@@ -195,22 +236,26 @@ def _peak_keys(times: FloatArray, values: FloatArray) -> FloatArray:
         vertex = y0 + d01 * (vertex_t - t0) + a * (vertex_t - t0) * (vertex_t - t1)
     inner = keys[1:-1]
     inner[peak] = np.maximum(inner[peak], vertex[peak])
+    # the ends: a peak between the first two samples (the last two) of the first (last) three
+    for end, triple, lo, hi in ((0, 0, t0[0], t1[0]), (-1, -1, t1[-1], t2[-1])):
+        if a[triple] < 0 and lo <= vertex_t[triple] <= hi and np.isfinite(vertex[triple]):
+            keys[end] = max(keys[end], vertex[triple])
     return keys
 
 
-def _refine_together(
-    entries: dict[tuple[str, int], Any], run: RunState
-) -> dict[tuple[str, int], float]:
-    """:func:`_refine` for many extremes at once, each on its own two-step segment from the
-    state the kernel kept (one compiled call for all of them; in a large system each on the
-    model of its body's ball, :func:`kernels.refine_windowed`)."""
-    keys = list(entries)
-    first = entries[keys[0]][3].start
+def _refine_together(entries: list[tuple[tuple[str, int], Any]], run: RunState) -> list[float]:
+    """:func:`_refine` for many extremes at once, each ((kind, body), (value, t, width,
+    segment)) on its own two-step segment from the state the kernel kept (one compiled call
+    for all of them; in a large system each on the model of its body's ball,
+    :func:`kernels.refine_windowed`); the refined values in order."""
+    keys = [key for key, _ in entries]
+    kept = [entry for _, entry in entries]
+    first = kept[0][3].start
     kinds = np.array([0 if kind == "ratio" else 1 for kind, _ in keys], dtype=np.int64)
     bodies = np.array([i for _, i in keys], dtype=np.int64)
     sign = [1.0 if kind == "ratio" else -1.0 for kind, _ in keys]
-    best = np.array([entries[k][0] * sign[j] for j, k in enumerate(keys)])
-    starts = [entries[k][3].start for k in keys]
+    best = np.array([entry[0] * sign[j] for j, entry in enumerate(kept)])
+    starts = [entry[3].start for entry in kept]
     spans = np.array([min(2.0 * start.h, start.span) for start in starts])
     if first.ball is None:
         q0 = np.array([start.q for start in starts])
@@ -235,7 +280,7 @@ def _refine_together(
             run.links(),
             spans,
         ).tolist()
-    return {key: refined[j] * sign[j] for j, key in enumerate(keys)}
+    return [refined[j] * sign[j] for j in range(len(keys))]
 
 
 def _refine(

@@ -360,30 +360,27 @@ class RollingSegments(RunState):
                     kind == "ratio" and not self.rolls[i]
                 ):
                     continue
-                old = self.step_extremes.get((kind, i))
-                if old is not None:  # a value reached in an earlier segment stays the floor
-                    value = max(value, old[0]) if kind == "ratio" else min(value, old[0])
-                if old is None or key > old[4]:
-                    t_start = found[row + 1][i]
-                    # a normal force that cannot change is never refined: no segment for it
-                    lo, hi = ball_ptr[i], ball_ptr[i + 1]
-                    local = (
-                        None
-                        if kind == "normal" and self.constant_normal
-                        else self._local(
-                            model,
-                            x0,
-                            t_start,
-                            extreme_states[k, 0, lo:hi],
-                            extreme_states[k, 1, lo:hi],
-                            h,
-                            ball_idx[lo:hi] if self.plan.windowed else None,
-                            until,
-                        )
+                # every rolling segment's peak is kept, each refined after the run
+                t_start = found[row + 1][i]
+                # a normal force that cannot change is never refined: no segment for it
+                lo, hi = ball_ptr[i], ball_ptr[i + 1]
+                local = (
+                    None
+                    if kind == "normal" and self.constant_normal
+                    else self._local(
+                        model,
+                        x0,
+                        t_start,
+                        extreme_states[k, 0, lo:hi],
+                        extreme_states[k, 1, lo:hi],
+                        h,
+                        ball_idx[lo:hi] if self.plan.windowed else None,
+                        until,
                     )
-                    self.step_extremes[(kind, i)] = (value, t_start + h, h, local, key)
-                else:
-                    self.step_extremes[(kind, i)] = (value, *old[1:])
+                )
+                self.step_extremes.setdefault((kind, i), []).append(
+                    (value, t_start + h, h, local, key)
+                )
         self.crossings.append(
             (
                 int(crossing[0]),

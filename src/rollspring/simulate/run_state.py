@@ -186,12 +186,12 @@ class RunState:
         self.e0 = 0.0  # the energy at release (set when the run starts)
         self.energy_error = 0.0  # the relative energy error that ended the run, if one did
         self.e_segment = 0.0  # the energy at the start of the current rolling segment
-        #: (kind, body) -> (value, time, width, segment, key): the kernel's extremes over its
-        #: steps, the value reached at a step end (the largest |f|/N, the smallest N) and the
-        #: peak chosen by its key (run_fixed_step's docstring) with the two-step segment
-        #: around it to refine it on
+        #: (kind, body) -> per rolling segment (value, time, width, segment, key): the
+        #: kernel's extremes over its steps, the value reached at a step end (the largest
+        #: |f|/N, the smallest N) and the peak chosen by its key (run_fixed_step's docstring)
+        #: with the two-step segment around it to refine it on
         self.step_extremes: dict[
-            tuple[str, int], tuple[float, float, float, Segment | None, float]
+            tuple[str, int], list[tuple[float, float, float, Segment | None, float]]
         ] = {}
         #: per rolling segment: (upward crossings of the mode signal, [first, last] segments)
         self.crossings: list[tuple[int, list[Segment]]] = []

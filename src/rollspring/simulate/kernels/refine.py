@@ -80,12 +80,15 @@ def _refine_one(model, coeffs, h, q0, v0, kind, b, best, work, span):
         k = min(max(int(np.argmax(values)), 1), 7)
         a, c = values[k - 1], values[k + 1]
         middle = values[k]
-        out = max(out, np.max(values))
+        out = max(out, np.max(values))  # values the motion reaches
+        # the vertex of the last grid's parabola only: on the coarser grids (a spacing of h/4
+        # and h/32) it is an estimate that can lie past the peak (1e-3 at a sharp one)
         curvature = a - 2.0 * middle + c
+        vertex = -np.inf
         if math.isfinite(a + middle + c) and curvature < 0.0 and abs(a - c) <= -2.0 * curvature:
-            out = max(out, middle - (c - a) ** 2 / (8.0 * curvature))
+            vertex = middle - (c - a) ** 2 / (8.0 * curvature)
         lo, hi = times[k - 1], times[k + 1]
-    return out
+    return max(out, vertex)
 
 
 @njit(cache=True, error_model="numpy")

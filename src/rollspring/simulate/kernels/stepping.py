@@ -230,8 +230,9 @@ def run_fixed_step(
       smallest N (row 2): values the motion reaches; and the peak to refine, of each kind: its
       key (rows 4 and 5, as maximised quantities |f|/N and -N) and the start of its window of
       two steps (rows 1 and 3). A step end's own value is a key (its window the step before
-      and after it); where the step end before is a peak of the samples (at least both
-      neighbours), the vertex of the parabola through the three,
+      and after it); where the parabola through the last three peaks between the first and
+      the last of them (the middle one the highest; or a peak beside a segment's first or
+      last sample), its vertex,
       :math:`y_1 + (y_2 - y_0)^2 / (8 (2 y_1 - y_0 - y_2))`, is its key, its window the two
       steps around it: between near-equal peaks the key picks the higher to :math:`O(h^4)`,
       where the samples alone are off by up to :math:`(\omega h)^2/8` relative. ``samples``
@@ -364,9 +365,16 @@ def run_fixed_step(
                 else:
                     now = -normal
                 y0, y1 = samples[kind, 0, i], samples[kind, 1, i]
-                # (a flat run of samples, a constant N, is no peak)
-                if now > extremes[4 + kind, i] or (
-                    y1 >= y0 and y1 >= now and (y1 > y0 or y1 > now)
+                # a peak of the parabola through the three inside the last two steps (the
+                # middle sample the highest, or a peak next to the first sample of a segment
+                # or the last); a flat run of samples, a constant N, is none
+                # (its vertex is at most y1 + |now - y0|/4: only one that can beat the key)
+                curvature = y0 - 2.0 * y1 + now
+                best = extremes[4 + kind, i]
+                if now > best or (
+                    y1 + 0.25 * abs(now - y0) > best
+                    and curvature < 0.0
+                    and abs(now - y0) <= -2.0 * curvature
                 ):
                     _peak(
                         kind,
@@ -417,8 +425,8 @@ def _peak(kind, i, y0, y1, now, t_start, h, extremes, extreme_states, before, ea
     """:func:`run_fixed_step`'s peak of ``kind`` (0: |f|/N, 1: -N) of body ``i``, sampled
     ``y0``, ``y1``, ``now`` at the last three step ends, the last at the end of the step from
     ``t_start``: ``now`` as its own key (window from that step's start, ``before``), or, where
-    ``y1`` is a peak of the three, the vertex of the parabola through them (window from the
-    start of the step before, ``earlier``), kept where it beats the key so far."""
+    the parabola through the three peaks inside the last two steps, its vertex (window from
+    the start of the step before, ``earlier``), kept where it beats the key so far."""
     key = 4 + kind
     if now > extremes[key, i]:
         extremes[key, i] = now
@@ -427,8 +435,8 @@ def _peak(kind, i, y0, y1, now, t_start, h, extremes, extreme_states, before, ea
             extreme_states[kind, 0, p] = before[0, idx[p]]
             extreme_states[kind, 1, p] = before[1, idx[p]]
         return
-    curvature = y0 - 2.0 * y1 + now  # <= 0; |now - y0| <= -curvature
-    vertex = y1 - (now - y0) ** 2 / (8.0 * curvature) if curvature < 0.0 else y1
+    curvature = y0 - 2.0 * y1 + now  # < 0; |now - y0| <= -2 curvature: inside the steps
+    vertex = y1 - (now - y0) ** 2 / (8.0 * curvature)
     if vertex > extremes[key, i]:
         extremes[key, i] = vertex
         extremes[1 + 2 * kind, i] = t_start - h

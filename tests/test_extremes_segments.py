@@ -1,5 +1,5 @@
 """simulate's summary extremes (the largest |f|/N while rolling, the smallest N) against the
-same run looked at densely, on seven random systems where a reviewer or a scan found them wrong
+same run looked at densely, on nine random systems where a reviewer or a scan found them wrong
 (30 Nov):
 stick-slip runs of many segments, sharp peaks, peaks inside long adaptive steps
 (tests/data/extremes_cases.json says what each got wrong and by how much).

@@ -146,7 +146,9 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
         if best is None or value > best or math.isnan(value):
             into[(kind, i)] = value
 
-    # the values reached at step ends and rows
+    # the values reached at step ends and rows, and mu_s where a body began to slip
+    for i, mu in run.slip_ratios.items():
+        reached("ratio", i, mu, maximised)
     for (kind, i), entries in run.step_extremes.items():
         for entry in entries:
             reached(kind, i, entry[0] if kind == "ratio" else -entry[0], maximised)

@@ -186,6 +186,10 @@ class RunState:
         self.e0 = 0.0  # the energy at release (set when the run starts)
         self.energy_error = 0.0  # the relative energy error that ended the run, if one did
         self.e_segment = 0.0  # the energy at the start of the current rolling segment
+        #: body -> mu_s: bodies that began to slip while rolling, where |f|/N reaches mu_s
+        #: at the event's instant, exactly (the root of mu_s N - |f|): no step end or row need
+        #: fall there, and a rise into the slip is the segment's highest |f|/N
+        self.slip_ratios: dict[int, float] = {}
         #: (kind, body) -> per rolling segment (value, time, width, segment, key): the
         #: kernel's extremes over its steps, the value reached at a step end (the largest
         #: |f|/N, the smallest N) and the peak chosen by its key (run_fixed_step's docstring)
@@ -357,6 +361,8 @@ class RunState:
         """Record an event; returns True when the run ends here."""
         name = self.arrays.ids[body]
         self.events.append({"kind": kind, "time": t, "body": name})
+        if kind == "slip":
+            self.slip_ratios[int(body)] = float(self.arrays.mu_static[body])
         if kind == "liftoff":
             self.status = RunStatus.LIFTOFF
             self.message = (

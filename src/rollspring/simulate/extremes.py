@@ -62,6 +62,12 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
     # lift over the sample (what the parabola adds: the key's own error is a small part of it)
     others: dict[tuple[str, int], dict[tuple[float, float, int], tuple[float, float, float]]]
     others = {}
+    # per kind, the largest value offered so far of each body (maximised): a segment's peaks
+    # whose parabolas stay below it are not offered
+    floors = {kind: np.full(n, -np.inf) for kind in ("ratio", "normal")}
+    for (kind, i), entries in run.step_extremes.items():
+        for entry in entries:
+            floors[kind][i] = max(floors[kind][i], entry[0] if kind == "ratio" else -entry[0])
 
     def offer(
         kind: str,
@@ -77,19 +83,37 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
         old = place.get((t, width, segment))
         if old is None or key > old[1]:
             place[(t, width, segment)] = (value, key, margin)
+        if value > floors[kind][i]:
+            floors[kind][i] = value
 
     def offer_peaks(
-        kind: str, i: int, at: FloatArray, values: FloatArray, width: float, segment: int = -1
+        kind: str, at: FloatArray, values: FloatArray, width: float, segment: int = -1
     ) -> None:
-        """The highest sample of ``values`` (maximised) at times ``at``, and the peaks whose
-        parabolas could be the highest (at most :data:`PEAKS_REFINED`)."""
+        """Of each body (``values`` (samples, n), maximised, at times ``at``) whose samples'
+        parabolas could reach its floor: the highest sample, and the peaks whose parabolas
+        could be the highest (at most :data:`PEAKS_REFINED`)."""
+        keys = _peak_keys(at, values)
+        with np.errstate(invalid="ignore"):
+            margins = np.where(np.isfinite(keys), keys - values, 0.0)
+            upper = np.max(np.where(np.isnan(keys), -np.inf, keys + margins), axis=0)
+            reaching = ~(upper < floors[kind])
+        for i in np.flatnonzero(reaching & np.any(values > -np.inf, axis=0)).tolist():
+            offer_body(kind, i, at, values[:, i], keys[:, i], margins[:, i], width, segment)
+
+    def offer_body(
+        kind: str,
+        i: int,
+        at: FloatArray,
+        values: FloatArray,
+        keys: FloatArray,
+        margins: FloatArray,
+        width: float,
+        segment: int,
+    ) -> None:
         k = int(np.argmax(values))
         offer(kind, i, float(values[k]), float(at[k]), width, float(values[k]), 0.0, segment)
         if values.size < 3:
             return
-        keys = _peak_keys(at, values)
-        with np.errstate(invalid="ignore"):
-            margins = np.where(np.isfinite(keys), keys - values, 0.0)
         top = int(np.argmax(keys))
         reach = keys[top] - margins[top]
         near = np.flatnonzero(keys + margins >= reach)
@@ -113,10 +137,9 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
                     trajectory.normal > 0, np.abs(trajectory.friction) / trajectory.normal, np.inf
                 ),
             )
-        for i in range(n):
-            if run.rolls[i]:
-                offer_peaks("ratio", i, times, row_ratio[:, i], spacing)
-            offer_peaks("normal", i, times, -trajectory.normal[:, i], spacing)
+        row_ratio[:, ~run.rolls] = -np.inf
+        offer_peaks("ratio", times, row_ratio, spacing)
+        offer_peaks("normal", times, -trajectory.normal, spacing)
     for index, segment in enumerate(run.segments):
         if segment.samples.size < 2:
             continue
@@ -128,14 +151,11 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
         signs = np.broadcast_to(segment.sign, states[:, :n].shape)
         friction, normal_s, *_ = run.observe(states, slip, signs, segment.spin)
         width = float(np.max(np.diff(at)))
-        for i in range(n):
-            if run.rolls[i] and not segment.slipping[i]:
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    r = np.where(
-                        normal_s[:, i] > 0, np.abs(friction[:, i]) / normal_s[:, i], np.inf
-                    )
-                offer_peaks("ratio", i, at, r, width, index)
-            offer_peaks("normal", i, at, -normal_s[:, i], width, index)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = np.where(normal_s > 0, np.abs(friction) / normal_s, np.inf)
+        r[:, ~(run.rolls & ~segment.slipping)] = -np.inf  # |f|/N only of bodies rolling here
+        offer_peaks("ratio", at, r, width, index)
+        offer_peaks("normal", at, -normal_s, width, index)
 
     result = {"ratio": [0.0] * n, "normal": [math.inf] * n}
     maximised: dict[tuple[str, int], float] = {}  # the best so far (|f|/N, -N)
@@ -225,9 +245,10 @@ def _peak_keys(times: FloatArray, values: FloatArray) -> FloatArray:
     at :math:`p'(t^*) = 0`. Near-equal peaks are then told apart to :math:`O(h^4)`, not
     :math:`O(h^2)`."""
     keys = np.array(values, dtype=np.float64)
-    if keys.size < 3:
+    if keys.shape[0] < 3:
         return keys
-    t0, t1, t2 = times[:-2], times[1:-1], times[2:]
+    at = times if values.ndim == 1 else times[:, None]
+    t0, t1, t2 = at[:-2], at[1:-1], at[2:]
     y0, y1, y2 = values[:-2], values[1:-1], values[2:]
     with np.errstate(all="ignore"):
         d01 = (y1 - y0) / (t1 - t0)
@@ -236,12 +257,14 @@ def _peak_keys(times: FloatArray, values: FloatArray) -> FloatArray:
         peak &= a < 0
         vertex_t = 0.5 * (t0 + t1) - d01 / (2 * a)
         vertex = y0 + d01 * (vertex_t - t0) + a * (vertex_t - t0) * (vertex_t - t1)
-    inner = keys[1:-1]
-    inner[peak] = np.maximum(inner[peak], vertex[peak])
-    # the ends: a peak between the first two samples (the last two) of the first (last) three
-    for end, triple, lo, hi in ((0, 0, t0[0], t1[0]), (-1, -1, t1[-1], t2[-1])):
-        if a[triple] < 0 and lo <= vertex_t[triple] <= hi and np.isfinite(vertex[triple]):
-            keys[end] = max(keys[end], vertex[triple])
+        inner = keys[1:-1]
+        inner[peak] = np.maximum(inner[peak], vertex[peak])
+        # the ends: a peak between the first two samples (the last two) of the first (last)
+        # three
+        for end, triple, lo, hi in ((0, 0, t0[0], t1[0]), (-1, -1, t1[-1], t2[-1])):
+            inside = (a[triple] < 0) & (lo <= vertex_t[triple]) & (vertex_t[triple] <= hi)
+            inside &= np.isfinite(vertex[triple])
+            keys[end] = np.where(inside, np.maximum(keys[end], vertex[triple]), keys[end])
     return keys
 
 

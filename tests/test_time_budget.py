@@ -9,6 +9,7 @@ from __future__ import annotations
 import gc
 import sys
 import time
+import weakref
 from collections.abc import Iterator
 
 import pytest
@@ -78,6 +79,34 @@ def test_an_alarm_inside_a_finaliser_is_raised_in_the_block(dropped) -> None:
         "busy",
         "expire",
     ]
+
+
+def test_an_alarm_inside_a_weak_reference_callback_of_a_collection_is_raised_in_the_block(
+    dropped,
+) -> None:
+    """The collector calls the callbacks of weak references to the garbage it frees (CI, 30 Nov:
+    the retried alarm landed in a WeakSet's)."""
+
+    class Node:
+        pass
+
+    node = Node()
+    node.cycle = node  # type: ignore[attr-defined]  # freed by the collector only
+    seen: list[bool] = []
+
+    def callback(_: object) -> None:
+        seen.append(True)
+        busy()
+
+    reference = weakref.ref(node, callback)
+    del node
+    with pytest.raises(BudgetExceeded) as raised, time_budget(BUDGET):
+        gc.collect()
+        assert seen == [True]
+        busy()
+    assert dropped == []
+    assert reference() is None
+    assert [entry.name for entry in raised.traceback][-2:] == ["busy", "expire"]
 
 
 def test_an_alarm_in_plain_code_is_raised_there() -> None:

@@ -74,9 +74,9 @@ def _swallowed(frame: FrameType | None) -> bool:
 @contextlib.contextmanager
 def time_budget(seconds: float | None) -> Iterator[None]:
     """Raise :class:`BudgetExceeded` inside the block after ``seconds`` (main thread on POSIX;
-    elsewhere the block runs without a limit). An alarm that comes inside a garbage collector's
-    callback or a finaliser, where the exception would be dropped, is raised
-    :data:`RETRY_SECONDS` later."""
+    elsewhere the block runs without a limit). An alarm that comes while the garbage collector
+    runs (its callbacks, the finalisers and weak-reference callbacks it calls) or inside a
+    ``__del__``, where the exception would be dropped, is raised :data:`RETRY_SECONDS` later."""
     usable = (
         seconds is not None
         and seconds > 0
@@ -87,12 +87,18 @@ def time_budget(seconds: float | None) -> Iterator[None]:
         yield
         return
 
+    collecting = [False]  # a garbage collection under way: its callbacks drop exceptions
+
+    def track(phase: str, info: dict[str, int]) -> None:
+        collecting[0] = phase == "start"
+
     def expire(signum: int, frame: FrameType | None) -> None:  # a signal handler
-        if _swallowed(frame):  # raised here it would be lost: raised a moment later instead
+        if collecting[0] or _swallowed(frame):  # raised here it would be lost: a moment later
             signal.setitimer(signal.ITIMER_REAL, RETRY_SECONDS)
             return
         raise BudgetExceeded
 
+    gc.callbacks.append(track)
     previous = signal.signal(signal.SIGALRM, expire)
     signal.setitimer(signal.ITIMER_REAL, seconds)
     try:
@@ -100,6 +106,7 @@ def time_budget(seconds: float | None) -> Iterator[None]:
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
+        gc.callbacks.remove(track)
 
 
 @dataclass

@@ -34,15 +34,17 @@ SUBSTEPS = 4
 def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list[float]]:
     r"""max |f|/N (while rolling) and min N per body over the whole run.
 
-    Candidates: the peak the compiled kernel chose over every step (by the vertex of the
-    parabola through three step ends, :func:`kernels.run_fixed_step`), and, from the output
-    rows and the adaptive integrator's steps, the sample whose three-point parabola peaks
-    highest (:func:`_peak_keys`) and the highest sample. The kernel's peak is refined on the
-    integrator itself (bounded search over its window of two steps: the instant to 3e-5 of the
-    window, at most 0.5/omega, so the value, quadratic about the extreme, to about 1e-9
-    relative); the others on the integrator's interpolant where they could be higher: always
-    without a kernel peak, else where their sample is above the kernel peak's refined value.
-    The largest (smallest) refined value is the result. Choosing by the samples alone, two
+    Candidates: the peak the compiled kernel chose in each rolling segment (by the vertex of
+    the parabola through three step ends, :func:`kernels.run_fixed_step`); from the output
+    rows and the adaptive integrator's steps (each looked at in :data:`SUBSTEPS` parts), the
+    highest sample and the peaks whose three-point parabolas could be the highest
+    (:func:`_peak_keys`); and mu_s for a body that began to slip while rolling (reached at that
+    instant exactly). The kernel's peaks are refined on the integrator itself (a grid search
+    over each window of two steps, the last grid's parabola: about 1e-9 relative); the others
+    on the interpolant of their own segment (a row: of every segment holding it) where they
+    could be higher: always without a kernel peak, else where a row's sample, or an adaptive
+    peak's parabola with its margin, is above the kernel peaks' refined value. The largest
+    (smallest) value reached is the result. Choosing by the samples alone, two
     near-equal peaks were told apart only to :math:`(\omega h)^2/8` relative (0.2 % at the
     long steps of the 8th-order scheme)."""
     n = run.n

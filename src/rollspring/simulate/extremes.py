@@ -64,8 +64,8 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
     # lift over the sample (what the parabola adds: the key's own error is a small part of it)
     others: dict[tuple[str, int], dict[tuple[float, float, int], tuple[float, float, float]]]
     others = {}
-    # per kind, the largest value offered so far of each body (maximised): a segment's peaks
-    # whose parabolas stay below it are not offered
+    # per kind, the largest value reached of each body (maximised; offered so far, then every
+    # adaptive segment's samples): peaks whose parabolas stay below it are not offered
     floors = {kind: np.full(n, -np.inf) for kind in ("ratio", "normal")}
     for (kind, i), entries in run.step_extremes.items():
         for entry in entries:
@@ -89,16 +89,21 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
             floors[kind][i] = value
 
     def offer_peaks(
-        kind: str, at: FloatArray, values: FloatArray, width: float, segment: int = -1
+        kind: str,
+        at: FloatArray,
+        values: FloatArray,
+        width: float,
+        segment: int = -1,
+        bodies: np.ndarray | None = None,
     ) -> None:
         """Of each body (``values`` (samples, n), maximised, at times ``at``) whose samples'
-        parabolas could reach its floor: the highest sample, and the peaks whose parabolas
-        could be the highest (at most :data:`PEAKS_REFINED`)."""
+        parabolas could reach its floor (or of ``bodies``, a mask): the highest sample, and
+        the peaks whose parabolas could be the highest (at most :data:`PEAKS_REFINED`)."""
         keys = _peak_keys(at, values)
         with np.errstate(invalid="ignore"):
             margins = np.where(np.isfinite(keys), keys - values, 0.0)
             upper = np.max(np.where(np.isnan(keys), -np.inf, keys + margins), axis=0)
-            reaching = ~(upper < floors[kind])
+            reaching = ~(upper < floors[kind]) if bodies is None else bodies
         for i in np.flatnonzero(reaching & np.any(values > -np.inf, axis=0)).tolist():
             offer_body(kind, i, at, values[:, i], keys[:, i], margins[:, i], width, segment)
 
@@ -142,22 +147,42 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
         row_ratio[:, ~run.rolls] = -np.inf
         offer_peaks("ratio", times, row_ratio, spacing)
         offer_peaks("normal", times, -trajectory.normal, spacing)
+    # the adaptive segments in two passes: first every segment's samples raise the floors
+    # (values reached) and give each body's highest parabola there; then the segments are
+    # looked at again where a body's parabolas reach its floor, and only those bodies offered
+    # (a floor raised segment by segment let most bodies of a long chain through)
+    # (a floor raised segment by segment let most bodies of a long chain through). A body is
+    # offered where its parabolas could beat its floor, in the first segment whose sample
+    # set it, and where a sample is NaN (reported as such)
+    looked: list[tuple[int, dict[str, FloatArray]]] = []
+    setter = {kind: np.full(n, -1) for kind in floors}  # the segment whose sample set a floor
     for index, segment in enumerate(run.segments):
         if segment.samples.size < 2:
             continue
-        # each adaptive step looked at in SUBSTEPS parts on its interpolant: a peak inside a
-        # long step shows there (its steps' ends alone can all lie far down its flanks)
-        at = _subdivided(segment.samples, SUBSTEPS)
-        states = segment.evaluate(at)
-        slip = np.broadcast_to(segment.slipping, states[:, :n].shape)
-        signs = np.broadcast_to(segment.sign, states[:, :n].shape)
-        friction, normal_s, *_ = run.observe(states, slip, signs, segment.spin)
-        width = float(np.max(np.diff(at)))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = np.where(normal_s > 0, np.abs(friction) / normal_s, np.inf)
-        r[:, ~(run.rolls & ~segment.slipping)] = -np.inf  # |f|/N only of bodies rolling here
-        offer_peaks("ratio", at, r, width, index)
-        offer_peaks("normal", at, -normal_s, width, index)
+        at, width, sampled = _segment_samples(run, segment)
+        wanted = {}
+        for kind, values in sampled.items():
+            keys = _peak_keys(at, values)
+            with np.errstate(invalid="ignore"):
+                margins = np.where(np.isfinite(keys), keys - values, 0.0)
+                upper = np.max(np.where(np.isnan(keys), -np.inf, keys + margins), axis=0)
+                highest = np.fmax.reduce(values, axis=0)
+                raised = highest > floors[kind]
+            setter[kind][raised] = index
+            floors[kind] = np.where(raised, highest, floors[kind])
+            # a body whose samples here are all alike cannot rise above them: its tie with
+            # the floor is not asked again (a long chain's bodies at rest)
+            alike = np.all(values == values[:1], axis=0)
+            upper = np.where(alike, np.nextafter(upper, -np.inf), upper)
+            wanted[kind] = np.where(np.any(np.isnan(values), axis=0), np.inf, upper)
+        looked.append((index, wanted))
+    for index, wanted in looked:
+        asked = {kind: (wanted[kind] >= floors[kind]) | (setter[kind] == index) for kind in wanted}
+        if not any(np.any(mask) for mask in asked.values()):
+            continue
+        at, width, sampled = _segment_samples(run, run.segments[index])
+        for kind, values in sampled.items():
+            offer_peaks(kind, at, values, width, index, asked[kind])
 
     result = {"ratio": [0.0] * n, "normal": [math.inf] * n}
     maximised: dict[tuple[str, int], float] = {}  # the best so far (|f|/N, -N)
@@ -229,6 +254,25 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
     for (kind, i), value in maximised.items():
         result[kind][i] = float(value if kind == "ratio" else -value)
     return result
+
+
+def _segment_samples(
+    run: RunState, segment: Segment
+) -> tuple[FloatArray, float, dict[str, FloatArray]]:
+    """An adaptive segment's samples: each step looked at in :data:`SUBSTEPS` parts on its
+    interpolant (a peak inside a long step shows there; its steps' ends alone can all lie far
+    down its flanks), the widest part, and per kind the maximised values ((samples, n): |f|/N
+    of the bodies rolling here, -inf for the others, inf where N <= 0; -N)."""
+    n = run.n
+    at = _subdivided(segment.samples, SUBSTEPS)
+    states = segment.evaluate(at)
+    slip = np.broadcast_to(segment.slipping, states[:, :n].shape)
+    signs = np.broadcast_to(segment.sign, states[:, :n].shape)
+    friction, normal, *_ = run.observe(states, slip, signs, segment.spin)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(normal > 0, np.abs(friction) / normal, np.inf)
+    ratio[:, ~(run.rolls & ~segment.slipping)] = -np.inf  # |f|/N only of bodies rolling here
+    return at, float(np.max(np.diff(at))), {"ratio": ratio, "normal": -normal}
 
 
 def _subdivided(times: FloatArray, parts: int) -> FloatArray:

@@ -492,15 +492,15 @@ def test_the_template_is_the_one_xarray_writes(tmp_path):
     """The store's template is made with Zarr directly (a tenth of xarray's time, written while
     the first chunks step); every array's and the group's metadata, consolidated metadata
     included, is what ``xarray.Dataset.to_zarr(compute=False)`` writes for the same dataset
-    (given the store's zstd level, 1 where Zarr's default is 0)."""
+    (given the store's compressor, Blosc where Zarr's default is zstd)."""
     import json
     import warnings
 
     import dask.array as da
-    from zarr.codecs import ZstdCodec
+    from zarr.codecs import BloscCodec
 
     from rollspring.service.sweeps.grid import Grid, unit_of
-    from rollspring.service.sweeps.store import _INTEGER, VARIABLES, ZSTD_LEVEL, write_template
+    from rollspring.service.sweeps.store import _INTEGER, COMPRESSOR, VARIABLES, write_template
     from rollspring.simulate.status import FLAG_MEANINGS, FLAG_VALUES
 
     grid = Grid(
@@ -535,9 +535,8 @@ def test_the_template_is_the_one_xarray_writes(tmp_path):
         }
         if dtype != "float64":
             encoding[name]["fill_value"] = fill
-    zstd = (ZstdCodec(level=ZSTD_LEVEL, checksum=False),)
     for name in [*coords, *metrics]:
-        encoding.setdefault(name, {})["compressors"] = zstd
+        encoding.setdefault(name, {})["compressors"] = (BloscCodec(**COMPRESSOR),)
     theirs = tmp_path / "theirs.zarr"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # Zarr v3's unspecified string type, consolidation
@@ -551,34 +550,53 @@ def test_the_template_is_the_one_xarray_writes(tmp_path):
     xr.testing.assert_identical(xr.open_zarr(ours).load(), xr.open_zarr(theirs).load())
 
 
-def test_a_store_is_written_at_the_store_zstd_level_and_resumed_at_its_own(system, tmp_path):
-    """A new store's arrays say zstd at ZSTD_LEVEL (1); a store whose documents say another
-    level (0, Zarr's default, as stores made before 30 Nov 2026) is resumed with its own
-    codecs (the chunk run again encoded at level 0, the documents left as they were)."""
+def test_a_store_is_blosc_compressed_and_a_zstd_store_resumed_with_zstd(
+    system, tmp_path, monkeypatch
+):
+    """A new store's arrays are Blosc (LZ4, level 5, shuffled bytes); a store made with Zarr's
+    default zstd (as stores made before 30 Nov 2026) is resumed with its own codecs: its
+    documents left as they were, the chunk run again encoded by zstd, the numbers the same."""
     import json
 
+    import zarr
+    from zarr.codecs import ZstdCodec
+    from zarr.storage import MemoryStore
+
+    from rollspring.service.sweeps import store
     from rollspring.service.sweeps.grid import Grid
-    from rollspring.service.sweeps.store import ZSTD_LEVEL, RegionWriter
 
     vary = {"springs.0.stiffness": np.linspace(50, 200, 4), "bodies.hoop.mass": [0.5, 1.0]}
-    out = tmp_path / "z.zarr"
-    first = sweep(system, vary, 2.0, chunk=2, out=out).load()
-    documents = [out / "zarr.json", *out.glob("*/zarr.json")]
-    for document in documents[1:]:
+    fresh = sweep(system, vary, 2.0, chunk=2, out=tmp_path / "new.zarr").load()
+    for document in (tmp_path / "new.zarr").glob("*/zarr.json"):
         codecs = json.loads(document.read_text())["codecs"]
-        assert codecs[-1] == {"name": "zstd", "configuration": {"level": 1, "checksum": False}}
-    assert ZSTD_LEVEL == 1
-    for document in documents:
-        document.write_text(document.read_text().replace('"level": 1', '"level": 0'))
+        assert codecs[-1]["name"] == "blosc", document
+        assert {k: codecs[-1]["configuration"][k] for k in ("cname", "clevel")} == {
+            "cname": "lz4",
+            "clevel": 5,
+        }
+
+    def zarr_defaults(dtype, fill):
+        array = zarr.create_array(
+            MemoryStore(), shape=(1,), dtype=np.dtype(dtype), fill_value=fill, zarr_format=3
+        )
+        document = array.metadata.to_dict()
+        return {name: document[name] for name in ("data_type", "fill_value", "codecs")}
+
+    out = tmp_path / "old.zarr"
+    with monkeypatch.context() as patched:
+        patched.setattr(store, "_defaults", zarr_defaults)
+        sweep(system, vary, 2.0, chunk=2, out=out)
+    documents = [out / "zarr.json", *out.glob("*/zarr.json")]
     old = {document: document.read_text() for document in documents}
+    assert '"blosc"' not in "".join(old.values()) and '"zstd"' in old[out / "zarr.json"]
     (out / "cm_amplitude" / "c.3.0").unlink()
     (out / ".rollspring-done" / "3").unlink()
     again = sweep(system, vary, 2.0, out=out).load()
-    same(first, again)
+    same(fresh, again)
     assert {document: document.read_text() for document in documents} == old
     grid = Grid(tuple(vary), tuple(tuple(map(float, v)) for v in vary.values()), (1, 2))
-    encoder = RegionWriter(out, grid).encoders["cm_amplitude"]
-    assert encoder is not None and encoder.codecs[-1].level == 0
+    encoder = store.RegionWriter(out, grid).encoders["cm_amplitude"]
+    assert encoder is not None and isinstance(encoder.codecs[-1], ZstdCodec)
 
 
 def test_a_rerun_without_chunk_resumes_a_store_of_any_chunk_size(system, tmp_path):

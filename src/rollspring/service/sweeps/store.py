@@ -379,37 +379,35 @@ def write_template(
 
 
 _DEFAULTS: dict[tuple[str, str], dict[str, Any]] = {}
-#: The level of Zarr's default zstd codec in a new store: 1, not Zarr's 0 (zstd's 3). A
-#: sweep's variables are mostly float64 results whose low bits do not compress: on 65 536
-#: runs of ``hoop-cylinder`` (k x v) level 1 encodes a chunk in about 70 % of the time, for a
-#: store 0.9 % larger. A store resumed keeps its own codecs.
-ZSTD_LEVEL = 1
+#: The compressor of a new store's arrays: Blosc with LZ4 at level 5 on the bytes shuffled by
+#: their place in an element (Zarr v2's default; Zarr v3's is zstd). A sweep's variables are
+#: mostly float64 results whose low bytes do not compress and whose high bytes do: on 65 536
+#: runs of ``hoop-cylinder`` (k x v) it encodes in 1.3 ms of CPU where zstd took 5.5 ms at
+#: Zarr's default level and 3.6 ms at level 1, for a store 16 % smaller (36 % of the raw bytes
+#: against 43 % and 46 %). A store resumed keeps its own codecs.
+COMPRESSOR: dict[str, Any] = {"cname": "lz4", "clevel": 5, "shuffle": "shuffle"}
 
 
 def _defaults(dtype: str, fill: Any) -> dict[str, Any]:
     """``data_type``, ``fill_value`` and ``codecs`` of the document Zarr writes for a new
-    array of ``dtype`` (a NumPy type string) with ``fill`` (its default codecs: asked of Zarr
-    once a process, in a memory store), its zstd at :data:`ZSTD_LEVEL`."""
+    array of ``dtype`` (a NumPy type string) with ``fill`` and the :data:`COMPRESSOR` (asked
+    of Zarr once a process, in a memory store)."""
     key = (dtype, repr(fill))
     if key not in _DEFAULTS:
         import zarr
+        from zarr.codecs import BloscCodec
         from zarr.storage import MemoryStore
 
         array = zarr.create_array(
-            MemoryStore(), shape=(1,), dtype=np.dtype(dtype), fill_value=fill, zarr_format=3
+            MemoryStore(),
+            shape=(1,),
+            dtype=np.dtype(dtype),
+            fill_value=fill,
+            zarr_format=3,
+            compressors=[BloscCodec(**COMPRESSOR)],
         )
-        document: dict[str, Any] = dict(array.metadata.to_dict())
-        codecs = [
-            {**codec, "configuration": {**codec["configuration"], "level": ZSTD_LEVEL}}
-            if codec.get("name") == "zstd"
-            else codec
-            for codec in document["codecs"]
-        ]
-        _DEFAULTS[key] = {
-            "data_type": document["data_type"],
-            "fill_value": document["fill_value"],
-            "codecs": codecs,
-        }
+        document = array.metadata.to_dict()
+        _DEFAULTS[key] = {name: document[name] for name in ("data_type", "fill_value", "codecs")}
     return _DEFAULTS[key]
 
 

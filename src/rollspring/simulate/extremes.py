@@ -452,14 +452,20 @@ def measured_period(
         segment = next((s for s in run.segments if s.t0 <= lo and hi <= s.t1 + 1e-15), None)
         if segment is None:
             return None
+
+        def offset(tt: float, seg: Segment = segment) -> float:
+            return float(signal_of(seg.evaluate(tt))) - level
+
+        below, above = offset(lo), offset(hi)
+        if below == 0.0 or above == 0.0:
+            crossings.append(lo if below == 0.0 else hi)
+            continue
+        if (below < 0) == (above < 0):
+            # the rows' crossing is not the interpolant's (a signal at the rounding level,
+            # as the lowest mode of a symmetric motion that does not excite it): no period
+            return None
         crossings.append(
-            scipy.optimize.brentq(
-                lambda tt, seg=segment: float(signal_of(seg.evaluate(tt))) - level,
-                lo,
-                hi,
-                xtol=1e-15,
-                rtol=4 * np.finfo(float).eps,
-            )
+            scipy.optimize.brentq(offset, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps)
         )
     period: float = (crossings[-1] - crossings[0]) / (upward.size - 1)
     return period

@@ -99,11 +99,8 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
         """Of each body (``values`` (samples, n), maximised, at times ``at``) whose samples'
         parabolas could reach its floor (or of ``bodies``, a mask): the highest sample, and
         the peaks whose parabolas could be the highest (at most :data:`PEAKS_REFINED`)."""
-        keys = _peak_keys(at, values)
-        with np.errstate(invalid="ignore"):
-            margins = np.where(np.isfinite(keys), keys - values, 0.0)
-            upper = np.max(np.where(np.isnan(keys), -np.inf, keys + margins), axis=0)
-            reaching = ~(upper < floors[kind]) if bodies is None else bodies
+        keys, margins, upper = _reach(at, values)
+        reaching = ~(upper < floors[kind]) if bodies is None else bodies
         for i in np.flatnonzero(reaching & np.any(values > -np.inf, axis=0)).tolist():
             offer_body(kind, i, at, values[:, i], keys[:, i], margins[:, i], width, segment)
 
@@ -149,11 +146,9 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
         offer_peaks("normal", times, -trajectory.normal, spacing)
     # the adaptive segments in two passes: first every segment's samples raise the floors
     # (values reached) and give each body's highest parabola there; then the segments are
-    # looked at again where a body's parabolas reach its floor, and only those bodies offered
-    # (a floor raised segment by segment let most bodies of a long chain through)
-    # (a floor raised segment by segment let most bodies of a long chain through). A body is
-    # offered where its parabolas could beat its floor, in the first segment whose sample
-    # set it, and where a sample is NaN (reported as such)
+    # looked at again, and a body offered only where its parabolas reach its floor, in the
+    # segment whose sample set the floor, and where a sample is NaN (reported as such). A
+    # floor raised segment by segment let most bodies of a long chain through.
     looked: list[tuple[int, dict[str, FloatArray]]] = []
     setter = {kind: np.full(n, -1) for kind in floors}  # the segment whose sample set a floor
     for index, segment in enumerate(run.segments):
@@ -162,11 +157,9 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
         at, width, sampled = _segment_samples(run, segment)
         wanted = {}
         for kind, values in sampled.items():
-            keys = _peak_keys(at, values)
+            upper = _reach(at, values)[2]
+            highest = np.fmax.reduce(values, axis=0)
             with np.errstate(invalid="ignore"):
-                margins = np.where(np.isfinite(keys), keys - values, 0.0)
-                upper = np.max(np.where(np.isnan(keys), -np.inf, keys + margins), axis=0)
-                highest = np.fmax.reduce(values, axis=0)
                 raised = highest > floors[kind]
             setter[kind][raised] = index
             floors[kind] = np.where(raised, highest, floors[kind])
@@ -254,6 +247,18 @@ def continuous_extremes(run: RunState, trajectory: Trajectory) -> dict[str, list
     for (kind, i), value in maximised.items():
         result[kind][i] = float(value if kind == "ratio" else -value)
     return result
+
+
+def _reach(times: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Of samples ``values`` (samples, n) at ``times``: each sample's key
+    (:func:`_peak_keys`), its margin (the key's lift over the sample, 0 where the key is not
+    finite) and, per body, the highest key plus its margin (what its parabolas could reach;
+    NaN keys left out)."""
+    keys = _peak_keys(times, values)
+    with np.errstate(invalid="ignore"):
+        margins = np.where(np.isfinite(keys), keys - values, 0.0)
+        upper = np.max(np.where(np.isnan(keys), -np.inf, keys + margins), axis=0)
+    return keys, margins, upper
 
 
 def _segment_samples(

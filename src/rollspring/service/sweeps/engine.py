@@ -404,8 +404,8 @@ def sweep(
                 if path is not None and writer and not opened:
                     import xarray as xr
 
-                    # the template written here is consolidated: said, its listing is not
-                    # looked for (a third of the opening's CPU)
+                    # the template written here is consolidated: opened as such, xarray
+                    # does not first look for it (a third of the opening's CPU)
                     fresh = True if stored is None else None
                     opened.append(xr.open_zarr(str(path), consolidated=fresh))
 

@@ -431,8 +431,11 @@ def test_stick_slip_follows_the_exact_slipping_solution_then_sticks():
     x, phi, _ = slipping_from_release(stretch, mu_k, trajectory.t[during])
     np.testing.assert_allclose(trajectory.x[during, 0], x, atol=1e-8)
     np.testing.assert_allclose(trajectory.phi[during, 0], phi, atol=1e-8)
-    # (the row at t = 0 shows the instant before the slip: the static friction needed)
-    assert trajectory.slipping[during, 0][1:].all() and not trajectory.slipping[0, 0]
+    # the row at t = 0 too: the motion that starts there, under kinetic friction mu_k N
+    # against the slip (not the static friction rolling would need: beyond mu_s N, which no
+    # floor gives)
+    assert trajectory.slipping[during, 0].all()
+    assert abs(trajectory.friction[0, 0]) == pytest.approx(mu_k * trajectory.normal[0, 0])
     # energy is lost while slipping (at the rate mu_k N |v_s|) and only then
     assert np.all(np.diff(trajectory.energy) <= 1e-12 * trajectory.energy[0])
     assert trajectory.energy[-1] < 0.9 * trajectory.energy[0]

@@ -34,6 +34,39 @@ __all__ = ["GeneralSegments"]
 _TINY = float(np.finfo(float).tiny)
 
 
+def _slip_velocities(state: FloatArray, radius: FloatArray, n: int) -> FloatArray:
+    r"""The contact points' slip velocities :math:`v_s = u - R\omega` of a general state
+    :math:`[x, \varphi, u, \omega]` (or, given its derivative, their rates :math:`\dot v_s`)."""
+    return state[2 * n : 3 * n] - radius * state[3 * n : 4 * n]
+
+
+def _past_the_root(
+    t_root: float,
+    y_root: FloatArray,
+    value: Any,
+    state_at: Any,
+    direction: float,
+    limit: float,
+) -> tuple[float, FloatArray]:
+    """An event's instant and state moved just past its root, where its function (``value``,
+    of direction ``direction``) has crossed zero: the root found to a few ulps may lie on the
+    near side of it. There the body's state would still be on the old side (a needed friction
+    a rounding short of mu_s N, with positions that a step of 1e-14 s leaves unchanged), the
+    segment that starts from it would find the same root an instant later, and the run would
+    stall for ever (two bodies at their limits took turns). The root is moved by doubling
+    steps from one ulp, up to 64 times the roots' tolerance, to the first time found past
+    it; it is left where none is found there (a function that only touches zero)."""
+    if direction * float(value(np.array([t_root]))[0]) > 0.0:
+        return t_root, y_root
+    gap = float(np.spacing(t_root))
+    widest = 64 * ROOT_TOLERANCE * (1.0 + abs(t_root))
+    while gap <= widest and t_root + gap <= limit:
+        if direction * float(value(np.array([t_root + gap]))[0]) > 0.0:
+            return t_root + gap, state_at(t_root + gap)
+        gap *= 2.0
+    return t_root, y_root
+
+
 def _off_zero_at(start: float, event: Any, side: float) -> Any:
     """``event(t, y)``, but the smallest float on the ``side`` (+1 or -1) of zero where it is
     exactly zero at ``t == start``."""
@@ -67,14 +100,20 @@ class GeneralSegments(RunState):
         # against its resistance stops: its event function, past zero already, would never
         # cross zero in this segment. Each pass settles one body for good: it ends.
         verdict = self._contact_verdict(state, slipping)
+        # The release's row (at a run's first segment) shows the bodies that slip from it
+        # slipping: it is recorded once they are decided, or before an event that ends the run
         while verdict is not None or self._resistance_violated(t, state, slipping, sign):
-            self._flush_pending()
             if verdict is None:
+                self._flush_pending(slipping, sign)
                 self._resistance_events(t, state, slipping, sign, np.zeros(n))
-            elif self._event(*verdict, t, state, slipping, sign):
-                self._record(t, state, slipping, sign)
-                return t, state, slipping, sign
+            else:
+                if self._ends_run(verdict[0]):
+                    self._flush_pending(slipping, sign)
+                if self._event(*verdict, t, state, slipping, sign):
+                    self._record(t, state, slipping, sign)
+                    return t, state, slipping, sign
             verdict = self._contact_verdict(state, slipping)
+        self._flush_pending(slipping, sign)
         spin = self.spin.copy()  # the rolling resistance's directions (M21), (M22)
         mu_s = a.mu_static
 
@@ -185,6 +224,16 @@ class GeneralSegments(RunState):
             if inside is not None:
                 t_end, which = inside
                 y_event = np.asarray(dense(t_end), dtype=float)
+            if which is not None:
+                t_end, y_event = _past_the_root(
+                    t_end,
+                    y_event,
+                    lambda tt: values_at(np.asarray(dense(tt)).T)[:, which],
+                    lambda tt: np.asarray(dense(tt), dtype=float),
+                    float(direction[which]),
+                    float(steps[-1]),
+                )
+            if inside is not None:
                 kept = times <= t_end
                 times, values = times[kept], values[:, kept]
                 steps = np.append(steps[steps < t_end], t_end)
@@ -222,6 +271,9 @@ class GeneralSegments(RunState):
             self.omega_peak = np.maximum(self.omega_peak, peaks)
             acceleration = rhs(t_end, y_event)[3 * n :]
         was_slipping = slipping.copy()  # the bodies slipping before the event
+        # the slip accelerations before the event (a body's own, whatever the others do):
+        # which slipping bodies are arriving at v_s = 0, below
+        slip_acceleration = _slip_velocities(rhs(t_end, y_event), a.radius, n)
         if kind == "stick":
             self._stick_or_reverse(body, t_end, y_event, slipping, sign)
         elif kind not in ("turn", "hold", "release") and self._event(
@@ -232,10 +284,19 @@ class GeneralSegments(RunState):
         # every other body is decided at this instant too: one whose event is due here as well
         # (a mode moving alone stops, sticks or slips its bodies together) would otherwise be
         # lost, its event function already at zero or past it when the next segment starts.
-        # A slipping body whose slip velocity has reached zero sticks or reverses:
+        # A slipping body whose slip velocity has reached zero, arriving there (its slip
+        # decelerating), sticks or reverses. One whose slip grows has just begun: a v_s past
+        # zero is then the integrator's rounding of a slip still ~0 (with mu_k = mu_s, v_s
+        # grows as t^2 from onset), and deciding it would stick it only to slip it again an
+        # instant later, for ever (two bodies at their limits took turns every 1e-11 s).
+        slip_velocity = _slip_velocities(y_event, a.radius, n)
         for i in range(n):
-            slip_velocity = y_event[2 * n + i] - a.radius[i] * y_event[3 * n + i]
-            if was_slipping[i] and (kind, body) != ("stick", i) and sign[i] * slip_velocity < 0:
+            if (
+                was_slipping[i]
+                and (kind, body) != ("stick", i)
+                and sign[i] * slip_velocity[i] < 0
+                and sign[i] * slip_acceleration[i] <= 0
+            ):
                 self._stick_or_reverse(i, t_end, y_event, slipping, sign)
         if a.resisted:  # every resisted body stopping here rests or turns; a driven one releases
             trigger = (kind, body) if kind in ("turn", "hold", "release") else None
@@ -263,8 +324,13 @@ class GeneralSegments(RunState):
             slipping[body] = False
             sign[body] = 0.0
             self.events.append({"kind": "stick", "time": t, "body": a.ids[body]})
-        else:
-            sign[body] = -sign[body]
+            return
+        # it slips on the way the static friction needed drives it, as at onset: the other
+        # way where v_s came back to zero, the same way where a v_s of rounding's size only
+        # touched zero (a slip just begun): no event then
+        onward = -float(np.sign(friction[0, body])) or -sign[body]
+        if onward != sign[body]:
+            sign[body] = onward
             self.events.append({"kind": "reverse", "time": t, "body": a.ids[body]})
 
     def _resistance_drive(

@@ -36,6 +36,7 @@ import numpy as np
 from rollspring.model import System
 from rollspring.physics import system_arrays
 from rollspring.simulate import arguments, setup
+from rollspring.simulate.crossings import ROOT_TOLERANCE
 from rollspring.simulate.general import GeneralSegments
 from rollspring.simulate.integrators import INTEGRATORS as SCHEME_REGISTRY
 from rollspring.simulate.request import INTEGRATORS, SimulationRequest, simulation_request
@@ -206,8 +207,9 @@ class _Run(RollingSegments, GeneralSegments):
         # a body already beyond its friction limit at release slips from the start
         verdict = self._contact_verdict(state, slipping, observed)
         if verdict is not None:
-            self._flush_pending()
             kind, body = verdict
+            if self._ends_run(kind):  # else the release is recorded with it slipping
+                self._flush_pending()
             done = self._event(kind, body, 0.0, state, slipping, sign)
             if done:
                 return
@@ -221,10 +223,11 @@ class _Run(RollingSegments, GeneralSegments):
                     t, state, slipping, sign = self._rolling_segment(t, state, self.e0, initial)
                 else:
                     t, state, slipping, sign = self._rolling_segment(t, state)
-            else:
-                self._flush_pending()
+            else:  # (which records the release once what slips from it is decided)
                 t, state, slipping, sign = self._general_segment(t, state, slipping, sign)
-            stalled = stalled + 1 if t <= began else 0
+            # (no length: shorter than the roots' tolerance tells apart; events that repeat
+            # a rounding's width apart are no progress either)
+            stalled = stalled + 1 if t - began <= 64 * ROOT_TOLERANCE * (1.0 + abs(began)) else 0
             if stalled > max_stalled:
                 # each segment of no length settles a body's event for good, so a run that
                 # keeps making them repeats its events: it is stopped, never left to hang

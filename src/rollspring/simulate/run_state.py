@@ -47,6 +47,9 @@ BoolArray = NDArray[np.bool_]
 Handover = tuple[float, FloatArray, BoolArray, FloatArray]
 #: a segment's times to look for extremes at: none (the kernel's extremes cover it)
 NO_SAMPLES = np.empty(0)
+#: a slip's |f|/N within this relative margin of mu_s is its limit reached (the root of
+#: mu_s N - |f|, located to rounding); beyond it, a body that never rolled with it (at release)
+_AT_THE_LIMIT = 1e-6
 
 
 def _rows_of(values: np.ndarray, rows: int, dtype: type) -> np.ndarray:
@@ -248,11 +251,22 @@ class RunState:
         x0 = np.where(self.rolls, x - a.scale * phi, a.x0)
         return q, qdot, x0
 
-    def _flush_pending(self) -> None:
-        """Record the first output row (the release) if it is not recorded yet."""
+    def _flush_pending(
+        self, slipping: BoolArray | None = None, sign: FloatArray | None = None
+    ) -> None:
+        """Record the first output row (the release) if it is not recorded yet: every body
+        rolling, or ``slipping`` those that slip from the release (with kinetic friction of
+        the directions ``sign``), as the motion starts."""
         if self.pending is not None:
             state, self.pending = self.pending, None
-            self._record(0.0, state, np.zeros(self.n, dtype=bool), np.zeros(self.n))
+            if slipping is None or sign is None:
+                slipping, sign = np.zeros(self.n, dtype=bool), np.zeros(self.n)
+            self._record(0.0, state, slipping, sign)
+
+    def _ends_run(self, kind: str) -> bool:
+        """Whether a contact event of ``kind`` ends the run (a lift-off, or a slip with
+        ``on_slip="stop"``): its state is then the last row, the release's recorded first."""
+        return kind == "liftoff" or (kind == "slip" and self.plan.on_slip == "stop")
 
     def _record(
         self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
@@ -362,7 +376,14 @@ class RunState:
         name = self.arrays.ids[body]
         self.events.append({"kind": kind, "time": t, "body": name})
         if kind == "slip":
-            self.slip_ratios[int(body)] = float(self.arrays.mu_static[body])
+            # |f|/N reached mu_s here (its event's root) where the body rolled up to it; not
+            # where it is beyond it at once (at release): that body never rolled with it
+            friction, normal, *_ = self.observe(
+                state[None, :], slipping[None], sign[None], self.spin[None]
+            )
+            mu = float(self.arrays.mu_static[body])
+            if abs(friction[0, body]) <= mu * normal[0, body] * (1.0 + _AT_THE_LIMIT):
+                self.slip_ratios[int(body)] = mu
         if kind == "liftoff":
             self.status = RunStatus.LIFTOFF
             self.message = (
@@ -379,7 +400,6 @@ class RunState:
             )
             return True
         if kind == "slip":
-            friction, *_ = self.observe(state[None, :], slipping[None], sign[None], self.spin[None])
             slipping[body] = True
             # the kinetic friction takes the sign of the static friction that was needed
             sign[body] = -np.sign(friction[0, body]) or 1.0

@@ -248,7 +248,8 @@ def _body_extremes(trajectory: Any) -> Table:
     for column in ("quantity", "smallest", "body", "largest", "body"):
         table.add_column(column, justify="left" if column in ("quantity", "body") else "right")
     for label, values in quantities:
-        finite = {b: v for b, v in values.items() if v == v}  # NaN is nobody's extreme
+        # NaN is nobody's extreme, nor None (a body that never rolled has no |f|/N rolling)
+        finite = {b: v for b, v in values.items() if v is not None and v == v}
         if not finite:
             table.add_row(label, "-", "", "-", "")
             continue

@@ -104,8 +104,12 @@ def summary(trajectory: Trajectory, run: RunState) -> dict[str, Any]:
         },
         "period_measured": period,
         "period_linear": period_linear,
+        # per rolling body (a slider has none); None for one that never rolled in the run
+        # (it slipped from the release to the end)
         "max_friction_ratio": {
-            ids[i]: extremes["ratio"][i] for i in range(n) if arrays.rolls[i] > 0
+            ids[i]: extremes["ratio"][i] if extremes["ratio"][i] > -math.inf else None
+            for i in range(n)
+            if arrays.rolls[i] > 0
         },
         "min_normal_force": {ids[i]: extremes["normal"][i] for i in range(n)},
         "first_slip": first["slip"],

@@ -729,7 +729,8 @@ def _single_run(
     out["period_measured"][r] = np.nan if period is None else period
     out["energy_error"][r] = summary["energy_error"]
     for i, name in enumerate(ids):
-        out["max_friction_ratio"][r, i] = summary["max_friction_ratio"].get(name, 0.0)
+        ratio = summary["max_friction_ratio"].get(name, 0.0)  # None: it never rolled
+        out["max_friction_ratio"][r, i] = np.nan if ratio is None else ratio
         out["min_normal_force"][r, i] = summary["min_normal_force"][name]
     out["cm_amplitude"][r] = 0.5 * float(np.ptp(trajectory.cm_x))
     if trajectory.stationary_x is not None:

@@ -149,29 +149,13 @@ def test_a_body_beyond_its_limit_at_release_is_shown_slipping_from_it() -> None:
 def test_a_body_that_never_rolls_has_no_largest_ratio_while_rolling() -> None:
     """Two hoops with mu_s = 1e-6 on a spring, released stretched: both slip from the release
     to the end (they reverse, never stick). Their largest |f|/N while rolling is None (shown
-    "-"), not the release's needed friction (0.58 was reported, with the first row showing
-    them rolling)."""
+    "-"), not the release's needed friction: F/(2 m g) = 0.51 was reported, the first row
+    showing them rolling."""
+    hoop = {"shape": "hoop", "mass": 1.0, "radius": 0.1, "mu_static": 1e-6}
     system = system_from_dict(
         {
             "gravity": 9.81,
-            "bodies": [
-                {
-                    "id": "a",
-                    "shape": "hoop",
-                    "mass": 1.0,
-                    "radius": 0.1,
-                    "x": 0.0,
-                    "mu_static": 1e-6,
-                },
-                {
-                    "id": "b",
-                    "shape": "hoop",
-                    "mass": 1.0,
-                    "radius": 0.1,
-                    "x": 0.6,
-                    "mu_static": 1e-6,
-                },
-            ],
+            "bodies": [{"id": "a", "x": 0.0, **hoop}, {"id": "b", "x": 0.6, **hoop}],
             "springs": [{"ends": ["a", "b"], "stiffness": 100.0, "rest_length": 0.5}],
         }
     )

@@ -54,12 +54,14 @@ def _past_the_root(
     a rounding short of mu_s N, with positions that a step of 1e-14 s leaves unchanged), the
     segment that starts from it would find the same root an instant later, and the run would
     stall for ever (two bodies at their limits took turns). The root is moved by doubling
-    steps from one ulp, up to 64 times the roots' tolerance, to the first time found past
-    it; it is left where none is found there (a function that only touches zero)."""
+    steps from one ulp, up to 8 times the roots' tolerance (the root is within one of it;
+    less than the 16 within which an event counts as at its segment's start), to the first
+    time found past it; it is left where none is found there (a function that only touches
+    zero)."""
     if direction * float(value(np.array([t_root]))[0]) > 0.0:
         return t_root, y_root
     gap = float(np.spacing(t_root))
-    widest = 64 * ROOT_TOLERANCE * (1.0 + abs(t_root))
+    widest = 8 * ROOT_TOLERANCE * (1.0 + abs(t_root))
     while gap <= widest and t_root + gap <= limit:
         if direction * float(value(np.array([t_root + gap]))[0]) > 0.0:
             return t_root + gap, state_at(t_root + gap)
@@ -332,6 +334,7 @@ class GeneralSegments(RunState):
         if onward != sign[body]:
             sign[body] = onward
             self.events.append({"kind": "reverse", "time": t, "body": a.ids[body]})
+        self._slip_off(state, body, onward)
 
     def _resistance_drive(
         self, state: FloatArray, slipping: BoolArray, sign: FloatArray

@@ -50,6 +50,7 @@ NO_SAMPLES = np.empty(0)
 #: a slip's |f|/N within this relative margin of mu_s is its limit reached (the root of
 #: mu_s N - |f|, located to rounding); beyond it, a body that never rolled with it (at release)
 _AT_THE_LIMIT = 1e-6
+_TINY = float(np.finfo(float).tiny)
 
 
 def _rows_of(values: np.ndarray, rows: int, dtype: type) -> np.ndarray:
@@ -403,7 +404,19 @@ class RunState:
             slipping[body] = True
             # the kinetic friction takes the sign of the static friction that was needed
             sign[body] = -np.sign(friction[0, body]) or 1.0
+            self._slip_off(state, int(body), float(sign[body]))
         return False
+
+    def _slip_off(self, state: FloatArray, body: int, direction: float) -> None:
+        r"""A body that starts to slip (or slips on) the way ``direction`` (+1, -1) at
+        :math:`v_s = u - R\omega = 0`: its :math:`v_s` set a few ulps to that side, not at 0.
+        Where mu_k = mu_s and the friction needed exceeds mu_s N only by a rounding, :math:`v_s`
+        grows from 0 no faster than rounding moves it, and a stick event function starting at 0
+        was found crossing again an ulp later, for ever (segments of 1e-15 s, or of no length).
+        The state changes by 4 ulps of :math:`u`."""
+        n = self.n
+        u, rolled = state[2 * n + body], self.arrays.radius[body] * state[3 * n + body]
+        state[2 * n + body] = rolled + direction * 4 * np.spacing(max(abs(u), abs(rolled), _TINY))
 
     def _report(self, t: float) -> None:
         if self.plan.progress is not None:

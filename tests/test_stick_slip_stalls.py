@@ -259,3 +259,52 @@ def test_a_body_that_never_rolls_has_no_largest_ratio_while_rolling() -> None:
     assert {e["kind"] for e in run.events} <= {"slip", "reverse"}
     assert run.summary["max_friction_ratio"] == {"a": None, "b": None}
     check_friction_law(run)
+
+
+def test_bodies_beyond_their_limits_when_another_lifts_off_at_release_are_shown_slipping() -> None:
+    """b0 lifts off at release (the run ends there) while b1 and b2 need more than mu_s N:
+    they slip at that instant too, and the one row shows them slipping under mu_k N (it showed
+    them rolling with |f|/N = 0.21 and 0.31 for mu_s 0.18 and 0.14)."""
+    case = json.loads((Path(__file__).parent / "data" / "release_liftoff.json").read_text())
+    run = rollspring.simulate(
+        system_from_dict(case["system"]),
+        case["T"],
+        rtol=case["rtol"],
+        n_output=case["n_output"],
+        on_slip=case["on_slip"],
+    )
+    assert run.status == "liftoff" and list(run.t) == [0.0]
+    assert [(e["kind"], e["body"], e["time"]) for e in run.events] == [
+        ("slip", "b1", 0.0),
+        ("slip", "b2", 0.0),
+        ("liftoff", "b0", 0.0),
+    ]
+    assert run.slipping[0].tolist() == [False, True, True]
+    bodies = {b.id: b for b in run.system.bodies}
+    for i, name in ((1, "b1"), (2, "b2")):
+        kinetic = bodies[name].mu_kinetic_value * run.normal[0, i]
+        assert abs(run.friction[0, i]) == pytest.approx(kinetic, rel=1e-12)
+        assert run.summary["max_friction_ratio"][name] is None
+
+
+def test_a_function_a_rounding_below_zero_at_the_start_starts_at_zero() -> None:
+    """first_crossing's look just after a step's start: a function 1e-20 below zero there that
+    rises above zero within the first part and falls back (a crossing no sample sees) is found
+    by a bounded search; given ``rounding`` 1e-19 it starts at zero, as a function exactly at 0
+    does, and no search is made (a slip velocity set 4 ulps off zero: one search per segment
+    made stick-slip runs 1.3-1.4 times slower)."""
+    from rollspring.simulate.crossings import first_crossing
+
+    def excursion(offset: float) -> object:
+        # above zero on (0, 0.02) only (the first part is [0, 0.125])
+        return lambda t: (offset + 1e-6 * t * (0.02 - t))[:, None]
+
+    ends, down = np.array([0.0, 1.0]), np.array([1.0])
+    found = first_crossing(excursion(-1e-20), ends, down)
+    assert found is not None and 0.0 < found[0] < 0.02
+    assert first_crossing(excursion(-1e-20), ends, down, rounding=np.array([1e-19])) is None
+    assert first_crossing(excursion(0.0), ends, down) is None
+    # a true crossing between samples is found whatever the rounding
+    rising = lambda t: (t - 0.3)[:, None]  # noqa: E731
+    found = first_crossing(rising, ends, down, rounding=np.array([1e-19]))
+    assert found is not None and found[0] == pytest.approx(0.3)

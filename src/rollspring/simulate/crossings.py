@@ -41,6 +41,7 @@ def first_crossing(
     *,
     before: float | None = None,
     per_step: int = PER_STEP,
+    rounding: FloatArray | None = None,
 ) -> tuple[float, int] | None:
     r"""The first instant at which an event function crosses zero in its direction, looking
     inside the steps: ``(t, k)`` of event ``k``, or None.
@@ -65,6 +66,9 @@ def first_crossing(
     more than 16 times the roots' tolerance (the same root found twice is no new event). A
     function already above zero where the samples start has no crossing there (it
     is due at once, before integrating, or is rounding of a function that starts at zero).
+    ``rounding`` (per event, default 0): a function that starts below zero by at most this
+    much starts at zero, for the look just after the start (a slip velocity set a few ulps off
+    zero, which grows away from it: no bounded search there, as for a function exactly at 0).
     """
     from scipy.optimize import brentq, minimize_scalar  # on demand, as SciPy's integrator
 
@@ -89,7 +93,8 @@ def first_crossing(
     rise = np.maximum(middle - left_of, middle - right_of)
     peak = (middle >= left_of) & (middle >= right_of) & (middle <= 0.0)
     peak &= middle + _NEAR * rise > 0.0
-    start = (0.0 > due[0]) & (due[0] >= due[1]) & (due[0] + _NEAR * (due[0] - due[1]) > 0.0)
+    below = 0.0 if rounding is None else -np.asarray(rounding, dtype=float)
+    start = (below > due[0]) & (due[0] >= due[1]) & (due[0] + _NEAR * (due[0] - due[1]) > 0.0)
     candidates = np.flatnonzero(crossing.any(axis=0) | peak.any(axis=0) | start)
     best: tuple[float, int] | None = None
     for k in (int(c) for c in candidates):

@@ -110,7 +110,7 @@ class GeneralSegments(RunState):
                 self._resistance_events(t, state, slipping, sign, np.zeros(n))
             else:
                 if self._ends_run(verdict[0]):
-                    self._flush_pending(slipping, sign)
+                    self._release_before_the_end(t, state, slipping, sign)
                 if self._event(*verdict, t, state, slipping, sign):
                     self._record(t, state, slipping, sign)
                     return t, state, slipping, sign
@@ -222,6 +222,7 @@ class GeneralSegments(RunState):
                 steps,
                 direction,
                 before=t_end,
+                rounding=self._stick_rounding(state, labels),
             )
             if inside is not None:
                 t_end, which = inside
@@ -304,6 +305,18 @@ class GeneralSegments(RunState):
             trigger = (kind, body) if kind in ("turn", "hold", "release") else None
             self._resistance_events(t_end, y_event, slipping, sign, acceleration, trigger)
         return t_end, y_event, slipping, sign
+
+    def _stick_rounding(self, state: FloatArray, labels: list[tuple[str, int]]) -> FloatArray:
+        """Per event, how far below zero its function may start and still be at zero: for a
+        stick, the few ulps a slip is set off :math:`v_s = 0` by
+        (:meth:`~rollspring.simulate.run_state.RunState._slip_off`); 0 for the others."""
+        n, radius = self.n, self.arrays.radius
+        out = np.zeros(len(labels))
+        for k, (kind, i) in enumerate(labels):
+            if kind == "stick":
+                u, rolled = abs(state[2 * n + i]), abs(radius[i] * state[3 * n + i])
+                out[k] = 8 * np.spacing(max(u, rolled, _TINY))
+        return out
 
     def _stick_or_reverse(
         self, body: int, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray

@@ -209,7 +209,7 @@ class _Run(RollingSegments, GeneralSegments):
         if verdict is not None:
             kind, body = verdict
             if self._ends_run(kind):  # else the release is recorded with it slipping
-                self._flush_pending()
+                self._release_before_the_end(0.0, state, slipping, sign)
             done = self._event(kind, body, 0.0, state, slipping, sign)
             if done:
                 return

@@ -264,6 +264,18 @@ class RunState:
                 slipping, sign = np.zeros(self.n, dtype=bool), np.zeros(self.n)
             self._record(0.0, state, slipping, sign)
 
+    def _release_before_the_end(
+        self, t: float, state: FloatArray, slipping: BoolArray, sign: FloatArray
+    ) -> None:
+        """The release's row recorded (if it is not yet) before an event that ends the run at
+        its first instant: with ``on_slip="continue"`` every rolling body beyond mu_s N there
+        slips first (an event each), so that the row shows them slipping, as the motion
+        would start, not rolling with a friction no floor gives."""
+        if self.pending is not None and self.plan.on_slip == "continue":
+            while (verdict := self._contact_verdict(state, slipping, slips_only=True)) is not None:
+                self._event("slip", verdict[1], t, state, slipping, sign)
+        self._flush_pending(slipping, sign)
+
     def _ends_run(self, kind: str) -> bool:
         """Whether a contact event of ``kind`` ends the run (a lift-off, or a slip with
         ``on_slip="stop"``): its state is then the last row, the release's recorded first."""
@@ -340,10 +352,16 @@ class RunState:
         return out
 
     def _contact_verdict(
-        self, state: FloatArray, slipping: BoolArray, observed: Observed | None = None
+        self,
+        state: FloatArray,
+        slipping: BoolArray,
+        observed: Observed | None = None,
+        *,
+        slips_only: bool = False,
     ) -> tuple[str, int] | None:
-        """('liftoff' | 'slip', body) if a rolling body violates its contact now, else None.
-        ``observed``: the state observed already (with no slip direction)."""
+        """('liftoff' | 'slip', body) if a rolling body violates its contact now, else None
+        (``slips_only``: slips alone). ``observed``: the state observed already (with no slip
+        direction)."""
         if observed is None:
             observed = self.observe(
                 state[None, :], slipping[None], np.zeros((1, self.n)), self.spin[None]
@@ -351,7 +369,7 @@ class RunState:
         friction, normal = observed.friction, observed.normal
         mu = self.arrays.mu_static
         for i in range(self.n):
-            if normal[0, i] < 0:
+            if normal[0, i] < 0 and not slips_only:
                 return "liftoff", i
         for i in range(self.n):
             if (
@@ -360,6 +378,7 @@ class RunState:
                 and math.isfinite(mu[i])  # (inf * a normal force of 0 would be NaN)
                 and abs(friction[0, i]) > mu[i] * normal[0, i]
                 and friction[0, i] != 0.0
+                and not (slips_only and normal[0, i] < 0)  # (it lifts off)
             ):
                 return "slip", i
         return None

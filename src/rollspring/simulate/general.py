@@ -291,7 +291,7 @@ class GeneralSegments(RunState):
         # decelerating), sticks or reverses. One whose slip grows has just begun: a v_s past
         # zero is then the integrator's rounding of a slip still ~0 (with mu_k = mu_s, v_s
         # grows as t^2 from onset), and deciding it would stick it only to slip it again an
-        # instant later, for ever (two bodies at their limits took turns every 1e-11 s).
+        # instant later, for ever (two bodies at their limits took turns every 1e-14 s).
         slip_velocity = _slip_velocities(y_event, a.radius, n)
         for i in range(n):
             if (

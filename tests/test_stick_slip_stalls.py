@@ -308,3 +308,23 @@ def test_a_function_a_rounding_below_zero_at_the_start_starts_at_zero() -> None:
     rising = lambda t: (t - 0.3)[:, None]  # noqa: E731
     found = first_crossing(rising, ends, down, rounding=np.array([1e-19]))
     assert found is not None and found[0] == pytest.approx(0.3)
+
+
+def test_a_sweep_stores_nan_for_a_body_that_never_rolls() -> None:
+    """The same two hoops swept over a's mu_s (1e-6, 1): b never rolls in either run and a
+    only in the second, where its largest |f|/N is the release's F/(2 m g) = 0.51 (within
+    its mu_s of 1); a store keeps NaN where the summary has None."""
+    from rollspring.service.sweeps import sweep
+
+    hoop = {"shape": "hoop", "mass": 1.0, "radius": 0.1, "mu_static": 1e-6}
+    system = system_from_dict(
+        {
+            "gravity": 9.81,
+            "bodies": [{"id": "a", "x": 0.0, **hoop}, {"id": "b", "x": 0.6, **hoop}],
+            "springs": [{"ends": ["a", "b"], "stiffness": 100.0, "rest_length": 0.5}],
+        }
+    )
+    dataset = sweep(system, {"bodies.a.mu_static": np.array([1e-6, 1.0])}, 1.0, on_slip="continue")
+    ratio = dataset["max_friction_ratio"].values
+    assert np.isnan(ratio[0]).all() and np.isnan(ratio[1, 1])
+    assert ratio[1, 0] == pytest.approx(10.0 / (2 * 9.81), rel=1e-9)

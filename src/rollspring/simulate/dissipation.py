@@ -22,6 +22,7 @@ import numpy as np
 
 from rollspring.physics.arrays import FloatArray
 from rollspring.physics.mechanics import dissipated_power
+from rollspring.simulate.run_state import slip_velocities
 
 if TYPE_CHECKING:
     from rollspring.simulate.run_state import RunState, Segment
@@ -51,7 +52,7 @@ def power_at(
     slip = np.broadcast_to(slipping, (rows, n))
     observed = run.observe(states, slip, np.broadcast_to(sign, (rows, n)), spin)
     # a slipping body's slip velocity; a rolling body's is zero (its friction does no work)
-    slip_velocity = (states[:, 2 * n : 3 * n] - a.radius * states[:, 3 * n : 4 * n]) * slip
+    slip_velocity = slip_velocities(states, a.radius, n) * slip
     return dissipated_power(
         a,
         observed.length,

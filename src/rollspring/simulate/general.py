@@ -26,18 +26,20 @@ import numpy as np
 from rollspring.physics.arrays import FloatArray
 from rollspring.simulate import kernels
 from rollspring.simulate.crossings import ROOT_TOLERANCE, first_crossing
-from rollspring.simulate.run_state import BoolArray, Handover, RunState, Segment
+from rollspring.simulate.run_state import (
+    SLIP_OFF,
+    BoolArray,
+    Handover,
+    RunState,
+    Segment,
+    slip_rounding,
+    slip_velocities,
+)
 from rollspring.simulate.status import RunStatus
 
 __all__ = ["GeneralSegments"]
 
 _TINY = float(np.finfo(float).tiny)
-
-
-def _slip_velocities(state: FloatArray, radius: FloatArray, n: int) -> FloatArray:
-    r"""The contact points' slip velocities :math:`v_s = u - R\omega` of a general state
-    :math:`[x, \varphi, u, \omega]` (or, given its derivative, their rates :math:`\dot v_s`)."""
-    return state[2 * n : 3 * n] - radius * state[3 * n : 4 * n]
 
 
 def _past_the_root(
@@ -276,7 +278,7 @@ class GeneralSegments(RunState):
         was_slipping = slipping.copy()  # the bodies slipping before the event
         # the slip accelerations before the event (a body's own, whatever the others do):
         # which slipping bodies are arriving at v_s = 0, below
-        slip_acceleration = _slip_velocities(rhs(t_end, y_event), a.radius, n)
+        slip_acceleration = slip_velocities(rhs(t_end, y_event), a.radius, n)
         if kind == "stick":
             self._stick_or_reverse(body, t_end, y_event, slipping, sign)
         elif kind not in ("turn", "hold", "release") and self._event(
@@ -292,7 +294,7 @@ class GeneralSegments(RunState):
         # zero is then the integrator's rounding of a slip still ~0 (with mu_k = mu_s, v_s
         # grows as t^2 from onset), and deciding it would stick it only to slip it again an
         # instant later, for ever (two bodies at their limits took turns every 1e-14 s).
-        slip_velocity = _slip_velocities(y_event, a.radius, n)
+        slip_velocity = slip_velocities(y_event, a.radius, n)
         for i in range(n):
             if (
                 was_slipping[i]
@@ -313,9 +315,8 @@ class GeneralSegments(RunState):
         n, radius = self.n, self.arrays.radius
         out = np.zeros(len(labels))
         for k, (kind, i) in enumerate(labels):
-            if kind == "stick":
-                u, rolled = abs(state[2 * n + i]), abs(radius[i] * state[3 * n + i])
-                out[k] = 8 * np.spacing(max(u, rolled, _TINY))
+            if kind == "stick":  # (twice the roundings it is set off by)
+                out[k] = 2 * SLIP_OFF * slip_rounding(state, radius, n, i)
         return out
 
     def _stick_or_reverse(
@@ -434,11 +435,12 @@ class GeneralSegments(RunState):
             for r in range(rows):
                 drive[r], limit[r] = self._resistance_drive(states[r], slipping, sign)
         a = self.arrays
+        slip = slip_velocities(states, a.radius, n) if "stick" in kinds else states
         for column, (kind, i) in enumerate(labels):
             if kind == "slip":
                 out[:, column] = a.mu_static[i] * normal[:, i] - np.abs(friction[:, i])
             elif kind == "stick":
-                out[:, column] = states[:, 2 * n + i] - a.radius[i] * states[:, 3 * n + i]
+                out[:, column] = slip[:, i]
             elif kind == "liftoff":
                 out[:, column] = normal[:, i]
             elif kind == "turn":

@@ -40,6 +40,8 @@ __all__ = [
     "Segment",
     "Start",
     "general_state",
+    "slip_rounding",
+    "slip_velocities",
 ]
 
 BoolArray = NDArray[np.bool_]
@@ -51,6 +53,8 @@ NO_SAMPLES = np.empty(0)
 #: mu_s N - |f|, located to rounding); beyond it, a body that never rolled with it (at release)
 _AT_THE_LIMIT = 1e-6
 _TINY = float(np.finfo(float).tiny)
+#: the roundings (:func:`slip_rounding`) a slip's v_s is set off 0 by (:meth:`RunState._slip_off`)
+SLIP_OFF = 4
 
 
 def _rows_of(values: np.ndarray, rows: int, dtype: type) -> np.ndarray:
@@ -128,6 +132,21 @@ def general_state(arrays: SystemArrays, q: FloatArray, v: FloatArray, x0: FloatA
     np.multiply(rolls, v.T, out=out[3 * n :])
     states: FloatArray = out.T.copy()
     return states
+
+
+def slip_velocities(states: FloatArray, radius: FloatArray, n: int) -> FloatArray:
+    r"""The contact points' slip velocities :math:`v_s = u - R\omega` of general states
+    :math:`[x, \varphi, u, \omega]` (one, or rows of them; given their derivatives, the rates
+    :math:`\dot v_s`)."""
+    result: FloatArray = states[..., 2 * n : 3 * n] - radius * states[..., 3 * n : 4 * n]
+    return result
+
+
+def slip_rounding(state: FloatArray, radius: FloatArray, n: int, body: int) -> float:
+    r"""A rounding of body ``body``'s slip velocity in the general ``state``: one ulp of the
+    larger of :math:`|u|` and :math:`|R\omega|` (the smallest normal float at rest)."""
+    u, rolled = abs(state[2 * n + body]), abs(radius[body] * state[3 * n + body])
+    return float(np.spacing(max(u, rolled, _TINY)))
 
 
 class RunState:
@@ -432,10 +451,11 @@ class RunState:
         Where mu_k = mu_s and the friction needed exceeds mu_s N only by a rounding, :math:`v_s`
         grows from 0 no faster than rounding moves it, and a stick event function starting at 0
         was found crossing again an ulp later, for ever (segments of 1e-15 s, or of no length).
-        The state changes by 4 ulps of :math:`u`."""
-        n = self.n
-        u, rolled = state[2 * n + body], self.arrays.radius[body] * state[3 * n + body]
-        state[2 * n + body] = rolled + direction * 4 * np.spacing(max(abs(u), abs(rolled), _TINY))
+        The state changes by :data:`SLIP_OFF` ulps of :math:`u`."""
+        n, radius = self.n, self.arrays.radius
+        state[2 * n + body] = radius[body] * state[3 * n + body] + direction * SLIP_OFF * (
+            slip_rounding(state, radius, n, body)
+        )
 
     def _report(self, t: float) -> None:
         if self.plan.progress is not None:
